@@ -1,0 +1,36 @@
+#pragma once
+// strata::Error and SourceLocation: how strata reports a mistake to the outside world.
+//
+// Every error that reaches a user is one line that starts with where it happened:
+//   scenes/gear.csg:12:5: unknown primitive 'cyl'
+// Input mistakes name the input's file, line and column; GPU failures name the
+// source position in strata. main() catches strata::Error once and prints what().
+
+#include <stdexcept>
+#include <string>
+
+namespace strata {
+
+// A position in a text input. line and column count from 1; 0 means unknown.
+struct SourceLocation {
+    std::string file;
+    int line = 0;
+    int column = 0;
+
+    // "file:line:col", "file:line" or "file", depending on what is known.
+    std::string str() const;
+};
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
+    // "where: message"
+    Error(const SourceLocation& where, const std::string& message);
+};
+
+// A non-fatal diagnostic, already formatted as "file:line:col: warning: ...".
+struct Warning {
+    std::string message;
+};
+
+}  // namespace strata

@@ -1,0 +1,28 @@
+#pragma once
+// Reader for OpenSCAD's CSG export (`openscad -o x.csg x.scad`), the 2021.01
+// dialect and the newer one. Streams its input: memory grows with the tree, not
+// with the size of the text.
+
+#include <iosfwd>
+#include <string>
+
+#include "strata/scene/Tree.h"
+
+namespace strata::scene {
+
+struct ParseOptions {
+    // $fn above this is clamped (with a warning), so a sphere of $fn=1e9 cannot
+    // eat the machine.
+    double maxFragments = 1024.0;
+};
+
+// Parses the file at `path`. Throws strata::Error("path:line:col: message") on
+// any malformed input. Unsupported nodes become warnings in Tree::warnings.
+Tree parseCsgFile(const std::string& path, const ParseOptions& options = {});
+
+// Parses text from a stream; `name` is used in messages and `baseDir` resolves
+// relative import() paths.
+Tree parseCsg(std::istream& in, const std::string& name, const std::string& baseDir,
+              const ParseOptions& options = {});
+
+}  // namespace strata::scene

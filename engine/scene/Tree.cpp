@@ -1,0 +1,35 @@
+#include "strata/scene/Tree.h"
+
+#include <utility>
+
+namespace strata::scene {
+
+int Tree::addLeaf(Leaf leaf) {
+    Node node;
+    node.kind = NodeKind::Leaf;
+    node.leaf = static_cast<int>(leaves.size());
+    node.where = leaf.where;
+    leaves.push_back(std::move(leaf));
+    nodes.push_back(std::move(node));
+    return static_cast<int>(nodes.size()) - 1;
+}
+
+int Tree::addNode(NodeKind kind, std::vector<int> children) {
+    Node node;
+    node.kind = kind;
+    node.children = std::move(children);
+    nodes.push_back(std::move(node));
+    return static_cast<int>(nodes.size()) - 1;
+}
+
+const char* kindName(NodeKind kind) {
+    switch (kind) {
+        case NodeKind::Leaf: return "leaf";
+        case NodeKind::Union: return "union";
+        case NodeKind::Intersection: return "intersection";
+        case NodeKind::Difference: return "difference";
+    }
+    return "?";
+}
+
+}  // namespace strata::scene
