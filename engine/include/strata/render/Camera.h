@@ -1,0 +1,59 @@
+#pragma once
+// The camera of ../shared/CONTRACT.md ("Camera"): OpenSCAD's conventions, Z up.
+// Pure math, shared by the GPU renderer and the CPU reference so both sample
+// exactly the same rays.
+
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "strata/geometry/Mesh.h"
+
+namespace strata::render {
+
+enum class Projection { Perspective, Orthographic };
+
+struct Ray {
+    glm::dvec3 origin;
+    glm::dvec3 direction;  // unit length
+};
+
+struct Camera {
+    glm::dvec3 eye{0.0, -10.0, 0.0};
+    glm::dvec3 center{0.0, 0.0, 0.0};
+    double fovDegrees = 22.5;  // vertical field of view
+    Projection projection = Projection::Perspective;
+    int width = 512;
+    int height = 512;
+
+    // f, r, u of the contract: f = normalize(center - eye), r = normalize(cross(f, z))
+    // (with (0,1,0) as up when f is parallel to Z), u = cross(r, f).
+    glm::dvec3 forward() const;
+    glm::dvec3 right() const;
+    glm::dvec3 up() const;
+
+    // The ray through pixel (i, j): column i from the left, row j from the TOP,
+    // sampled at the pixel centre (i + 0.5, j + 0.5).
+    Ray ray(int i, int j) const;
+
+    // View-space depth of a world point: dot(p - eye, f).
+    double viewDepth(const glm::dvec3& p) const;
+
+    // gluLookAt(eye, center, up()).
+    glm::dmat4 viewMatrix() const;
+    // gluPerspective(fov, W/H, near, far) or the matching glOrtho with
+    // h = |center - eye| * tan(fov/2). OpenGL's bottom-up rows: flip on read-back.
+    glm::dmat4 projectionMatrix(double zNear, double zFar) const;
+};
+
+// OpenSCAD's --camera: 6 numbers (eye, center) or 7 (gimbal: translate, rotate,
+// distance). Throws strata::Error on any other count.
+Camera cameraFromArguments(const std::vector<double>& numbers, const Camera& base);
+
+// OpenSCAD's default view (--viewall --autocenter) fitted to `bounds`: the
+// gimbal rotation (55, 0, 25), centred on the bounds, at the distance that
+// OpenSCAD's viewAll picks for the camera's field of view.
+Camera defaultCamera(const geometry::Bounds& bounds, const Camera& base);
+
+}  // namespace strata::render
