@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs strata's Debian 12 packages if any is missing. Idempotent: when all
+# are present it runs no apt-get at all. Needs root (or sudo) only to install.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  clang libclang-rt-14-dev               # libFuzzer target (tests/fuzz)
+  libglm-dev libopenmesh-dev libopenimageio-dev openimageio-tools
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
+  libembree-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "strata: installing ${#missing[@]} missing packages: ${missing[*]}"
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Sets up, builds both flavours (Release, and ASan+UBSan) and runs the whole
+# test suite in each, then the parser fuzzer for a bounded time.
+#   STRATA_FUZZ_SECONDS=0 scripts/test.sh   skips the fuzzer
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/deps.sh
+
+export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+
+for flavour in release asan; do
+  echo "== strata: $flavour build"
+  scripts/build.sh "$flavour"
+  dir=build; [[ $flavour == asan ]] && dir=build-asan
+  echo "== strata: $flavour tests"
+  ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" --timeout 900
+done
+
+fuzz_seconds=${STRATA_FUZZ_SECONDS:-60}
+if [[ $fuzz_seconds != 0 && -x scripts/fuzz.sh ]]; then
+  echo "== strata: fuzzing the .csg parser for ${fuzz_seconds}s"
+  scripts/fuzz.sh "$fuzz_seconds"
+fi
+echo "== strata: all tests passed"
