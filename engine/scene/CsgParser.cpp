@@ -73,7 +73,7 @@ private:
     Cube cube(const std::vector<CsgArgument>& args, const SourceLocation& where);
     Sphere sphere(const std::vector<CsgArgument>& args, const SourceLocation& where);
     Cylinder cylinder(const std::vector<CsgArgument>& args, const SourceLocation& where);
-    Polyhedron polyhedron(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    std::optional<Polyhedron> polyhedron(const std::vector<CsgArgument>& args, const SourceLocation& where);
     std::optional<Import> import(const std::vector<CsgArgument>& args, const SourceLocation& where);
     glm::dmat4 multmatrix(const std::vector<CsgArgument>& args, const SourceLocation& where);
     glm::dvec4 color(const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -544,12 +544,16 @@ Cylinder Parser::cylinder(const std::vector<CsgArgument>& args, const SourceLoca
     return c;
 }
 
-Polyhedron Parser::polyhedron(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+std::optional<Polyhedron> Parser::polyhedron(const std::vector<CsgArgument>& args, const SourceLocation& where) {
     Polyhedron p;
     const CsgArgument* points = find(args, "points", 0);
     if (points == nullptr) lex_.failAt(where, "polyhedron has no points");
     const CsgValue& pv = points->value;
-    if (pv.type == CsgValue::Type::Numbers && pv.numbers.empty()) lex_.failAt(points->where, "polyhedron has no points");
+    if (pv.type == CsgValue::Type::Numbers && pv.numbers.empty()) {
+        // OpenSCAD writes `polyhedron(points = [], faces = [])` for an empty one: nothing to draw.
+        warnOnce("empty-polyhedron", where, "polyhedron has no points; left out");
+        return std::nullopt;
+    }
     if (pv.type != CsgValue::Type::Rows) lex_.failAt(points->where, "points must be a vector of 3-vectors of numbers");
     p.points.reserve(pv.rowCount());
     for (std::size_t r = 0; r < pv.rowCount(); ++r) {
@@ -588,6 +592,11 @@ std::optional<Import> Parser::import(const std::vector<CsgArgument>& args, const
     const CsgArgument* file = find(args, "file", 0);
     if (file == nullptr || file->value.type != CsgValue::Type::String) {
         lex_.failAt(file ? file->where : where, "import needs a file name string");
+    }
+    if (file->value.string.empty()) {
+        // OpenSCAD exports `import(file = "")` for an import with no file: it imports nothing.
+        warnOnce("empty-import", where, "import has an empty file name; left out");
+        return std::nullopt;
     }
     std::filesystem::path path(file->value.string);
     std::string ext = path.extension().string();
@@ -658,8 +667,11 @@ int Parser::makeLeaf(const std::string& name, const std::vector<CsgArgument>& ar
     if (name == "cube") leaf.primitive = cube(args, where);
     else if (name == "sphere") leaf.primitive = sphere(args, where);
     else if (name == "cylinder") leaf.primitive = cylinder(args, where);
-    else if (name == "polyhedron") leaf.primitive = polyhedron(args, where);
-    else {
+    else if (name == "polyhedron") {
+        std::optional<Polyhedron> p = polyhedron(args, where);
+        if (!p) return -1;
+        leaf.primitive = std::move(*p);
+    } else {
         std::optional<Import> imported = import(args, where);
         if (!imported) return -1;
         leaf.primitive = std::move(*imported);

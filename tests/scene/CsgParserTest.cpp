@@ -240,6 +240,26 @@ TEST(CsgParser, ImportResolvesRelativeToTheCsgFile) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(CsgParser, EmptyPolyhedronAndEmptyImportAreLeftOutWithWarnings) {
+    // Both appear in OpenSCAD's own dumps (tests/regression/dumptest/allmodules).
+    Tree t = parse("polyhedron(points = [], faces = [], convexity = 1);\n"
+                   "import(file = \"\", layer = \"\", origin = [0, 0], scale = 1, convexity = 1, $fn = 0, $fa = 12, "
+                   "$fs = 2, timestamp = 0);\ncube(size = 1);\n");
+    EXPECT_EQ(t.leaves.size(), 1u);
+    EXPECT_EQ(t.warnings.size(), 2u);
+}
+
+TEST(CsgParser, ModulesWithoutChildrenAreEmpty) {
+    Tree t = parse("group();\nintersection();\ndifference();\nmultmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]);\n"
+                   "color([-1, -1, -1, 1]);\nrender(convexity = 1);\n");
+    EXPECT_TRUE(t.leaves.empty());
+    const Node& r = rootNode(t);
+    ASSERT_EQ(r.children.size(), 6u);
+    EXPECT_EQ(child(t, r, 1).kind, NodeKind::Intersection);
+    EXPECT_EQ(child(t, r, 2).kind, NodeKind::Difference);
+    for (int c : r.children) EXPECT_TRUE(t.nodes[static_cast<std::size_t>(c)].children.empty());
+}
+
 // ---- bad input: one message, starting with file:line:col ----
 
 struct BadInput {
