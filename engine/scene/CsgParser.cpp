@@ -124,7 +124,12 @@ Tree Parser::parse() {
         }
         statement();
     }
-    if (!sawStatement_) lex_.fail("empty scene: no statements");
+    if (lex_.bytesRead() == 0) lex_.fail("empty file");
+    if (!sawStatement_) {
+        // OpenSCAD exports a model with no geometry (e.g. only echo()) as a
+        // blank line: an empty scene, not an error.
+        tree_.warnings.push_back(Warning{tree_.source + ": warning: the scene has no statements; nothing to draw"});
+    }
     tree_.root = rootNode_ >= 0 ? rootNode_ : top.node;
     const Node& topNode = tree_.nodes[static_cast<std::size_t>(top.node)];
     if (tree_.root == top.node && topNode.children.size() == 1) tree_.root = topNode.children.front();
@@ -356,13 +361,27 @@ CsgValue Parser::value(int depth) {
         return v;
     }
     if (lex_.token() == Token::Punct && (lex_.punct() == '-' || lex_.punct() == '+')) {
-        const bool negate = lex_.punct() == '-';
+        // Signs are folded in a loop: a run of a million '-' costs no stack.
+        bool negate = false;
         SourceLocation at = lex_.where();
-        lex_.next();
-        v = value(depth + 1);
-        if (v.type != CsgValue::Type::Number) lex_.failAt(at, "unary sign before a non-number");
-        if (negate) v.number = -v.number;
-        return v;
+        while (lex_.token() == Token::Punct && (lex_.punct() == '-' || lex_.punct() == '+')) {
+            if (lex_.punct() == '-') negate = !negate;
+            lex_.next();
+        }
+        if (lex_.token() == Token::Number) {
+            v.type = CsgValue::Type::Number;
+            v.number = negate ? -lex_.number() : lex_.number();
+            lex_.next();
+            return v;
+        }
+        if (lex_.token() == Token::Identifier && (lex_.text() == "inf" || lex_.text() == "nan")) {
+            v.type = CsgValue::Type::Number;
+            v.number = lex_.text() == "inf" ? HUGE_VAL : std::nan("");
+            if (negate) v.number = -v.number;
+            lex_.next();
+            return v;
+        }
+        lex_.failAt(at, "unary sign before a non-number");
     }
     if (lex_.token() == Token::String) {
         v.type = CsgValue::Type::String;

@@ -284,7 +284,7 @@ INSTANTIATE_TEST_SUITE_P(
     AllClasses, CsgParserBadInput,
     ::testing::Values(
         BadInput{"Empty", "", "t.csg:1:1", "empty"},
-        BadInput{"OnlyWhitespace", "\n\n  \n", "t.csg:4:1", "empty"},
+        BadInput{"SignBeforeVector", "cube(size = -[1, 2, 3]);", "t.csg:1:13", "unary sign"},
         BadInput{"MissingSemicolon", "union() {\n\tcube(size = 1)\n}", "t.csg:3:1", "expected ';'"},
         BadInput{"MissingSemicolonAtEnd", "cube(size = 1)\n", "t.csg:2:1", "expected ';'"},
         BadInput{"MissingBrace", "union() {\n\tcube(size = 1);\n", "t.csg:3:1", "missing '}'"},
@@ -334,6 +334,21 @@ TEST(CsgParser, MissingFileNamesTheFile) {
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()).rfind("/nonexistent/dir/scene.csg: ", 0), 0u) << e.what();
     }
+}
+
+TEST(CsgParser, BlankFileIsAnEmptySceneWithAWarning) {
+    // What OpenSCAD 2021.01 exports for a model with no geometry (Functions/echo.scad).
+    Tree t = parse("\n");
+    EXPECT_TRUE(t.leaves.empty());
+    ASSERT_EQ(t.warnings.size(), 1u);
+    EXPECT_NE(t.warnings[0].message.find("no statements"), std::string::npos);
+}
+
+TEST(CsgParser, LongRunsOfSignsNeedNoRecursion) {
+    std::string text = "sphere(r = " + std::string(200001, '-') + "-1);";  // an even count of 200002 signs
+    Tree t = parse(text);
+    EXPECT_EQ(std::get<Sphere>(t.leaves.at(0).primitive).r, 1.0);
+    EXPECT_NE(errorOf("sphere(r = " + std::string(100001, '-') + "1);").find("must not be negative"), std::string::npos);
 }
 
 TEST(CsgParser, DeepNestingNeedsNoDeepRecursion) {

@@ -1,0 +1,113 @@
+// libFuzzer target for the .csg parser (scene::parseCsg).
+//
+// Any input must either parse into a well-formed Tree or throw strata::Error;
+// anything else (another exception, a crash, a leak, a sanitizer report, a
+// broken tree) is a finding. scripts/fuzz.sh builds and runs it.
+//
+// Relative import() paths resolve against STRATA_FUZZ_DATA_DIR (the checked-in
+// OpenSCAD exports), so `import(file = "example012.stl")` reaches the success
+// path. Only the parser runs here: no tessellation, no mesh import.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <variant>
+
+#include "strata/core/Error.h"
+#include "strata/scene/CsgParser.h"
+
+namespace {
+
+using namespace strata::scene;
+
+[[noreturn]] void broken(const char* what) {
+    std::fprintf(stderr, "strata_fuzz_csg: the parser returned a broken tree: %s\n", what);
+    std::abort();
+}
+
+bool finite(double v) { return std::isfinite(v); }
+bool size(double v) { return std::isfinite(v) && v >= 0.0; }
+
+void checkFragments(const Fragments& f, const ParseOptions& options) {
+    if (!finite(f.fn) || !finite(f.fa) || !finite(f.fs)) broken("non-finite $fn/$fa/$fs");
+    if (f.fn > options.maxFragments) broken("$fn above ParseOptions::maxFragments");
+}
+
+// What the parser promises of every tree it returns (Tree.h, CsgParser.h, issue 2):
+// indices in range, numbers finite, sizes not negative, $fn clamped.
+void checkTree(const Tree& tree, const ParseOptions& options) {
+    const auto nodeCount = static_cast<long>(tree.nodes.size());
+    const auto leafCount = static_cast<long>(tree.leaves.size());
+    if (tree.root < -1 || tree.root >= nodeCount) broken("root out of range");
+    for (int b : tree.background) {
+        if (b < 0 || b >= nodeCount) broken("background root out of range");
+    }
+    for (const Node& n : tree.nodes) {
+        if (n.kind == NodeKind::Leaf) {
+            if (n.leaf < 0 || n.leaf >= leafCount) broken("leaf index out of range");
+            if (!n.children.empty()) broken("leaf node with children");
+        }
+        for (int c : n.children) {
+            if (c < 0 || c >= nodeCount) broken("child index out of range");
+        }
+    }
+    for (const Leaf& leaf : tree.leaves) {
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) {
+                if (!finite(leaf.transform[c][r])) broken("non-finite transform");
+            }
+        }
+        if (leaf.color) {
+            for (int i = 0; i < 4; ++i) {
+                if (!finite((*leaf.color)[i])) broken("non-finite colour");
+            }
+        }
+        std::visit(
+            [&](const auto& p) {
+                using T = std::decay_t<decltype(p)>;
+                if constexpr (std::is_same_v<T, Cube>) {
+                    if (!size(p.size.x) || !size(p.size.y) || !size(p.size.z)) broken("bad cube size");
+                } else if constexpr (std::is_same_v<T, Sphere>) {
+                    if (!size(p.r)) broken("bad sphere radius");
+                    checkFragments(p.fragments, options);
+                } else if constexpr (std::is_same_v<T, Cylinder>) {
+                    if (!size(p.h) || !size(p.r1) || !size(p.r2)) broken("bad cylinder size");
+                    checkFragments(p.fragments, options);
+                } else if constexpr (std::is_same_v<T, Polyhedron>) {
+                    const auto points = static_cast<long>(p.points.size());
+                    for (const auto& q : p.points) {
+                        if (!finite(q.x) || !finite(q.y) || !finite(q.z)) broken("non-finite polyhedron point");
+                    }
+                    for (const auto& face : p.faces) {
+                        if (face.size() < 3) broken("polyhedron face with fewer than 3 points");
+                        for (int i : face) {
+                            if (i < 0 || i >= points) broken("polyhedron face index out of range");
+                        }
+                    }
+                } else {
+                    if (p.path.empty()) broken("import with an empty path");
+                }
+            },
+            leaf.primitive);
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    std::istringstream in(text);
+    const ParseOptions options;
+    try {
+        const Tree tree = parseCsg(in, "fuzz.csg", STRATA_FUZZ_DATA_DIR, options);
+        checkTree(tree, options);
+    } catch (const strata::Error&) {
+        // Bad input, reported the way it should be.
+    }
+    return 0;
+}
