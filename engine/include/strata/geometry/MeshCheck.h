@@ -14,12 +14,27 @@ struct MeshCheck {
     std::size_t misorientedEdges = 0;  // edges whose two triangles traverse them the same way
     bool inwardOriented = false;       // closed and consistent, but the signed volume is negative
     bool ok() const { return boundaryEdges == 0 && nonManifoldEdges == 0 && misorientedEdges == 0 && !inwardOriented; }
-    std::string describe() const;      // "open: 4 boundary edges", ... ; "" when ok()
+    // A short phrase, "" when ok(): "not closed: 4 boundary edges",
+    // "not manifold: 2 edges shared by more than two triangles",
+    // "inconsistently oriented: 2 edges", "inward oriented (negative volume)";
+    // several are joined with "; ".
+    std::string describe() const;
 };
 
+// Judges the mesh by its geometry: vertices at exactly the same position count
+// as one, so a triangle soup with repeated points is checked by topology.
+// Triangles with a repeated vertex are ignored.
 MeshCheck checkMesh(const Mesh& mesh);
 
-// Removes triangles of zero area (and vertices no triangle uses).
+// Merges vertices at exactly the same position (-0 and +0 alike) into the
+// first of them, keeping the order of first appearance.
+void mergeCoincidentVertices(Mesh& mesh);
+
+// Merges coincident vertices, then removes triangles of zero area (and vertices
+// no triangle uses). A triangle with a repeated vertex is simply removed. A
+// sliver whose three distinct vertices are exactly collinear is removed after
+// the triangle across its long edge is split at the sliver's middle vertex, so
+// a closed mesh stays closed.
 void dropDegenerateTriangles(Mesh& mesh);
 
 }  // namespace strata::geometry

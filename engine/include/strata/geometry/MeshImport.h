@@ -7,8 +7,13 @@
 
 namespace strata::geometry {
 
-// Reads a triangle mesh, with coincident vertices merged. Throws strata::Error
-// naming the file when it cannot be read.
+// Reads a mesh, with coincident vertices merged and polygons ear-clipped into
+// triangles (winding kept). The extension picks the format, in any case.
+// Coordinates pass through OpenMesh's readers as float. OpenMesh's console
+// messages are silenced. Throws strata::Error "path: cannot read mesh: why"
+// when the file is missing, unreadable, empty, of another format or holds no
+// faces. Faces OpenMesh cannot attach (complex edges) are kept, so checkMesh
+// reports the defect instead of it passing silently.
 Mesh importMesh(const std::string& path);
 
 }  // namespace strata::geometry

@@ -16,7 +16,12 @@ struct Model {
 
 // Tessellates or imports each leaf, applies its transform, drops zero-area
 // triangles and checks the result. A leaf that is not closed and consistently
-// oriented throws strata::Error naming the leaf's file:line and what is wrong.
+// oriented throws strata::Error naming the leaf's file:line and what is wrong,
+// e.g. "a.csg:7:5: polyhedron is not a closed solid: not closed: 3 boundary
+// edges"; import and tessellation errors are prefixed with the leaf's position
+// too. A leaf whose transform is singular (a scale of 0) gets an empty mesh; a
+// non-finite coordinate throws. Bounds cover the leaves reachable from
+// tree.root that are not Display::Background; empty when there are none.
 Model buildModel(const scene::Tree& tree);
 
 }  // namespace strata::geometry

@@ -1,0 +1,202 @@
+#include "strata/geometry/MeshImport.h"
+
+// OpenMesh wants its IO header before any mesh kernel.
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <mutex>
+#include <vector>
+
+#include "PolygonTriangulation.h"
+#include "strata/core/Error.h"
+#include "strata/geometry/MeshCheck.h"
+
+namespace strata::geometry {
+namespace {
+
+// Double-precision points. Note OpenMesh 9's readers parse coordinates as
+// float (STL is float anyway; OFF, OBJ and PLY lose digits past ~7).
+struct DoubleTraits : OpenMesh::DefaultTraits {
+    using Point = OpenMesh::Vec3d;
+    using Normal = OpenMesh::Vec3d;
+};
+// A polygon mesh, not a triangle mesh: OpenMesh's TriMesh would split n-gons
+// into fans, which is wrong for non-convex faces; we ear-clip them instead.
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+
+// OpenMesh reports problems ("complex vertex", reader errors) on its global
+// log streams omlog/omout/omerr. They are silenced while a file is read: we
+// give our own reasons, and complex faces are judged by checkMesh anyway.
+// Disabling, not redirecting: OpenMesh 9's mostream::disconnect() leaks its
+// target, which LeakSanitizer reports. The streams are global, hence the lock.
+class SilencedOpenMeshLog {
+public:
+    SilencedOpenMeshLog() : lock_(mutex()) {
+        for (auto* s : streams()) {
+            s->flush();  // let earlier messages out as they would have gone
+            wasEnabled_.push_back(s->is_enabled());
+            s->disable();
+        }
+    }
+    ~SilencedOpenMeshLog() {
+        const auto ss = streams();
+        for (std::size_t i = 0; i < ss.size(); ++i) {
+            ss[i]->flush();  // while disabled, flushing drops what was written
+            if (wasEnabled_[i]) ss[i]->enable();
+        }
+    }
+    SilencedOpenMeshLog(const SilencedOpenMeshLog&) = delete;
+    SilencedOpenMeshLog& operator=(const SilencedOpenMeshLog&) = delete;
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    static std::vector<OpenMesh::mostream*> streams() { return {&omlog(), &omout(), &omerr()}; }
+
+    std::lock_guard<std::mutex> lock_;
+    std::vector<bool> wasEnabled_;
+};
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+// OpenSCAD writes OFF files with the counts on the keyword's line
+// ("OFF 8 6 0"); OpenMesh's reader takes the whole first line as the keyword
+// and then reads coordinates as counts. Moves such counts to a line of their
+// own; returns false when the text needs no change.
+bool splitOffHeader(std::string& text) {
+    const std::size_t lineEnd = std::min(text.find('\n'), text.size());
+    std::size_t i = text.find_first_not_of(" \t\r");
+    const std::size_t keyword = i;
+    while (i < lineEnd && std::isalpha(static_cast<unsigned char>(text[i]))) ++i;
+    if (i == keyword || i - keyword < 3 || text.compare(i - 3, 3, "OFF") != 0) return false;
+    const std::size_t rest = text.find_first_not_of(" \t\r", i);
+    if (rest >= lineEnd || !std::isdigit(static_cast<unsigned char>(text[rest]))) return false;
+    text[i] = '\n';  // the separator after the keyword
+    return true;
+}
+
+// The first `limit` bytes of a file.
+std::string readHead(const std::string& path, std::size_t limit) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text(limit, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(limit));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    return text;
+}
+
+// Element counts an OFF or PLY header declares (vertices, faces, ...), so a
+// corrupt header cannot make OpenMesh reserve gigabytes: every element takes
+// at least one byte of the file. Empty when the header cannot be parsed
+// (OpenMesh then reports the file itself) or the format has no counts.
+std::vector<unsigned long long> declaredCounts(const std::string& head, const std::string& ext) {
+    std::vector<unsigned long long> counts;
+    std::istringstream in(head);
+    std::string line;
+    if (ext == ".ply") {
+        while (std::getline(in, line) && line.rfind("end_header", 0) != 0) {
+            std::istringstream words(line);
+            std::string element, name;
+            unsigned long long n = 0;
+            if (words >> element >> name >> n && element == "element") counts.push_back(n);
+        }
+    } else if (ext == ".off") {
+        std::string keyword;
+        if (!(in >> keyword) || keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return {};
+        std::getline(in, line);  // rest of the keyword line
+        if (line.find("BINARY") != std::string::npos) return {};
+        std::string numbers = line;
+        while (std::getline(in, line)) {  // counts may follow comments and blank lines
+            const auto first = line.find_first_not_of(" \t\r");
+            if (first == std::string::npos || line[first] == '#') continue;
+            numbers += " " + line;
+            break;
+        }
+        std::istringstream words(numbers);
+        unsigned long long dimension = 0, vertices = 0, faces = 0;
+        if (keyword.find('n') != std::string::npos && !(words >> dimension)) return {};
+        if (words >> vertices >> faces) counts = {vertices, faces};
+    }
+    return counts;
+}
+
+std::string readAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+Mesh importMesh(const std::string& path) {
+    auto fail = [&path](const std::string& why) { return Error(path + ": cannot read mesh: " + why); };
+    const std::string ext = lowerExtension(path);
+    if (ext != ".stl" && ext != ".off" && ext != ".obj" && ext != ".ply") {
+        throw fail("unsupported format '" + ext + "' (expected .stl, .off, .obj or .ply)");
+    }
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw fail("no such file");
+    if (std::filesystem::is_directory(path, ec)) throw fail("is a directory");
+    if (!std::ifstream(path, std::ios::binary)) throw fail("cannot open file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (size == 0) throw fail("empty file");
+    for (unsigned long long n : declaredCounts(readHead(path, 1 << 16), ext)) {
+        if (n > size) throw fail("header declares " + std::to_string(n) + " elements, more than the file can hold");
+    }
+
+    PolyMesh om;
+    bool ok = false;
+    std::string exception;
+    {
+        SilencedOpenMeshLog silence;
+        OpenMesh::IO::Options options;
+        try {
+            std::string text;
+            if (ext == ".off" && splitOffHeader(text = readAll(path))) {
+                std::istringstream in(text);
+                ok = OpenMesh::IO::read_mesh(om, in, ext, options);
+            } else {
+                ok = OpenMesh::IO::read_mesh(om, path, options);
+            }
+        } catch (const std::exception& e) {
+            ok = false;
+            exception = e.what();
+        }
+    }
+    if (!ok) {
+        throw fail("not a valid " + ext.substr(1) + " file" + (exception.empty() ? "" : " (" + exception + ")"));
+    }
+    if (om.n_faces() == 0) throw fail("no faces (not a valid " + ext.substr(1) + " file?)");
+
+    Mesh mesh;
+    mesh.positions.reserve(om.n_vertices());
+    for (const auto& vh : om.vertices()) {
+        const auto& p = om.point(vh);
+        mesh.positions.emplace_back(p[0], p[1], p[2]);
+    }
+    // Faces OpenMesh could not attach (complex edges) it adds again on copies
+    // of their vertices; merging the copies below restores the real topology,
+    // so checkMesh still sees the defect.
+    std::vector<uint32_t> loop;
+    for (const auto& fh : om.faces()) {
+        loop.clear();
+        for (const auto& vh : om.fv_range(fh)) loop.push_back(static_cast<uint32_t>(vh.idx()));
+        detail::triangulatePolygon(mesh.positions, loop, mesh.triangles);
+    }
+    mergeCoincidentVertices(mesh);
+    return mesh;
+}
+
+}  // namespace strata::geometry
