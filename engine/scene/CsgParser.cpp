@@ -66,6 +66,10 @@ private:
     void attach(int child, const Open& parent);
     std::vector<CsgArgument> arguments();
     CsgValue value(int depth);
+    void vectorRest(CsgValue& v, int depth);
+    bool isSign() const;
+    bool isNumberStart() const;
+    double signedNumber();
 
     // Nodes
     int makeLeaf(const std::string& name, const std::vector<CsgArgument>& args, const Context& ctx,
@@ -360,28 +364,10 @@ CsgValue Parser::value(int depth) {
         lex_.next();
         return v;
     }
-    if (lex_.token() == Token::Punct && (lex_.punct() == '-' || lex_.punct() == '+')) {
-        // Signs are folded in a loop: a run of a million '-' costs no stack.
-        bool negate = false;
-        SourceLocation at = lex_.where();
-        while (lex_.token() == Token::Punct && (lex_.punct() == '-' || lex_.punct() == '+')) {
-            if (lex_.punct() == '-') negate = !negate;
-            lex_.next();
-        }
-        if (lex_.token() == Token::Number) {
-            v.type = CsgValue::Type::Number;
-            v.number = negate ? -lex_.number() : lex_.number();
-            lex_.next();
-            return v;
-        }
-        if (lex_.token() == Token::Identifier && (lex_.text() == "inf" || lex_.text() == "nan")) {
-            v.type = CsgValue::Type::Number;
-            v.number = lex_.text() == "inf" ? HUGE_VAL : std::nan("");
-            if (negate) v.number = -v.number;
-            lex_.next();
-            return v;
-        }
-        lex_.failAt(at, "unary sign before a non-number");
+    if (isSign()) {
+        v.type = CsgValue::Type::Number;
+        v.number = signedNumber();
+        return v;
     }
     if (lex_.token() == Token::String) {
         v.type = CsgValue::Type::String;
@@ -412,22 +398,93 @@ CsgValue Parser::value(int depth) {
         if (depth >= kMaxVectorNesting) lex_.fail("vector nested too deeply");
         lex_.next();
         v.type = CsgValue::Type::Numbers;  // empty vector until the first element decides
-        if (lex_.token() == Token::Punct && lex_.punct() == ']') {
-            lex_.next();
-            return v;
-        }
-        for (;;) {
-            v.append(value(depth + 1));
-            if (lex_.token() == Token::Punct && lex_.punct() == ',') {
-                lex_.next();
-                continue;
-            }
-            expectPunct(']', "to close the vector");
-            return v;
-        }
+        vectorRest(v, depth);
+        return v;
     }
     if (lex_.token() == Token::End) lex_.fail("unexpected end of file in a value");
     lex_.fail("expected a value");
+}
+
+bool Parser::isSign() const {
+    return lex_.token() == Token::Punct && (lex_.punct() == '-' || lex_.punct() == '+');
+}
+
+bool Parser::isNumberStart() const {
+    return lex_.token() == Token::Number || isSign();
+}
+
+// A number with any run of signs before it, folded in a loop so that a
+// million '-' cost no stack. Also takes inf and nan after a sign.
+double Parser::signedNumber() {
+    bool negate = false;
+    SourceLocation at = lex_.where();
+    while (isSign()) {
+        if (lex_.punct() == '-') negate = !negate;
+        lex_.next();
+    }
+    double x;
+    if (lex_.token() == Token::Number) {
+        x = lex_.number();
+    } else if (lex_.token() == Token::Identifier && (lex_.text() == "inf" || lex_.text() == "nan")) {
+        x = lex_.text() == "inf" ? HUGE_VAL : std::nan("");
+    } else {
+        lex_.failAt(at, "unary sign before a non-number");
+    }
+    lex_.next();
+    return negate ? -x : x;
+}
+
+// Parses the elements of a vector whose '[' is consumed, up to and including
+// its ']'. Numbers and rows of numbers (points, faces, matrices) go straight
+// into the flat arrays: no temporary value per element.
+void Parser::vectorRest(CsgValue& v, int depth) {
+    if (lex_.token() == Token::Punct && lex_.punct() == ']') {
+        lex_.next();
+        return;
+    }
+    for (;;) {
+        const bool flatNumbers = v.type == CsgValue::Type::Numbers;
+        const bool flatRows = v.type == CsgValue::Type::Rows || (flatNumbers && v.numbers.empty());
+        if (flatNumbers && isNumberStart()) {
+            v.numbers.push_back(signedNumber());
+        } else if (flatRows && lex_.token() == Token::Punct && lex_.punct() == '[') {
+            if (depth + 1 >= kMaxVectorNesting) lex_.fail("vector nested too deeply");
+            lex_.next();
+            const std::size_t rowStart = v.numbers.size();
+            bool atElement = true;  // false once a number was not followed by ','
+            while (isNumberStart()) {
+                v.numbers.push_back(signedNumber());
+                atElement = lex_.token() == Token::Punct && lex_.punct() == ',';
+                if (!atElement) break;
+                lex_.next();
+            }
+            if (lex_.token() == Token::Punct && lex_.punct() == ']') {
+                lex_.next();
+                v.type = CsgValue::Type::Rows;
+                v.rowEnds.push_back(static_cast<std::uint32_t>(v.numbers.size()));
+            } else if (!atElement) {
+                expectPunct(']', "to close the vector");
+            } else {
+                // Not a row of numbers after all: finish it as a general vector.
+                CsgValue row;
+                row.type = CsgValue::Type::Numbers;
+                row.numbers.assign(v.numbers.begin() + static_cast<std::ptrdiff_t>(rowStart), v.numbers.end());
+                v.numbers.resize(rowStart);
+                if (v.rowEnds.empty()) v.type = CsgValue::Type::Numbers;  // nothing flat yet
+                if (!row.numbers.empty()) row.toList();  // the next element is not a number
+                vectorRest(row, depth + 1);
+                v.append(std::move(row));
+            }
+        } else {
+            v.append(value(depth + 1));
+        }
+        if (lex_.token() == Token::Punct && lex_.punct() == ',') {
+            lex_.next();
+            continue;
+        }
+        expectPunct(']', "to close the vector");
+        return;
+    }
 }
 
 const CsgArgument* Parser::find(const std::vector<CsgArgument>& args, const char* name, int position) const {

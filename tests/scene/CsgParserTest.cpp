@@ -284,6 +284,11 @@ INSTANTIATE_TEST_SUITE_P(
     AllClasses, CsgParserBadInput,
     ::testing::Values(
         BadInput{"Empty", "", "t.csg:1:1", "empty"},
+        BadInput{"MatrixWithABoolean", "multmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, true]]) { cube(size = 1); }",
+                 "t.csg:1:12", "4x4 matrix"},
+        BadInput{"PointWithAString", "polyhedron(points = [[0, 0, 0], [1, 0, \"x\"], [0, 1, 0]], faces = [[0, 1, 2]]);",
+                 "t.csg:1:21", "3-vectors of numbers"},
+        BadInput{"RowWithoutComma", "polyhedron(points = [[0, 0 0]], faces = [[0, 1, 2]]);", "t.csg:1:28", "expected ']'"},
         BadInput{"SignBeforeVector", "cube(size = -[1, 2, 3]);", "t.csg:1:13", "unary sign"},
         BadInput{"MissingSemicolon", "union() {\n\tcube(size = 1)\n}", "t.csg:3:1", "expected ';'"},
         BadInput{"MissingSemicolonAtEnd", "cube(size = 1)\n", "t.csg:2:1", "expected ';'"},
