@@ -1,0 +1,200 @@
+#include "Options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include "strata/core/Error.h"
+#include "strata/render/ColorScheme.h"
+
+namespace strata::apps {
+namespace {
+
+// A usage mistake: becomes "strata-render: <message>" and exit status 2.
+struct UsageError {
+    std::string message;
+};
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+bool endsWith(const std::string& s, std::string_view suffix) {
+    return s.size() > suffix.size() && lower(s.substr(s.size() - suffix.size())) == suffix;
+}
+
+std::vector<std::string> splitCommas(const std::string& text) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        parts.push_back(text.substr(start, comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return parts;
+}
+
+std::string trim(const std::string& s) {
+    const std::size_t a = s.find_first_not_of(" \t");
+    if (a == std::string::npos) return {};
+    const std::size_t b = s.find_last_not_of(" \t");
+    return s.substr(a, b - a + 1);
+}
+
+// A whole decimal number, nothing after it.
+bool parseInt(const std::string& text, long long& out) {
+    const std::string t = trim(text);
+    if (t.empty()) return false;
+    const char* begin = t.data() + (t[0] == '+' ? 1 : 0);
+    const auto [end, ec] = std::from_chars(begin, t.data() + t.size(), out);
+    return ec == std::errc() && end == t.data() + t.size();
+}
+
+// A finite real number, nothing after it (strtod accepts what OpenSCAD's users type: 1, -2.5, 1e3).
+bool parseReal(const std::string& text, double& out) {
+    const std::string t = trim(text);
+    if (t.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(t.c_str(), &end);
+    return end == t.c_str() + t.size() && std::isfinite(out);
+}
+
+void parseImageSize(const std::string& text, RenderOptions& options) {
+    const auto parts = splitCommas(text);
+    long long w = 0, h = 0;
+    if (parts.size() != 2 || !parseInt(parts[0], w) || !parseInt(parts[1], h))
+        throw UsageError{"--imgsize: expected W,H (two whole numbers), got '" + text + "'"};
+    if (w <= 0 || h <= 0)
+        throw UsageError{"--imgsize: width and height must be positive, got '" + text + "'"};
+    if (w > kMaxImageSide || h > kMaxImageSide)
+        throw UsageError{"--imgsize: at most " + std::to_string(kMaxImageSide) + " pixels a side, got '" + text +
+                         "'"};
+    options.width = static_cast<int>(w);
+    options.height = static_cast<int>(h);
+}
+
+void parseCamera(const std::string& text, RenderOptions& options) {
+    const auto parts = splitCommas(text);
+    std::vector<double> numbers;
+    for (const std::string& part : parts) {
+        double v = 0;
+        if (!parseReal(part, v))
+            throw UsageError{"--camera: '" + trim(part) + "' is not a finite number (in '" + text + "')"};
+        numbers.push_back(v);
+    }
+    if (numbers.size() != 6 && numbers.size() != 7)
+        throw UsageError{"--camera: expected 6 numbers (eye, center) or 7 (translate, rotate, distance), got " +
+                         std::to_string(numbers.size())};
+    options.camera = std::move(numbers);
+}
+
+void parseProjection(const std::string& text, RenderOptions& options) {
+    const std::string t = lower(trim(text));
+    if (t == "p" || t == "perspective")
+        options.projection = render::Projection::Perspective;
+    else if (t == "o" || t == "ortho" || t == "orthogonal" || t == "orthographic")
+        options.projection = render::Projection::Orthographic;
+    else
+        throw UsageError{"--projection: expected 'p' (perspective) or 'o' (orthographic), got '" + text + "'"};
+}
+
+void parseFov(const std::string& text, RenderOptions& options) {
+    double fov = 0;
+    if (!parseReal(text, fov) || fov <= 0.0 || fov >= 180.0)
+        throw UsageError{"--fov: expected degrees between 0 and 180 (exclusive), got '" + text + "'"};
+    options.fovDegrees = fov;
+}
+
+void parseLayers(const std::string& text, RenderOptions& options) {
+    if (lower(trim(text)) == "auto") {
+        options.layers = 0;
+        return;
+    }
+    long long n = 0;
+    if (!parseInt(text, n) || n < 1 || n > kMaxLayers)
+        throw UsageError{"--layers: expected 'auto' or a whole number from 1 to " + std::to_string(kMaxLayers) +
+                         ", got '" + text + "'"};
+    options.layers = static_cast<int>(n);
+}
+
+void checkOutputName(const std::string& option, const std::string& path, std::string_view extension) {
+    if (path.empty()) throw UsageError{option + ": expected a file name"};
+    if (path[0] == '=')  // "-o=x.png": a short option takes no '='
+        throw UsageError{option + ": write '" + option + " FILE', without '=' (got '" + path + "')"};
+    if (!endsWith(path, extension))
+        throw UsageError{option + ": expected a " + std::string(extension) + " file name, got '" + path + "'"};
+}
+
+std::string oneLine(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    return s;
+}
+
+}  // namespace
+
+ParseResult parseOptions(int argc, char** argv) {
+    ParseResult result;
+    RenderOptions& o = result.options;
+
+    CLI::App app{"strata-render: image-space CSG rendering, headless (see CONTRACT.md)", "strata-render"};
+    app.option_defaults()->always_capture_default(false);
+    std::string imgsize, camera, projection, fov, layers;
+    app.add_option("SCENE", o.scene, "a .csg file (OpenSCAD's CSG export), or one closed .stl/.obj/.off/.ply mesh")
+        ->required();
+    app.add_option("-o", o.png, "write the shaded image (8-bit RGBA PNG)")->type_name("FILE.png");
+    app.add_option("--depth", o.depth, "write the depth AOV (OpenEXR, channel Z)")->type_name("FILE.exr");
+    app.add_option("--normal", o.normal, "write the normal AOV (OpenEXR, channels R,G,B)")->type_name("FILE.exr");
+    app.add_option("--imgsize", imgsize, "image size in pixels (default 512,512)")->type_name("W,H");
+    app.add_option("--camera", camera,
+                   "eye and center EX,EY,EZ,CX,CY,CZ, or gimbal TX,TY,TZ,RX,RY,RZ,DIST "
+                   "(default: OpenSCAD's view fitted to the scene)")
+        ->type_name("NUMBERS");
+    app.add_option("--projection", projection, "p (perspective, default) or o (orthographic)")->type_name("p|o");
+    app.add_option("--fov", fov, "vertical field of view in degrees (default 22.5)")->type_name("DEG");
+    app.add_option("--layers", layers, "depth-peel layers per operand, or auto (default)")->type_name("N|auto");
+    app.add_flag("--stats", o.stats, "print one JSON object of figures on stdout");
+    app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
+
+    try {
+        app.parse(argc, argv);
+        if (!imgsize.empty() || app.count("--imgsize")) parseImageSize(imgsize, o);
+        if (app.count("--camera")) parseCamera(camera, o);
+        if (app.count("--projection")) parseProjection(projection, o);
+        if (app.count("--fov")) parseFov(fov, o);
+        if (app.count("--layers")) parseLayers(layers, o);
+        if (app.count("-o")) checkOutputName("-o", o.png, ".png");
+        if (app.count("--depth")) checkOutputName("--depth", o.depth, ".exr");
+        if (app.count("--normal")) checkOutputName("--normal", o.normal, ".exr");
+        if (app.count("--colorscheme")) {
+            try {
+                o.colorScheme = render::colorScheme(o.colorScheme).name;
+            } catch (const Error& e) {
+                throw UsageError{std::string("--colorscheme: ") + e.what()};
+            }
+        }
+    } catch (const CLI::CallForHelp&) {
+        result.exitNow = true;
+        result.exitCode = 0;
+        result.message = app.help();
+    } catch (const CLI::ParseError& e) {
+        result.exitNow = true;
+        result.exitCode = 2;
+        result.message = "strata-render: " + oneLine(e.what());
+    } catch (const UsageError& e) {
+        result.exitNow = true;
+        result.exitCode = 2;
+        result.message = "strata-render: " + e.message;
+    }
+    return result;
+}
+
+}  // namespace strata::apps

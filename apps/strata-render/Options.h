@@ -1,0 +1,45 @@
+#pragma once
+// strata-render's command line, exactly ../shared/CONTRACT.md's table.
+// Parsing only checks the words; files are opened later.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "strata/render/Camera.h"
+
+namespace strata::apps {
+
+struct RenderOptions {
+    std::string scene;                      // SCENE: .csg, .stl, .obj, .off or .ply
+    std::string png;                        // -o FILE.png; empty: none
+    std::string depth;                      // --depth FILE.exr
+    std::string normal;                     // --normal FILE.exr
+    int width = 512, height = 512;          // --imgsize W,H (OpenSCAD's default)
+    std::optional<std::vector<double>> camera;  // --camera: 6 or 7 numbers; absent: fitted default view
+    render::Projection projection = render::Projection::Perspective;
+    double fovDegrees = 22.5;
+    int layers = 0;                         // 0: auto
+    bool stats = false;
+    std::string colorScheme = "Cornfield";
+};
+
+// What parsing decided: run with the options, or stop (help printed, or a
+// bad option with its one-line message already formatted).
+struct ParseResult {
+    RenderOptions options;
+    bool exitNow = false;
+    int exitCode = 0;
+    std::string message;  // for stdout (help) when exitCode == 0, else one line for stderr
+};
+
+// argv[0] is ignored. Never throws.
+ParseResult parseOptions(int argc, char** argv);
+
+// Largest --imgsize side: llvmpipe's and most drivers' GL_MAX_TEXTURE_SIZE.
+inline constexpr int kMaxImageSide = 16384;
+// Largest --layers: llvmpipe's GL_MAX_ARRAY_TEXTURE_LAYERS is 2048, and dual
+// peeling fills two layers per pass.
+inline constexpr int kMaxLayers = 1024;
+
+}  // namespace strata::apps

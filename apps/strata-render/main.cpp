@@ -1,0 +1,171 @@
+// strata-render: render a CSG scene headless to PNG and EXR, exactly as
+// ../shared/CONTRACT.md says. Thin: options, then parse -> geometry -> camera
+// -> GL context -> renderer -> files. Everything is rendered before anything
+// is written, and every output is staged before any is committed, so a
+// failure leaves no output file behind.
+
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "Options.h"
+#include "strata/core/Error.h"
+#include "strata/geometry/Model.h"
+#include "strata/gpu/Context.h"
+#include "strata/io/ImageWriter.h"
+#include "strata/io/Stats.h"
+#include "strata/render/Camera.h"
+#include "strata/render/Renderer.h"
+#include "strata/scene/CsgParser.h"
+#include "strata/scene/Tree.h"
+
+namespace {
+
+using namespace strata;
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// A .csg through the parser, or one mesh file as a tree of a single Import leaf.
+scene::Tree loadScene(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    const bool isMesh = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
+    if (ext != ".csg" && !isMesh)
+        throw Error(SourceLocation{path, 0, 0}, "unknown scene type '" + ext +
+                                                    "' (expected .csg, .stl, .obj, .off or .ply)");
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
+    if (std::FILE* f = std::fopen(path.c_str(), "rb"))
+        std::fclose(f);
+    else
+        throw Error(SourceLocation{path, 0, 0}, "cannot open file");
+
+    if (!isMesh) return scene::parseCsgFile(path);
+    scene::Tree tree;
+    tree.source = path;
+    scene::Leaf leaf;
+    leaf.primitive = scene::Import{path};
+    leaf.where = SourceLocation{path, 0, 0};
+    const int node = tree.addLeaf(std::move(leaf));
+    tree.root = tree.addNode(scene::NodeKind::Union, {node});
+    return tree;
+}
+
+// Fails before the (possibly long) render when an output's folder is missing;
+// the writers check again when they write.
+void checkOutputFolder(const std::string& path) {
+    if (path.empty()) return;
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
+        throw Error(SourceLocation{path, 0, 0}, "cannot write (no folder '" + parent.string() + "')");
+}
+
+int run(const apps::RenderOptions& options) {
+    const auto start = Clock::now();
+    io::RunStats stats;
+    stats.scene = options.scene;
+    stats.width = options.width;
+    stats.height = options.height;
+
+    checkOutputFolder(options.png);
+    checkOutputFolder(options.depth);
+    checkOutputFolder(options.normal);
+
+    auto t = Clock::now();
+    const scene::Tree tree = loadScene(options.scene);
+    stats.parseMs = msSince(t);
+    for (const Warning& w : tree.warnings) {
+        std::cerr << w.message << '\n';
+        stats.warnings.push_back(w.message);
+    }
+    stats.unsupported = tree.unsupported;
+    stats.leaves = static_cast<int>(tree.leaves.size());
+
+    t = Clock::now();
+    const geometry::Model model = geometry::buildModel(tree);
+    stats.geometryMs = msSince(t);
+    for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
+
+    render::Camera base;
+    base.width = options.width;
+    base.height = options.height;
+    base.fovDegrees = options.fovDegrees;
+    base.projection = options.projection;
+    render::Camera camera;
+    try {
+        camera = options.camera ? render::cameraFromArguments(*options.camera, base)
+                                : render::defaultCamera(model.bounds, base);
+    } catch (const Error& e) {
+        // The camera's own checks speak of the option; say who is speaking.
+        throw Error(std::string("strata-render: ") + e.what());
+    }
+
+    render::RenderSettings settings;
+    settings.layers = options.layers;
+    settings.colorScheme = options.colorScheme;
+
+    // The context is made first and destroyed last (after the renderer's GL objects).
+    t = Clock::now();
+    gpu::Context context;
+    stats.contextMs = msSince(t);
+    stats.renderer = context.renderer();
+
+    render::Frame frame;
+    {
+        render::Renderer renderer;
+        t = Clock::now();
+        renderer.setScene(tree, model);
+        stats.uploadMs = msSince(t);
+        frame = renderer.render(camera, settings);
+    }
+    stats.frame = frame.stats;
+
+    // Stage every output, then commit them all: a failure anywhere writes none.
+    t = Clock::now();
+    std::vector<io::StagedFile> staged;
+    if (!options.png.empty()) staged.push_back(io::stagePng(options.png, frame.width, frame.height, frame.rgba));
+    if (!options.depth.empty())
+        staged.push_back(io::stageDepthExr(options.depth, frame.width, frame.height, frame.depth));
+    if (!options.normal.empty())
+        staged.push_back(io::stageNormalExr(options.normal, frame.width, frame.height, frame.normal));
+    for (io::StagedFile& file : staged) file.commit();
+    stats.writeMs = msSince(t);
+    stats.totalMs = msSince(start);
+
+    if (options.stats) std::cout << io::statsJson(stats) << std::endl;
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const apps::ParseResult parsed = apps::parseOptions(argc, argv);
+    if (parsed.exitNow) {
+        (parsed.exitCode == 0 ? std::cout : std::cerr) << parsed.message << (parsed.message.ends_with('\n') ? "" : "\n");
+        return parsed.exitCode;
+    }
+    try {
+        return run(parsed.options);
+    } catch (const Error& e) {
+        std::cerr << e.what() << '\n';
+    } catch (const std::exception& e) {
+        // Not ours (std::bad_alloc, a library's exception): still one line, still no output.
+        std::cerr << "strata-render: " << e.what() << '\n';
+    }
+    return 1;
+}

@@ -1,0 +1,65 @@
+#pragma once
+// Buffer: one GL buffer object with immutable storage (glNamedBufferStorage).
+//
+// Its size is fixed at creation; to grow, make a new Buffer. Bytes in and out
+// go through spans, so callers pass std::vector, std::array or raw memory.
+
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "strata/gpu/GlName.h"
+
+namespace strata::gpu {
+
+class Buffer {
+public:
+    Buffer() = default;  // holds no object (id() == 0)
+
+    // `bytes` of storage, filled from `data` when it is not null (then data must
+    // hold `bytes` bytes), else left undefined. `flags` as glNamedBufferStorage:
+    // GL_DYNAMIC_STORAGE_BIT lets upload() write later; add GL_MAP_READ_BIT etc.
+    // as needed. A size of 0 is raised to 4 bytes (GL rejects empty storage).
+    Buffer(std::string_view label, std::size_t bytes, const void* data = nullptr,
+           GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+
+    // A buffer holding exactly `data`.
+    template <class T>
+    static Buffer fromSpan(std::string_view label, std::span<const T> data,
+                           GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
+        return Buffer(label, data.size_bytes(), data.data(), flags);
+    }
+
+    // Writes `data` at byte `offset` (glNamedBufferSubData); needs GL_DYNAMIC_STORAGE_BIT.
+    void upload(std::span<const std::byte> data, std::size_t offset = 0);
+    template <class T>
+    void uploadSpan(std::span<const T> data, std::size_t offset = 0) {
+        upload(std::as_bytes(data), offset);
+    }
+
+    // Reads `out.size()` bytes from byte `offset` (glGetNamedBufferSubData; waits for the GPU).
+    void download(std::span<std::byte> out, std::size_t offset = 0) const;
+    template <class T>
+    void downloadSpan(std::span<T> out, std::size_t offset = 0) const {
+        download(std::as_writable_bytes(out), offset);
+    }
+
+    // Fills the whole buffer with zero bytes (glClearNamedBufferData).
+    void clearToZero();
+
+    // Binds to an indexed target: GL_SHADER_STORAGE_BUFFER, GL_UNIFORM_BUFFER,
+    // GL_ATOMIC_COUNTER_BUFFER, GL_TRANSFORM_FEEDBACK_BUFFER.
+    void bindBase(GLenum target, GLuint index) const;
+    void bindRange(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const;
+    // Binds to a non-indexed target (GL_DRAW_INDIRECT_BUFFER, GL_PIXEL_PACK_BUFFER, ...).
+    void bind(GLenum target) const;
+
+    GLuint id() const noexcept { return name_.get(); }
+    std::size_t size() const noexcept { return size_; }
+
+private:
+    GlName<BufferDeleter> name_;
+    std::size_t size_ = 0;
+};
+
+}  // namespace strata::gpu

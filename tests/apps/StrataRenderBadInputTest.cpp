@@ -1,0 +1,166 @@
+// strata-render on bad input: one line on stderr saying what and where,
+// a non-zero exit status, and no output file (CONTRACT.md, "Exit status").
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "RunProcess.h"
+#include "TempDir.h"
+
+using strata::testing::lineCount;
+using strata::testing::ProcessResult;
+using strata::testing::runProcess;
+using strata::testing::TempDir;
+
+namespace {
+
+const std::string kExe = STRATA_RENDER_EXE;
+const std::string kCube = "cube(size = [2, 2, 2], center = true);\n";
+
+// Runs strata-render with outputs in `dir`, then checks the failure's shape:
+// exit status, one line on stderr that starts with `prefix`, nothing on
+// stdout, and no output file in `dir`.
+void expectFailure(const TempDir& dir, std::vector<std::string> args, const std::string& prefix,
+                   const std::vector<std::pair<std::string, std::string>>& env = {}) {
+    const std::vector<std::string> before = dir.files();
+    std::vector<std::string> argv{kExe};
+    argv.insert(argv.end(), args.begin(), args.end());
+    for (const char* out : {"-o", "--depth", "--normal"}) {
+        bool given = false;
+        for (const std::string& a : args) given = given || a == out || a.rfind(std::string(out) + "=", 0) == 0;
+        if (!given) {
+            argv.push_back(out);
+            argv.push_back(dir / (std::string(out) == "-o" ? "out.png" : std::string(out).substr(2) + ".exr"));
+        }
+    }
+    const ProcessResult r = runProcess(argv, env);
+    std::string cmd;
+    for (const std::string& a : args) cmd += " " + a;
+    EXPECT_NE(r.exitCode, 0) << cmd;
+    EXPECT_LT(r.exitCode, 128) << "crashed:" << cmd << "\n" << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << cmd << "\nstderr: " << r.err;
+    EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << cmd << "\nstderr: " << r.err << "expected to start with: " << prefix;
+    EXPECT_EQ(r.out, "") << cmd;
+    EXPECT_EQ(dir.files(), before) << "an output file was written:" << cmd;
+}
+
+}  // namespace
+
+TEST(StrataRender, NoArgumentsIsAUsageError) {
+    TempDir dir;
+    const ProcessResult r = runProcess({kExe});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("strata-render: ", 0), 0u) << r.err;
+}
+
+TEST(StrataRender, HelpListsTheContractsOptions) {
+    const ProcessResult r = runProcess({kExe, "--help"});
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* option : {"-o", "--depth", "--normal", "--imgsize", "--camera", "--projection", "--fov",
+                               "--layers", "--stats", "--colorscheme"})
+        EXPECT_NE(r.out.find(option), std::string::npos) << option;
+}
+
+TEST(StrataRender, UnknownOptionIsAUsageError) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "--bogus"}, "strata-render: ");
+    expectFailure(dir, {scene, "extra.csg"}, "strata-render: ");
+}
+
+TEST(StrataRender, BadImageSizeIsOneLine) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    for (const char* size : {"0,10", "10,0", "-5,5", "abc", "10", "10,10,10", "1.5,2", "10,", ",10", "99999,10"})
+        expectFailure(dir, {scene, "--imgsize", size}, "strata-render: --imgsize: ");
+    // The --opt=value form reads the same.
+    expectFailure(dir, {scene, "--imgsize=0,10"}, "strata-render: --imgsize: ");
+}
+
+TEST(StrataRender, BadCameraIsOneLine) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "--camera=1,2,3,4,5,6,7,8"}, "strata-render: --camera: expected 6 numbers");
+    expectFailure(dir, {scene, "--camera", "1,2,3,4,5"}, "strata-render: --camera: expected 6 numbers");
+    expectFailure(dir, {scene, "--camera", "1,2,x,4,5,6"}, "strata-render: --camera: 'x' is not a finite number");
+    expectFailure(dir, {scene, "--camera", "1,2,inf,4,5,6"}, "strata-render: --camera: ");
+    expectFailure(dir, {scene, "--camera", "1,1,1,1,1,1"}, "strata-render: --camera: eye and center must differ");
+}
+
+TEST(StrataRender, BadProjectionFovAndLayersAreOneLine) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "--projection", "x"}, "strata-render: --projection: ");
+    expectFailure(dir, {scene, "--fov", "0"}, "strata-render: --fov: ");
+    expectFailure(dir, {scene, "--fov=180"}, "strata-render: --fov: ");
+    expectFailure(dir, {scene, "--fov", "wide"}, "strata-render: --fov: ");
+    expectFailure(dir, {scene, "--layers", "0"}, "strata-render: --layers: ");
+    expectFailure(dir, {scene, "--layers=-2"}, "strata-render: --layers: ");
+    expectFailure(dir, {scene, "--layers", "some"}, "strata-render: --layers: ");
+    expectFailure(dir, {scene, "--colorscheme", "Rainbow"},
+                  "strata-render: --colorscheme: unknown colour scheme 'Rainbow' (valid: Cornfield");
+}
+
+TEST(StrataRender, OutputNamesMustHaveTheirFormatsExtension) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "-o", dir / "out.jpg"}, "strata-render: -o: expected a .png file name");
+    expectFailure(dir, {scene, "--depth", dir / "z.png"}, "strata-render: --depth: expected a .exr file name");
+    expectFailure(dir, {scene, "--normal=" + (dir / "n.tif")}, "strata-render: --normal: expected a .exr file name");
+}
+
+TEST(StrataRender, UnknownSceneTypeNamesTheFile) {
+    TempDir dir;
+    const std::string scene = dir.write("model.xyz", kCube);
+    expectFailure(dir, {scene}, scene + ": unknown scene type '.xyz'");
+}
+
+TEST(StrataRender, MissingOrUnreadableSceneNamesTheFile) {
+    TempDir dir;
+    expectFailure(dir, {dir / "missing.csg"}, (dir / "missing.csg") + ": ");
+    expectFailure(dir, {dir / "missing.stl"}, (dir / "missing.stl") + ": ");
+    std::filesystem::create_directories(dir / "folder.csg");
+    expectFailure(dir, {dir / "folder.csg"}, (dir / "folder.csg") + ": ");
+}
+
+TEST(StrataRender, MalformedCsgNamesFileLineAndColumn) {
+    TempDir dir;
+    const std::string scene = dir.write("bad.csg", "group() {\n\tcube(size = [1, 1, 1];\n}\n");
+    const std::vector<std::string> before = dir.files();
+    const ProcessResult r = runProcess({kExe, scene, "-o", dir / "out.png"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    // "<path>:2:<col>: ..."
+    EXPECT_EQ(r.err.rfind(scene + ":2:", 0), 0u) << r.err;
+    EXPECT_EQ(dir.files(), before);
+}
+
+TEST(StrataRender, OpenMeshIsAnErrorNamingTheFile) {
+    TempDir dir;
+    // One triangle: every edge has a single face.
+    const std::string scene = dir.write("open.stl",
+                                        "solid open\n"
+                                        "facet normal 0 0 1\n outer loop\n"
+                                        "  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n"
+                                        " endloop\nendfacet\nendsolid open\n");
+    expectFailure(dir, {scene}, scene);
+}
+
+TEST(StrataRender, MissingOutputFolderWritesNothing) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    // The PNG's folder exists, the depth's does not: neither may appear.
+    expectFailure(dir, {scene, "-o", dir / "out.png", "--depth", dir / "nowhere/z.exr"}, dir / "nowhere/z.exr");
+}
+
+TEST(StrataRender, MissingEglIsOneLineAndWritesNothing) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    // glvnd finds no EGL vendor library: as on a machine without Mesa's EGL.
+    expectFailure(dir, {scene}, "EGL: no OpenGL 4.5 core context available (",
+                  {{"__EGL_VENDOR_LIBRARY_FILENAMES", dir / "no-such-vendor.json"},
+                   {"__EGL_VENDOR_LIBRARY_DIRS", dir / "no-such-folder"}});
+}

@@ -1,0 +1,221 @@
+// strata-render end to end: a cube, checked pixel by pixel against a ray-box
+// intersection worked out here from CONTRACT.md's camera formulas.
+//
+//        z (up)
+//        |   cube [-1,1]^3
+//        |  +---+
+//   eye  |  |   |      eye (0,-10,0) looks along +y at the origin:
+//   ---->+--|---|--> y f = (0,1,0), r = (1,0,0), u = (0,0,1);
+//           +---+      the front face y = -1 is 9 units deep.
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "RunProcess.h"
+#include "TempDir.h"
+
+using strata::testing::lineCount;
+using strata::testing::ProcessResult;
+using strata::testing::runProcess;
+using strata::testing::TempDir;
+
+namespace {
+
+const std::string kExe = STRATA_RENDER_EXE;
+
+struct Vec {
+    double x, y, z;
+};
+Vec operator+(Vec a, Vec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vec operator*(double s, Vec a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(Vec a, Vec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec normalize(Vec a) { return (1.0 / std::sqrt(dot(a, a))) * a; }
+
+struct Hit {
+    double depth;  // dot(P - E, f)
+    Vec normal;
+};
+
+// Slab test of the ray against the box [-1,1]^3; the entry face gives the normal.
+std::optional<Hit> hitCube(Vec origin, Vec dir, Vec f, Vec eye) {
+    double tNear = -std::numeric_limits<double>::infinity(), tFar = std::numeric_limits<double>::infinity();
+    Vec normal{0, 0, 0};
+    const double o[3] = {origin.x, origin.y, origin.z}, d[3] = {dir.x, dir.y, dir.z};
+    for (int axis = 0; axis < 3; ++axis) {
+        if (std::abs(d[axis]) < 1e-15) {
+            if (std::abs(o[axis]) > 1) return std::nullopt;
+            continue;
+        }
+        double t0 = (-1 - o[axis]) / d[axis], t1 = (1 - o[axis]) / d[axis];
+        double sign = -1;  // entering through the -axis face
+        if (t0 > t1) {
+            std::swap(t0, t1);
+            sign = 1;
+        }
+        if (t0 > tNear) {
+            tNear = t0;
+            normal = Vec{0, 0, 0};
+            (axis == 0 ? normal.x : axis == 1 ? normal.y : normal.z) = sign;
+        }
+        tFar = std::min(tFar, t1);
+    }
+    if (tNear > tFar || tNear <= 0) return std::nullopt;
+    const Vec p = origin + tNear * dir;
+    return Hit{dot(p + (-1.0) * eye, f), normal};
+}
+
+struct Expected {
+    std::optional<Hit> hit;
+    bool interior = false;  // the whole pixel sees the same face (or nothing): safe to compare
+};
+
+// The contract's camera for eye (0,-10,0), center 0: every ray of pixel (i,j)
+// at sub-pixel offset (di,dj) from its centre.
+std::optional<Hit> castPixel(double i, double j, int w, int h, bool ortho) {
+    const Vec eye{0, -10, 0}, f{0, 1, 0}, r{1, 0, 0}, u{0, 0, 1};
+    const double t = std::tan(22.5 / 2 * std::numbers::pi / 180), a = double(w) / h;
+    const double x = 2 * (i + 0.5) / w - 1, y = 1 - 2 * (j + 0.5) / h;
+    if (ortho) {
+        const double hh = 10 * t;
+        return hitCube(eye + (x * hh * a) * r + (y * hh) * u, f, f, eye);
+    }
+    return hitCube(eye, normalize(f + (x * t * a) * r + (y * t) * u), f, eye);
+}
+
+Expected expectedAt(int i, int j, int w, int h, bool ortho) {
+    Expected e;
+    e.hit = castPixel(i, j, w, h, ortho);
+    e.interior = true;
+    for (double di : {-0.5, 0.5})
+        for (double dj : {-0.5, 0.5}) {
+            const auto corner = castPixel(i + di, j + dj, w, h, ortho);
+            if (corner.has_value() != e.hit.has_value() ||
+                (corner && dot(corner->normal, e.hit->normal) < 0.5))
+                e.interior = false;
+        }
+    return e;
+}
+
+std::vector<float> readExr(const std::string& path, int& w, int& h, std::vector<std::string>& channels) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return {};
+    const auto& spec = in->spec();
+    w = spec.width;
+    h = spec.height;
+    channels.assign(spec.channelnames.begin(), spec.channelnames.end());
+    std::vector<float> pixels(static_cast<std::size_t>(w) * h * spec.nchannels);
+    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+    return pixels;
+}
+
+void checkCube(bool ortho, const std::vector<std::string>& extraArgs) {
+    TempDir dir;
+    constexpr int kW = 65, kH = 49;  // odd: the centre pixel's ray is the view axis
+    const std::string scene = dir.write("cube.csg", "cube(size = [2, 2, 2], center = true);\n");
+    std::vector<std::string> argv{kExe, scene, "-o", dir / "cube.png", "--depth", dir / "z.exr",
+                                  "--normal", dir / "n.exr", "--stats"};
+    argv.insert(argv.end(), extraArgs.begin(), extraArgs.end());
+    if (ortho) argv.insert(argv.end(), {"--projection", "o"});
+    const ProcessResult r = runProcess(argv);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+
+    int w = 0, h = 0;
+    std::vector<std::string> channels;
+    const std::vector<float> depth = readExr(dir / "z.exr", w, h, channels);
+    ASSERT_EQ(w, kW);
+    ASSERT_EQ(h, kH);
+    ASSERT_EQ(channels, std::vector<std::string>{"Z"});
+    const std::vector<float> normal = readExr(dir / "n.exr", w, h, channels);
+    ASSERT_EQ(channels, (std::vector<std::string>{"R", "G", "B"}));
+
+    // The centre pixel looks straight at the front face.
+    const int centre = (kH / 2) * kW + kW / 2;
+    EXPECT_NEAR(depth[centre], 9.0, 1e-4);
+    EXPECT_NEAR(normal[centre * 3 + 1], -1.0, 1e-4);
+
+    std::size_t covered = 0, boundary = 0, compared = 0;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const Expected e = expectedAt(i, j, kW, kH, ortho);
+            covered += e.hit.has_value();
+            if (!e.interior) {
+                ++boundary;
+                continue;
+            }
+            ++compared;
+            const int k = j * kW + i;
+            if (!e.hit) {
+                EXPECT_TRUE(std::isinf(depth[k]) && depth[k] > 0) << i << "," << j << ": " << depth[k];
+                EXPECT_EQ(normal[k * 3 + 0], 0.0f);
+                EXPECT_EQ(normal[k * 3 + 1], 0.0f);
+                EXPECT_EQ(normal[k * 3 + 2], 0.0f);
+                continue;
+            }
+            // |dz| <= 1e-4 of the cube's diagonal (2*sqrt(3)), as the accuracy suite demands.
+            EXPECT_NEAR(depth[k], e.hit->depth, 1e-4 * 2 * std::sqrt(3.0)) << i << "," << j;
+            EXPECT_NEAR(normal[k * 3 + 0], e.hit->normal.x, 1e-3) << i << "," << j;
+            EXPECT_NEAR(normal[k * 3 + 1], e.hit->normal.y, 1e-3) << i << "," << j;
+            EXPECT_NEAR(normal[k * 3 + 2], e.hit->normal.z, 1e-3) << i << "," << j;
+        }
+    EXPECT_GT(compared, boundary);  // the test really compared most of the image
+
+    // --stats: one JSON object on stdout, with the covered pixel count.
+    ASSERT_FALSE(r.out.empty());
+    EXPECT_EQ(r.out.front(), '{');
+    const std::size_t at = r.out.find("\"covered_pixels\": ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const long reported = std::stol(r.out.substr(at + 18));
+    EXPECT_LE(std::labs(reported - static_cast<long>(covered)), static_cast<long>(boundary)) << r.out;
+
+    // The PNG: right size, opaque where the cube is, and not the background colour there.
+    auto png = OIIO::ImageInput::open(dir / "cube.png");
+    ASSERT_TRUE(png);
+    EXPECT_EQ(png->spec().width, kW);
+    EXPECT_EQ(png->spec().height, kH);
+    EXPECT_EQ(png->spec().nchannels, 4);
+    std::vector<unsigned char> rgba(static_cast<std::size_t>(kW) * kH * 4);
+    png->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, rgba.data());
+    EXPECT_EQ(rgba[centre * 4 + 3], 255);
+    const bool differs = rgba[centre * 4 + 0] != rgba[0] || rgba[centre * 4 + 1] != rgba[1] ||
+                         rgba[centre * 4 + 2] != rgba[2] || rgba[centre * 4 + 3] != rgba[3];
+    EXPECT_TRUE(differs) << "the cube's centre has the corner's colour";
+}
+
+}  // namespace
+
+TEST(StrataRenderGL, CubeDepthNormalAndCoverageMatchThePerspectiveContract) {
+    checkCube(false, {"--camera", "0,-10,0,0,0,0", "--imgsize", "65,49"});
+}
+
+TEST(StrataRenderGL, CubeDepthNormalAndCoverageMatchTheOrthographicContract) {
+    checkCube(true, {"--camera=0,-10,0,0,0,0", "--imgsize=65,49"});  // the --opt=value form
+}
+
+TEST(StrataRenderGL, DefaultViewRendersAMeshFileWithAFittedCamera) {
+    TempDir dir;
+    // A unit cube as OFF, faces counter-clockwise seen from outside.
+    const std::string mesh = dir.write("cube.off",
+                                       "OFF\n8 6 0\n"
+                                       "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                       "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 3 7 6 2\n4 0 4 7 3\n4 1 2 6 5\n");
+    const ProcessResult r = runProcess({kExe, mesh, "--imgsize", "64,64", "--depth", dir / "z.exr", "--stats"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    int w = 0, h = 0;
+    std::vector<std::string> channels;
+    const std::vector<float> depth = readExr(dir / "z.exr", w, h, channels);
+    ASSERT_EQ(w, 64);
+    // The fitted view centres the model: the centre pixels see it, the corners do not.
+    const float c = depth[32 * 64 + 32];
+    EXPECT_TRUE(std::isfinite(c)) << c;
+    EXPECT_TRUE(std::isinf(depth[0]));
+    EXPECT_TRUE(std::isinf(depth[64 * 64 - 1]));
+}

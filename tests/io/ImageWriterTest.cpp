@@ -1,0 +1,179 @@
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "strata/core/Error.h"
+#include "strata/io/ImageWriter.h"
+
+namespace fs = std::filesystem;
+using namespace strata;
+
+namespace {
+
+// A fresh folder per test, removed afterwards.
+class ImageWriterTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("strata-io-" + std::to_string(::getpid()) + "-" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::vector<std::string> filesInDir() const {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+        return names;
+    }
+
+    fs::path dir_;
+};
+
+struct ReadBack {
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+    std::string format;
+    std::vector<float> floats;
+    std::vector<std::uint8_t> bytes;
+};
+
+ReadBack readBack(const std::string& path, OIIO::TypeDesc type) {
+    // Ask for the stored values: by default OpenImageIO premultiplies PNG colour by alpha on read.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) throw std::runtime_error("cannot read back " + path + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    ReadBack r;
+    r.width = spec.width;
+    r.height = spec.height;
+    r.channels = std::vector<std::string>(spec.channelnames.begin(), spec.channelnames.end());
+    r.format = in->format_name();
+    const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels;
+    if (type == OIIO::TypeDesc::FLOAT) {
+        r.floats.resize(n);
+        in->read_image(0, 0, 0, spec.nchannels, type, r.floats.data());
+    } else {
+        r.bytes.resize(n);
+        in->read_image(0, 0, 0, spec.nchannels, type, r.bytes.data());
+    }
+    in->close();
+    return r;
+}
+
+}  // namespace
+
+TEST_F(ImageWriterTest, PngKeepsEveryByteAndRowZeroIsTheTop) {
+    constexpr int kW = 5, kH = 3;
+    std::vector<std::uint8_t> rgba(kW * kH * 4);
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            std::uint8_t* p = &rgba[(j * kW + i) * 4];
+            p[0] = static_cast<std::uint8_t>(i * 50);
+            p[1] = static_cast<std::uint8_t>(j * 100);
+            p[2] = 7;
+            p[3] = static_cast<std::uint8_t>(j == 1 ? 128 : 255);  // translucent row: must not be un-premultiplied
+        }
+    io::writePng(path("a.png"), kW, kH, rgba);
+    const ReadBack r = readBack(path("a.png"), OIIO::TypeDesc::UINT8);
+    EXPECT_EQ(r.format, "png");
+    EXPECT_EQ(r.width, kW);
+    EXPECT_EQ(r.height, kH);
+    EXPECT_EQ(r.channels, (std::vector<std::string>{"R", "G", "B", "A"}));
+    EXPECT_EQ(r.bytes, rgba);
+    EXPECT_EQ(filesInDir(), std::vector<std::string>{"a.png"});  // no temporary left behind
+}
+
+TEST_F(ImageWriterTest, DepthExrHasOneChannelNamedZAndKeepsInfinity) {
+    constexpr int kW = 4, kH = 2;
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::vector<float> depth{1.5f, inf, -0.25f, 3e6f,  // top row
+                                   inf, 0.0f, 12.125f, inf};  // bottom row
+    io::writeDepthExr(path("z.exr"), kW, kH, depth);
+    const ReadBack r = readBack(path("z.exr"), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(r.format, "openexr");
+    EXPECT_EQ(r.width, kW);
+    EXPECT_EQ(r.height, kH);
+    EXPECT_EQ(r.channels, std::vector<std::string>{"Z"});
+    ASSERT_EQ(r.floats.size(), depth.size());
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        if (std::isinf(depth[k]))
+            EXPECT_TRUE(std::isinf(r.floats[k]) && r.floats[k] > 0) << k;
+        else
+            EXPECT_EQ(r.floats[k], depth[k]) << k;  // float32 all the way: exact
+    }
+}
+
+TEST_F(ImageWriterTest, NormalExrHasChannelsRGB) {
+    constexpr int kW = 2, kH = 2;
+    const std::vector<glm::vec3> normal{{1, 0, 0}, {0, -1, 0}, {0, 0, 0}, {0.6f, 0, 0.8f}};
+    io::writeNormalExr(path("n.exr"), kW, kH, normal);
+    const ReadBack r = readBack(path("n.exr"), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(r.channels, (std::vector<std::string>{"R", "G", "B"}));
+    ASSERT_EQ(r.floats.size(), 12u);
+    for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(r.floats[k * 3 + c], normal[k][c]) << k << "," << c;
+}
+
+TEST_F(ImageWriterTest, WritingIntoAMissingFolderThrowsAndLeavesNothing) {
+    const std::string target = path("missing/folder/out.png");
+    const std::vector<std::uint8_t> rgba(4, 255);
+    try {
+        io::writePng(target, 1, 1, rgba);
+        FAIL() << "wrote into a missing folder";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind(target + ": cannot write PNG", 0), 0u) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+    EXPECT_FALSE(fs::exists(target));
+    EXPECT_TRUE(filesInDir().empty());
+}
+
+TEST_F(ImageWriterTest, WrongPixelCountThrowsAndLeavesNothing) {
+    const std::vector<float> depth(5, 1.0f);
+    EXPECT_THROW(io::writeDepthExr(path("z.exr"), 2, 2, depth), Error);
+    EXPECT_THROW(io::writeDepthExr(path("z.exr"), 0, 5, depth), Error);
+    EXPECT_TRUE(filesInDir().empty());
+}
+
+TEST_F(ImageWriterTest, UncommittedStagedFilesLeaveNothing) {
+    const std::vector<std::uint8_t> rgba(4 * 4, 9);
+    const std::vector<float> depth(4, 2.0f);
+    {
+        auto png = io::stagePng(path("a.png"), 2, 2, rgba);
+        auto z = io::stageDepthExr(path("z.exr"), 2, 2, depth);
+        EXPECT_EQ(filesInDir().size(), 2u);  // two temporaries exist...
+        EXPECT_FALSE(fs::exists(path("a.png")));  // ...but no target yet
+        // A later output fails: the earlier ones must vanish with it.
+        EXPECT_THROW(io::stagePng(path("nope/b.png"), 2, 2, rgba), Error);
+    }
+    EXPECT_TRUE(filesInDir().empty());
+}
+
+TEST_F(ImageWriterTest, CommitReplacesAnOldFileOnlyAtTheEnd) {
+    {
+        std::ofstream old(path("a.png"));
+        old << "old contents";
+    }
+    const std::vector<std::uint8_t> rgba(4, 200);
+    auto staged = io::stagePng(path("a.png"), 1, 1, rgba);
+    EXPECT_EQ(fs::file_size(path("a.png")), 12u);  // still the old file
+    staged.commit();
+    const ReadBack r = readBack(path("a.png"), OIIO::TypeDesc::UINT8);
+    EXPECT_EQ(r.bytes, rgba);
+    EXPECT_EQ(filesInDir(), std::vector<std::string>{"a.png"});
+}
