@@ -2,6 +2,16 @@
 // The image-space CSG renderer: peel every operand into layers, evaluate the
 // tree per pixel, shade the first visible surface. Needs a current OpenGL 4.5
 // core context (strata::gpu) on the calling thread for its whole life.
+//
+// The passes (engine/render/*Pass.h, shaders/csg/) and what each owns:
+//   peel       PeelPass        dual depth peeling into an RG32F array texture
+//   evaluate   EvaluatePass    the compiled tree (TreeProgram.h) per pixel
+//   normal     NormalPass      the visible leaves redrawn for face normals
+//   shade      ShadePass       colours, Lambert light, Sobel outline
+//   translucent TranslucentPass '%' and '#' leaves over the image
+// GL state on return: depth test, culling, blending and scissor test off;
+// the viewport, bound program, vertex array, textures, storage buffers and
+// draw framebuffer are whatever the last pass used (renderInto: the host's).
 
 #include <cstddef>
 #include <cstdint>
@@ -18,9 +28,15 @@
 namespace strata::render {
 
 struct RenderSettings {
-    int layers = 0;                            // dual-peel passes per operand; 0 = auto (until a pass draws nothing)
+    // Dual-peel passes per operand; 0 = auto (until a pass draws nothing).
+    // A convex operand (cube, sphere, cylinder, convex polyhedron) always
+    // takes one: it has at most two surfaces on any ray.
+    int layers = 0;
     std::string colorScheme = "Cornfield";     // OpenSCAD colour scheme name
-    std::size_t memoryBudget = std::size_t(1) << 30;  // bytes of layered textures before tiling/batching
+    // Bytes the layered textures may take; above it the frame is rendered in
+    // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
+    std::size_t memoryBudget = std::size_t(1) << 30;
+    bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
 };
 
 struct FrameStats {
@@ -33,6 +49,17 @@ struct FrameStats {
     std::vector<std::string> notes;            // what the renderer decided (tiling, clamping, ...)
 };
 
+// One dual-peel layer of one operand (RenderSettings::keepPeelLayers), as the
+// original paper's figures show them. Row 0 is the TOP row. Depths are view
+// depths dot(P - eye, f); +inf where the layer caught nothing. Where the layer
+// caught a single surface, nearDepth == farDepth.
+struct PeelLayerImage {
+    int leaf = -1;                  // tree leaf index of the operand
+    int layer = 0;                  // 0: the outermost pair (nearest and farthest surfaces)
+    std::vector<float> nearDepth;   // W*H: the layer's nearest surface
+    std::vector<float> farDepth;    // W*H: the layer's farthest surface
+};
+
 // One rendered frame, read back. Row 0 is the TOP row (as in image files).
 struct Frame {
     int width = 0, height = 0;
@@ -40,6 +67,7 @@ struct Frame {
     std::vector<float> depth;         // W*H, view depth dot(P - eye, f); +inf on miss
     std::vector<glm::vec3> normal;    // W*H, world-space unit outward normal of the result; 0 on miss
     std::vector<std::int32_t> leaf;   // W*H, tree leaf index of the visible surface; -1 on miss
+    std::vector<PeelLayerImage> peelLayers;  // with RenderSettings::keepPeelLayers: by operand, then layer
     FrameStats stats;
 };
 
@@ -55,6 +83,14 @@ public:
 
     // Renders and reads everything back.
     Frame render(const Camera& camera, const RenderSettings& settings);
+
+    // Renders without reading anything back, and copies the shaded image into
+    // the host's `framebuffer` (a GL framebuffer name; 0 is the default one)
+    // with its lower-left corner at (x, y) in that framebuffer's pixels: for a
+    // window or a host's own render target. Returns the frame's figures
+    // (readbackMs covers the copy; coveredPixels is not counted).
+    // Leaves that framebuffer bound for drawing.
+    FrameStats renderInto(unsigned framebuffer, int x, int y, const Camera& camera, const RenderSettings& settings);
 
 private:
     struct Impl;

@@ -1,0 +1,82 @@
+#pragma once
+// The CSG tree compiled into a small postfix program over boolean operands,
+// which the evaluator shader (shaders/csg/evaluate.frag) runs once per
+// candidate depth per pixel. The program lives in a shader storage buffer, so
+// editing the tree needs no shader rebuild.
+//
+// Compilation:
+//   1. Difference(A, B, C) becomes A ∩ ¬B ∩ ¬C, and complements are pushed down
+//      to the leaves (De Morgan), so only n-ary AND/OR over literals remain.
+//   2. Constants fold: an empty leaf (no triangles, or a '%' background leaf)
+//      is the empty set; Union() and Intersection() are empty, and so is a
+//      Difference with an empty first child; A ∩ ∅ = ∅, A ∪ ∅ = A, ¬∅ = everything.
+//      Nested ANDs (ORs) flatten, single-child nodes vanish.
+//   3. Children are ordered Sethi–Ullman style (AND and OR commute): the child
+//      that needs the deepest stack goes first, and leaf children are fused into
+//      AND_LIT/OR_LIT instructions that push nothing. A tree of L leaves then
+//      needs at most floor(log2 L) + 1 stack entries, so the evaluator's whole
+//      stack is one 32-bit word for any tree the machine can hold.
+//
+// Instruction word (uint32):
+//   bits 0-1  operation: 0 PUSH, 1 AND, 2 OR
+//   bit  2    source: 0 literal (operand state, bits 4..31), 1 pop the stack
+//   bit  3    negate the literal
+//   bits 4-31 operand index (literals only)
+// PUSH always takes a literal. AND/OR combine the stack top with the source.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "strata/scene/Tree.h"
+
+namespace strata::render {
+
+inline constexpr std::uint32_t kOpPush = 0u;
+inline constexpr std::uint32_t kOpAnd = 1u;
+inline constexpr std::uint32_t kOpOr = 2u;
+inline constexpr std::uint32_t kOpFromStack = 4u;
+inline constexpr std::uint32_t kOpNegate = 8u;
+inline constexpr int kOperandShift = 4;
+inline constexpr int kMaxStackDepth = 32;  // bits in the evaluator's stack word
+
+struct TreeProgram {
+    // What the root folded to: a program to run, or a constant.
+    enum class Kind { Program, Empty, Everything };
+    Kind kind = Kind::Empty;
+
+    std::vector<std::uint32_t> code;  // the instructions, see above
+    std::vector<int> operandLeaf;     // operand index -> tree leaf index, ascending
+    int stackDepth = 0;               // deepest stack the program reaches
+
+    int operandCount() const { return static_cast<int>(operandLeaf.size()); }
+};
+
+// Compiles `tree` from tree.root. `leafIsEmpty[i]` marks leaf i as the empty set
+// (e.g. a mesh with no triangles); an empty vector means no leaf is empty.
+// Leaves with Display::Background are always empty. Never recurses, so any
+// tree depth compiles. Throws strata::Error on a malformed tree (a child index
+// out of range, a cycle) or, for >2^31 leaves, a stack deeper than 32.
+TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty = {});
+
+// `program` specialised to a part of the screen where only the operands with
+// present[k] != 0 have surfaces: every other operand is outside there, so its
+// literals become constants and fold away (A ∩ ¬B is A where B is absent; A ∩ B
+// is empty). Operand indices are kept. Returns the instructions, or an empty
+// vector when the result there is constant (empty or everything: no surface
+// of the result in that part either way); `constant` tells which.
+std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,
+                                             bool* constant = nullptr);
+
+// Runs instructions on the CPU exactly as the evaluator shader does (an empty
+// sequence gives false). `operandInside[k]` is operand k's membership.
+bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& operandInside);
+
+// Runs `program` on the CPU exactly as the evaluator shader does.
+// `operandInside[k]` is operand k's membership. Returns the result's membership.
+bool runTreeProgram(const TreeProgram& program, const std::vector<bool>& operandInside);
+
+// One instruction per line ("PUSH !3", "AND pop", ...), for tests and debugging.
+std::string disassemble(const TreeProgram& program);
+
+}  // namespace strata::render

@@ -1,0 +1,19 @@
+#pragma once
+// Which leaves are convex: a convex operand has at most two surfaces on any
+// ray, so one dual-peel pass captures it completely and `auto` peeling needs
+// no occlusion query for it.
+
+#include "strata/geometry/Mesh.h"
+#include "strata/scene/Tree.h"
+
+namespace strata::render {
+
+// True when `mesh` (the leaf's world-space mesh) bounds a convex solid.
+// Cubes, spheres and cylinders/cones are convex under any affine transform;
+// polyhedra and imports are tested (every vertex on the inner side of every
+// face plane) when that costs at most `maxWork` vertex-plane tests, and are
+// assumed non-convex above it.
+bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh,
+                  double maxWork = 4.0e6);
+
+}  // namespace strata::render

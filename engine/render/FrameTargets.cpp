@@ -1,0 +1,49 @@
+#include "FrameTargets.h"
+
+#include <limits>
+
+namespace strata::render {
+
+void FrameTargets::ensure(int width, int height) {
+    if (width == width_ && height == height_) return;
+    resultDepth = gpu::Texture::create2D("result depth", GL_R32F, width, height);
+    resultLeaf = gpu::Texture::create2D("result leaf", GL_R32I, width, height);
+    normal = gpu::Texture::create2D("result normal", GL_RGBA32F, width, height);
+    color = gpu::Texture::create2D("colour", GL_RGBA8, width, height);
+
+    evaluateTarget = gpu::Framebuffer("evaluate");
+    evaluateTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
+    evaluateTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
+    evaluateTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+    evaluateTarget.checkComplete();
+
+    normalTarget = gpu::Framebuffer("normal");
+    normalTarget.attachTexture(GL_COLOR_ATTACHMENT0, normal);
+    normalTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    normalTarget.checkComplete();
+
+    colorTarget = gpu::Framebuffer("colour");
+    colorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
+    colorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    colorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
+    colorTarget.checkComplete();
+
+    width_ = width;
+    height_ = height;
+}
+
+void FrameTargets::clearResult() {
+    glDisable(GL_SCISSOR_TEST);
+    const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
+    const GLint leaf[4] = {-1, 0, 0, 0};
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    evaluateTarget.clearColor(0, depth);
+    evaluateTarget.clearColorInt(1, leaf);
+    normalTarget.clearColor(0, zero);
+}
+
+std::size_t FrameTargets::bytes() const {
+    return resultDepth.byteSize() + resultLeaf.byteSize() + normal.byteSize() + color.byteSize();
+}
+
+}  // namespace strata::render

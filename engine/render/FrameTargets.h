@@ -1,0 +1,37 @@
+#pragma once
+// The full-frame images the passes hand to each other (the G-buffer) and the
+// final colour, with a framebuffer per pass that writes them.
+//
+//   resultDepth  R32F     tagged view depth of the visible surface, +inf on a miss   (evaluate)
+//   resultLeaf   R32I     leaf * 2 + flip, -1 on a miss                               (evaluate)
+//   normal       RGBA32F  world-space outward normal of the result, 0 on a miss      (normal)
+//   color        RGBA8    the shaded image                                           (shade, translucent)
+
+#include <cstddef>
+
+#include "strata/gpu/Framebuffer.h"
+#include "strata/gpu/Texture.h"
+
+namespace strata::render {
+
+class FrameTargets {
+public:
+    // (Re)creates the images when the size changes.
+    void ensure(int width, int height);
+    // Sets every pixel to "miss": depth +inf, leaf -1, normal 0.
+    void clearResult();
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    std::size_t bytes() const;
+
+    gpu::Texture resultDepth, resultLeaf, normal, color;
+    gpu::Framebuffer evaluateTarget;  // 0: resultDepth, 1: resultLeaf
+    gpu::Framebuffer normalTarget;    // 0: normal
+    gpu::Framebuffer colorTarget;     // 0: color
+
+private:
+    int width_ = 0, height_ = 0;
+};
+
+}  // namespace strata::render

@@ -1,0 +1,150 @@
+#include "PeelPass.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <limits>
+
+#include "strata/gpu/Check.h"
+
+namespace strata::render {
+
+namespace {
+
+// Uniform locations in shaders/csg/surface.vert and peel.frag.
+constexpr GLint kViewProjection = 0;
+constexpr GLint kEye = 1;
+constexpr GLint kForward = 2;
+constexpr GLint kPreviousLayer = 3;
+
+constexpr std::size_t kBytesPerTexel = 8;  // RG32F
+
+void setView(gpu::Program& program, const ViewSetup& view) {
+    program.setUniform(kViewProjection, view.viewProjection);
+    program.setUniform(kEye, view.eye);
+    program.setUniform(kForward, view.forward);
+}
+
+}  // namespace
+
+PeelPass::PeelPass()
+    : first_(gpu::Program::fromFiles("peel first", {"csg/surface.vert", "csg/peel.frag"}, {{"PEEL_FIRST", ""}})),
+      next_(gpu::Program::fromFiles("peel next", {"csg/surface.vert", "csg/peel.frag"})),
+      target_("peel"),
+      drawn_("peel drawn", GL_ANY_SAMPLES_PASSED) {
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxArrayLayers_);
+    target_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+}
+
+int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
+                             std::span<const char> inTile, int fixedLayers) {
+    int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        if (!inTile[k]) continue;
+        const LeafRange& leaf = scene.leaf(operandLeaves[k]);
+        if (leaf.indexCount == 0) continue;
+        layers += leaf.convex ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
+    }
+    return std::max(layers, 1);
+}
+
+bool PeelPass::reserve(int width, int height, int needed, int keep, std::size_t budgetBytes) {
+    if (layers_.id() && layers_.width() >= width && layers_.height() >= height && layers_.layers() >= needed &&
+        layers_.byteSize() <= budgetBytes) {
+        return true;
+    }
+    const std::size_t perLayer = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * kBytesPerTexel;
+    const std::size_t byBudget = budgetBytes / perLayer;
+    const int most = static_cast<int>(std::min<std::size_t>(byBudget, static_cast<std::size_t>(maxArrayLayers_)));
+    if (needed > most) return false;
+    // Grow geometrically so an auto-peeled scene reallocates a few times at most.
+    const int grown = layers_.id() ? std::max(needed, layers_.layers() * 3 / 2) : needed;
+    const int capacity = std::min(grown, most);
+    gpu::Texture bigger = gpu::Texture::create2DArray("peel layers", GL_RG32F, width, height, capacity);
+    if (keep > 0 && layers_.id()) {
+        glCopyImageSubData(layers_.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, bigger.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0,
+                           0, std::min(width, layers_.width()), std::min(height, layers_.height()), keep);
+    }
+    layers_ = std::move(bigger);
+    return true;
+}
+
+PixelRect PeelPass::region(const PixelRect& rect, const PixelRect& tile, int block) {
+    const int x0 = std::max(0, (rect.x - tile.x) / block * block);
+    const int y0 = std::max(0, (rect.y - tile.y) / block * block);
+    const int x1 = std::min(tile.width, (rect.x + rect.width - tile.x + block - 1) / block * block);
+    const int y1 = std::min(tile.height, (rect.y + rect.height - tile.y + block - 1) / block * block);
+    return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+}
+
+bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
+                   std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
+                   const PeelRequest& request, std::vector<OperandLayers>& out) {
+    out.assign(operandLeaves.size(), {});
+    passes_ = 0;
+    std::vector<char> inTile(operandLeaves.size());
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
+    const int estimate = estimateLayers(scene, operandLeaves, inTile, request.fixedLayers);
+    if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
+
+    setView(first_, view);
+    setView(next_, view);
+    glViewport(-tile.x, -tile.y, view.width, view.height);
+    glEnable(GL_SCISSOR_TEST);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MAX);
+    glBlendFunc(GL_ONE, GL_ONE);
+    scene.vertexArray().bind();
+
+    const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
+    int used = 0;
+    bool fits = true;
+    for (std::size_t k = 0; k < operandLeaves.size() && fits; ++k) {
+        const int leaf = operandLeaves[k];
+        const LeafRange& range = scene.leaf(leaf);
+        if (!inTile[k] || range.indexCount == 0) continue;
+        // Convex: one pass holds every surface. Auto: until a pass draws nothing.
+        const bool automatic = request.fixedLayers <= 0 && !range.convex;
+        const int most = range.convex ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);
+        const PixelRect valid = region(rects[k], tile, block);
+        glScissor(valid.x, valid.y, valid.width, valid.height);
+        int count = 0;
+        for (int pass = 0; pass < most; ++pass) {
+            const int layer = used + count;
+            if (!reserve(tile.width, tile.height, layer + 1, used + count, request.budgetBytes)) {
+                fits = false;
+                break;
+            }
+            target_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
+            target_.bindForDraw();
+            target_.clearColor(0, cleared);
+            gpu::Program& program = pass == 0 ? first_ : next_;
+            if (pass > 0) {
+                // The previous layer was rendered by the last draw: make it
+                // readable (ARB_texture_barrier, core in 4.5).
+                glTextureBarrier();
+                layers_.bindUnit(0);
+                program.setUniform(kPreviousLayer, layer - 1);
+            }
+            program.use();
+            if (automatic) drawn_.begin();
+            scene.drawLeaf(leaf);
+            ++passes_;
+            if (automatic) {
+                drawn_.end();
+                if (drawn_.result() == 0) break;  // nothing left: the layer stays scratch
+            }
+            ++count;
+        }
+        out[k] = {used, count};
+        used += count;
+    }
+
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_SCISSOR_TEST);
+    target_.detach(GL_COLOR_ATTACHMENT0);
+    gpu::checkErrors();
+    return fits;
+}
+
+}  // namespace strata::render

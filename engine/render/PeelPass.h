@@ -1,0 +1,86 @@
+#pragma once
+// The peel pass: each operand's surfaces on every pixel of a tile, as dual
+// depth-peeled layers (Bavoil & Myers 2008) in one RG32F array texture.
+//
+// Layer l of an operand holds (-near_l, far_l): its l-th nearest and l-th
+// farthest tagged depths (shaders/csg/surface.glsl), or (-FLT_MAX, -FLT_MAX)
+// where nothing was left to peel. Each layer costs one geometry pass over the
+// operand with MAX blending; the next pass reads the previous layer and keeps
+// only what lies strictly between. Layers of all operands sit one after the
+// other in the texture; the texture is sized to the tile and grows as `auto`
+// peeling finds deeper operands, within the memory budget.
+//
+// GL state: draws into its own framebuffer with viewport (-tile.x, -tile.y, W,
+// H), so the tile's pixels land at the texture's origin with the frame's exact
+// pixel centres; enables blending (MAX) and the scissor test while it runs and
+// disables both before returning. Depth test and face culling must be off.
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "SceneBuffers.h"
+#include "ViewSetup.h"
+#include "strata/gpu/Framebuffer.h"
+#include "strata/gpu/Program.h"
+#include "strata/gpu/Query.h"
+#include "strata/gpu/Texture.h"
+
+namespace strata::render {
+
+struct OperandLayers {
+    int first = 0;  // first layer in PeelPass::layers()
+    int count = 0;  // layers peeled; 0 when the operand misses the tile
+};
+
+struct PeelRequest {
+    int fixedLayers = 0;              // > 0: that many passes per non-convex operand; 0: auto
+    std::size_t budgetBytes = 0;      // most bytes the layer texture may take
+};
+
+class PeelPass {
+public:
+    PeelPass();  // compiles the shaders; needs a current context
+
+    // Peels `operandLeaves` (tree leaf indices) over `tile`, skipping operands
+    // whose screen rectangle misses the tile. Fills `out`, one
+    // entry per operand. Returns false, having drawn nothing useful, when the
+    // layers do not fit the budget (or the GPU's array-layer limit) at this
+    // tile size: the caller splits the tile and tries again.
+    // Each operand's layers are cleared and drawn only inside its screen
+    // rectangle `rects[k]`, widened to the evaluator's 16x16 blocks (`block`
+    // pixels, counted from the tile's corner): texels outside it are never read.
+    bool run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
+             std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
+             const PeelRequest& request, std::vector<OperandLayers>& out);
+
+    // How many layers the operands would need if the fixed count holds, or a
+    // first guess for auto (1 per convex operand, 2 per other, 1 scratch).
+    static int estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
+                              std::span<const char> inTile, int fixedLayers);
+
+    // Where operand layers are valid: `rect` (frame pixels) widened to whole
+    // `block`s counted from the tile's corner, clipped to the tile, in texture
+    // pixels (relative to the tile). Texels outside it hold stale data.
+    static PixelRect region(const PixelRect& rect, const PixelRect& tile, int block);
+
+    const gpu::Texture& layers() const { return layers_; }
+    std::size_t textureBytes() const { return layers_.id() ? layers_.byteSize() : 0; }
+    int maxArrayLayers() const { return maxArrayLayers_; }
+    int passes() const { return passes_; }  // geometry passes in the last run()
+
+private:
+    // Makes room for `needed` layers of a tile of `width` x `height`, keeping
+    // the first `keep` layers. False when that exceeds the budget.
+    bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
+
+    gpu::Program first_;  // PEEL_FIRST: everything passes
+    gpu::Program next_;   // reads the previous layer
+    gpu::Framebuffer target_;
+    gpu::Texture layers_;
+    gpu::Query drawn_;
+    int maxArrayLayers_ = 256;
+    int passes_ = 0;
+};
+
+}  // namespace strata::render

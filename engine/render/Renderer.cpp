@@ -1,0 +1,372 @@
+#include "strata/render/Renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <limits>
+#include <span>
+#include <string>
+
+#include "EvaluatePass.h"
+#include "FrameTargets.h"
+#include "NormalPass.h"
+#include "PeelPass.h"
+#include "SceneBuffers.h"
+#include "ShadePass.h"
+#include "TranslucentPass.h"
+#include "ViewSetup.h"
+#include "strata/core/Error.h"
+#include "strata/gpu/Check.h"
+#include "strata/render/ColorScheme.h"
+#include "strata/render/TreeProgram.h"
+
+namespace strata::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Below this many pixels a tile is not split further: the scene needs more
+// layers at one spot than the budget (or the GPU's array-layer limit) allows.
+constexpr long kSmallestTile = 16 * 16;
+
+std::string mebibytes(std::size_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+    return text;
+}
+
+// Leaves to draw translucent: '#' leaves in the CSG, and every leaf of the
+// '%' subtrees (or marked Background), with OpenSCAD's colours.
+std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const SceneBuffers& scene) {
+    std::vector<char> background(tree.leaves.size(), 0);
+    std::vector<int> stack(tree.background.begin(), tree.background.end());
+    std::vector<char> seen(tree.nodes.size(), 0);
+    while (!stack.empty()) {
+        const int n = stack.back();
+        stack.pop_back();
+        if (n < 0 || static_cast<std::size_t>(n) >= tree.nodes.size() || seen[static_cast<std::size_t>(n)]) continue;
+        seen[static_cast<std::size_t>(n)] = 1;
+        const scene::Node& node = tree.nodes[static_cast<std::size_t>(n)];
+        if (node.kind == scene::NodeKind::Leaf) {
+            if (node.leaf >= 0 && static_cast<std::size_t>(node.leaf) < tree.leaves.size()) {
+                background[static_cast<std::size_t>(node.leaf)] = 1;
+            }
+        }
+        stack.insert(stack.end(), node.children.begin(), node.children.end());
+    }
+    std::vector<TranslucentLeaf> out;
+    for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
+        const scene::Leaf& leaf = tree.leaves[i];
+        if (scene.leaf(static_cast<int>(i)).indexCount == 0) continue;
+        if (background[i] || leaf.display == scene::Display::Background) {
+            glm::vec4 color = kBackgroundModifierColor;
+            if (leaf.color) color = glm::vec4(glm::vec3(*leaf.color), kBackgroundModifierColor.a);
+            out.push_back({static_cast<int>(i), color});
+        } else if (leaf.display == scene::Display::Highlight) {
+            out.push_back({static_cast<int>(i), kHighlightColor});
+        }
+    }
+    return out;
+}
+
+// Screen tiles of at most `pixels` pixels each, covering the frame.
+std::deque<PixelRect> tilesOf(int width, int height, std::size_t pixels) {
+    std::deque<PixelRect> tiles;
+    const std::size_t frame = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    if (pixels >= frame) {
+        tiles.push_back({0, 0, width, height});
+        return tiles;
+    }
+    const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(pixels))));
+    const int tileWidth = std::min(width, side);
+    const int tileHeight = std::clamp(static_cast<int>(pixels / static_cast<std::size_t>(tileWidth)), 1, height);
+    for (int y = 0; y < height; y += tileHeight) {
+        for (int x = 0; x < width; x += tileWidth) {
+            tiles.push_back({x, y, std::min(tileWidth, width - x), std::min(tileHeight, height - y)});
+        }
+    }
+    return tiles;
+}
+
+// Flips GL's bottom-up rows into image rows, top first.
+template <class T>
+std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, int channels) {
+    std::vector<T> out(bottomUp.size());
+    const std::size_t row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+    for (int y = 0; y < height; ++y) {
+        std::copy_n(bottomUp.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(height - 1 - y)),
+                    row, out.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)));
+    }
+    return out;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+    PeelPass peel;
+    EvaluatePass evaluate;
+    NormalPass normals;
+    ShadePass shade;
+    TranslucentPass translucent;
+    FrameTargets targets;
+    SceneBuffers scene;
+    TreeProgram program;
+    std::vector<TranslucentLeaf> translucentLeaves;
+    std::size_t leafCount = 0;
+    bool hasScene = false;
+    GLint maxTextureSize = 0;
+
+    Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
+
+    // Every pass; the images stay on the GPU. Fills frame's size and stats.
+    ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame);
+    void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame);
+    void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
+                    const std::vector<OperandLayers>& layers, Frame& frame);
+    void readBack(Frame& frame);
+};
+
+Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
+Renderer::~Renderer() = default;
+
+void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
+    impl_->scene.upload(tree, model);
+    std::vector<bool> empty(model.leafMeshes.size());
+    for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
+    impl_->program = compileTree(tree, empty);
+    impl_->evaluate.setProgram(impl_->program);
+    impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
+    impl_->leafCount = tree.leaves.size();
+    impl_->hasScene = true;
+    gpu::checkErrors();
+}
+
+void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const std::vector<int>& operands = program.operandLeaf;
+    std::vector<PixelRect> rects(operands.size());
+    std::vector<char> inFrame(operands.size());
+    for (std::size_t k = 0; k < operands.size(); ++k) {
+        rects[k] = screenRect(view, scene.leafVertices(operands[k]));
+        inFrame[k] = !rects[k].empty();
+    }
+
+    // Tile so that the layers a tile needs (a first guess for auto) stay in budget.
+    const int estimate = PeelPass::estimateLayers(scene, operands, inFrame, settings.layers);
+    const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
+    const std::size_t pixels = std::max<std::size_t>(1, settings.memoryBudget / perPixel);
+    if (pixels < static_cast<std::size_t>(kSmallestTile) &&
+        pixels < static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height)) {
+        throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
+                    std::to_string(estimate) + " peel layers for only " + std::to_string(pixels) +
+                    " pixels at a time; give it at least " +
+                    mebibytes(perPixel * static_cast<std::size_t>(kSmallestTile)));
+    }
+    std::deque<PixelRect> tiles = tilesOf(view.width, view.height, pixels);
+    if (tiles.size() > 1) {
+        stats.notes.push_back("layered textures for " + std::to_string(estimate) + " layers at " +
+                              std::to_string(view.width) + "x" + std::to_string(view.height) + " would take " +
+                              mebibytes(perPixel * static_cast<std::size_t>(view.width) *
+                                        static_cast<std::size_t>(view.height)) +
+                              ", over the budget of " + mebibytes(settings.memoryBudget) + ": rendering in " +
+                              std::to_string(tiles.size()) + " tiles of " + std::to_string(tiles.front().width) +
+                              "x" + std::to_string(tiles.front().height));
+    }
+
+    const PeelRequest request{settings.layers, settings.memoryBudget};
+    std::vector<OperandLayers> layers;
+    int tilesDone = 0, splits = 0;
+    while (!tiles.empty()) {
+        const PixelRect tile = tiles.front();
+        tiles.pop_front();
+
+        auto start = Clock::now();
+        const bool fits = peel.run(scene, view, tile, operands, rects, EvaluatePass::kBlock, request, layers);
+        glFinish();
+        stats.peelMs += millisecondsSince(start);
+        stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
+        if (!fits) {
+            if (static_cast<long>(tile.width) * tile.height <= kSmallestTile) {
+                throw Error("renderer: the scene needs more peel layers at one spot than " +
+                            std::string("the memory budget of ") + mebibytes(settings.memoryBudget) +
+                            " and the GPU's " + std::to_string(peel.maxArrayLayers()) + " array layers allow");
+            }
+            // Auto peeling went deeper than guessed: split the tile in four.
+            const int w0 = std::max(1, tile.width / 2), h0 = std::max(1, tile.height / 2);
+            for (const PixelRect& part : {PixelRect{tile.x, tile.y, w0, h0},
+                                          PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
+                                          PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
+                                          PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0}}) {
+                if (!part.empty()) tiles.push_front(part);
+            }
+            ++splits;
+            continue;
+        }
+        for (std::size_t k = 0; k < operands.size(); ++k) {
+            int& used = stats.layersPerLeaf[static_cast<std::size_t>(operands[k])];
+            used = std::max(used, layers[k].count);
+        }
+        if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
+
+        start = Clock::now();
+        evaluate.run(targets, peel.layers(), tile, layers, rects);
+        normals.run(targets, scene, view, tile, NormalPass::visibleLeaves(targets, tile));
+        glFinish();
+        stats.evaluateMs += millisecondsSince(start);
+        ++tilesDone;
+    }
+    stats.tiles = tilesDone;
+    std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
+        return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
+    });
+    if (splits > 0) {
+        stats.notes.push_back("auto peeling needed more layers than estimated: split " + std::to_string(splits) +
+                              " tiles to stay within " + mebibytes(settings.memoryBudget));
+    }
+    if (settings.layers > 1) {
+        const bool anyConvex = std::any_of(operands.begin(), operands.end(),
+                                           [&](int leaf) { return scene.leaf(leaf).convex; });
+        if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
+    }
+
+}
+
+void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& operands,
+                                const std::vector<PixelRect>& rects, const std::vector<OperandLayers>& layers,
+                                Frame& frame) {
+    const std::size_t n = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
+    const float none = std::numeric_limits<float>::infinity();
+    std::vector<float> texels(static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height) * 2);
+    for (std::size_t k = 0; k < operands.size(); ++k) {
+        for (int l = 0; l < layers[k].count; ++l) {
+            auto it = std::find_if(frame.peelLayers.begin(), frame.peelLayers.end(), [&](const PeelLayerImage& p) {
+                return p.leaf == operands[k] && p.layer == l;
+            });
+            if (it == frame.peelLayers.end()) {
+                frame.peelLayers.push_back({operands[k], l, std::vector<float>(n, none), std::vector<float>(n, none)});
+                it = frame.peelLayers.end() - 1;
+            }
+            const PixelRect valid = PeelPass::region(rects[k], tile, EvaluatePass::kBlock);
+            if (valid.empty()) continue;
+            peel.layers().downloadRegion(valid.x, valid.y, layers[k].first + l, valid.width, valid.height, 1, GL_RG,
+                                         GL_FLOAT, std::as_writable_bytes(std::span(texels)));
+            for (int y = valid.y; y < valid.y + valid.height; ++y) {
+                for (int x = valid.x; x < valid.x + valid.width; ++x) {
+                    const std::size_t from =
+                        (static_cast<std::size_t>(y - valid.y) * static_cast<std::size_t>(valid.width) +
+                         static_cast<std::size_t>(x - valid.x)) * 2;
+                    // GL rows count from the bottom; image rows from the top.
+                    const std::size_t to = static_cast<std::size_t>(frame.height - 1 - (tile.y + y)) * frame.width +
+                                           static_cast<std::size_t>(tile.x + x);
+                    const float nearValue = -texels[from], farValue = texels[from + 1];
+                    it->nearDepth[to] = nearValue > 1e38f ? none : nearValue;
+                    it->farDepth[to] = farValue < -1e38f ? none : farValue;
+                }
+            }
+        }
+    }
+}
+
+void Renderer::Impl::readBack(Frame& frame) {
+    const int w = frame.width, h = frame.height;
+    const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+
+    std::vector<std::uint8_t> rgba(n * 4);
+    targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(rgba)));
+    frame.rgba = flipRows(rgba, w, h, 4);
+
+    std::vector<float> depth(n);
+    targets.resultDepth.download(GL_RED, GL_FLOAT, std::as_writable_bytes(std::span(depth)));
+    frame.depth = flipRows(depth, w, h, 1);
+
+    std::vector<std::int32_t> leaf(n);
+    targets.resultLeaf.download(GL_RED_INTEGER, GL_INT, std::as_writable_bytes(std::span(leaf)));
+    leaf = flipRows(leaf, w, h, 1);
+    frame.leaf.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        frame.leaf[i] = leaf[i] < 0 ? -1 : leaf[i] >> 1;
+        if (leaf[i] >= 0) ++frame.stats.coveredPixels;
+    }
+
+    std::vector<float> normal(n * 4);
+    targets.normal.download(GL_RGBA, GL_FLOAT, std::as_writable_bytes(std::span(normal)));
+    normal = flipRows(normal, w, h, 4);
+    frame.normal.resize(n);
+    for (std::size_t i = 0; i < n; ++i) frame.normal[i] = {normal[i * 4], normal[i * 4 + 1], normal[i * 4 + 2]};
+    gpu::checkErrors();
+}
+
+ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame) {
+    const auto frameStart = Clock::now();
+    if (!hasScene) throw Error("renderer: render() before setScene()");
+    if (settings.layers < 0) throw Error("renderer: layers must be 0 (auto) or positive");
+    const ColorScheme& scheme = colorScheme(settings.colorScheme);
+    const ViewSetup view = makeView(camera, scene.bounds());
+    if (view.width > maxTextureSize || view.height > maxTextureSize) {
+        throw Error("renderer: image size " + std::to_string(view.width) + "x" + std::to_string(view.height) +
+                    " exceeds the GPU's largest texture, " + std::to_string(maxTextureSize));
+    }
+
+    frame.width = view.width;
+    frame.height = view.height;
+    FrameStats& stats = frame.stats;
+    stats.layersPerLeaf.assign(leafCount, 0);
+    stats.operands = program.operandCount();
+    stats.tiles = 0;
+
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    targets.ensure(view.width, view.height);
+    targets.clearResult();
+    if (program.kind == TreeProgram::Kind::Program) {
+        peelAndEvaluate(view, settings, frame);
+    } else {
+        stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
+                                                                        : "the CSG result is everything");
+    }
+
+    const auto start = Clock::now();
+    shade.run(targets, scene, view, scheme);
+    translucent.run(targets, scene, view, translucentLeaves);
+    glFinish();
+    stats.shadeMs = millisecondsSince(start);
+    stats.totalMs = millisecondsSince(frameStart);
+    return view;
+}
+
+Frame Renderer::render(const Camera& camera, const RenderSettings& settings) {
+    Frame frame;
+    impl_->drawFrame(camera, settings, frame);
+    const auto start = Clock::now();
+    impl_->readBack(frame);
+    frame.stats.readbackMs = millisecondsSince(start);
+    frame.stats.totalMs += frame.stats.readbackMs;
+    return frame;
+}
+
+FrameStats Renderer::renderInto(unsigned framebuffer, int x, int y, const Camera& camera,
+                                const RenderSettings& settings) {
+    Frame frame;
+    impl_->drawFrame(camera, settings, frame);
+    const auto start = Clock::now();
+    glBlitNamedFramebuffer(impl_->targets.colorTarget.id(), framebuffer, 0, 0, frame.width, frame.height, x, y,
+                           x + frame.width, y + frame.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    glFinish();
+    gpu::checkErrors();
+    frame.stats.readbackMs = millisecondsSince(start);
+    frame.stats.totalMs += frame.stats.readbackMs;
+    return frame.stats;
+}
+
+}  // namespace strata::render

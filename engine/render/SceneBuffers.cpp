@@ -1,0 +1,82 @@
+#include "SceneBuffers.h"
+
+#include <cstdint>
+#include <span>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include "Convexity.h"
+#include "strata/core/Error.h"
+
+namespace strata::render {
+
+void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model) {
+    if (model.leafMeshes.size() != tree.leaves.size()) {
+        throw Error("renderer: the model has " + std::to_string(model.leafMeshes.size()) +
+                    " leaf meshes for a tree of " + std::to_string(tree.leaves.size()) + " leaves");
+    }
+    std::vector<float> positions;         // #V by 3
+    vertices_.clear();
+    firstVertex_.assign(1, 0);
+    std::vector<std::uint32_t> indices;   // #F by 3, absolute
+    std::vector<glm::vec4> normals;       // #F
+    std::vector<glm::vec4> colors;        // one per leaf
+    leaves_.assign(model.leafMeshes.size(), {});
+    bounds_ = {};
+    for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const std::size_t firstVertex = positions.size() / 3;
+        if (firstVertex + mesh.positions.size() > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
+        LeafRange& range = leaves_[i];
+        range.firstIndex = indices.size();
+        range.firstTriangle = normals.size();
+        for (const glm::dvec3& p : mesh.positions) {
+            positions.push_back(static_cast<float>(p.x));
+            positions.push_back(static_cast<float>(p.y));
+            positions.push_back(static_cast<float>(p.z));
+            vertices_.emplace_back(p);
+            range.bounds.extend(p);
+        }
+        firstVertex_.push_back(vertices_.size());
+        for (const auto& t : mesh.triangles) {
+            for (std::uint32_t v : t) indices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
+            const glm::dvec3& a = mesh.positions[t[0]];
+            glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
+            const double length = glm::length(n);
+            n = length > 0.0 ? n / length : glm::dvec3(0.0);
+            normals.emplace_back(static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 0.0f);
+        }
+        range.indexCount = indices.size() - range.firstIndex;
+        range.convex = range.indexCount > 0 && isConvexLeaf(tree.leaves[i].primitive, mesh);
+        if (range.indexCount > 0) bounds_.extend(range.bounds);
+        const auto& c = tree.leaves[i].color;
+        colors.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+    }
+    positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions), 0);
+    indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices), 0);
+    faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const glm::vec4>(normals), 0);
+    leafColors_ = gpu::Buffer::fromSpan("scene leaf colours", std::span<const glm::vec4>(colors), 0);
+    vertexArray_ = gpu::VertexArray("scene");
+    vertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
+    vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    vertexArray_.setElementBuffer(indices_);
+}
+
+void SceneBuffers::drawLeaf(int leaf) const {
+    const LeafRange& range = leaves_[static_cast<std::size_t>(leaf)];
+    if (range.indexCount == 0) return;
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(range.indexCount), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(range.firstIndex * sizeof(std::uint32_t)));
+}
+
+std::span<const glm::vec3> SceneBuffers::leafVertices(int leaf) const {
+    const auto i = static_cast<std::size_t>(leaf);
+    return std::span<const glm::vec3>(vertices_).subspan(firstVertex_[i], firstVertex_[i + 1] - firstVertex_[i]);
+}
+
+std::size_t SceneBuffers::bytes() const {
+    return positions_.size() + indices_.size() + faceNormals_.size() + leafColors_.size();
+}
+
+}  // namespace strata::render

@@ -1,0 +1,389 @@
+#include "strata/render/TreeProgram.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <sstream>
+#include <utility>
+
+namespace strata::render {
+
+namespace {
+
+// The normalized tree: n-ary AND/OR over literals, or a constant.
+struct Expr {
+    enum class Type { Literal, And, Or, Empty, Everything };
+    Type type = Type::Empty;
+    int leaf = -1;          // Literal: the tree leaf
+    bool negated = false;   // Literal: complemented
+    std::vector<int> children;
+    int need = 1;           // Sethi–Ullman stack need, once computed
+};
+
+class Compiler {
+public:
+    Compiler(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty)
+        : tree_(tree), leafIsEmpty_(leafIsEmpty) {
+        exprs_.push_back(make(Expr::Type::Empty));       // kEmpty
+        exprs_.push_back(make(Expr::Type::Everything));  // kEverything
+    }
+
+    TreeProgram compile() {
+        TreeProgram program;
+        if (tree_.root < 0) return program;  // nothing at all: empty
+        const int root = normalize(tree_.root);
+        if (root == kEmpty) return program;
+        if (root == kEverything) {
+            program.kind = TreeProgram::Kind::Everything;
+            return program;
+        }
+        program.kind = TreeProgram::Kind::Program;
+        assignOperands(root, program);
+        computeNeeds(root);
+        emit(root, program);
+        return program;
+    }
+
+private:
+    static constexpr int kEmpty = 0;
+
+    static Expr make(Expr::Type type) {
+        Expr e;
+        e.type = type;
+        return e;
+    }
+    static constexpr int kEverything = 1;
+
+    // --- 1 and 2: difference to intersection, De Morgan, constant folding ---
+
+    // Memo per (node, negated): -1 not seen, -2 in progress (a cycle if met again).
+    int& memo(int node, bool negated) { return memo_[static_cast<std::size_t>(node) * 2 + (negated ? 1 : 0)]; }
+
+    int normalize(int rootNode) {
+        memo_.assign(tree_.nodes.size() * 2, -1);
+        struct Frame {
+            int node;
+            bool negated;
+            bool expanded;
+        };
+        std::vector<Frame> stack{{rootNode, false, false}};
+        checkNode(rootNode);
+        while (!stack.empty()) {
+            Frame& frame = stack.back();
+            const scene::Node& node = tree_.nodes[static_cast<std::size_t>(frame.node)];
+            int& slot = memo(frame.node, frame.negated);
+            if (!frame.expanded) {
+                if (slot >= 0) {  // shared subtree, already normalized
+                    stack.pop_back();
+                    continue;
+                }
+                if (slot == -2) throw Error(node.where, "the CSG tree has a cycle through this node");
+                slot = -2;
+                frame.expanded = true;
+                const Frame parent = frame;  // `frame` dangles once we push
+                for (std::size_t i = node.children.size(); i-- > 0;) {
+                    const int child = node.children[i];
+                    checkNode(child);
+                    const bool childNegated = node.kind == scene::NodeKind::Difference && i > 0
+                                                  ? !parent.negated
+                                                  : parent.negated;
+                    const int childSlot = memo(child, childNegated);
+                    if (childSlot == -2) {
+                        throw Error(tree_.nodes[static_cast<std::size_t>(child)].where,
+                                    "the CSG tree has a cycle through this node");
+                    }
+                    if (childSlot < 0) stack.push_back({child, childNegated, false});
+                }
+                continue;
+            }
+            slot = combine(node, frame.negated);
+            stack.pop_back();
+        }
+        return memo(rootNode, false);
+    }
+
+    void checkNode(int node) const {
+        if (node < 0 || static_cast<std::size_t>(node) >= tree_.nodes.size()) {
+            throw Error("CSG tree: node index " + std::to_string(node) + " out of range");
+        }
+    }
+
+    // All children of `node` are normalized; fold them into one expression.
+    int combine(const scene::Node& node, bool negated) {
+        if (node.kind == scene::NodeKind::Leaf) {
+            if (node.leaf < 0 || static_cast<std::size_t>(node.leaf) >= tree_.leaves.size()) {
+                throw Error(node.where, "CSG tree: leaf index " + std::to_string(node.leaf) + " out of range");
+            }
+            const auto leaf = static_cast<std::size_t>(node.leaf);
+            const bool empty = tree_.leaves[leaf].display == scene::Display::Background ||
+                               (leaf < leafIsEmpty_.size() && leafIsEmpty_[leaf]);
+            if (empty) return negated ? kEverything : kEmpty;
+            Expr literal = make(Expr::Type::Literal);
+            literal.leaf = node.leaf;
+            literal.negated = negated;
+            exprs_.push_back(literal);
+            return static_cast<int>(exprs_.size()) - 1;
+        }
+        // A node with no children is empty, whatever its kind (OpenSCAD's
+        // union(){}, intersection(){}, difference(){}).
+        if (node.children.empty()) return negated ? kEverything : kEmpty;
+
+        // Union is OR, Intersection and Difference are AND; complementing swaps them.
+        const bool isOr = (node.kind == scene::NodeKind::Union) != negated;
+        const Expr::Type type = isOr ? Expr::Type::Or : Expr::Type::And;
+        const int absorbing = isOr ? kEverything : kEmpty;  // x OR all = all, x AND empty = empty
+        const int neutral = isOr ? kEmpty : kEverything;
+
+        std::vector<int> children;
+        for (std::size_t i = 0; i < node.children.size(); ++i) {
+            const bool childNegated =
+                node.kind == scene::NodeKind::Difference && i > 0 ? !negated : negated;
+            const int child = memo(node.children[i], childNegated);
+            if (child == absorbing) return absorbing;
+            if (child == neutral) continue;
+            const Expr& c = exprs_[static_cast<std::size_t>(child)];
+            if (c.type == type) {
+                children.insert(children.end(), c.children.begin(), c.children.end());
+            } else {
+                children.push_back(child);
+            }
+        }
+        if (children.empty()) return neutral;
+        if (children.size() == 1) return children.front();
+        Expr combined = make(type);
+        combined.children = std::move(children);
+        exprs_.push_back(std::move(combined));
+        return static_cast<int>(exprs_.size()) - 1;
+    }
+
+    // Visits every expression reachable from `root` once, children before parents.
+    template <class F>
+    void postorder(int root, F&& visit) {
+        std::vector<char> done(exprs_.size(), 0);
+        std::vector<std::pair<int, bool>> stack{{root, false}};
+        while (!stack.empty()) {
+            auto [e, expanded] = stack.back();
+            stack.pop_back();
+            if (done[static_cast<std::size_t>(e)]) continue;
+            if (expanded) {
+                done[static_cast<std::size_t>(e)] = 1;
+                visit(e);
+                continue;
+            }
+            stack.push_back({e, true});
+            for (int child : exprs_[static_cast<std::size_t>(e)].children) {
+                if (!done[static_cast<std::size_t>(child)]) stack.push_back({child, false});
+            }
+        }
+    }
+
+    void assignOperands(int root, TreeProgram& program) {
+        std::vector<int> leaves;
+        postorder(root, [&](int e) {
+            const Expr& x = exprs_[static_cast<std::size_t>(e)];
+            if (x.type == Expr::Type::Literal) leaves.push_back(x.leaf);
+        });
+        std::sort(leaves.begin(), leaves.end());
+        leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
+        program.operandLeaf = leaves;
+        operandOfLeaf_.assign(tree_.leaves.size(), -1);
+        for (std::size_t k = 0; k < leaves.size(); ++k) {
+            operandOfLeaf_[static_cast<std::size_t>(leaves[k])] = static_cast<int>(k);
+        }
+    }
+
+    // --- 3: Sethi–Ullman ordering ---
+
+    bool isLiteral(int e) const { return exprs_[static_cast<std::size_t>(e)].type == Expr::Type::Literal; }
+    int need(int e) const { return exprs_[static_cast<std::size_t>(e)].need; }
+
+    void computeNeeds(int root) {
+        postorder(root, [&](int e) {
+            Expr& x = exprs_[static_cast<std::size_t>(e)];
+            if (x.type == Expr::Type::Literal) {
+                x.need = 1;
+                return;
+            }
+            // Subexpressions first, deepest need first (stable, so equal needs
+            // keep their input order), then the literals, fused.
+            std::stable_partition(x.children.begin(), x.children.end(),
+                                  [&](int c) { return !isLiteral(c); });
+            const auto firstLiteral = std::find_if(x.children.begin(), x.children.end(),
+                                                   [&](int c) { return isLiteral(c); });
+            std::stable_sort(x.children.begin(), firstLiteral,
+                             [&](int a, int b) { return need(a) > need(b); });
+            int n = 1;
+            for (auto it = x.children.begin(); it != firstLiteral; ++it) {
+                n = std::max(n, need(*it) + (it == x.children.begin() ? 0 : 1));
+            }
+            x.need = n;
+        });
+    }
+
+    std::uint32_t literal(std::uint32_t op, int e) const {
+        const Expr& x = exprs_[static_cast<std::size_t>(e)];
+        const auto operand = static_cast<std::uint32_t>(operandOfLeaf_[static_cast<std::size_t>(x.leaf)]);
+        return op | (x.negated ? kOpNegate : 0u) | (operand << kOperandShift);
+    }
+
+    void emit(int root, TreeProgram& program) {
+        int depth = 0;
+        auto put = [&](std::uint32_t instruction) {
+            program.code.push_back(instruction);
+            if ((instruction & 3u) == kOpPush) ++depth;
+            if (instruction & kOpFromStack) --depth;
+            program.stackDepth = std::max(program.stackDepth, depth);
+        };
+        // Frame: an expression and how many of its subexpression children are emitted.
+        std::vector<std::pair<int, std::size_t>> stack{{root, 0}};
+        while (!stack.empty()) {
+            auto& [e, next] = stack.back();
+            const Expr& x = exprs_[static_cast<std::size_t>(e)];
+            if (x.type == Expr::Type::Literal) {
+                put(literal(kOpPush, e));
+                stack.pop_back();
+                continue;
+            }
+            const std::uint32_t op = x.type == Expr::Type::And ? kOpAnd : kOpOr;
+            const auto subexpressions = static_cast<std::size_t>(
+                std::find_if(x.children.begin(), x.children.end(), [&](int c) { return isLiteral(c); }) -
+                x.children.begin());
+            if (next >= 2) put(op | kOpFromStack);  // combine the child just emitted
+            if (next < subexpressions) {
+                const int child = x.children[next];
+                ++next;
+                stack.push_back({child, 0});
+                continue;
+            }
+            std::size_t i = subexpressions;
+            if (subexpressions == 0) put(literal(kOpPush, x.children[i++]));
+            for (; i < x.children.size(); ++i) put(literal(op, x.children[i]));
+            stack.pop_back();
+        }
+        if (program.stackDepth > kMaxStackDepth) {
+            throw Error("CSG tree needs an evaluation stack of " + std::to_string(program.stackDepth) +
+                        " entries; the evaluator holds " + std::to_string(kMaxStackDepth));
+        }
+    }
+
+    const scene::Tree& tree_;
+    const std::vector<bool>& leafIsEmpty_;
+    std::vector<Expr> exprs_;
+    std::vector<int> memo_;
+    std::vector<int> operandOfLeaf_;
+};
+
+}  // namespace
+
+TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty) {
+    return Compiler(tree, leafIsEmpty).compile();
+}
+
+std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,
+                                             bool* constant) {
+    if (program.kind != TreeProgram::Kind::Program) {
+        if (constant) *constant = program.kind == TreeProgram::Kind::Everything;
+        return {};
+    }
+    // Symbolic run of the stack machine: each entry is a constant or the
+    // instructions that compute it. Folding keeps the order of evaluation, so
+    // the stack never gets deeper than the original program's.
+    struct Entry {
+        int constant = -1;  // 0 or 1, or -1 for `code`
+        std::vector<std::uint32_t> code;
+    };
+    std::vector<Entry> stack;
+    auto literal = [&](std::uint32_t instruction) {
+        Entry e;
+        const std::uint32_t operand = instruction >> kOperandShift;
+        if (operand < present.size() && present[operand]) {
+            e.code.push_back((instruction & ~3u) | kOpPush);
+        } else {
+            e.constant = (instruction & kOpNegate) ? 1 : 0;  // absent: outside, so !x is true
+        }
+        return e;
+    };
+    for (std::uint32_t instruction : program.code) {
+        const std::uint32_t op = instruction & 3u;
+        if (op == kOpPush) {
+            stack.push_back(literal(instruction));
+            continue;
+        }
+        Entry b;
+        if (instruction & kOpFromStack) {
+            b = std::move(stack.back());
+            stack.pop_back();
+        } else {
+            b = literal(instruction);
+        }
+        Entry& a = stack.back();
+        // AND: 0 absorbs, 1 is neutral; OR: the other way round.
+        const int absorbing = op == kOpAnd ? 0 : 1;
+        if (a.constant == absorbing) continue;
+        if (b.constant == absorbing) {
+            a = Entry{absorbing, {}};
+            continue;
+        }
+        if (b.constant >= 0) continue;  // b is the neutral constant
+        if (a.constant >= 0) {          // a is the neutral constant
+            a = std::move(b);
+            continue;
+        }
+        // Both computed: a single-literal b fuses back into AND/OR literal.
+        if (b.code.size() == 1) {
+            a.code.push_back((b.code[0] & ~3u) | op);
+        } else {
+            a.code.insert(a.code.end(), b.code.begin(), b.code.end());
+            a.code.push_back(op | kOpFromStack);
+        }
+    }
+    Entry& result = stack.back();
+    if (constant) *constant = result.constant == 1;
+    return result.constant >= 0 ? std::vector<std::uint32_t>{} : std::move(result.code);
+}
+
+bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& operandInside) {
+    // The same bit-stack machine as shaders/csg/evaluate.frag: top of stack in bit 0.
+    std::uint32_t stack = 0;
+    for (std::uint32_t instruction : code) {
+        std::uint32_t value;
+        if (instruction & kOpFromStack) {
+            value = stack & 1u;
+            stack >>= 1;
+        } else {
+            const std::uint32_t operand = instruction >> kOperandShift;
+            value = (operandInside.at(operand) ? 1u : 0u) ^ ((instruction & kOpNegate) ? 1u : 0u);
+        }
+        switch (instruction & 3u) {
+            case kOpPush: stack = (stack << 1) | value; break;
+            case kOpAnd: stack &= ~1u | value; break;
+            case kOpOr: stack |= value; break;
+            default: break;
+        }
+    }
+    return (stack & 1u) != 0;
+}
+
+bool runTreeProgram(const TreeProgram& program, const std::vector<bool>& operandInside) {
+    if (program.kind == TreeProgram::Kind::Empty) return false;
+    if (program.kind == TreeProgram::Kind::Everything) return true;
+    return runCode(program.code, operandInside);
+}
+
+std::string disassemble(const TreeProgram& program) {
+    std::ostringstream out;
+    if (program.kind == TreeProgram::Kind::Empty) return "EMPTY\n";
+    if (program.kind == TreeProgram::Kind::Everything) return "EVERYTHING\n";
+    static const char* const kNames[] = {"PUSH", "AND", "OR", "?"};
+    for (std::uint32_t instruction : program.code) {
+        out << kNames[instruction & 3u] << ' ';
+        if (instruction & kOpFromStack) {
+            out << "pop";
+        } else {
+            out << ((instruction & kOpNegate) ? "!" : "") << (instruction >> kOperandShift);
+        }
+        out << '\n';
+    }
+    return out.str();
+}
+
+}  // namespace strata::render

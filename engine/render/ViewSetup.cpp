@@ -1,0 +1,135 @@
+#include "ViewSetup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "strata/core/Error.h"
+
+namespace strata::render {
+
+namespace {
+
+// A fraction of the scene's diagonal: the smallest near plane, and the margin
+// that keeps the nearest and farthest faces off the clip planes.
+constexpr double kNearFloor = 1e-6;
+constexpr double kMargin = 1e-3;
+
+std::array<glm::dvec3, 8> corners(const geometry::Bounds& b) {
+    std::array<glm::dvec3, 8> c;
+    for (int k = 0; k < 8; ++k) {
+        c[static_cast<std::size_t>(k)] = {(k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
+                                          (k & 4) ? b.max.z : b.min.z};
+    }
+    return c;
+}
+
+}  // namespace
+
+ViewSetup makeView(const Camera& camera, const geometry::Bounds& sceneBounds) {
+    if (camera.width <= 0 || camera.height <= 0) {
+        throw Error("camera: image size must be positive, got " + std::to_string(camera.width) + "x" +
+                    std::to_string(camera.height));
+    }
+    if (!(camera.fovDegrees > 0.0 && camera.fovDegrees < 180.0)) {
+        throw Error("camera: field of view must be between 0 and 180 degrees");
+    }
+    const double distance = glm::length(camera.center - camera.eye);
+    if (!(distance > 0.0) || !std::isfinite(distance)) throw Error("camera: eye and center must differ");
+
+    ViewSetup view;
+    view.width = camera.width;
+    view.height = camera.height;
+    view.orthographic = camera.projection == Projection::Orthographic;
+    view.eyeD = camera.eye;
+    view.forwardD = camera.forward();
+
+    double nearest = std::numeric_limits<double>::infinity();
+    double farthest = -nearest;
+    double size = 1.0;
+    if (!sceneBounds.empty()) {
+        for (const glm::dvec3& c : corners(sceneBounds)) {
+            const double d = camera.viewDepth(c);
+            nearest = std::min(nearest, d);
+            farthest = std::max(farthest, d);
+        }
+        size = std::max(sceneBounds.diagonal(), 1e-30);
+    } else {
+        nearest = 1.0;
+        farthest = 2.0;
+    }
+    // The eye may sit far from a tiny scene: keep the planes' scale sensible.
+    const double scale = std::max(size, 1e-9 * std::max(std::abs(nearest), std::abs(farthest)));
+    view.nearPlane = std::max(kNearFloor * scale, nearest - kMargin * scale);
+    view.farPlane = std::max(farthest + kMargin * scale, view.nearPlane * 2.0);
+
+    const glm::dmat4 vp = camera.projectionMatrix(view.nearPlane, view.farPlane) * camera.viewMatrix();
+    view.viewProjectionD = vp;
+    view.viewProjection = glm::mat4(vp);
+    view.eye = glm::vec3(camera.eye);
+    view.forward = glm::vec3(camera.forward());
+    view.right = glm::vec3(camera.right());
+    view.up = glm::vec3(camera.up());
+    const double t = std::tan(camera.fovDegrees * std::numbers::pi / 360.0);
+    view.halfExtent = glm::vec2(static_cast<float>(t * camera.width / camera.height), static_cast<float>(t));
+    return view;
+}
+
+namespace {
+
+// Accumulates the screen rectangle of points; `whole` once one reaches the near plane.
+struct RectBuilder {
+    const ViewSetup& view;
+    double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    bool whole = false;
+
+    void add(const glm::dvec3& p) {
+        if (glm::dot(p - view.eyeD, view.forwardD) <= view.nearPlane) {
+            whole = true;
+            return;
+        }
+        const glm::dvec4 clip = view.viewProjectionD * glm::dvec4(p, 1.0);
+        const double px = (clip.x / clip.w + 1.0) * 0.5 * view.width;
+        const double py = (clip.y / clip.w + 1.0) * 0.5 * view.height;
+        x0 = std::min(x0, px);
+        x1 = std::max(x1, px);
+        y0 = std::min(y0, py);
+        y1 = std::max(y1, py);
+    }
+
+    PixelRect rect() const;
+};
+
+PixelRect RectBuilder::rect() const {
+    if (whole) return {0, 0, view.width, view.height};
+    if (!(x0 <= x1)) return {};
+    const int ix0 = static_cast<int>(std::clamp(std::floor(x0) - 1.0, 0.0, double(view.width)));
+    const int iy0 = static_cast<int>(std::clamp(std::floor(y0) - 1.0, 0.0, double(view.height)));
+    const int ix1 = static_cast<int>(std::clamp(std::ceil(x1) + 1.0, 0.0, double(view.width)));
+    const int iy1 = static_cast<int>(std::clamp(std::ceil(y1) + 1.0, 0.0, double(view.height)));
+    return {ix0, iy0, ix1 - ix0, iy1 - iy0};
+}
+
+}  // namespace
+
+PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box) {
+    if (box.empty()) return {};
+    RectBuilder builder{view};
+    for (const glm::dvec3& c : corners(box)) builder.add(c);
+    return builder.rect();
+}
+
+PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices) {
+    RectBuilder builder{view};
+    for (const glm::vec3& v : vertices) {
+        builder.add(glm::dvec3(v));
+        if (builder.whole) break;
+    }
+    return builder.rect();
+}
+
+}  // namespace strata::render

@@ -1,0 +1,52 @@
+#pragma once
+// What every pass needs to know about the view: the camera of the contract
+// turned into float matrices, near and far planes fitted to the scene, and
+// screen rectangles. OpenGL's window coordinates: rows count from the bottom.
+
+#include <span>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "strata/geometry/Mesh.h"
+#include "strata/render/Camera.h"
+
+namespace strata::render {
+
+// A rectangle of pixels, [x, x + width) by [y, y + height), y from the bottom row.
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool empty() const { return width <= 0 || height <= 0; }
+    bool intersects(const PixelRect& o) const {
+        return x < o.x + o.width && o.x < x + width && y < o.y + o.height && o.y < y + height;
+    }
+};
+
+struct ViewSetup {
+    int width = 0, height = 0;
+    bool orthographic = false;
+    double nearPlane = 0.0, farPlane = 0.0;  // view depths dot(P - eye, f)
+    glm::dmat4 viewProjectionD{1.0};
+    glm::mat4 viewProjection{1.0f};
+    glm::vec3 eye{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
+    glm::dvec3 eyeD{0.0}, forwardD{0.0};
+    glm::vec2 halfExtent{0.0f};  // perspective: tan(fov/2) * (W/H, 1)
+};
+
+// Near = max(a small fraction of the scene's size, its nearest depth less a
+// margin), so nothing is clipped but by the near plane when the eye is inside
+// the scene; far beyond the farthest depth. Throws strata::Error on a camera
+// that cannot make an image (zero size, eye == center, bad field of view).
+ViewSetup makeView(const Camera& camera, const geometry::Bounds& sceneBounds);
+
+// The pixels that `box` can cover (with a pixel of margin), clamped to the
+// frame; the whole frame when the box reaches the near plane.
+PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box);
+
+// The pixels that the triangles over `vertices` can cover (with a pixel of
+// margin): tighter than the box's rectangle. The whole frame when a vertex
+// lies at or before the near plane.
+PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices);
+
+}  // namespace strata::render

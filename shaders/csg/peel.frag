@@ -1,0 +1,29 @@
+// Dual depth peeling (Bavoil & Myers 2008), one geometry pass of one operand.
+//
+// The target is one layer of an RG32F array texture, cleared to
+// (-FLT_MAX, -FLT_MAX) and MAX-blended, so after the pass it holds
+// (-nearest, farthest) of the tagged depths that reached it. The first pass
+// (PEEL_FIRST) lets every fragment through; later passes read the previous
+// layer and keep only what lies strictly between its nearest and farthest,
+// i.e. what no earlier pass has peeled. No depth test, no culling.
+#include "csg/surface.glsl"
+
+layout(location = 0) in float vViewDepth;
+layout(location = 0) out vec2 outDepths;
+
+#ifndef PEEL_FIRST
+// The previous layer. Another layer of the same texture is the render target:
+// GL allows that read after a glTextureBarrier() (ARB_texture_barrier, core in
+// 4.5) as long as no texel is both read and written by one draw.
+layout(binding = 0) uniform sampler2DArray uLayers;
+layout(location = 3) uniform int uPreviousLayer;
+#endif
+
+void main() {
+    float t = taggedDepth(vViewDepth, gl_FrontFacing);
+#ifndef PEEL_FIRST
+    vec2 previous = texelFetch(uLayers, ivec3(gl_FragCoord.xy, uPreviousLayer), 0).rg;
+    if (t <= -previous.r || t >= previous.g) discard;
+#endif
+    outDepths = vec2(-t, t);
+}

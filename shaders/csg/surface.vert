@@ -1,0 +1,21 @@
+// Vertex stage of every pass that rasterizes the leaves (peel, normal,
+// translucent). The peel and normal passes must compute bit-identical depths
+// for one fragment, so both use this file and the depth is invariant.
+//
+// Inputs: world-space positions (float, location 0).
+// Uniforms: the view-projection matrix, the eye and the unit view direction f.
+
+layout(location = 0) in vec3 aPosition;
+
+layout(location = 0) uniform mat4 uViewProjection;
+layout(location = 1) uniform vec3 uEye;
+layout(location = 2) uniform vec3 uForward;
+
+// Linear view depth dot(P - eye, f): an affine function of P, so perspective-
+// correct interpolation gives its exact value at every fragment.
+layout(location = 0) invariant out float vViewDepth;
+
+void main() {
+    vViewDepth = dot(aPosition - uEye, uForward);
+    gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}

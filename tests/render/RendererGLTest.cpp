@@ -1,0 +1,569 @@
+// The renderer against closed-form answers: depths at pixels whose ray is
+// known exactly, computed here from the geometry, not from the renderer.
+//
+// Most scenes are seen from straight above (eye on +Z looking down), so the
+// centre pixel of an odd-sized image looks down the Z axis. OpenSCAD spheres
+// have flat polar caps (no pole vertex: ring 0 sits at polar angle
+// 180°·0.5/rings), so that ray meets a sphere of radius r centred at height c
+// exactly at z = c ± r·cos(90°/rings).
+//
+//        eye (0,0,10)
+//          :
+//          v   (the centre pixel's view ray)
+//       ___:___   <- cap of a sphere: z = c + r cos(90°/rings)
+//      /   :   \  .
+//      \___:___/   <- bottom cap:     z = c - r cos(90°/rings)
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "strata/geometry/Model.h"
+#include "strata/geometry/Primitives.h"
+#include "strata/gpu/Context.h"
+#include "strata/gpu/Framebuffer.h"
+#include "strata/gpu/Texture.h"
+#include "strata/render/ColorScheme.h"
+#include "strata/render/Renderer.h"
+
+using namespace strata;
+using scene::NodeKind;
+
+namespace {
+
+constexpr int kSize = 101;           // odd: the centre pixel's ray is the axis
+constexpr int kCentre = kSize / 2;
+constexpr double kEyeHeight = 10.0;
+constexpr int kFn = 16;              // sphere $fn: 8 rings
+constexpr int kRings = (kFn + 1) / 2;
+
+// Height of a sphere's top (+1) or bottom (-1) cap.
+double capHeight(double centreZ, double radius, int side) {
+    return centreZ + side * radius * std::cos(std::numbers::pi / (2.0 * kRings));
+}
+
+scene::Leaf cubeLeaf(glm::dvec3 min, glm::dvec3 max) {
+    scene::Leaf leaf;
+    leaf.primitive = scene::Cube{max - min, false};
+    leaf.transform = glm::translate(glm::dmat4(1.0), min);
+    return leaf;
+}
+
+scene::Leaf sphereLeaf(glm::dvec3 centre, double radius) {
+    scene::Leaf leaf;
+    scene::Sphere s;
+    s.r = radius;
+    s.fragments.fn = kFn;
+    leaf.primitive = s;
+    leaf.transform = glm::translate(glm::dmat4(1.0), centre);
+    return leaf;
+}
+
+// One polyhedron leaf made of several sphere shells: a non-convex operand.
+scene::Leaf shellsLeaf(const std::vector<glm::dvec3>& centres, double radius) {
+    scene::Polyhedron poly;
+    scene::Sphere s;
+    s.r = radius;
+    s.fragments.fn = kFn;
+    const geometry::Mesh sphere = geometry::tessellate(s);
+    for (const glm::dvec3& c : centres) {
+        const int base = static_cast<int>(poly.points.size());
+        for (const glm::dvec3& p : sphere.positions) poly.points.push_back(p + c);
+        // OpenSCAD lists polyhedron faces clockwise seen from outside.
+        for (const auto& t : sphere.triangles) {
+            poly.faces.push_back({base + static_cast<int>(t[2]), base + static_cast<int>(t[1]),
+                                  base + static_cast<int>(t[0])});
+        }
+    }
+    scene::Leaf leaf;
+    leaf.primitive = poly;
+    return leaf;
+}
+
+render::Camera topCamera(render::Projection projection = render::Projection::Perspective,
+                         double eyeHeight = kEyeHeight) {
+    render::Camera camera;
+    camera.eye = {0.0, 0.0, eyeHeight};
+    camera.center = {0.0, 0.0, eyeHeight - 10.0};
+    camera.projection = projection;
+    camera.width = kSize;
+    camera.height = kSize;
+    return camera;
+}
+
+std::size_t at(const render::Frame& f, int i, int j) {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(f.width) + static_cast<std::size_t>(i);
+}
+
+// Writes the shaded image as a PPM when STRATA_TEST_IMAGES names a folder,
+// to look at what the tests render.
+void maybeSave(const render::Frame& f, const std::string& name) {
+    const char* dir = std::getenv("STRATA_TEST_IMAGES");
+    if (dir == nullptr) return;
+    std::ofstream out(std::string(dir) + "/" + name + ".ppm", std::ios::binary);
+    out << "P6\n" << f.width << ' ' << f.height << "\n255\n";
+    for (std::size_t p = 0; p < f.rgba.size(); p += 4) out.write(reinterpret_cast<const char*>(&f.rgba[p]), 3);
+}
+
+class RendererGLTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        context_ = std::make_unique<gpu::Context>();
+        renderer_ = std::make_unique<render::Renderer>();
+    }
+    static void TearDownTestSuite() {
+        renderer_.reset();
+        context_.reset();
+    }
+
+    render::Frame draw(const scene::Tree& tree, const render::Camera& camera, render::RenderSettings settings = {}) {
+        const geometry::Model model = geometry::buildModel(tree);
+        renderer_->setScene(tree, model);
+        render::Frame frame = renderer_->render(camera, settings);
+        const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        maybeSave(frame, name + "_" + std::to_string(saved_++));
+        return frame;
+    }
+
+    // Centre pixel: depth, leaf, normal.
+    static void expectCentre(const render::Frame& f, double depth, int leaf, glm::vec3 normal) {
+        const std::size_t c = at(f, kCentre, kCentre);
+        EXPECT_NEAR(f.depth[c], depth, 1e-5 * depth);
+        EXPECT_EQ(f.leaf[c], leaf);
+        EXPECT_NEAR(f.normal[c].x, normal.x, 1e-5);
+        EXPECT_NEAR(f.normal[c].y, normal.y, 1e-5);
+        EXPECT_NEAR(f.normal[c].z, normal.z, 1e-5);
+    }
+
+    static std::unique_ptr<gpu::Context> context_;
+    static std::unique_ptr<render::Renderer> renderer_;
+    int saved_ = 0;
+};
+
+std::unique_ptr<gpu::Context> RendererGLTest::context_;
+std::unique_ptr<render::Renderer> RendererGLTest::renderer_;
+
+const render::Projection kProjections[] = {render::Projection::Perspective, render::Projection::Orthographic};
+
+// The paper's cube-and-sphere pair: cube [-1,1]^3, sphere r=1 on its top face.
+scene::Tree paperPair(NodeKind op) {
+    scene::Tree tree;
+    const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
+    const int sphere = tree.addLeaf(sphereLeaf({0, 0, 1}, 1.0));
+    tree.root = tree.addNode(NodeKind::Union, {tree.addNode(op, {cube, sphere})});
+    return tree;
+}
+
+}  // namespace
+
+TEST_F(RendererGLTest, CubeMinusSphereShowsTheCavityFloor) {
+    for (render::Projection p : kProjections) {
+        const render::Frame f = draw(paperPair(NodeKind::Difference), topCamera(p));
+        // The ray passes the removed top face and meets the sphere's bottom cap
+        // from inside the cube: the sphere's face, flipped to point up.
+        expectCentre(f, kEyeHeight - capHeight(1.0, 1.0, -1), 1, {0, 0, 1});
+        // Pixel (73, 27) looks at (0.91, 0.91, 1) (orthographic) or (0.82,
+        // 0.82, 1) (perspective): on the cube's top face, outside the cut
+        // (the sphere's section at z = 1 has radius r sin(78.75°) < 0.99).
+        // The top face is a plane of view depth 9.
+        const std::size_t k = at(f, 73, 27);
+        EXPECT_EQ(f.leaf[k], 0);
+        EXPECT_NEAR(f.depth[k], 9.0, 1e-5);
+        EXPECT_NEAR(f.normal[k].z, 1.0f, 1e-6);
+    }
+}
+
+TEST_F(RendererGLTest, ThePapersThreeOperationsInBothProjections) {
+    for (render::Projection p : kProjections) {
+        // Union: the sphere's top cap stands highest.
+        expectCentre(draw(paperPair(NodeKind::Union), topCamera(p)), kEyeHeight - capHeight(1.0, 1.0, +1), 1,
+                     {0, 0, 1});
+        // Intersection: inside the sphere the cube's top face at z = 1.
+        expectCentre(draw(paperPair(NodeKind::Intersection), topCamera(p)), kEyeHeight - 1.0, 0, {0, 0, 1});
+        // Difference: the cavity floor, the sphere's face flipped.
+        expectCentre(draw(paperPair(NodeKind::Difference), topCamera(p)), kEyeHeight - capHeight(1.0, 1.0, -1), 1,
+                     {0, 0, 1});
+    }
+}
+
+TEST_F(RendererGLTest, IntersectionOfSpheresIsTheLens) {
+    scene::Tree tree;
+    const int a = tree.addLeaf(sphereLeaf({0, 0, 0.5}, 1.0));
+    const int b = tree.addLeaf(sphereLeaf({0, 0, -0.5}, 1.0));
+    tree.root = tree.addNode(NodeKind::Intersection, {a, b});
+    for (render::Projection p : kProjections) {
+        // The lens's top is the lower sphere's top cap.
+        expectCentre(draw(tree, topCamera(p)), kEyeHeight - capHeight(-0.5, 1.0, +1), 1, {0, 0, 1});
+    }
+}
+
+TEST_F(RendererGLTest, OrthographicCubeCoversExactlyItsPixels) {
+    scene::Tree tree;
+    tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}))});
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    // The contract's orthographic ray of pixel (i, j) starts at x*h*a, y*h:
+    // it hits the top face (depth 9, normal +Z) iff both are inside [-1, 1].
+    const double h = 10.0 * std::tan(22.5 / 2.0 * std::numbers::pi / 180.0);
+    std::size_t expected = 0;
+    for (int j = 0; j < kSize; ++j) {
+        for (int i = 0; i < kSize; ++i) {
+            const double x = (2.0 * (i + 0.5) / kSize - 1.0) * h;
+            const double y = (1.0 - 2.0 * (j + 0.5) / kSize) * h;
+            const bool hit = std::abs(x) < 1.0 && std::abs(y) < 1.0;
+            expected += hit ? 1 : 0;
+            const std::size_t k = at(f, i, j);
+            ASSERT_EQ(f.leaf[k], hit ? 0 : -1) << i << "," << j;
+            if (hit) {
+                EXPECT_NEAR(f.depth[k], 9.0, 1e-5);
+                EXPECT_NEAR(f.normal[k].z, 1.0f, 1e-6);
+            } else {
+                EXPECT_TRUE(std::isinf(f.depth[k]) && f.depth[k] > 0);
+                EXPECT_EQ(f.normal[k], glm::vec3(0.0f));
+            }
+        }
+    }
+    EXPECT_EQ(f.stats.coveredPixels, expected);
+    EXPECT_EQ(f.stats.layersPerLeaf, std::vector<int>{1});
+}
+
+TEST_F(RendererGLTest, PerspectiveCubeSideFaceDepthIsItsPlane) {
+    // Seen from the side (eye on -Y), the face y = -1 is a plane of constant
+    // view depth: every pixel on it reads |eye.y| - 1, with normal -Y.
+    scene::Tree tree;
+    tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}))});
+    render::Camera camera;
+    camera.eye = {0.0, -8.0, 0.0};
+    camera.center = {0.0, 0.0, 0.0};
+    camera.width = 64;
+    camera.height = 48;
+    const render::Frame f = draw(tree, camera);
+    int onFace = 0;
+    for (std::size_t k = 0; k < f.leaf.size(); ++k) {
+        if (f.leaf[k] < 0) continue;
+        ++onFace;
+        EXPECT_NEAR(f.depth[k], 7.0, 1e-5);
+        EXPECT_NEAR(f.normal[k].y, -1.0f, 1e-6);
+    }
+    EXPECT_GT(onFace, 100);
+}
+
+TEST_F(RendererGLTest, UnionOfSpheresAndCubeTakesTheHighest) {
+    scene::Tree tree;
+    const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
+    const int low = tree.addLeaf(sphereLeaf({0, 0, 0.5}, 0.9));
+    const int high = tree.addLeaf(sphereLeaf({0, 0, 1.2}, 0.5));
+    tree.root = tree.addNode(NodeKind::Union, {cube, low, high});
+    for (render::Projection p : kProjections) {
+        expectCentre(draw(tree, topCamera(p)), kEyeHeight - capHeight(1.2, 0.5, +1), 2, {0, 0, 1});
+    }
+}
+
+// The original paper's failure case: a slab minus three spheres on the view
+// ray, the spheres being ONE non-convex operand. One dual-peel layer sees
+// only that operand's first entry and last exit, so it believes the ray stays
+// inside the subtrahend all through the slab: the centre pixel shows nothing.
+//
+//      z= 1.39  ( o )   sphere 1 pokes out of the slab's top
+//      z= 1   ==|===|==  slab top (cut away)
+//      z= 0.61  (_o_)   <- the true visible surface: sphere 1's bottom
+//      z= 0     ( o )   sphere 2, inside the slab
+//      z=-1   ==(=o=)==  slab bottom, sphere 3 pokes out below
+TEST_F(RendererGLTest, StackedSubtractionNeedsAllLayersOfANonConvexOperand) {
+    scene::Tree tree;
+    const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
+    const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
+    tree.root = tree.addNode(NodeKind::Difference, {slab, spheres});
+    const double truth = kEyeHeight - capHeight(1.0, 0.4, -1);
+    for (render::Projection p : kProjections) {
+        render::RenderSettings one;
+        one.layers = 1;
+        const render::Frame wrong = draw(tree, topCamera(p), one);
+        const std::size_t c = at(wrong, kCentre, kCentre);
+        EXPECT_TRUE(std::isinf(wrong.depth[c])) << "one layer should miss the cavity floor, got " << wrong.depth[c];
+        EXPECT_EQ(wrong.leaf[c], -1);
+
+        const render::Frame right = draw(tree, topCamera(p));  // auto
+        expectCentre(right, truth, 1, {0, 0, 1});
+        EXPECT_EQ(right.stats.layersPerLeaf[1], 3);  // 6 surfaces, 2 per layer
+        EXPECT_EQ(right.stats.layersPerLeaf[0], 1);  // the slab is convex
+
+        render::RenderSettings three;
+        three.layers = 3;
+        expectCentre(draw(tree, topCamera(p), three), truth, 1, {0, 0, 1});
+    }
+}
+
+TEST_F(RendererGLTest, PeeledLayersHoldTheSurfacesInOrder) {
+    // The three shells on the view axis: six surfaces, peeled in pairs from
+    // the outside in (Bavoil & Myers): layer 0 = (top of shell 1, bottom of
+    // shell 3), layer 1 = (bottom of shell 1, top of shell 3), layer 2 =
+    // (top of shell 2, bottom of shell 2).
+    scene::Tree tree;
+    const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
+    const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
+    tree.root = tree.addNode(NodeKind::Difference, {slab, spheres});
+    render::RenderSettings settings;
+    settings.keepPeelLayers = true;
+    const render::Frame f = draw(tree, topCamera(), settings);
+    const double expected[3][2] = {{capHeight(1.0, 0.4, +1), capHeight(-1.0, 0.4, -1)},
+                                   {capHeight(1.0, 0.4, -1), capHeight(-1.0, 0.4, +1)},
+                                   {capHeight(0.0, 0.4, +1), capHeight(0.0, 0.4, -1)}};
+    int found = 0;
+    const std::size_t c = at(f, kCentre, kCentre);
+    for (const render::PeelLayerImage& layer : f.peelLayers) {
+        ASSERT_EQ(layer.nearDepth.size(), f.depth.size());
+        if (layer.leaf == 0) {  // the slab: one layer, its top and bottom faces
+            EXPECT_EQ(layer.layer, 0);
+            EXPECT_NEAR(layer.nearDepth[c], kEyeHeight - 1.0, 1e-5);
+            EXPECT_NEAR(layer.farDepth[c], kEyeHeight + 1.0, 1e-5);
+            continue;
+        }
+        ASSERT_EQ(layer.leaf, 1);
+        ASSERT_LT(layer.layer, 3);
+        ++found;
+        EXPECT_NEAR(layer.nearDepth[c], kEyeHeight - expected[layer.layer][0], 1e-5) << layer.layer;
+        EXPECT_NEAR(layer.farDepth[c], kEyeHeight - expected[layer.layer][1], 1e-5) << layer.layer;
+        // Off the shells' outline the operand has nothing on any layer.
+        EXPECT_TRUE(std::isinf(layer.nearDepth[at(f, 5, 5)]));
+    }
+    EXPECT_EQ(found, 3);
+}
+
+TEST_F(RendererGLTest, RenderIntoAHostFramebuffer) {
+    const scene::Tree tree = paperPair(NodeKind::Difference);
+    const render::Frame frame = draw(tree, topCamera());
+    gpu::Texture target = gpu::Texture::create2D("host", GL_RGBA8, kSize + 20, kSize + 20);
+    gpu::Framebuffer host("host");
+    host.attachTexture(GL_COLOR_ATTACHMENT0, target);
+    host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    host.checkComplete();
+    const float clear[4] = {0, 0, 0, 0};
+    host.clearColor(0, clear);
+    const render::FrameStats stats = renderer_->renderInto(host.id(), 5, 7, topCamera(), {});
+    EXPECT_EQ(stats.tiles, 1);
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>((kSize + 20) * (kSize + 20) * 4));
+    target.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
+    // Host pixel (5 + i, 7 + row-from-bottom) holds image pixel (i, kSize-1-row).
+    std::size_t differ = 0;
+    for (int row = 0; row < kSize; ++row) {
+        for (int i = 0; i < kSize; ++i) {
+            const std::size_t h = (static_cast<std::size_t>(7 + row) * (kSize + 20) + 5 + i) * 4;
+            const std::size_t m = at(frame, i, kSize - 1 - row) * 4;
+            for (int ch = 0; ch < 4; ++ch) differ += pixels[h + ch] != frame.rgba[m + ch] ? 1 : 0;
+        }
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_EQ(pixels[0], 0);  // outside the copied rectangle: untouched
+}
+
+TEST_F(RendererGLTest, ConvexSubtrahendsNeedOneLayerEach) {
+    // The same stack as three separate (convex) leaves: one layer suffices.
+    scene::Tree tree;
+    const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
+    std::vector<int> parts;
+    for (double z : {1.0, 0.0, -1.0}) parts.push_back(tree.addLeaf(sphereLeaf({0, 0, z}, 0.4)));
+    const int stack = tree.addNode(NodeKind::Union, parts);
+    tree.root = tree.addNode(NodeKind::Difference, {slab, stack});
+    render::RenderSettings one;
+    one.layers = 1;
+    expectCentre(draw(tree, topCamera(), one), kEyeHeight - capHeight(1.0, 0.4, -1), 1, {0, 0, 1});
+}
+
+TEST_F(RendererGLTest, EyeInsideASubtractedOperand) {
+    // The eye at z = 3 sits inside the subtracted sphere (centre z = 2, r = 1.6),
+    // which also swallows the cube's top face: the first surface is the
+    // sphere's bottom cap, where the ray leaves the subtrahend inside the cube.
+    scene::Tree tree;
+    const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
+    const int sphere = tree.addLeaf(sphereLeaf({0, 0, 2}, 1.6));
+    tree.root = tree.addNode(NodeKind::Difference, {cube, sphere});
+    for (render::Projection p : kProjections) {
+        const render::Frame f = draw(tree, topCamera(p, 3.0));
+        expectCentre(f, 3.0 - capHeight(2.0, 1.6, -1), 1, {0, 0, 1});
+    }
+}
+
+TEST_F(RendererGLTest, NearPlaneThroughTheModel) {
+    // The eye at the origin, inside the cube [-2,2]^3 minus a sphere below it:
+    // the ray starts inside the result and leaves it where it enters the
+    // sphere's top cap; the result's outward normal there points down (-Z),
+    // into the cavity: the sphere's face, flipped.
+    scene::Tree tree;
+    const int cube = tree.addLeaf(cubeLeaf({-2, -2, -2}, {2, 2, 2}));
+    const int sphere = tree.addLeaf(sphereLeaf({0, 0, -1}, 0.5));
+    tree.root = tree.addNode(NodeKind::Difference, {cube, sphere});
+    for (render::Projection p : kProjections) {
+        render::Camera camera = topCamera(p, 0.0);
+        // A side pixel whose ray passes the sphere (r = 0.5 at depth 1) and
+        // leaves the cube through its bottom (depth 2):
+        //   perspective, fov 90°: slope 0.79 at column 10, passing the
+        //     sphere's centre at 1 * sin(atan 0.79) = 0.62 > 0.5, meeting the
+        //     bottom at |x| = 1.58 < 2;
+        //   orthographic, fov 22.5°: column 20 starts at x = -1.18.
+        camera.fovDegrees = p == render::Projection::Perspective ? 90.0 : 22.5;
+        const int column = p == render::Projection::Perspective ? 10 : 20;
+        const render::Frame f = draw(tree, camera);
+        expectCentre(f, 0.0 - capHeight(-1.0, 0.5, +1), 1, {0, 0, -1});
+        // The side ray leaves through the cube's bottom face (its own face, not
+        // flipped): depth 2, normal -Z.
+        const std::size_t k = at(f, column, kCentre);
+        EXPECT_EQ(f.leaf[k], 0);
+        EXPECT_NEAR(f.depth[k], 2.0, 1e-5);
+        EXPECT_NEAR(f.normal[k].z, -1.0f, 1e-6);
+    }
+}
+
+TEST_F(RendererGLTest, TilesGiveTheSameImageWithinABudget) {
+    const scene::Tree tree = paperPair(NodeKind::Difference);
+    const render::Frame whole = draw(tree, topCamera());
+    EXPECT_EQ(whole.stats.tiles, 1);
+    render::RenderSettings small;
+    small.memoryBudget = 30 * 30 * 8 * 3;  // three RG32F layers of a 30x30 tile
+    const render::Frame tiled = draw(tree, topCamera(), small);
+    EXPECT_GT(tiled.stats.tiles, 4);
+    EXPECT_FALSE(tiled.stats.notes.empty());
+    EXPECT_LE(tiled.stats.textureBytes, small.memoryBudget);
+    expectCentre(tiled, kEyeHeight - capHeight(1.0, 1.0, -1), 1, {0, 0, 1});
+    ASSERT_EQ(tiled.leaf.size(), whole.leaf.size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < whole.leaf.size(); ++k) {
+        // A tile's viewport is shifted, so interpolation may differ in the last bits.
+        const bool same = tiled.leaf[k] == whole.leaf[k] &&
+                          (std::isinf(whole.depth[k]) ? tiled.depth[k] == whole.depth[k]
+                                                      : std::abs(tiled.depth[k] - whole.depth[k]) <= 1e-6 * whole.depth[k]) &&
+                          glm::length(tiled.normal[k] - whole.normal[k]) < 1e-6f;
+        if (!same && differ++ < 5) {
+            ADD_FAILURE() << "pixel " << k % kSize << "," << k / kSize << ": tiled leaf " << tiled.leaf[k] << " depth "
+                          << tiled.depth[k] << ", whole leaf " << whole.leaf[k] << " depth " << whole.depth[k];
+        }
+    }
+    EXPECT_EQ(differ, 0u);
+}
+
+TEST_F(RendererGLTest, AutoPeelingDeeperThanGuessedSplitsTheTile) {
+    // The guess is 2 layers for a non-convex operand; the shells need 3 (and
+    // a scratch layer for the empty check). A budget of exactly the guess
+    // for the whole frame forces a split once peeling goes deeper.
+    scene::Tree tree;
+    const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
+    const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
+    tree.root = tree.addNode(NodeKind::Difference, {slab, spheres});
+    render::RenderSettings tight;
+    tight.memoryBudget = static_cast<std::size_t>(kSize) * kSize * 8 * (1 + 2 + 1);
+    const render::Frame f = draw(tree, topCamera(), tight);
+    EXPECT_GT(f.stats.tiles, 1);
+    EXPECT_LE(f.stats.textureBytes, tight.memoryBudget);
+    ASSERT_FALSE(f.stats.notes.empty());
+    EXPECT_NE(f.stats.notes.back().find("split"), std::string::npos) << f.stats.notes.back();
+    expectCentre(f, kEyeHeight - capHeight(1.0, 0.4, -1), 1, {0, 0, 1});
+    EXPECT_EQ(f.stats.layersPerLeaf[1], 3);
+}
+
+TEST_F(RendererGLTest, ABudgetTooSmallForOnePixelIsAnError) {
+    render::RenderSettings none;
+    none.memoryBudget = 16;
+    EXPECT_THROW(draw(paperPair(NodeKind::Difference), topCamera(), none), Error);
+}
+
+TEST_F(RendererGLTest, ManyOperandsUseALargerEvaluator) {
+    // 40 thin slabs stacked along the view axis, unioned in shuffled order:
+    // the top of the highest one is visible. 40 operands > 32 per-pixel slots.
+    scene::Tree tree;
+    std::vector<int> leaves;
+    for (int i = 0; i < 40; ++i) {
+        const int k = (i * 17) % 40;
+        const double z = -2.0 + 0.1 * k;
+        leaves.push_back(tree.addLeaf(cubeLeaf({-0.5, -0.5, z}, {0.5, 0.5, z + 0.05})));
+    }
+    tree.root = tree.addNode(NodeKind::Union, leaves);
+    const render::Frame f = draw(tree, topCamera());
+    // Highest slab: k = 39, top at -2 + 3.9 + 0.05; leaf index i with 17 i = 39 mod 40 -> i = 7.
+    expectCentre(f, kEyeHeight - (-2.0 + 3.9 + 0.05), 7, {0, 0, 1});
+    EXPECT_EQ(f.stats.operands, 40);
+}
+
+TEST_F(RendererGLTest, ColoursFollowTheSchemeAndTheLeaves) {
+    scene::Tree tree = paperPair(NodeKind::Difference);
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::ColorScheme& cornfield = render::colorScheme("Cornfield");
+    // Background: the scheme's colour, opaque.
+    const std::size_t bg = at(f, 0, 0) * 4;
+    EXPECT_EQ(f.rgba[bg + 0], 255);
+    EXPECT_EQ(f.rgba[bg + 1], 255);
+    EXPECT_EQ(f.rgba[bg + 2], 229);
+    EXPECT_EQ(f.rgba[bg + 3], 255);
+    // Lit surfaces keep the hue of their base colour: cut face (green) at the
+    // centre, face colour (yellow) on the cube's rim.
+    auto ratio = [&](std::size_t k) { return double(f.rgba[k * 4]) / double(f.rgba[k * 4 + 1]); };
+    EXPECT_NEAR(ratio(at(f, kCentre, kCentre)), cornfield.faceBack.r / cornfield.faceBack.g, 0.03);
+    const double h = 10.0 * std::tan(22.5 / 2.0 * std::numbers::pi / 180.0);
+    const int rim = static_cast<int>(std::floor((1.0 - 0.98 / h) * kSize / 2.0));  // |x| ~ 0.98
+    const std::size_t onRim = at(f, rim + 1, rim + 1);
+    ASSERT_EQ(f.leaf[onRim], 0);
+    EXPECT_NEAR(ratio(onRim), cornfield.faceFront.r / cornfield.faceFront.g, 0.03);
+
+    // A leaf colour wins over the scheme, cut face included.
+    tree.leaves[1].color = glm::dvec4(0.0, 0.0, 1.0, 1.0);
+    const render::Frame blue = draw(tree, topCamera(render::Projection::Orthographic));
+    const std::size_t c = at(blue, kCentre, kCentre) * 4;
+    EXPECT_EQ(blue.rgba[c + 0], 0);
+    EXPECT_EQ(blue.rgba[c + 1], 0);
+    EXPECT_GT(blue.rgba[c + 2], 100);
+
+    // Another scheme changes the background.
+    render::RenderSettings starnight;
+    starnight.colorScheme = "Starnight";
+    const render::Frame night = draw(tree, topCamera(), starnight);
+    EXPECT_EQ(night.rgba[bg + 0], 0);
+    EXPECT_EQ(night.rgba[bg + 3], 255);
+}
+
+TEST_F(RendererGLTest, BackgroundLeavesAreDrawnButNotInTheCsg) {
+    scene::Tree tree;
+    const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
+    scene::Leaf ghost = cubeLeaf({-1.2, -1.2, -3}, {1.2, 1.2, -2});
+    ghost.display = scene::Display::Background;
+    const int g = tree.addLeaf(ghost);
+    tree.root = tree.addNode(NodeKind::Union, {cube});
+    tree.background = {g};
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    // Outside the cube but over the ghost: no CSG surface, but not plain background.
+    const double h = 10.0 * std::tan(22.5 / 2.0 * std::numbers::pi / 180.0);
+    const int i = static_cast<int>(std::floor((1.0 - 1.1 / h) * kSize / 2.0));  // x ~ -1.1
+    const std::size_t k = at(f, i, kCentre);
+    EXPECT_EQ(f.leaf[k], -1);
+    EXPECT_TRUE(std::isinf(f.depth[k]));
+    EXPECT_NE(f.rgba[k * 4 + 2], 229);  // blended grey over the background
+    EXPECT_EQ(f.rgba[k * 4 + 3], 255);
+    EXPECT_EQ(f.stats.operands, 1);
+}
+
+TEST_F(RendererGLTest, EmptyResultAndBadSettings) {
+    scene::Tree tree;
+    const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
+    tree.root = tree.addNode(NodeKind::Intersection, {cube, tree.addNode(NodeKind::Union, {})});
+    const render::Frame f = draw(tree, topCamera());
+    EXPECT_EQ(f.stats.coveredPixels, 0u);
+    EXPECT_EQ(f.stats.operands, 0);
+
+    render::RenderSettings bad;
+    bad.colorScheme = "NoSuchScheme";
+    EXPECT_THROW(renderer_->render(topCamera(), bad), Error);
+    bad = {};
+    bad.layers = -1;
+    EXPECT_THROW(renderer_->render(topCamera(), bad), Error);
+    render::Camera zero = topCamera();
+    zero.width = 0;
+    EXPECT_THROW(renderer_->render(zero, {}), Error);
+}

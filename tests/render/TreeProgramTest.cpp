@@ -1,0 +1,306 @@
+// The tree compiler against a direct, recursive reading of the CSG tree.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "strata/render/TreeProgram.h"
+
+using namespace strata;
+using scene::NodeKind;
+using scene::Tree;
+
+namespace {
+
+int leaf(Tree& tree, scene::Display display = scene::Display::Normal) {
+    scene::Leaf l;
+    l.primitive = scene::Cube{};
+    l.display = display;
+    return tree.addLeaf(l);
+}
+
+// Membership of `node` when leaf i is inside iff inside[i], straight from the
+// tree's meaning: union = any, intersection = all, difference = first and none
+// of the rest, no children = empty, background and empty leaves = empty.
+bool direct(const Tree& tree, int node, const std::vector<bool>& inside, const std::vector<bool>& empty) {
+    const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
+    switch (n.kind) {
+        case NodeKind::Leaf: {
+            const auto i = static_cast<std::size_t>(n.leaf);
+            if (tree.leaves[i].display == scene::Display::Background) return false;
+            if (i < empty.size() && empty[i]) return false;
+            return inside[i];
+        }
+        case NodeKind::Union: {
+            bool any = false;
+            for (int c : n.children) any = any || direct(tree, c, inside, empty);
+            return any;
+        }
+        case NodeKind::Intersection: {
+            if (n.children.empty()) return false;
+            bool all = true;
+            for (int c : n.children) all = all && direct(tree, c, inside, empty);
+            return all;
+        }
+        case NodeKind::Difference: {
+            if (n.children.empty()) return false;
+            bool result = direct(tree, n.children[0], inside, empty);
+            for (std::size_t i = 1; i < n.children.size(); ++i) {
+                result = result && !direct(tree, n.children[i], inside, empty);
+            }
+            return result;
+        }
+    }
+    return false;
+}
+
+std::vector<bool> operandStates(const render::TreeProgram& program, const std::vector<bool>& leafInside) {
+    std::vector<bool> states;
+    for (int l : program.operandLeaf) states.push_back(leafInside[static_cast<std::size_t>(l)]);
+    return states;
+}
+
+// A random tree: kinds, arities 0..4, some background and empty leaves.
+int randomNode(Tree& tree, std::mt19937& rng, int depth) {
+    std::uniform_int_distribution<int> pick(0, 9);
+    if (depth == 0 || pick(rng) < 3) {
+        return leaf(tree, pick(rng) == 0 ? scene::Display::Background : scene::Display::Normal);
+    }
+    const NodeKind kinds[] = {NodeKind::Union, NodeKind::Intersection, NodeKind::Difference};
+    const NodeKind kind = kinds[std::uniform_int_distribution<int>(0, 2)(rng)];
+    const int arity = std::uniform_int_distribution<int>(0, 4)(rng);
+    std::vector<int> children;
+    for (int i = 0; i < arity; ++i) children.push_back(randomNode(tree, rng, depth - 1));
+    return tree.addNode(kind, children);
+}
+
+}  // namespace
+
+TEST(TreeProgram, DifferenceBecomesIntersectionWithComplements) {
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree), c = leaf(tree);
+    tree.root = tree.addNode(NodeKind::Difference, {a, b, c});
+    const render::TreeProgram program = render::compileTree(tree);
+    ASSERT_EQ(program.kind, render::TreeProgram::Kind::Program);
+    EXPECT_EQ(render::disassemble(program), "PUSH 0\nAND !1\nAND !2\n");
+    EXPECT_EQ(program.stackDepth, 1);
+    EXPECT_EQ(program.operandLeaf, (std::vector<int>{0, 1, 2}));
+}
+
+TEST(TreeProgram, ComplementsReachTheLeavesByDeMorgan) {
+    // a - (b ∪ c) = a ∩ ¬b ∩ ¬c, flattened into one AND;
+    // a - (b ∩ c) = a ∩ (¬b ∪ ¬c).
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree), c = leaf(tree);
+    const int u = tree.addNode(NodeKind::Union, {b, c});
+    tree.root = tree.addNode(NodeKind::Difference, {a, u});
+    EXPECT_EQ(render::disassemble(render::compileTree(tree)), "PUSH 0\nAND !1\nAND !2\n");
+
+    Tree tree2;
+    const int a2 = leaf(tree2), b2 = leaf(tree2), c2 = leaf(tree2);
+    const int i2 = tree2.addNode(NodeKind::Intersection, {b2, c2});
+    tree2.root = tree2.addNode(NodeKind::Difference, {a2, i2});
+    // The subexpression (¬b ∪ ¬c) goes first, the literal a is fused after it.
+    EXPECT_EQ(render::disassemble(render::compileTree(tree2)), "PUSH !1\nOR !2\nAND 0\n");
+}
+
+TEST(TreeProgram, EmptySetsFold) {
+    {   // union() is empty
+        Tree tree;
+        tree.root = tree.addNode(NodeKind::Union, {});
+        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+    }
+    {   // intersection with an empty child is empty
+        Tree tree;
+        const int a = leaf(tree);
+        tree.root = tree.addNode(NodeKind::Intersection, {a, tree.addNode(NodeKind::Union, {})});
+        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+    }
+    {   // difference with an empty first child is empty
+        Tree tree;
+        const int e = tree.addNode(NodeKind::Union, {});
+        tree.root = tree.addNode(NodeKind::Difference, {e, leaf(tree)});
+        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+    }
+    {   // subtracting the empty set, or an empty intersection, leaves the minuend
+        Tree tree;
+        const int a = leaf(tree), b = leaf(tree);
+        const int emptyInter = tree.addNode(NodeKind::Intersection, {b, tree.addNode(NodeKind::Union, {})});
+        tree.root = tree.addNode(NodeKind::Difference, {a, emptyInter, tree.addNode(NodeKind::Intersection, {})});
+        const auto program = render::compileTree(tree);
+        EXPECT_EQ(render::disassemble(program), "PUSH 0\n");
+        EXPECT_EQ(program.operandLeaf, (std::vector<int>{0}));  // b is not an operand
+    }
+    {   // an empty leaf (no triangles) and a background leaf drop out of a union
+        Tree tree;
+        const int a = leaf(tree), b = leaf(tree), c = leaf(tree, scene::Display::Background);
+        tree.root = tree.addNode(NodeKind::Union, {a, b, c});
+        const auto program = render::compileTree(tree, {true, false, false});
+        EXPECT_EQ(render::disassemble(program), "PUSH 0\n");
+        EXPECT_EQ(program.operandLeaf, (std::vector<int>{1}));
+    }
+    {   // no root at all
+        Tree tree;
+        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+    }
+}
+
+TEST(TreeProgram, NestedNodesOfOneKindFlatten) {
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree), c = leaf(tree), d = leaf(tree);
+    const int inner = tree.addNode(NodeKind::Union, {b, tree.addNode(NodeKind::Union, {c, d})});
+    tree.root = tree.addNode(NodeKind::Union, {a, inner});
+    EXPECT_EQ(render::disassemble(render::compileTree(tree)), "PUSH 0\nOR 1\nOR 2\nOR 3\n");
+}
+
+TEST(TreeProgram, MatchesTheTreeOnRandomTreesAndStates) {
+    std::mt19937 rng(20240611);
+    int programs = 0;
+    for (int t = 0; t < 400; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 5);
+        std::vector<bool> empty(tree.leaves.size());
+        for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = (rng() % 13) == 0;
+        const render::TreeProgram program = render::compileTree(tree, empty);
+        if (program.kind == render::TreeProgram::Kind::Program) ++programs;
+        for (int s = 0; s < 64; ++s) {
+            std::vector<bool> inside(tree.leaves.size());
+            for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() & 1u) != 0;
+            ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
+                      direct(tree, tree.root, inside, empty))
+                << "tree " << t << ", state " << s << "\n" << render::disassemble(program);
+        }
+        // Every operand is a leaf that the tree uses, in ascending order.
+        for (std::size_t k = 1; k < program.operandLeaf.size(); ++k) {
+            EXPECT_LT(program.operandLeaf[k - 1], program.operandLeaf[k]);
+        }
+        // Sethi–Ullman: at most floor(log2(literals)) + 1 stack entries.
+        int literals = 0;
+        for (std::uint32_t instruction : program.code) literals += (instruction & render::kOpFromStack) ? 0 : 1;
+        if (literals > 0) {
+            EXPECT_LE(program.stackDepth, static_cast<int>(std::floor(std::log2(literals))) + 1);
+        }
+    }
+    EXPECT_GT(programs, 100);  // the random trees are not all folded away
+}
+
+TEST(TreeProgram, BalancedTreeStackGrowsWithLogOfLeaves) {
+    // A complete binary tree of 1024 leaves alternating union and intersection
+    // by level cannot flatten: its stack need is exactly its height, 10.
+    Tree tree;
+    std::vector<int> level;
+    for (int i = 0; i < 1024; ++i) level.push_back(leaf(tree));
+    bool unionLevel = true;
+    while (level.size() > 1) {
+        std::vector<int> next;
+        for (std::size_t i = 0; i < level.size(); i += 2) {
+            next.push_back(tree.addNode(unionLevel ? NodeKind::Union : NodeKind::Intersection,
+                                        {level[i], level[i + 1]}));
+        }
+        level = next;
+        unionLevel = !unionLevel;
+    }
+    tree.root = level.front();
+    const auto program = render::compileTree(tree);
+    EXPECT_EQ(program.stackDepth, 10);
+    EXPECT_EQ(program.operandCount(), 1024);
+    // Spot-check the meaning on a few states against the tree itself.
+    std::mt19937 rng(7);
+    for (int s = 0; s < 50; ++s) {
+        std::vector<bool> inside(1024);
+        for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() % 4) != 0;
+        EXPECT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
+                  direct(tree, tree.root, inside, {}));
+    }
+}
+
+TEST(TreeProgram, VeryDeepChainsCompileWithoutRecursionAndOneStackEntry) {
+    // union(a0, intersection(a1, union(a2, ...))) 200000 levels deep.
+    Tree tree;
+    int node = leaf(tree);
+    for (int i = 0; i < 200000; ++i) {
+        node = tree.addNode(i % 2 ? NodeKind::Union : NodeKind::Intersection, {leaf(tree), node});
+    }
+    tree.root = node;
+    const auto program = render::compileTree(tree);
+    EXPECT_EQ(program.stackDepth, 1);
+    EXPECT_EQ(program.code.size(), 200001u);
+}
+
+TEST(TreeProgram, SharedSubtreesAreEvaluatedWherePlaced) {
+    // The same node used twice, once subtracted: (a ∪ b) - (a ∩ b) = a xor b.
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree);
+    const int u = tree.addNode(NodeKind::Union, {a, b});
+    const int i = tree.addNode(NodeKind::Intersection, {a, b});
+    tree.root = tree.addNode(NodeKind::Difference, {u, i});
+    const auto program = render::compileTree(tree);
+    EXPECT_EQ(program.operandCount(), 2);
+    for (int s = 0; s < 4; ++s) {
+        const bool ia = s & 1, ib = s & 2;
+        EXPECT_EQ(render::runTreeProgram(program, {ia, ib}), ia != ib) << s;
+    }
+}
+
+TEST(TreeProgram, CyclesAndBadIndicesAreErrors) {
+    Tree tree;
+    const int a = leaf(tree);
+    const int u = tree.addNode(NodeKind::Union, {a});
+    tree.nodes[static_cast<std::size_t>(u)].children.push_back(u);
+    tree.root = u;
+    EXPECT_THROW(render::compileTree(tree), Error);
+
+    Tree bad;
+    bad.root = bad.addNode(NodeKind::Union, {42});
+    EXPECT_THROW(render::compileTree(bad), Error);
+}
+
+TEST(TreeProgram, SpecializingToPresentOperandsKeepsTheMeaning) {
+    // Where an operand has no surface it is outside: the specialised program
+    // must agree with the full one on every state with absent operands outside.
+    std::mt19937 rng(99);
+    int folded = 0, constants = 0;
+    for (int t = 0; t < 300; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 5);
+        const render::TreeProgram program = render::compileTree(tree);
+        if (program.kind != render::TreeProgram::Kind::Program) continue;
+        for (int m = 0; m < 8; ++m) {
+            std::vector<char> present(static_cast<std::size_t>(program.operandCount()));
+            for (char& p : present) p = (rng() % 3) != 0;
+            bool constant = false;
+            const std::vector<std::uint32_t> code = render::specializeProgram(program, present, &constant);
+            EXPECT_LE(code.size(), program.code.size());
+            folded += code.size() < program.code.size() ? 1 : 0;
+            constants += code.empty() ? 1 : 0;
+            for (int s = 0; s < 16; ++s) {
+                std::vector<bool> inside(present.size());
+                for (std::size_t k = 0; k < inside.size(); ++k) inside[k] = present[k] && (rng() & 1u);
+                const bool want = render::runTreeProgram(program, inside);
+                const bool got = code.empty() ? constant : render::runCode(code, inside);
+                ASSERT_EQ(got, want) << render::disassemble(program);
+            }
+        }
+    }
+    EXPECT_GT(folded, 100);
+    EXPECT_GT(constants, 10);
+}
+
+TEST(TreeProgram, SpecializingACheeseLeavesOnlyTheNearbyHoles) {
+    // cube - s1 - s2 - s3 where only s2 is present: cube AND !s2.
+    Tree tree;
+    std::vector<int> children;
+    for (int i = 0; i < 4; ++i) children.push_back(leaf(tree));
+    tree.root = tree.addNode(NodeKind::Difference, children);
+    const render::TreeProgram program = render::compileTree(tree);
+    render::TreeProgram view = program;
+    view.code = render::specializeProgram(program, {1, 0, 1, 0});
+    EXPECT_EQ(render::disassemble(view), "PUSH 0\nAND !2\n");
+    bool constant = true;
+    EXPECT_TRUE(render::specializeProgram(program, {0, 1, 1, 1}, &constant).empty());  // no cube: empty
+    EXPECT_FALSE(constant);
+}
