@@ -162,6 +162,9 @@ ParseResult parseOptions(int argc, char** argv) {
     app.add_option("--fov", fov, "vertical field of view in degrees (default 22.5)")->type_name("DEG");
     app.add_option("--layers", layers, "depth-peel layers per operand, or auto (default)")->type_name("N|auto");
     app.add_flag("--stats", o.stats, "print one JSON object of figures on stdout");
+    app.add_flag("--reference", o.reference,
+                 "find the surfaces with the CPU reference ray caster (Embree) instead of the GPU passes, "
+                 "to compare the two on your own scenes (same outputs, same shading)");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
 
     try {

@@ -21,6 +21,7 @@ struct RenderOptions {
     double fovDegrees = 22.5;
     int layers = 0;                         // 0: auto
     bool stats = false;
+    bool reference = false;                 // --reference: the CPU ray caster instead of the GPU passes
     std::string colorScheme = "Cornfield";
 };
 

@@ -18,6 +18,7 @@
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/io/Stats.h"
+#include "strata/reference/RayCaster.h"
 #include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/CsgParser.h"
@@ -131,7 +132,19 @@ int run(const apps::RenderOptions& options) {
         t = Clock::now();
         renderer.setScene(tree, model);
         stats.uploadMs = msSince(t);
-        frame = renderer.render(camera, settings);
+        if (options.reference) {
+            // The CPU oracle finds the surfaces; the GPU only shades them, so
+            // both paths' images differ only where their surfaces do.
+            reference::ReferenceOptions referenceOptions;
+            referenceOptions.progress = reference::progressOnStderr();
+            const reference::ReferenceImage image =
+                reference::renderReference(tree, model, camera, referenceOptions);
+            frame = renderer.shade(camera, settings,
+                                   render::Renderer::ExternalResult{image.depth, image.normal, image.leaf, image.cut});
+            frame.stats.notes.push_back("surfaces from the CPU reference ray caster (--reference)");
+        } else {
+            frame = renderer.render(camera, settings);
+        }
     }
     stats.frame = frame.stats;
 

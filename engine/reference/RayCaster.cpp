@@ -236,7 +236,8 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, Worksp
     result.t = change->t;
     result.leaf = crossing.leaf;
     result.normal = geometry.normals[crossing.triangle];
-    if (change->flipNormal()) result.normal = -result.normal;
+    result.cut = change->flipNormal();
+    if (result.cut) result.normal = -result.normal;
     return result;
 }
 
@@ -343,6 +344,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
     image.depth.assign(pixels, std::numeric_limits<float>::infinity());
     image.normal.assign(pixels, glm::vec3(0.0f));
     image.leaf.assign(pixels, -1);
+    image.cut.assign(pixels, 0);
 
     const glm::dvec3 forward = camera.forward();
     std::atomic<int> nextRow{0};
@@ -365,6 +367,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
                     image.depth[index] = static_cast<float>(camera.viewDepth(ray.origin + hit.t * ray.direction));
                     image.normal[index] = glm::vec3(hit.normal);
                     image.leaf[index] = hit.leaf;
+                    image.cut[index] = hit.cut ? 1 : 0;
                 }
                 std::lock_guard lock(progressMutex);
                 ++rowsDone;

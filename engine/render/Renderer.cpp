@@ -354,6 +354,63 @@ Frame Renderer::render(const Camera& camera, const RenderSettings& settings) {
     return frame;
 }
 
+Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, const ExternalResult& result) {
+    Impl& impl = *impl_;
+    if (!impl.hasScene) throw Error("renderer: shade() before setScene()");
+    const auto frameStart = Clock::now();
+    const ColorScheme& scheme = colorScheme(settings.colorScheme);
+    const ViewSetup view = makeView(camera, impl.scene.bounds());
+    const int w = view.width, h = view.height;
+    const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    if (result.depth.size() != n || result.normal.size() != n || result.leaf.size() != n || result.cut.size() != n)
+        throw Error("renderer: shade() needs width * height values in every AOV");
+
+    // The G-buffer in GL's bottom-up rows, coded as the evaluate pass writes it.
+    std::vector<float> depth(n);
+    std::vector<std::int32_t> code(n);
+    std::vector<float> normal(n * 4, 0.0f);
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            const std::size_t from = static_cast<std::size_t>(j) * w + i;
+            const std::size_t to = static_cast<std::size_t>(h - 1 - j) * w + i;
+            depth[to] = result.depth[from];
+            code[to] = result.leaf[from] < 0 ? -1 : result.leaf[from] * 2 + (result.cut[from] ? 1 : 0);
+            normal[to * 4 + 0] = result.normal[from].x;
+            normal[to * 4 + 1] = result.normal[from].y;
+            normal[to * 4 + 2] = result.normal[from].z;
+        }
+    }
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    impl.targets.ensure(w, h);
+    impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, depth.data());
+    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, code.data());
+    impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, normal.data());
+
+    Frame frame;
+    frame.width = w;
+    frame.height = h;
+    const auto start = Clock::now();
+    impl.shade.run(impl.targets, impl.scene, view, scheme);
+    impl.translucent.run(impl.targets, impl.scene, view, impl.translucentLeaves);
+    glFinish();
+    frame.stats.shadeMs = millisecondsSince(start);
+
+    std::vector<std::uint8_t> rgba(n * 4);
+    impl.targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(rgba)));
+    frame.rgba = flipRows(rgba, w, h, 4);
+    frame.depth.assign(result.depth.begin(), result.depth.end());
+    frame.normal.assign(result.normal.begin(), result.normal.end());
+    frame.leaf.assign(result.leaf.begin(), result.leaf.end());
+    for (std::int32_t leaf : frame.leaf) frame.stats.coveredPixels += leaf >= 0 ? 1 : 0;
+    gpu::checkErrors();
+    frame.stats.totalMs = millisecondsSince(frameStart);
+    return frame;
+}
+
 FrameStats Renderer::renderInto(unsigned framebuffer, int x, int y, const Camera& camera,
                                 const RenderSettings& settings) {
     Frame frame;

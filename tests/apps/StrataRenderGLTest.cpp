@@ -219,3 +219,8 @@ TEST(StrataRenderGL, DefaultViewRendersAMeshFileWithAFittedCamera) {
     EXPECT_TRUE(std::isinf(depth[0]));
     EXPECT_TRUE(std::isinf(depth[64 * 64 - 1]));
 }
+
+TEST(StrataRenderGL, ReferenceFlagGivesTheSameContractImagesFromTheCpuRayCaster) {
+    checkCube(false, {"--camera", "0,-10,0,0,0,0", "--imgsize", "65,49", "--reference"});
+    checkCube(true, {"--camera", "0,-10,0,0,0,0", "--imgsize", "65,49", "--reference"});
+}

@@ -21,6 +21,7 @@
 //
 // Output is deterministic: each pixel depends only on its own ray.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -38,6 +39,7 @@ struct RayHit {
     double t = 0.0;           // ray parameter (unit direction); +infinity on a miss
     glm::dvec3 normal{0.0};   // world-space unit outward normal of the result; 0 on a miss
     int leaf = -1;            // tree leaf whose surface it is; -1 on a miss
+    bool cut = false;         // the leaf acts as a subtracted operand here (its normal is negated)
     bool hit() const { return leaf >= 0; }
 };
 
@@ -48,6 +50,7 @@ struct ReferenceImage {
     std::vector<float> depth;        // view depth dot(P - eye, f); +infinity on a miss
     std::vector<glm::vec3> normal;   // world-space unit outward normal; 0,0,0 on a miss
     std::vector<int> leaf;           // tree leaf index; -1 on a miss
+    std::vector<std::uint8_t> cut;   // 1 where the leaf acts as a subtracted operand (a cut face)
 };
 
 struct ReferenceOptions {

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,19 @@ public:
     // (readbackMs covers the copy; coveredPixels is not counted).
     // Leaves that framebuffer bound for drawing.
     FrameStats renderInto(unsigned framebuffer, int x, int y, const Camera& camera, const RenderSettings& settings);
+
+    // Shades a result computed elsewhere (the CPU reference of strata-render
+    // --reference) with the same shade and translucent passes as render(), and
+    // reads it back like render(). Every span holds camera.width * camera.height
+    // values, rows top first as in Frame; `cut` is 1 where the leaf acts as a
+    // subtracted operand. The returned Frame carries these AOVs unchanged.
+    struct ExternalResult {
+        std::span<const float> depth;
+        std::span<const glm::vec3> normal;
+        std::span<const std::int32_t> leaf;
+        std::span<const std::uint8_t> cut;
+    };
+    Frame shade(const Camera& camera, const RenderSettings& settings, const ExternalResult& result);
 
 private:
     struct Impl;
