@@ -11,12 +11,18 @@ export LSAN_OPTIONS="suppressions=$(pwd)/tests/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
+# The window tests need an X display: give them a virtual one when there is none.
+run_ctest=(ctest)
+if [[ -z ${DISPLAY:-} ]] && command -v xvfb-run >/dev/null; then
+  run_ctest=(xvfb-run -a -s "-screen 0 1280x1024x24" ctest)
+fi
+
 for flavour in release asan; do
   echo "== strata: $flavour build"
   scripts/build.sh "$flavour"
   dir=build; [[ $flavour == asan ]] && dir=build-asan
   echo "== strata: $flavour tests"
-  ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" --timeout 900
+  "${run_ctest[@]}" --test-dir "$dir" --output-on-failure -j "$(nproc)" --timeout 900
 done
 
 fuzz_seconds=${STRATA_FUZZ_SECONDS:-60}
