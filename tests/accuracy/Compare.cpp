@@ -1,0 +1,265 @@
+#include "Compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "strata/core/Error.h"
+
+namespace strata::accuracy {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+// Angle between two directions in degrees, accurate for small angles
+// (atan2 of |a x b| and a . b, in double). 180 when either is zero or not finite.
+double angleDegrees(const glm::vec3& a, const glm::vec3& b) {
+    const glm::dvec3 da(a), db(b);
+    const double la = glm::length(da), lb = glm::length(db);
+    if (!(la > 0.0) || !(lb > 0.0) || !std::isfinite(la) || !std::isfinite(lb)) return 180.0;
+    return std::atan2(glm::length(glm::cross(da, db)), glm::dot(da, db)) * kRadToDeg;
+}
+
+bool isHit(const AovView& image, std::size_t k) { return image.leaf[k] >= 0; }
+
+// Rays and pixel footprints of the camera, for the depth-step test.
+class Geometry {
+public:
+    explicit Geometry(const render::Camera& camera) : camera_(camera), forward_(camera.forward()) {
+        const double t = std::tan(camera.fovDegrees * std::numbers::pi / 360.0);
+        if (camera.projection == render::Projection::Perspective) {
+            perspectiveScale_ = 2.0 * t / camera.height;
+        } else {
+            orthoFootprint_ = 2.0 * glm::length(camera.center - camera.eye) * t / camera.height;
+        }
+    }
+
+    // The world point at view depth `depth` on pixel (i, j)'s ray.
+    glm::dvec3 point(int i, int j, double depth) const {
+        const render::Ray ray = camera_.ray(i, j);
+        const double along = glm::dot(ray.direction, forward_);
+        return ray.origin + ray.direction * (depth / along);
+    }
+
+    // Size of one pixel, in world units, at view depth `depth`.
+    double footprint(double depth) const {
+        return camera_.projection == render::Projection::Perspective ? std::abs(depth) * perspectiveScale_
+                                                                    : orthoFootprint_;
+    }
+
+private:
+    render::Camera camera_;
+    glm::dvec3 forward_;
+    double perspectiveScale_ = 0.0;
+    double orthoFootprint_ = 0.0;
+};
+
+// True when pixels p = (i, j) and q = (i2, j2) of one image are separated by
+// a silhouette or a crease.
+bool discontinuous(const AovView& image, const Geometry& geometry, const CompareOptions& options, int i, int j,
+                   int i2, int j2) {
+    const std::size_t p = static_cast<std::size_t>(j) * image.width + i;
+    const std::size_t q = static_cast<std::size_t>(j2) * image.width + i2;
+    const bool hp = isHit(image, p), hq = isHit(image, q);
+    if (hp != hq) return true;
+    if (!hp) return false;
+    if (image.leaf[p] != image.leaf[q]) return true;
+    if (angleDegrees(image.normal[p], image.normal[q]) > options.creaseDegrees) return true;
+    const double zp = image.depth[p], zq = image.depth[q];
+    if (!std::isfinite(zp) || !std::isfinite(zq)) return true;
+    const glm::dvec3 P = geometry.point(i, j, zp), Q = geometry.point(i2, j2, zq);
+    const glm::dvec3 np = glm::dvec3(image.normal[p]), nq = glm::dvec3(image.normal[q]);
+    const double offPlane = std::max(std::abs(glm::dot(Q - P, glm::normalize(np))),
+                                     std::abs(glm::dot(P - Q, glm::normalize(nq))));
+    const double threshold =
+        options.stepPixels * geometry.footprint(std::max(zp, zq)) + options.depthTolerance;
+    return !(offPlane <= threshold);
+}
+
+void markEdges(const AovView& image, const Geometry& geometry, const CompareOptions& options,
+               std::vector<std::uint8_t>& mask) {
+    const int w = image.width, h = image.height;
+    // Each unordered neighbour pair once: right, down-left, down, down-right.
+    constexpr int kDi[4] = {1, -1, 0, 1};
+    constexpr int kDj[4] = {0, 1, 1, 1};
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            for (int n = 0; n < 4; ++n) {
+                const int i2 = i + kDi[n], j2 = j + kDj[n];
+                if (i2 < 0 || i2 >= w || j2 >= h) continue;
+                if (discontinuous(image, geometry, options, i, j, i2, j2)) {
+                    mask[static_cast<std::size_t>(j) * w + i] = 1;
+                    mask[static_cast<std::size_t>(j2) * w + i2] = 1;
+                }
+            }
+        }
+    }
+}
+
+void checkImage(const AovView& image, const render::Camera& camera, const char* what) {
+    const std::size_t n = static_cast<std::size_t>(std::max(image.width, 0)) * std::max(image.height, 0);
+    if (image.width != camera.width || image.height != camera.height) {
+        throw Error(std::string("accuracy: the ") + what + " image is " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + ", the camera's " + std::to_string(camera.width) + "x" +
+                    std::to_string(camera.height));
+    }
+    if (image.depth.size() != n || image.normal.size() != n || image.leaf.size() != n) {
+        throw Error(std::string("accuracy: the ") + what + " image's AOVs do not hold W*H pixels");
+    }
+}
+
+std::string percent(double fraction) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3f%%", 100.0 * fraction);
+    return buf;
+}
+
+}  // namespace
+
+AovView view(const render::Frame& frame) {
+    return {frame.width, frame.height, frame.depth, frame.normal, frame.leaf};
+}
+
+AovView view(const reference::ReferenceImage& image) {
+    static_assert(sizeof(int) == sizeof(std::int32_t));
+    return {image.width, image.height, image.depth, image.normal,
+            std::span<const std::int32_t>(reinterpret_cast<const std::int32_t*>(image.leaf.data()), image.leaf.size())};
+}
+
+CompareOptions optionsForScene(double boundsDiagonal) {
+    CompareOptions options;
+    options.depthTolerance = 1e-4 * boundsDiagonal;
+    return options;
+}
+
+const char* verdictName(Verdict v) {
+    switch (v) {
+        case Verdict::Agree: return "agree";
+        case Verdict::Coverage: return "coverage";
+        case Verdict::Depth: return "depth";
+        case Verdict::Normal: return "normal";
+        case Verdict::Leaf: return "leaf";
+    }
+    return "?";
+}
+
+void DisagreementCounts::add(Verdict v) {
+    switch (v) {
+        case Verdict::Agree: break;
+        case Verdict::Coverage: ++coverage; break;
+        case Verdict::Depth: ++depth; break;
+        case Verdict::Normal: ++normal; break;
+        case Verdict::Leaf: ++leaf; break;
+    }
+}
+
+double CompareResult::agreement() const {
+    if (nonEdgePixels == 0) return 1.0;
+    return static_cast<double>(nonEdgePixels - nonEdge.total()) / static_cast<double>(nonEdgePixels);
+}
+
+double CompareResult::edgeDisagreement() const {
+    return pixels == 0 ? 0.0 : static_cast<double>(edge.total()) / static_cast<double>(pixels);
+}
+
+std::string CompareResult::summary() const {
+    char buf[640];
+    std::snprintf(buf, sizeof buf,
+                  "%dx%d: non-edge agreement %s of %zu pixels (bound >= %s; disagreeing: %zu coverage, %zu depth, "
+                  "%zu normal (%zu a neighbour's), %zu leaf); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s); "
+                  "max non-edge |dz| %.3g (tolerance %.3g), max normal error %.3g deg; covered %zu gpu / %zu "
+                  "reference",
+                  width, height, percent(agreement()).c_str(), nonEdgePixels, percent(options.minAgreement).c_str(),
+                  nonEdge.coverage, nonEdge.depth, nonEdge.normal, nonEdgeNeighbourNormal, nonEdge.leaf, edgePixels, edge.total(),
+                  percent(edgeDisagreement()).c_str(), percent(options.maxEdgeDisagreement).c_str(), maxDepthError,
+                  options.depthTolerance, maxNormalErrorDegrees, coveredGpu, coveredReference);
+    std::string s = buf;
+    if (!agreementHolds()) s += " -- NON-EDGE AGREEMENT BELOW BOUND";
+    if (!edgeBoundHolds()) s += " -- EDGE DISAGREEMENT ABOVE BOUND";
+    return s;
+}
+
+std::vector<std::uint8_t> edgeMask(const render::Camera& camera, const AovView& image, const CompareOptions& options) {
+    checkImage(image, camera, "given");
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(image.width) * image.height, 0);
+    markEdges(image, Geometry(camera), options, mask);
+    return mask;
+}
+
+CompareResult compare(const render::Camera& camera, const AovView& gpu, const AovView& reference,
+                      const CompareOptions& options) {
+    checkImage(gpu, camera, "GPU");
+    checkImage(reference, camera, "reference");
+    if (!(options.depthTolerance > 0.0)) throw Error("accuracy: the depth tolerance must be positive");
+
+    CompareResult r;
+    r.options = options;
+    r.width = camera.width;
+    r.height = camera.height;
+    r.pixels = static_cast<std::size_t>(r.width) * r.height;
+    r.verdict.assign(r.pixels, Verdict::Agree);
+    r.edgeMask.assign(r.pixels, 0);
+
+    const Geometry geometry(camera);
+    markEdges(reference, geometry, options, r.edgeMask);
+    markEdges(gpu, geometry, options, r.edgeMask);
+
+    for (std::size_t k = 0; k < r.pixels; ++k) {
+        const bool edge = r.edgeMask[k] != 0;
+        const bool hg = isHit(gpu, k), hr = isHit(reference, k);
+        r.coveredGpu += hg ? 1 : 0;
+        r.coveredReference += hr ? 1 : 0;
+        Verdict v = Verdict::Agree;
+        if (hg != hr) {
+            v = Verdict::Coverage;
+        } else if (!hg) {
+            // Both miss: the contract's miss is depth +inf.
+            if (!(std::isinf(gpu.depth[k]) && gpu.depth[k] > 0)) v = Verdict::Depth;
+        } else {
+            const double dz = std::abs(static_cast<double>(gpu.depth[k]) - static_cast<double>(reference.depth[k]));
+            const double error = std::isnan(dz) ? std::numeric_limits<double>::infinity() : dz;
+            if (!edge) r.maxDepthError = std::max(r.maxDepthError, error);
+            if (!(error <= options.depthTolerance)) {
+                v = Verdict::Depth;
+            } else {
+                const double angle = angleDegrees(gpu.normal[k], reference.normal[k]);
+                if (!edge) r.maxNormalErrorDegrees = std::max(r.maxNormalErrorDegrees, angle);
+                if (!(angle <= options.normalToleranceDegrees)) {
+                    v = Verdict::Normal;
+                } else if (gpu.leaf[k] != reference.leaf[k]) {
+                    v = Verdict::Leaf;
+                }
+            }
+        }
+        r.verdict[k] = v;
+        if (v == Verdict::Normal && !edge) {
+            const int i = static_cast<int>(k % r.width), j = static_cast<int>(k / r.width);
+            bool neighbour = false;
+            for (int dj = -1; dj <= 1 && !neighbour; ++dj) {
+                for (int di = -1; di <= 1 && !neighbour; ++di) {
+                    const int i2 = i + di, j2 = j + dj;
+                    if ((di == 0 && dj == 0) || i2 < 0 || j2 < 0 || i2 >= r.width || j2 >= r.height) continue;
+                    const std::size_t q = static_cast<std::size_t>(j2) * r.width + i2;
+                    neighbour = reference.leaf[q] == gpu.leaf[k] &&
+                                angleDegrees(gpu.normal[k], reference.normal[q]) <= options.normalToleranceDegrees;
+                }
+            }
+            if (neighbour) ++r.nonEdgeNeighbourNormal;
+        }
+        if (edge) {
+            ++r.edgePixels;
+            r.edge.add(v);
+        } else {
+            ++r.nonEdgePixels;
+            r.nonEdge.add(v);
+        }
+    }
+    return r;
+}
+
+}  // namespace strata::accuracy

@@ -1,0 +1,121 @@
+#pragma once
+// The accuracy comparison of issue 4: the GPU frame against the CPU reference,
+// pixel by pixel, for one scene and camera.
+//
+// Per pixel (both images W*H, row 0 at the top, index j*W + i):
+//   coverage  both hit or both miss (hit: leaf id >= 0);
+//   depth     |dz| <= depthTolerance (1e-4 of the scene's bounding-box
+//             diagonal); a miss must have depth +inf;
+//   normal    within normalToleranceDegrees (1 degree);
+//   leaf      the same leaf id.
+// A pixel AGREES when all four hold. The first that fails names its verdict,
+// in that order.
+//
+// Edge pixels are counted apart: a pixel is an edge pixel when, in EITHER
+// image, it and one of its 8 neighbours are separated by a silhouette or a
+// crease, that is
+//   - coverage differs, or the leaf id differs, or
+//   - the normals differ by more than creaseDegrees, or
+//   - the depth steps: either pixel's surface point lies off the other's
+//     tangent plane by more than stepPixels pixel footprints (+ the depth
+//     tolerance).
+//
+//      . . . . .      x: a silhouette between two pixel rows
+//      . . . . .      e: edge pixels, within one pixel of it
+//      e e e e e
+//     -x-x-x-x-x-
+//      e e e e e
+//
+// The bounds (both must hold for passed()):
+//   - agreement >= minAgreement (99.9%) of the NON-edge pixels;
+//   - disagreeing EDGE pixels <= maxEdgeDisagreement (1%) of the whole image.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "strata/reference/RayCaster.h"
+#include "strata/render/Camera.h"
+#include "strata/render/Renderer.h"
+
+namespace strata::accuracy {
+
+// The AOVs that are compared, borrowed from a render::Frame or a
+// reference::ReferenceImage (or made up by a test).
+struct AovView {
+    int width = 0;
+    int height = 0;
+    std::span<const float> depth;        // W*H; +inf on a miss
+    std::span<const glm::vec3> normal;   // W*H; unit, world space
+    std::span<const std::int32_t> leaf;  // W*H; -1 on a miss
+};
+
+AovView view(const render::Frame& frame);
+AovView view(const reference::ReferenceImage& image);
+
+struct CompareOptions {
+    double depthTolerance = 0.0;          // world units; required > 0
+    double normalToleranceDegrees = 1.0;
+    // A larger normal change between neighbours is a crease. Above the facet
+    // angles of the corpus's curved primitives ($fn >= 16: 22.5 deg), so their
+    // facet boundaries are not edges and their surfaces are checked strictly.
+    double creaseDegrees = 30.0;
+    double stepPixels = 0.5;              // a larger off-plane step (in pixel footprints) is a depth edge
+    double minAgreement = 0.999;          // of the non-edge pixels
+    double maxEdgeDisagreement = 0.01;    // of all pixels
+};
+
+// The issue's bounds for a scene: depth tolerance 1e-4 of the bounding-box diagonal.
+CompareOptions optionsForScene(double boundsDiagonal);
+
+enum class Verdict : std::uint8_t { Agree, Coverage, Depth, Normal, Leaf };
+const char* verdictName(Verdict v);
+
+struct DisagreementCounts {
+    std::size_t coverage = 0, depth = 0, normal = 0, leaf = 0;
+    std::size_t total() const { return coverage + depth + normal + leaf; }
+    void add(Verdict v);
+};
+
+struct CompareResult {
+    int width = 0, height = 0;
+    std::size_t pixels = 0;
+    std::size_t coveredReference = 0, coveredGpu = 0;
+    std::size_t edgePixels = 0, nonEdgePixels = 0;
+    DisagreementCounts nonEdge;     // disagreements among non-edge pixels
+    DisagreementCounts edge;        // disagreements among edge pixels
+    // Of nonEdge.normal: pixels whose GPU normal is (within tolerance) the
+    // reference normal of a neighbour, on the same leaf. The ray passes within
+    // rounding of an edge between two facets less than creaseDegrees apart and
+    // the paths chose different facets. A diagnostic; they still count.
+    std::size_t nonEdgeNeighbourNormal = 0;
+    double maxDepthError = 0.0;     // world units, over non-edge pixels that both hit
+    double maxNormalErrorDegrees = 0.0;  // over non-edge pixels whose coverage and depth agree
+    std::vector<Verdict> verdict;   // W*H
+    std::vector<std::uint8_t> edgeMask;  // W*H; 1 for edge pixels
+    CompareOptions options;
+
+    double agreement() const;            // agreeing non-edge pixels / non-edge pixels (1 when none)
+    double edgeDisagreement() const;     // disagreeing edge pixels / pixels
+    bool agreementHolds() const { return agreement() >= options.minAgreement; }
+    bool edgeBoundHolds() const { return edgeDisagreement() <= options.maxEdgeDisagreement; }
+    bool passed() const { return agreementHolds() && edgeBoundHolds(); }
+    // One paragraph: the figures against the bounds, and which ones fail.
+    std::string summary() const;
+};
+
+// Compares `gpu` with `reference`, both rendered with `camera` (whose rays
+// and footprints the depth-step test uses). Throws strata::Error when the
+// sizes differ from each other or from the camera's.
+CompareResult compare(const render::Camera& camera, const AovView& gpu, const AovView& reference,
+                      const CompareOptions& options);
+
+// The edge mask of one image alone (1 where a pixel is within one pixel of a
+// silhouette or crease of that image), as compare() computes it per image.
+std::vector<std::uint8_t> edgeMask(const render::Camera& camera, const AovView& image, const CompareOptions& options);
+
+}  // namespace strata::accuracy

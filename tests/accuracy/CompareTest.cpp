@@ -1,0 +1,300 @@
+// The comparison on synthetic images whose right answer is worked out here:
+// which pixels are edge pixels, what each disagreement is counted as, and
+// where the bounds (99.9% of non-edge pixels, 1% of the image on edges) cut.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "Compare.h"
+#include "DiffImages.h"
+#include "strata/core/Error.h"
+
+using namespace strata;
+using namespace strata::accuracy;
+
+namespace {
+
+constexpr int kSize = 96;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Orthographic, straight down -Z from z = 10: view depth = 10 - z.
+render::Camera topCamera(render::Projection projection = render::Projection::Orthographic) {
+    render::Camera c;
+    c.eye = {0.0, 0.0, 10.0};
+    c.center = {0.0, 0.0, 0.0};
+    c.projection = projection;
+    c.fovDegrees = 30.0;
+    c.width = kSize;
+    c.height = kSize;
+    return c;
+}
+
+struct Synth {
+    int width = kSize, height = kSize;
+    std::vector<float> depth = std::vector<float>(kSize * kSize, kInf);
+    std::vector<glm::vec3> normal = std::vector<glm::vec3>(kSize * kSize, glm::vec3(0.0f));
+    std::vector<std::int32_t> leaf = std::vector<std::int32_t>(kSize * kSize, -1);
+
+    std::size_t at(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
+    void set(int i, int j, float z, glm::vec3 n, int id) {
+        depth[at(i, j)] = z;
+        normal[at(i, j)] = n;
+        leaf[at(i, j)] = id;
+    }
+    // A square [i0, i1) x [j0, j1) of one flat surface facing the camera.
+    Synth& square(int i0, int i1, int j0, int j1, float z = 10.0f, glm::vec3 n = {0, 0, 1}, int id = 0) {
+        for (int j = j0; j < j1; ++j)
+            for (int i = i0; i < i1; ++i) set(i, j, z, n, id);
+        return *this;
+    }
+    AovView view() const { return {width, height, depth, normal, leaf}; }
+};
+
+CompareOptions options() {
+    CompareOptions o;
+    o.depthTolerance = 1e-3;
+    return o;
+}
+
+glm::vec3 tilted(double degrees) {
+    const double a = degrees * std::numbers::pi / 180.0;
+    return {static_cast<float>(std::sin(a)), 0.0f, static_cast<float>(std::cos(a))};
+}
+
+}  // namespace
+
+TEST(AccuracyCompare, IdenticalImagesAgreeWithTheSilhouetteCountedApart) {
+    Synth a;
+    a.square(20, 80, 10, 70);
+    const CompareResult r = compare(topCamera(), a.view(), a.view(), options());
+    EXPECT_TRUE(r.passed()) << r.summary();
+    EXPECT_EQ(r.nonEdge.total(), 0u);
+    EXPECT_EQ(r.edge.total(), 0u);
+    // The band on both sides of the square's outline: 62x62 - 58x58 pixels.
+    EXPECT_EQ(r.edgePixels, 62u * 62u - 58u * 58u);
+    EXPECT_EQ(r.coveredGpu, 60u * 60u);
+    EXPECT_EQ(r.agreement(), 1.0);
+}
+
+TEST(AccuracyCompare, ASilhouetteOnePixelOffDisagreesOnlyOnEdgePixels) {
+    Synth ref, gpu;
+    ref.square(20, 80, 10, 70);
+    gpu.square(21, 80, 10, 70);  // the left column missing: 60 pixels
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.total(), 0u);
+    EXPECT_EQ(r.edge.coverage, 60u);
+    EXPECT_TRUE(r.passed()) << r.summary();  // 60 / 9216 = 0.65% <= 1%
+}
+
+TEST(AccuracyCompare, EdgeDisagreementsAboveOnePercentOfTheImageFail) {
+    Synth ref, gpu;
+    ref.square(20, 80, 10, 70);
+    gpu.square(19, 81, 9, 71);  // one pixel larger all round: 62^2 - 60^2 = 244 pixels, 2.6%
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.total(), 0u);
+    EXPECT_EQ(r.edge.coverage, 244u);
+    EXPECT_TRUE(r.agreementHolds());
+    EXPECT_FALSE(r.edgeBoundHolds());
+    EXPECT_FALSE(r.passed());
+}
+
+TEST(AccuracyCompare, AWrongRegionFailsByItsInteriorPixels) {
+    Synth ref, gpu;
+    ref.square(0, kSize, 0, kSize);
+    gpu.square(0, kSize, 0, kSize).square(30, 50, 30, 50, 11.0f);  // a 20x20 patch one unit too deep
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    // The patch's outline is a depth step in the GPU image: its outer ring of
+    // pixels is edge; the 18x18 inside is not.
+    EXPECT_EQ(r.nonEdge.depth, 18u * 18u);
+    EXPECT_EQ(r.edge.depth, 20u * 20u - 18u * 18u);
+    EXPECT_FALSE(r.agreementHolds());
+    EXPECT_FALSE(r.passed());
+    EXPECT_NEAR(r.maxDepthError, 1.0, 1e-6);
+}
+
+TEST(AccuracyCompare, NinePixelsOfNinetySixSquaredAreWithinTheAgreementBound) {
+    Synth ref, gpu;
+    ref.square(0, kSize, 0, kSize);
+    gpu.square(0, kSize, 0, kSize);
+    // Isolated single wrong pixels make their own edges (the depth steps around
+    // them) in the GPU image, so put them where they cannot: change only normals
+    // by less than the crease angle but more than the tolerance.
+    for (int k = 0; k < 9; ++k) gpu.set(5 + 10 * k, 40, 10.0f, tilted(3.0), 0);
+    CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.normal, 9u);
+    EXPECT_EQ(r.nonEdgeNeighbourNormal, 0u);  // no neighbour has the tilted normal
+    EXPECT_TRUE(r.passed()) << r.summary();  // 9 of 9216 = 0.098%
+    gpu.set(5, 60, 10.0f, tilted(3.0), 0);
+    r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.normal, 10u);
+    EXPECT_FALSE(r.passed()) << r.summary();  // 0.109%
+}
+
+TEST(AccuracyCompare, ANormalFromTheNeighbouringFacetIsCountedAndNamed) {
+    // Two facets 20 degrees apart meeting between columns 47 and 48; the GPU
+    // gives pixel (48, 30) the left facet's normal.
+    Synth ref, gpu;
+    ref.square(0, 48, 0, kSize, 10.0f, tilted(10.0)).square(48, kSize, 0, kSize, 10.0f, tilted(-10.0));
+    gpu = ref;
+    gpu.set(48, 30, 10.0f, tilted(10.0), 0);
+    gpu.set(70, 30, 10.0f, tilted(10.0), 0);  // far from the left facet: not a neighbour's normal
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.normal, 2u);
+    EXPECT_EQ(r.nonEdgeNeighbourNormal, 1u);
+}
+
+TEST(AccuracyCompare, DepthIsJudgedAgainstTheTolerance) {
+    Synth ref, gpu, far;
+    ref.square(0, kSize, 0, kSize);
+    gpu.square(0, kSize, 0, kSize, 10.0f + 0.0009f);
+    far.square(0, kSize, 0, kSize, 10.0f + 0.0012f);
+    const CompareResult near = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_TRUE(near.passed()) << near.summary();
+    const CompareResult off = compare(topCamera(), far.view(), ref.view(), options());
+    EXPECT_EQ(off.nonEdge.depth, std::size_t(kSize * kSize));
+    EXPECT_FALSE(off.passed());
+}
+
+TEST(AccuracyCompare, NormalsWithinOneDegreeAgree) {
+    Synth ref, half, two;
+    ref.square(0, kSize, 0, kSize);
+    half.square(0, kSize, 0, kSize, 10.0f, tilted(0.5));
+    two.square(0, kSize, 0, kSize, 10.0f, tilted(2.0));
+    EXPECT_TRUE(compare(topCamera(), half.view(), ref.view(), options()).passed());
+    const CompareResult r = compare(topCamera(), two.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.normal, std::size_t(kSize * kSize));
+    EXPECT_NEAR(r.maxNormalErrorDegrees, 2.0, 1e-3);
+}
+
+TEST(AccuracyCompare, LeafIdsMustMatch) {
+    Synth ref, gpu;
+    ref.square(0, kSize, 0, kSize, 10.0f, {0, 0, 1}, 3);
+    gpu.square(0, kSize, 0, kSize, 10.0f, {0, 0, 1}, 4);
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.leaf, std::size_t(kSize * kSize));
+    EXPECT_FALSE(r.passed());
+}
+
+TEST(AccuracyCompare, AMissMustHaveInfiniteDepth) {
+    Synth ref, gpu;
+    gpu.depth[gpu.at(3, 3)] = 5.0f;  // leaf -1 but a finite depth
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.verdict[gpu.at(3, 3)], Verdict::Depth);
+}
+
+TEST(AccuracyCompare, ADepthStepOnOneLeafWithOneNormalIsAnEdge) {
+    // Two parallel faces of one leaf (a comb's teeth) at depths 10 and 12, the
+    // step between columns 47 and 48.
+    Synth a;
+    a.square(0, 48, 0, kSize, 10.0f).square(48, kSize, 0, kSize, 12.0f);
+    const std::vector<std::uint8_t> mask = edgeMask(topCamera(), a.view(), options());
+    for (int i = 0; i < kSize; ++i) {
+        EXPECT_EQ(mask[a.at(i, 50)], (i == 47 || i == 48) ? 1 : 0) << "column " << i;
+    }
+}
+
+TEST(AccuracyCompare, CreasesAreEdgesOnlyAboveTheCreaseAngle) {
+    for (double degrees : {20.0, 40.0}) {
+        Synth a;
+        // Two planes meeting in the line x = 0 (between columns 47 and 48):
+        // z = 0 for x < 0, z = x tan(a) for x > 0, with their normals.
+        const render::Camera cam = topCamera();
+        const double t = std::tan(degrees * std::numbers::pi / 180.0);
+        for (int j = 0; j < kSize; ++j) {
+            for (int i = 0; i < kSize; ++i) {
+                const render::Ray ray = cam.ray(i, j);
+                const double x = ray.origin.x;
+                const double z = x > 0 ? x * t : 0.0;
+                a.set(i, j, static_cast<float>(10.0 - z), x > 0 ? tilted(-degrees) : glm::vec3(0, 0, 1), 0);
+            }
+        }
+        const std::vector<std::uint8_t> mask = edgeMask(cam, a.view(), options());
+        EXPECT_EQ(mask[a.at(47, 20)], degrees > 30.0 ? 1 : 0) << degrees;
+        EXPECT_EQ(mask[a.at(48, 20)], degrees > 30.0 ? 1 : 0) << degrees;
+        EXPECT_EQ(mask[a.at(30, 20)], 0) << degrees;
+    }
+}
+
+TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
+    // A plane seen at 85 degrees from its normal in perspective: its depth
+    // changes fast from pixel to pixel, but every point lies on one plane.
+    render::Camera cam = topCamera(render::Projection::Perspective);
+    const glm::dvec3 n = glm::normalize(glm::dvec3(std::sin(85.0 * std::numbers::pi / 180.0), 0.0,
+                                                   std::cos(85.0 * std::numbers::pi / 180.0)));
+    const glm::dvec3 p0(0.0, 0.0, 0.0);
+    Synth a;
+    for (int j = 0; j < kSize; ++j) {
+        for (int i = 0; i < kSize; ++i) {
+            const render::Ray ray = cam.ray(i, j);
+            const double denom = glm::dot(ray.direction, n);
+            const double t = glm::dot(p0 - ray.origin, n) / denom;
+            if (t <= 0.0 || denom >= 0.0) continue;  // only where the plane faces the eye
+            a.set(i, j, static_cast<float>(cam.viewDepth(ray.origin + t * ray.direction)), glm::vec3(n), 0);
+        }
+    }
+    const std::vector<std::uint8_t> mask = edgeMask(cam, a.view(), options());
+    std::size_t edges = 0, covered = 0;
+    for (int j = 1; j + 1 < kSize; ++j) {
+        for (int i = 1; i + 1 < kSize; ++i) {
+            const bool coveredHere = a.leaf[a.at(i, j)] >= 0;
+            bool neighbourMiss = false;
+            for (int dj = -1; dj <= 1; ++dj)
+                for (int di = -1; di <= 1; ++di) neighbourMiss |= a.leaf[a.at(i + di, j + dj)] < 0;
+            if (coveredHere && !neighbourMiss) {
+                ++covered;
+                edges += mask[a.at(i, j)];
+            }
+        }
+    }
+    EXPECT_GT(covered, 1000u);
+    EXPECT_EQ(edges, 0u);
+}
+
+TEST(AccuracyCompare, RefusesImagesOfAnotherSize) {
+    Synth a;
+    render::Camera cam = topCamera();
+    cam.width = 95;
+    EXPECT_THROW(compare(cam, a.view(), a.view(), options()), Error);
+    EXPECT_THROW(compare(topCamera(), a.view(), a.view(), CompareOptions{}), Error);  // no depth tolerance
+}
+
+TEST(AccuracyCompare, OptionsForASceneUseOneTenThousandthOfTheDiagonal) {
+    const CompareOptions o = optionsForScene(34.6);
+    EXPECT_DOUBLE_EQ(o.depthTolerance, 34.6e-4);
+    EXPECT_EQ(o.normalToleranceDegrees, 1.0);
+    EXPECT_EQ(o.minAgreement, 0.999);
+    EXPECT_EQ(o.maxEdgeDisagreement, 0.01);
+}
+
+TEST(AccuracyCompare, FailureImagesAreWrittenAndNamed) {
+    Synth ref, gpu;
+    ref.square(0, kSize, 0, kSize);
+    gpu.square(0, kSize, 0, kSize).square(30, 50, 30, 50, 11.0f);
+    gpu.square(60, 70, 60, 70, kInf, glm::vec3(0.0f), -1);  // a hole: coverage
+    const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    const RgbaImage heat = heatMap(topCamera(), gpu.view(), ref.view(), r);
+    ASSERT_EQ(heat.rgba.size(), std::size_t(kSize * kSize * 4));
+    const std::size_t hole = 4 * gpu.at(65, 65), deep = 4 * gpu.at(40, 40);
+    EXPECT_EQ(heat.rgba[hole + 0], 255);  // red: coverage
+    EXPECT_LT(heat.rgba[hole + 1], 64);
+    EXPECT_EQ(heat.rgba[deep + 0], 255);  // yellow-orange: depth
+    EXPECT_GT(heat.rgba[deep + 1], 100);
+    EXPECT_EQ(heat.rgba[deep + 2], 0);
+
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "strata_accuracy_compare_test";
+    std::filesystem::remove_all(dir);
+    const ComparisonImages paths =
+        writeComparisonImages((dir / "sub" / "case").string(), topCamera(), gpu.view(), ref.view(), r);
+    for (const std::string& p : {paths.gpu, paths.reference, paths.diff, paths.strip}) {
+        EXPECT_TRUE(std::filesystem::exists(p)) << p;
+        EXPECT_GT(std::filesystem::file_size(p), 100u) << p;
+    }
+    EXPECT_EQ(paths.diff, (dir / "sub" / "case-diff.png").string());
+    std::filesystem::remove_all(dir);
+}
