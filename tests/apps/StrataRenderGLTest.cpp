@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -223,4 +224,37 @@ TEST(StrataRenderGL, DefaultViewRendersAMeshFileWithAFittedCamera) {
 TEST(StrataRenderGL, ReferenceFlagGivesTheSameContractImagesFromTheCpuRayCaster) {
     checkCube(false, {"--camera", "0,-10,0,0,0,0", "--imgsize", "65,49", "--reference"});
     checkCube(true, {"--camera", "0,-10,0,0,0,0", "--imgsize", "65,49", "--reference"});
+}
+
+// Every bundled example renders headless, warns about nothing, and shows the
+// model: its centre region is covered and the image's border is background
+// (the fitted default view frames the whole model).
+TEST(StrataRenderGL, EveryBundledExampleRendersAndIsFramedByTheDefaultView) {
+    const std::filesystem::path examples = std::filesystem::path(STRATA_TEST_DIR).parent_path() / "examples";
+    int rendered = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(examples)) {
+        if (entry.path().extension() != ".csg") continue;
+        SCOPED_TRACE(entry.path().string());
+        TempDir dir;
+        const ProcessResult r = runProcess(
+            {kExe, entry.path().string(), "--imgsize", "96,72", "-o", dir / "x.png", "--depth", dir / "z.exr"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(r.err, "") << "examples should parse without warnings";
+        int w = 0, h = 0;
+        std::vector<std::string> channels;
+        const std::vector<float> depth = readExr(dir / "z.exr", w, h, channels);
+        ASSERT_EQ(w, 96);
+        ASSERT_EQ(h, 72);
+        std::size_t covered = 0, borderCovered = 0;
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) {
+                const bool hit = std::isfinite(depth[static_cast<std::size_t>(j) * w + i]);
+                covered += hit;
+                if (hit && (i == 0 || j == 0 || i == w - 1 || j == h - 1)) ++borderCovered;
+            }
+        EXPECT_GT(covered, static_cast<std::size_t>(w * h / 50)) << "the model covers at least 2% of the image";
+        EXPECT_EQ(borderCovered, 0u);
+        ++rendered;
+    }
+    EXPECT_GE(rendered, 5);
 }
