@@ -48,6 +48,7 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("layers_total").value(std::accumulate(f.layersPerLeaf.begin(), f.layersPerLeaf.end(), 0));
     json.key("texture_bytes").value(static_cast<std::uint64_t>(f.textureBytes));
     json.key("covered_pixels").value(static_cast<std::uint64_t>(f.coveredPixels));
+    json.key("unresolved_pixels").value(static_cast<std::uint64_t>(f.unresolvedPixels));
     json.key("tiles").value(f.tiles);
 
     json.key("notes").beginArray();

@@ -293,6 +293,12 @@ void Renderer::Impl::readBack(Frame& frame) {
     for (std::size_t i = 0; i < n; ++i) {
         frame.leaf[i] = leaf[i] < 0 ? -1 : leaf[i] >> 1;
         if (leaf[i] >= 0) ++frame.stats.coveredPixels;
+        if (leaf[i] == -2) ++frame.stats.unresolvedPixels;
+    }
+    if (frame.stats.unresolvedPixels > 0) {
+        frame.stats.notes.push_back(std::to_string(frame.stats.unresolvedPixels) +
+                                    " pixels had more surfaces than this driver lets one shader walk "
+                                    "(llvmpipe's loop limit); they are drawn empty");
     }
 
     std::vector<float> normal(n * 4);

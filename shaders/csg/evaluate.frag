@@ -61,6 +61,13 @@ layout(std430, binding = 3) readonly buffer BlockOperands {
 
 layout(location = 2) uniform ivec2 uTileOrigin;  // the tile's lower-left pixel in the frame
 layout(location = 3) uniform int uBlocksX;       // blocks per row of the tile
+// Loop iterations this invocation may spend. llvmpipe ends every loop of a
+// shader invocation once 65535 iterations have run in all (gallivm's loop
+// limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
+// whose walk would overrun the budget is marked unresolved (leaf code -2, no
+// surface) instead, and the renderer reports how many there were. Real GPUs
+// have no such limit: the renderer passes a budget no pixel reaches.
+layout(location = 4) uniform int uLoopBudget;
 
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
@@ -159,8 +166,16 @@ void main() {
 
     outDepth = kInfinity;
     outLeaf = -1;
+    // What each walk step costs in loop iterations, counted generously: the
+    // two loops over the live heads, the program, and the surface fetches.
+    int budget = uLoopBudget - 3 * int(block.y) - int(codeEnd - codeStart);
     bool inside = runProgram();
     while (live > 0) {
+        budget -= 2 * live + int(codeEnd - codeStart) + 8;
+        if (budget < 0) {
+            outLeaf = -2;
+            return;
+        }
         float nearest = kInfinity;
         for (int a = 0; a < live; ++a) nearest = min(nearest, headDepth[a]);
         float group = untagged(nearest);

@@ -46,6 +46,7 @@ struct FrameStats {
     std::size_t textureBytes = 0;              // layered-texture memory in use
     int operands = 0;                          // leaves in the CSG product
     std::size_t coveredPixels = 0;             // pixels where the result has a surface
+    std::size_t unresolvedPixels = 0;          // pixels the evaluator could not finish (llvmpipe's loop limit); drawn empty
     int tiles = 1;                             // screen tiles / operand batches used to stay in budget
     std::vector<std::string> notes;            // what the renderer decided (tiling, clamping, ...)
 };
