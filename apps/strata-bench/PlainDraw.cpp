@@ -1,0 +1,95 @@
+#include "PlainDraw.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "strata/gpu/Check.h"
+
+namespace strata::bench {
+namespace {
+
+void collectLeaves(const scene::Tree& tree, int node, std::vector<bool>& inCsg) {
+    const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
+    if (n.kind == scene::NodeKind::Leaf) {
+        inCsg[static_cast<std::size_t>(n.leaf)] = true;
+        return;
+    }
+    for (int child : n.children) collectLeaves(tree, child, inCsg);
+}
+
+}  // namespace
+
+PlainDraw::PlainDraw(const scene::Tree& tree, const geometry::Model& model, int width, int height)
+    : program_(gpu::Program::fromFiles("bench plain", {"bench/plain.vert", "bench/plain.frag"})),
+      vertexArray_("bench plain"),
+      color_(gpu::Texture::create2D("bench plain color", GL_RGBA8, width, height)),
+      depth_(gpu::Texture::create2D("bench plain depth", GL_DEPTH_COMPONENT32F, width, height)),
+      framebuffer_("bench plain"),
+      width_(width),
+      height_(height) {
+    std::vector<bool> inCsg(tree.leaves.size(), false);
+    if (tree.root >= 0) collectLeaves(tree, tree.root, inCsg);
+
+    std::vector<glm::vec3> positions;
+    for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+        if (!inCsg[i]) continue;
+        const geometry::Mesh& mesh = model.leafMeshes[i];
+        for (const auto& tri : mesh.triangles)
+            for (std::uint32_t v : tri) {
+                positions.emplace_back(mesh.positions[v]);
+                bounds_.extend(mesh.positions[v]);
+            }
+    }
+    vertices_ = positions.size();
+    positions_ = gpu::Buffer::fromSpan<glm::vec3>("bench plain positions", positions, 0);
+    vertexArray_.setVertexBuffer(0, positions_, 0, sizeof(glm::vec3));
+    vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
+
+    framebuffer_.attachTexture(GL_COLOR_ATTACHMENT0, color_);
+    framebuffer_.attachTexture(GL_DEPTH_ATTACHMENT, depth_);
+    framebuffer_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    framebuffer_.checkComplete();
+    gpu::checkErrors();
+}
+
+double PlainDraw::drawFrame(const render::Camera& camera) {
+    // Near and far planes hug the drawn triangles' bounds, as a viewer would set them.
+    double nearest = 1e300, farthest = -1e300;
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p{c & 1 ? bounds_.max.x : bounds_.min.x, c & 2 ? bounds_.max.y : bounds_.min.y,
+                           c & 4 ? bounds_.max.z : bounds_.min.z};
+        const double d = camera.viewDepth(p);
+        nearest = std::min(nearest, d);
+        farthest = std::max(farthest, d);
+    }
+    const double margin = 0.01 * std::max(bounds_.diagonal(), 1e-6);
+    const double zFar = std::max(farthest + margin, 2 * margin);
+    const double zNear = std::max(nearest - margin, zFar * 1e-4);
+    const glm::mat4 viewProjection(camera.projectionMatrix(zNear, zFar) * camera.viewMatrix());
+    program_.setUniform("viewProjection", viewProjection);
+
+    const auto start = std::chrono::steady_clock::now();
+    framebuffer_.bindForDraw();
+    glViewport(0, 0, width_, height_);
+    const float background[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    framebuffer_.clearColor(0, background);
+    framebuffer_.clearDepth(1.0f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    program_.use();
+    vertexArray_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_));
+    glFinish();
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    glDisable(GL_DEPTH_TEST);
+    gpu::checkErrors();
+    return ms;
+}
+
+}  // namespace strata::bench

@@ -1,0 +1,140 @@
+#include "Scenes.h"
+
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "strata/core/Error.h"
+#include "strata/geometry/Mesh.h"
+
+namespace strata::bench {
+namespace {
+
+using scene::Leaf;
+using scene::NodeKind;
+using scene::Tree;
+
+// $fn=32 gives OpenSCAD's sphere 32 segments and 16 rings.
+constexpr double kSphereFn = 32.0;
+
+int addSphere(Tree& tree, const glm::dvec3& center, double r) {
+    Leaf leaf;
+    scene::Sphere sphere;
+    sphere.r = r;
+    sphere.fragments.fn = kSphereFn;
+    leaf.primitive = sphere;
+    leaf.transform = glm::translate(glm::dmat4(1.0), center);
+    return tree.addLeaf(std::move(leaf));
+}
+
+int addCube(Tree& tree, const glm::dvec3& center, const glm::dvec3& size) {
+    Leaf leaf;
+    leaf.primitive = scene::Cube{size, true};
+    leaf.transform = glm::translate(glm::dmat4(1.0), center);
+    return tree.addLeaf(std::move(leaf));
+}
+
+// A 10-unit cube with K spheres of radius 0.6..1.4 centred anywhere in it or
+// just outside, so most of them cut its faces.
+Tree cheese(int k, std::mt19937& rng) {
+    Tree tree;
+    std::uniform_real_distribution<double> pos(-5.5, 5.5), radius(0.6, 1.4);
+    std::vector<int> children{addCube(tree, {0, 0, 0}, {10, 10, 10})};
+    for (int i = 0; i < k; ++i) {
+        const glm::dvec3 c{pos(rng), pos(rng), pos(rng)};
+        children.push_back(addSphere(tree, c, radius(rng)));
+    }
+    tree.root = tree.addNode(NodeKind::Difference, std::move(children));
+    return tree;
+}
+
+// A 12 x 12 x 3 slab; K spheres of radius 0.5 centred on the view ray through
+// the slab's centre, evenly spread over 8 units of it, so they overlap once
+// K > 8 and many stick out of both faces.
+BenchScene stack(int k, const render::Camera& base) {
+    BenchScene out;
+    Tree& tree = out.tree;
+    std::vector<int> children{addCube(tree, {0, 0, 0}, {12, 12, 3})};
+    geometry::Bounds slab;
+    slab.extend(glm::dvec3(-6, -6, -1.5));
+    slab.extend(glm::dvec3(6, 6, 1.5));
+    const render::Camera camera = render::defaultCamera(slab, base);
+    const glm::dvec3 f = camera.forward();
+    const glm::dvec3 c = camera.center;
+    for (int i = 0; i < k; ++i) {
+        const double t = k == 1 ? 0.0 : -4.0 + 8.0 * i / (k - 1);
+        children.push_back(addSphere(tree, c + t * f, 0.5));
+    }
+    tree.root = tree.addNode(NodeKind::Difference, std::move(children));
+    out.camera = camera;
+    return out;
+}
+
+// K spheres of radius 5, centres within 0.5 of the origin, intersected: a
+// lens-shaped solid whose surface is a patchwork of all K.
+Tree intersection(int k, std::mt19937& rng) {
+    Tree tree;
+    std::uniform_real_distribution<double> offset(-0.5, 0.5);
+    std::vector<int> children;
+    for (int i = 0; i < k; ++i)
+        children.push_back(addSphere(tree, {offset(rng), offset(rng), offset(rng)}, 5.0));
+    tree.root = tree.addNode(NodeKind::Intersection, std::move(children));
+    return tree;
+}
+
+// Leaf 0 is a 10-unit cube; then each leaf i joins the chain as
+//   union (i % 4 == 1, 3), difference (i % 4 == 2), intersection (i % 8 == 0)
+// where an intersection's operand is a large sphere that keeps most of the
+// chain. Other leaves are spheres and cubes of size 1..3 in a 12-unit box.
+Tree deep(int k, std::mt19937& rng) {
+    Tree tree;
+    std::uniform_real_distribution<double> pos(-6.0, 6.0), size(1.0, 3.0);
+    int node = addCube(tree, {0, 0, 0}, {10, 10, 10});
+    for (int i = 1; i < k; ++i) {
+        NodeKind kind = NodeKind::Union;
+        int leaf = -1;
+        if (i % 8 == 0) {
+            kind = NodeKind::Intersection;
+            leaf = addSphere(tree, {0, 0, 0}, 9.0);
+        } else {
+            kind = i % 4 == 2 ? NodeKind::Difference : NodeKind::Union;
+            const glm::dvec3 c{pos(rng), pos(rng), pos(rng)};
+            const double s = size(rng);
+            leaf = i % 2 == 0 ? addSphere(tree, c, s / 2) : addCube(tree, c, {s, s, s});
+        }
+        node = tree.addNode(kind, {node, leaf});
+    }
+    tree.root = node;
+    return tree;
+}
+
+}  // namespace
+
+const std::vector<std::string>& sceneNames() {
+    static const std::vector<std::string> names{"cheese", "stack", "intersection", "deep"};
+    return names;
+}
+
+BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const render::Camera& base) {
+    if (k < 1) throw Error("strata-bench: K must be at least 1, got " + std::to_string(k));
+    // One stream per (scene, K), so adding a scene or a K leaves the others unchanged.
+    std::seed_seq seq{seed, static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(name.size()),
+                      static_cast<std::uint32_t>(name.empty() ? 0 : name[0])};
+    std::mt19937 rng(seq);
+    BenchScene out;
+    if (name == "cheese")
+        out.tree = cheese(k, rng);
+    else if (name == "stack")
+        out = stack(k, base);
+    else if (name == "intersection")
+        out.tree = intersection(k, rng);
+    else if (name == "deep")
+        out.tree = deep(k, rng);
+    else
+        throw Error("strata-bench: unknown scene '" + std::string(name) +
+                    "' (expected cheese, stack, intersection or deep)");
+    out.tree.source = std::string(name) + "-" + std::to_string(k);
+    return out;
+}
+
+}  // namespace strata::bench

@@ -1,0 +1,38 @@
+#pragma once
+// The benchmark's scenes, built in code from a seed so every run draws the
+// same triangles. Each takes K, the number of operands that make it hard.
+//
+//   cheese        a cube minus K spheres ($fn=32: 32 segments x 16 rings)
+//                 at random positions over it
+//   stack         a slab minus K spheres lined up on the camera's view ray
+//                 through the slab's centre: depth complexity K on one pixel
+//   intersection  K slightly offset spheres intersected
+//   deep          a left-deep chain of K leaves (spheres and cubes) under
+//                 unions, differences and, now and then, an intersection
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "strata/render/Camera.h"
+#include "strata/scene/Tree.h"
+
+namespace strata::bench {
+
+struct BenchScene {
+    scene::Tree tree;
+    // A camera the scene needs (stack: the spheres lie on its view ray);
+    // empty: OpenSCAD's default view fitted to the scene.
+    std::optional<render::Camera> camera;
+};
+
+// The scene names, in the order the table lists them.
+const std::vector<std::string>& sceneNames();
+
+// Throws strata::Error for an unknown name or K < 1.
+// `base` carries the image size (and, for stack, the field of view).
+BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const render::Camera& base);
+
+}  // namespace strata::bench
