@@ -29,6 +29,7 @@
 #include "strata/io/Json.h"
 #include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
+#include "strata/render/ViewBounds.h"
 
 namespace {
 
@@ -109,7 +110,7 @@ Result runCase(const Options& options, const std::string& name, int k, Size size
     bench::BenchScene benchScene = bench::makeScene(name, k, options.seed, base);
     const geometry::Model model = geometry::buildModel(benchScene.tree);
     const render::Camera camera =
-        benchScene.camera ? *benchScene.camera : render::defaultCamera(model.bounds, base);
+        benchScene.camera ? *benchScene.camera : render::defaultCamera(render::viewBounds(benchScene.tree, model), base);
 
     render::Renderer renderer;
     renderer.setScene(benchScene.tree, model);

@@ -21,6 +21,7 @@
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
+#include "strata/render/ViewBounds.h"
 #include "strata/scene/CsgParser.h"
 #include "strata/scene/Tree.h"
 
@@ -110,7 +111,7 @@ int run(const apps::RenderOptions& options) {
     render::Camera camera;
     try {
         camera = options.camera ? render::cameraFromArguments(*options.camera, base)
-                                : render::defaultCamera(model.bounds, base);
+                                : render::defaultCamera(render::viewBounds(tree, model), base);
     } catch (const Error& e) {
         // The camera's own checks speak of the option; say who is speaking.
         throw Error(std::string("strata-render: ") + e.what());

@@ -4,11 +4,9 @@
 # engine/render/CMakeLists.txt.
 add_library(strata_camera STATIC
   ${CMAKE_CURRENT_LIST_DIR}/Camera.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/ViewBounds.cpp
 )
 target_include_directories(strata_camera PUBLIC ${STRATA_INCLUDE_DIR})
 target_link_libraries(strata_camera PUBLIC strata_core glm::glm PRIVATE strata_warnings)
-# Camera.h includes geometry/Mesh.h for Bounds; Camera.cpp uses only its inline
-# members, so the link is for layering, not for symbols.
-if(TARGET strata_geometry)
-  target_link_libraries(strata_camera PUBLIC strata_geometry)
-endif()
+# Bounds come from geometry; ViewBounds walks the scene tree over the model.
+target_link_libraries(strata_camera PUBLIC strata_geometry)
