@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   clang libclang-rt-14-dev               # libFuzzer target (tests/fuzz)
   libglm-dev libopenmesh-dev libopenimageio-dev openimageio-tools
-  libegl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
+  libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libembree-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev
   xvfb xauth
