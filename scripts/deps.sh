@@ -8,7 +8,7 @@ packages=(
   clang libclang-rt-14-dev               # libFuzzer target (tests/fuzz)
   libglm-dev libopenmesh-dev libopenimageio-dev openimageio-tools
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
-  libembree-dev libcli11-dev nlohmann-json3-dev
+  libembree-dev libcli11-dev
   libgtest-dev libgmock-dev
   xvfb xauth
 )
