@@ -1,5 +1,5 @@
 #pragma once
-// strata-render's command line, exactly ../shared/CONTRACT.md's table.
+// strata-render's command line, exactly docs/contract.md's table.
 // Parsing only checks the words; files are opened later.
 
 #include <optional>

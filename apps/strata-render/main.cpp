@@ -1,5 +1,5 @@
 // strata-render: render a CSG scene headless to PNG and EXR, exactly as
-// ../shared/CONTRACT.md says. Thin: options, then parse -> geometry -> camera
+// docs/contract.md says. Thin: options, then parse -> geometry -> camera
 // -> GL context -> renderer -> files. Everything is rendered before anything
 // is written, and every output is staged before any is committed, so a
 // failure leaves no output file behind.

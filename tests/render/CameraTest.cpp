@@ -1,4 +1,4 @@
-// The contract's camera (../shared/CONTRACT.md, "Camera") and OpenSCAD's
+// The contract's camera (docs/contract.md, "Camera") and OpenSCAD's
 // --camera forms. Expected values are worked out by hand or from OpenSCAD's
 // own named views, not by calling the code under test.
 

@@ -1,6 +1,6 @@
 #pragma once
 // Writing strata's images through OpenImageIO: the shaded PNG and the EXR AOVs
-// of ../shared/CONTRACT.md. Every image is W*H pixels, row 0 at the TOP (as in
+// of docs/contract.md. Every image is W*H pixels, row 0 at the TOP (as in
 // the files), pixel (i, j) at index j*W + i.
 //
 // No half-written files: each image goes to a temporary file in the target's

@@ -6,7 +6,7 @@
 // Along one ray, each leaf is a list of intervals of the ray parameter t where
 // the ray is inside the leaf; the tree combines the lists with union,
 // intersection and difference; the first boundary of the result after the ray
-// start is the visible surface (../shared semantics):
+// start is the visible surface (docs/architecture.md, "Visible surface semantics"):
 //
 //   leaf A   |=========|          |=====|
 //   leaf B        |=========|
@@ -52,8 +52,8 @@ struct Crossing {
 };
 
 // The leaf's interval list from all of its crossings after the ray start, in
-// any order (reordered in place). Membership follows parity (../shared
-// semantics): the ray starts inside when the number of crossings is odd, and
+// any order (reordered in place). Membership follows parity (docs/architecture.md,
+// "Visible surface semantics"): the ray starts inside when the number of crossings is odd, and
 // each crossing toggles it. Crossings whose t lie within `mergeTolerance` of
 // the first of a group count as one point: a group of even size (a graze, or
 // a shared edge that rounding made two hits of a fold) changes nothing, an odd

@@ -5,7 +5,7 @@
 // For each primary ray of the contract's camera it finds every crossing of
 // the ray with every leaf (IntervalCsg.h turns them into interval lists and
 // evaluates the tree), then reports the first point after the ray start where
-// membership in the CSG result changes (../shared semantics):
+// membership in the CSG result changes (docs/architecture.md, "Visible surface semantics"):
 //  - a ray that starts outside the result sees where the result begins;
 //  - a ray that starts inside it (the eye, or the near plane, inside the
 //    model) sees where it first leaves it, with the result's outward normal

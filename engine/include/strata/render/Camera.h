@@ -1,5 +1,5 @@
 #pragma once
-// The camera of ../shared/CONTRACT.md ("Camera"): OpenSCAD's conventions, Z up.
+// The camera of docs/contract.md ("Camera"): OpenSCAD's conventions, Z up.
 // Pure math, shared by the GPU renderer and the CPU reference so both sample
 // exactly the same rays.
 
