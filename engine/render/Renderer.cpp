@@ -95,7 +95,7 @@ std::deque<PixelRect> tilesOf(int width, int height, std::size_t pixels) {
     return tiles;
 }
 
-// Flips GL's bottom-up rows into image rows, top first.
+// Flips the row order: GL's bottom-up rows into image rows, top first, and back.
 template <class T>
 std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, int channels) {
     std::vector<T> out(bottomUp.size());
@@ -105,6 +105,15 @@ std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, i
                     row, out.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)));
     }
     return out;
+}
+
+// The fixed-function state every pass of a frame starts from.
+void resetDrawState() {
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 }  // namespace
@@ -130,8 +139,23 @@ struct Renderer::Impl {
     void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
+    // Shade and translucent passes over the G-buffer in `targets`.
+    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme);
+    void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame);
 };
+
+void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme) {
+    shade.run(targets, scene, view, scheme);
+    translucent.run(targets, scene, view, translucentLeaves);
+    glFinish();
+}
+
+void Renderer::Impl::readColor(Frame& frame) {
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 4);
+    targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(rgba)));
+    frame.rgba = flipRows(rgba, frame.width, frame.height, 4);
+}
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
@@ -278,9 +302,7 @@ void Renderer::Impl::readBack(Frame& frame) {
     const int w = frame.width, h = frame.height;
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
 
-    std::vector<std::uint8_t> rgba(n * 4);
-    targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(rgba)));
-    frame.rgba = flipRows(rgba, w, h, 4);
+    readColor(frame);
 
     std::vector<float> depth(n);
     targets.resultDepth.download(GL_RED, GL_FLOAT, std::as_writable_bytes(std::span(depth)));
@@ -327,11 +349,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.operands = program.operandCount();
     stats.tiles = 0;
 
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    resetDrawState();
     targets.ensure(view.width, view.height);
     targets.clearResult();
     if (program.kind == TreeProgram::Kind::Program) {
@@ -342,9 +360,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     }
 
     const auto start = Clock::now();
-    shade.run(targets, scene, view, scheme);
-    translucent.run(targets, scene, view, translucentLeaves);
-    glFinish();
+    shadeFrame(view, scheme);
     stats.shadeMs = millisecondsSince(start);
     stats.totalMs = millisecondsSince(frameStart);
     return view;
@@ -371,43 +387,29 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     if (result.depth.size() != n || result.normal.size() != n || result.leaf.size() != n || result.cut.size() != n)
         throw Error("renderer: shade() needs width * height values in every AOV");
 
-    // The G-buffer in GL's bottom-up rows, coded as the evaluate pass writes it.
-    std::vector<float> depth(n);
+    // The G-buffer coded as the evaluate pass writes it, then flipped to GL's bottom-up rows.
+    std::vector<float> depth(result.depth.begin(), result.depth.end());
     std::vector<std::int32_t> code(n);
     std::vector<float> normal(n * 4, 0.0f);
-    for (int j = 0; j < h; ++j) {
-        for (int i = 0; i < w; ++i) {
-            const std::size_t from = static_cast<std::size_t>(j) * w + i;
-            const std::size_t to = static_cast<std::size_t>(h - 1 - j) * w + i;
-            depth[to] = result.depth[from];
-            code[to] = result.leaf[from] < 0 ? -1 : result.leaf[from] * 2 + (result.cut[from] ? 1 : 0);
-            normal[to * 4 + 0] = result.normal[from].x;
-            normal[to * 4 + 1] = result.normal[from].y;
-            normal[to * 4 + 2] = result.normal[from].z;
-        }
+    for (std::size_t i = 0; i < n; ++i) {
+        code[i] = result.leaf[i] < 0 ? -1 : result.leaf[i] * 2 + (result.cut[i] ? 1 : 0);
+        normal[i * 4 + 0] = result.normal[i].x;
+        normal[i * 4 + 1] = result.normal[i].y;
+        normal[i * 4 + 2] = result.normal[i].z;
     }
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    resetDrawState();
     impl.targets.ensure(w, h);
-    impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, depth.data());
-    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, code.data());
-    impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, normal.data());
+    impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, flipRows(depth, w, h, 1).data());
+    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, flipRows(code, w, h, 1).data());
+    impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, flipRows(normal, w, h, 4).data());
 
     Frame frame;
     frame.width = w;
     frame.height = h;
     const auto start = Clock::now();
-    impl.shade.run(impl.targets, impl.scene, view, scheme);
-    impl.translucent.run(impl.targets, impl.scene, view, impl.translucentLeaves);
-    glFinish();
+    impl.shadeFrame(view, scheme);
     frame.stats.shadeMs = millisecondsSince(start);
-
-    std::vector<std::uint8_t> rgba(n * 4);
-    impl.targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(rgba)));
-    frame.rgba = flipRows(rgba, w, h, 4);
+    impl.readColor(frame);
     frame.depth.assign(result.depth.begin(), result.depth.end());
     frame.normal.assign(result.normal.begin(), result.normal.end());
     frame.leaf.assign(result.leaf.begin(), result.leaf.end());
