@@ -67,6 +67,7 @@ private:
     std::vector<CsgArgument> arguments();
     CsgValue value(int depth);
     void vectorRest(CsgValue& v, int depth);
+    static bool keywordValue(const std::string& word, CsgValue& out);
     bool isSign() const;
     bool isNumberStart() const;
     double signedNumber();
@@ -331,17 +332,8 @@ std::vector<CsgArgument> Parser::arguments() {
                 a.value = value(0);
             } else {
                 // Re-interpret the identifier as a value.
-                if (word == "true" || word == "false") {
-                    a.value.type = CsgValue::Type::Bool;
-                    a.value.boolean = word == "true";
-                } else if (word == "undef") {
-                    a.value.type = CsgValue::Type::Undef;
-                } else if (word == "inf" || word == "nan") {
-                    a.value.type = CsgValue::Type::Number;
-                    a.value.number = word == "inf" ? HUGE_VAL : std::nan("");
-                } else {
+                if (!keywordValue(word, a.value))
                     lex_.failAt(a.where, "unexpected identifier '" + word + "' in arguments");
-                }
             }
         } else {
             a.value = value(0);
@@ -377,20 +369,7 @@ CsgValue Parser::value(int depth) {
     }
     if (lex_.token() == Token::Identifier) {
         const std::string& w = lex_.text();
-        if (w == "true" || w == "false") {
-            v.type = CsgValue::Type::Bool;
-            v.boolean = w == "true";
-        } else if (w == "undef") {
-            v.type = CsgValue::Type::Undef;
-        } else if (w == "inf") {
-            v.type = CsgValue::Type::Number;
-            v.number = HUGE_VAL;
-        } else if (w == "nan") {
-            v.type = CsgValue::Type::Number;
-            v.number = std::nan("");
-        } else {
-            lex_.fail("unexpected identifier '" + w + "' in a value");
-        }
+        if (!keywordValue(w, v)) lex_.fail("unexpected identifier '" + w + "' in a value");
         lex_.next();
         return v;
     }
@@ -403,6 +382,22 @@ CsgValue Parser::value(int depth) {
     }
     if (lex_.token() == Token::End) lex_.fail("unexpected end of file in a value");
     lex_.fail("expected a value");
+}
+
+// The values written as words: true, false, undef, inf, nan. False for any other word.
+bool Parser::keywordValue(const std::string& word, CsgValue& out) {
+    if (word == "true" || word == "false") {
+        out.type = CsgValue::Type::Bool;
+        out.boolean = word == "true";
+    } else if (word == "undef") {
+        out.type = CsgValue::Type::Undef;
+    } else if (word == "inf" || word == "nan") {
+        out.type = CsgValue::Type::Number;
+        out.number = word == "inf" ? HUGE_VAL : std::nan("");
+    } else {
+        return false;
+    }
+    return true;
 }
 
 bool Parser::isSign() const {
