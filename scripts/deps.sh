@@ -10,6 +10,8 @@ packages=(
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libembree-dev libcli11-dev
   libgtest-dev libgmock-dev
+  libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
+  libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)
   xvfb xauth
 )
 
