@@ -57,14 +57,7 @@ scene::Tree loadScene(const std::string& path) {
         throw Error(SourceLocation{path, 0, 0}, "cannot open file");
 
     if (!isMesh) return scene::parseCsgFile(path);
-    scene::Tree tree;
-    tree.source = path;
-    scene::Leaf leaf;
-    leaf.primitive = scene::Import{path};
-    leaf.where = SourceLocation{path, 0, 0};
-    const int node = tree.addLeaf(std::move(leaf));
-    tree.root = tree.addNode(scene::NodeKind::Union, {node});
-    return tree;
+    return scene::meshFileTree(path);
 }
 
 // Fails before the (possibly long) render when an output's folder is missing;

@@ -22,6 +22,17 @@ int Tree::addNode(NodeKind kind, std::vector<int> children) {
     return static_cast<int>(nodes.size()) - 1;
 }
 
+Tree meshFileTree(const std::string& path) {
+    Tree tree;
+    tree.source = path;
+    Leaf leaf;
+    leaf.primitive = Import{path};
+    leaf.where = SourceLocation{path, 0, 0};
+    const int node = tree.addLeaf(std::move(leaf));
+    tree.root = tree.addNode(NodeKind::Union, {node});
+    return tree;
+}
+
 const char* kindName(NodeKind kind) {
     switch (kind) {
         case NodeKind::Leaf: return "leaf";

@@ -101,6 +101,11 @@ struct Tree {
     int addNode(NodeKind kind, std::vector<int> children);  // returns the node index
 };
 
+// The scene of one mesh file (STL, OBJ, OFF, PLY), as the apps open it: a
+// single Import leaf of `path`, the root a union of it. The file is read
+// later, by geometry::buildModel.
+Tree meshFileTree(const std::string& path);
+
 // Short name of a node kind: "union", "intersection", "difference", "leaf".
 const char* kindName(NodeKind kind);
 
