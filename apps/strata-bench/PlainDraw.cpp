@@ -1,11 +1,11 @@
 #include "PlainDraw.h"
 
-#include <algorithm>
 #include <chrono>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "ViewMatrices.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::bench {
@@ -56,19 +56,8 @@ PlainDraw::PlainDraw(const scene::Tree& tree, const geometry::Model& model, int 
 }
 
 double PlainDraw::drawFrame(const render::Camera& camera) {
-    // Near and far planes hug the drawn triangles' bounds, as a viewer would set them.
-    double nearest = 1e300, farthest = -1e300;
-    for (int c = 0; c < 8; ++c) {
-        const glm::dvec3 p{c & 1 ? bounds_.max.x : bounds_.min.x, c & 2 ? bounds_.max.y : bounds_.min.y,
-                           c & 4 ? bounds_.max.z : bounds_.min.z};
-        const double d = camera.viewDepth(p);
-        nearest = std::min(nearest, d);
-        farthest = std::max(farthest, d);
-    }
-    const double margin = 0.01 * std::max(bounds_.diagonal(), 1e-6);
-    const double zFar = std::max(farthest + margin, 2 * margin);
-    const double zNear = std::max(nearest - margin, zFar * 1e-4);
-    const glm::mat4 viewProjection(camera.projectionMatrix(zNear, zFar) * camera.viewMatrix());
+    const ViewMatrices matrices = fittedView(camera, bounds_);
+    const glm::mat4 viewProjection(matrices.projection * matrices.view);
     program_.setUniform("viewProjection", viewProjection);
 
     const auto start = std::chrono::steady_clock::now();

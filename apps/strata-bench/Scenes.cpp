@@ -4,6 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "Solids.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Mesh.h"
 
@@ -24,6 +25,13 @@ int addSphere(Tree& tree, const glm::dvec3& center, double r) {
     sphere.fragments.fn = kSphereFn;
     leaf.primitive = sphere;
     leaf.transform = glm::translate(glm::dmat4(1.0), center);
+    return tree.addLeaf(std::move(leaf));
+}
+
+int addPolyhedron(Tree& tree, const scene::Polyhedron& polyhedron, const glm::dmat4& transform) {
+    Leaf leaf;
+    leaf.primitive = polyhedron;
+    leaf.transform = transform;
     return tree.addLeaf(std::move(leaf));
 }
 
@@ -108,10 +116,51 @@ Tree deep(int k, std::mt19937& rng) {
     return tree;
 }
 
+// The cheese's cube with K tori (major radius 0.8..1.6, tube 0.3 of that,
+// 32 segments x 16 rings) centred anywhere in it or just outside, each turned
+// about a random axis, so rays cross up to 4 of each torus's surfaces.
+Tree tori(int k, std::mt19937& rng) {
+    Tree tree;
+    const scene::Polyhedron unit = torus(1.0, 0.3, 32, 16);
+    std::uniform_real_distribution<double> pos(-5.5, 5.5), scale(0.8, 1.6), angle(0.0, 6.283185307179586),
+        axis(-1.0, 1.0);
+    std::vector<int> children{addCube(tree, {0, 0, 0}, {10, 10, 10})};
+    for (int i = 0; i < k; ++i) {
+        const glm::dvec3 c{pos(rng), pos(rng), pos(rng)};
+        glm::dvec3 a{axis(rng), axis(rng), axis(rng)};
+        if (glm::length(a) < 1e-3) a = {0, 0, 1};
+        glm::dmat4 m = glm::translate(glm::dmat4(1.0), c);
+        m = glm::rotate(m, angle(rng), glm::normalize(a));
+        m = glm::scale(m, glm::dvec3(scale(rng)));
+        children.push_back(addPolyhedron(tree, unit, m));
+    }
+    tree.root = tree.addNode(NodeKind::Difference, std::move(children));
+    return tree;
+}
+
+// A trefoil-knot tube (curve scale 3, tube radius 1.2; 1024 x 64 quads:
+// 131072 triangles) minus K spheres of radius 0.5..1.0 centred 0.6..1.2 tube
+// radii from the curve at random points along it, so most bite the tube.
+Tree mesh(int k, std::mt19937& rng) {
+    constexpr double kScale = 3.0, kTube = 1.2;
+    Tree tree;
+    std::vector<int> children{addPolyhedron(tree, torusKnot(kScale, kTube, 1024, 64), glm::dmat4(1.0))};
+    std::uniform_real_distribution<double> t(0.0, 6.283185307179586), away(0.6 * kTube, 1.2 * kTube),
+        direction(-1.0, 1.0), radius(0.5, 1.0);
+    for (int i = 0; i < k; ++i) {
+        glm::dvec3 d{direction(rng), direction(rng), direction(rng)};
+        if (glm::length(d) < 1e-3) d = {0, 0, 1};
+        const glm::dvec3 c = torusKnotPoint(kScale, t(rng)) + away(rng) * glm::normalize(d);
+        children.push_back(addSphere(tree, c, radius(rng)));
+    }
+    tree.root = tree.addNode(NodeKind::Difference, std::move(children));
+    return tree;
+}
+
 }  // namespace
 
 const std::vector<std::string>& sceneNames() {
-    static const std::vector<std::string> names{"cheese", "stack", "intersection", "deep"};
+    static const std::vector<std::string> names{"cheese", "stack", "intersection", "deep", "tori", "mesh"};
     return names;
 }
 
@@ -130,9 +179,13 @@ BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const ren
         out.tree = intersection(k, rng);
     else if (name == "deep")
         out.tree = deep(k, rng);
+    else if (name == "tori")
+        out.tree = tori(k, rng);
+    else if (name == "mesh")
+        out.tree = mesh(k, rng);
     else
         throw Error("strata-bench: unknown scene '" + std::string(name) +
-                    "' (expected cheese, stack, intersection or deep)");
+                    "' (expected cheese, stack, intersection, deep, tori or mesh)");
     out.tree.source = std::string(name) + "-" + std::to_string(k);
     return out;
 }

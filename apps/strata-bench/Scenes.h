@@ -9,6 +9,10 @@
 //   intersection  K slightly offset spheres intersected
 //   deep          a left-deep chain of K leaves (spheres and cubes) under
 //                 unions, differences and, now and then, an intersection
+//   tori          a cube minus K tori (32 x 16, polyhedron leaves: non-convex,
+//                 up to 4 surfaces on a ray) at random positions and angles
+//   mesh          a trefoil-knot tube of 131072 triangles (one polyhedron
+//                 leaf, as an imported mesh would be) minus K spheres along it
 
 #include <cstdint>
 #include <optional>

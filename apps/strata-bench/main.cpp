@@ -1,10 +1,13 @@
 // strata-bench: frame times of strata's renderer on seeded scenes built in
 // code (Scenes.h), against the floor of drawing the same triangles once with
-// a depth test (PlainDraw.h), in the same process and GL context.
+// a depth test (PlainDraw.h), in the same process and GL context, and
+// against OpenCSG (OpenCsgRun.h) in a second, compatibility context of the
+// same process where OpenCSG was built in and an X display is there.
 // Run by hand (docs/benchmarks.md); never by CI.
 //
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
 //                [--frames 10] [--warmup 2] [--seed 1] [--json FILE]
+//                [--no-opencsg] [--opencsg-cap-ms 2000]
 
 #include <algorithm>
 #include <chrono>
@@ -13,11 +16,13 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "OpenCsgRun.h"
 #include "PlainDraw.h"
 #include "Scenes.h"
 #include "strata/core/Error.h"
@@ -77,6 +82,8 @@ struct Options {
     int warmup = 2;
     unsigned seed = 1;
     std::string json;
+    bool openCsg = true;
+    double openCsgCapMs = 2000;
 };
 
 struct Result {
@@ -89,15 +96,31 @@ struct Result {
     double strataMs = 0, strataMinMs = 0;  // wall clock per frame, glFinish included
     double peelMs = 0, evaluateMs = 0, shadeMs = 0;  // FrameStats, medians
     double plainMs = 0, plainMinMs = 0;
+    std::size_t plainBytes = 0;            // the floor's vertex buffer and framebuffer
     std::size_t textureBytes = 0;
     int layersTotal = 0, layersMax = 0;
     std::size_t coveredPixels = 0;
     int tiles = 1;
     std::vector<std::string> notes;
+    bench::OpenCsgResult openCsg;
     std::string error;                     // non-empty: this case failed
 };
 
-Result runCase(const Options& options, const std::string& name, int k, Size size) {
+// OpenCSG for the whole run: the comparator, or why there is none.
+struct OpenCsgSide {
+    std::unique_ptr<bench::OpenCsgComparator> comparator;
+    std::string unavailable;
+    bench::OpenCsgCaps caps;
+};
+
+std::vector<std::uint8_t> coverageOf(const render::Frame& frame) {
+    std::vector<std::uint8_t> out(frame.leaf.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = frame.leaf[i] >= 0;
+    return out;
+}
+
+Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openCsg, const std::string& name, int k,
+               Size size) {
     Result result;
     result.scene = name;
     result.k = k;
@@ -152,8 +175,10 @@ Result runCase(const Options& options, const std::string& name, int k, Size size
         result.layersTotal += layers;
         result.layersMax = std::max(result.layersMax, layers);
     }
-    // renderInto does not count covered pixels; one read-back frame does (not timed).
-    result.coveredPixels = renderer.render(camera, settings).stats.coveredPixels;
+    // renderInto does not count covered pixels; one read-back frame does (not
+    // timed), and gives the coverage OpenCSG's is checked against.
+    const render::Frame frameForCoverage = renderer.render(camera, settings);
+    result.coveredPixels = frameForCoverage.stats.coveredPixels;
 
     // The floor, in the same context, right after.
     bench::PlainDraw plain(benchScene.tree, model, size.width, size.height);
@@ -165,16 +190,52 @@ Result runCase(const Options& options, const std::string& name, int k, Size size
     }
     result.plainMs = median(plainFrames);
     result.plainMinMs = plainFrames.empty() ? 0.0 : *std::min_element(plainFrames.begin(), plainFrames.end());
+    // Its vertex buffer (3 float positions a vertex) and RGBA8 + depth 32F target.
+    result.plainBytes = plain.triangles() * 3 * 3 * sizeof(float) + std::size_t(size.width) * size.height * 8;
+
+    if (!openCsg.comparator) {
+        result.openCsg.unavailable = openCsg.unavailable;
+        return result;
+    }
+    bench::OpenCsgRunOptions runOptions;
+    runOptions.frames = options.frames;
+    runOptions.warmup = options.warmup;
+    runOptions.capMs = options.openCsgCapMs;
+    const std::string key = name + " " + std::to_string(size.width) + "x" + std::to_string(size.height);
+    result.openCsg = bench::runOpenCsg(*openCsg.comparator, context, benchScene.tree, model, camera,
+                                       coverageOf(frameForCoverage), runOptions, key, k, openCsg.caps);
     return result;
 }
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
 void printHeader() {
-    std::printf("%-12s %4s %9s %7s %10s %10s %7s %9s %9s %9s %8s %9s %9s\n", "scene", "K", "size",
+    std::printf("%-12s %4s %9s %7s %10s %10s %7s %9s %9s %9s %8s %9s %9s %10s %-16s %7s\n", "scene", "K", "size",
                 "tris", "strata ms", "plain ms", "ratio", "peel ms", "eval ms", "shade ms", "MiB",
-                "layers", "covered");
+                "layers", "covered", "opencsg ms", "best setting", "agree%");
     std::fflush(stdout);
+}
+
+// The OpenCSG columns: the best setting's time, name and coverage agreement
+// with strata (covered pixels away from edges, Coverage.h); then one line
+// with every setting.
+void printOpenCsg(const bench::OpenCsgResult& o) {
+    if (o.best < 0) {
+        std::printf(" %10s %-16s %7s\n", "n/a", "", "");
+        if (!o.unavailable.empty()) std::printf("    opencsg: %s\n", o.unavailable.c_str());
+        return;
+    }
+    const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
+    std::printf(" %10.2f %-16s %7.2f\n", best.ms, best.name.c_str(), 100.0 * best.agreement.coveredFraction());
+    std::printf("    opencsg:");
+    for (const bench::OpenCsgSettingResult& s : o.settings) {
+        if (!s.skipped.empty())
+            std::printf(" %s skipped (%s);", s.name.c_str(), s.skipped.c_str());
+        else
+            std::printf(" %s %.2f%s (%.2f%%);", s.name.c_str(), s.ms, s.overCap ? " over cap" : "",
+                        100.0 * s.agreement.coveredFraction());
+    }
+    std::printf(" convexity %u\n", o.maxConvexity);
 }
 
 void printRow(const Result& r) {
@@ -183,10 +244,11 @@ void printRow(const Result& r) {
         std::printf("%-12s %4d %9s  error: %s\n", r.scene.c_str(), r.k, size.c_str(), r.error.c_str());
     } else {
         const std::string layers = std::to_string(r.layersTotal) + "/" + std::to_string(r.layersMax);
-        std::printf("%-12s %4d %9s %7zu %10.2f %10.2f %7.1f %9.2f %9.2f %9.2f %8.1f %9s %9zu\n",
+        std::printf("%-12s %4d %9s %7zu %10.2f %10.2f %7.1f %9.2f %9.2f %9.2f %8.1f %9s %9zu",
                     r.scene.c_str(), r.k, size.c_str(), r.triangles, r.strataMs, r.plainMs,
                     r.plainMs > 0 ? r.strataMs / r.plainMs : 0.0, r.peelMs, r.evaluateMs, r.shadeMs,
                     static_cast<double>(r.textureBytes) / kMiB, layers.c_str(), r.coveredPixels);
+        printOpenCsg(r.openCsg);
     }
     std::fflush(stdout);
 }
@@ -198,13 +260,57 @@ std::string today() {
     return text;
 }
 
-std::string toJson(const Options& options, const gpu::Context& context, const std::vector<Result>& results) {
+void writeAgreement(io::JsonWriter& json, const bench::Agreement& a) {
+    json.key("agreement").value(a.fraction());
+    json.key("agreement_away_from_edges").value(a.interiorFraction());
+    json.key("agreement_covered_away_from_edges").value(a.coveredFraction());
+    json.key("covered_pixels").value(static_cast<unsigned long long>(a.coveredB));
+}
+
+void writeOpenCsg(io::JsonWriter& json, const bench::OpenCsgResult& o) {
+    json.key("opencsg").beginObject();
+    if (!o.unavailable.empty()) json.key("unavailable").value(o.unavailable);
+    if (o.best >= 0) {
+        const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
+        json.key("best").value(best.name);
+        json.key("best_ms").value(best.ms);
+        writeAgreement(json, best.agreement);
+        json.key("max_convexity").value(static_cast<int>(o.maxConvexity));
+        json.key("buffer_bytes").value(static_cast<unsigned long long>(o.bufferBytes));
+    }
+    json.key("settings").beginArray();
+    for (const bench::OpenCsgSettingResult& s : o.settings) {
+        json.beginObject();
+        json.key("name").value(s.name);
+        if (!s.skipped.empty()) {
+            json.key("skipped").value(s.skipped);
+        } else {
+            json.key("ms").value(s.ms);
+            json.key("min_ms").value(s.minMs);
+            json.key("frames").value(s.frames);
+            json.key("over_cap").value(s.overCap);
+            writeAgreement(json, s.agreement);
+        }
+        json.endObject();
+    }
+    json.endArray();
+    json.endObject();
+}
+
+std::string toJson(const Options& options, const gpu::Context& context, const OpenCsgSide& openCsg,
+                   const std::vector<Result>& results) {
     io::JsonWriter json(2);
     json.beginObject();
     json.key("tool").value("strata-bench");
     json.key("date").value(today());
     json.key("renderer").value(context.renderer());
     json.key("gl_version").value(context.version());
+    if (openCsg.comparator)
+        json.key("opencsg_renderer").value(std::string(bench::openCsgVersion()) + ", " +
+                                           openCsg.comparator->renderer());
+    else
+        json.key("opencsg_unavailable").value(openCsg.unavailable);
+    json.key("opencsg_cap_ms").value(options.openCsgCapMs);
     json.key("frames").value(options.frames);
     json.key("warmup").value(options.warmup);
     json.key("seed").value(options.seed);
@@ -230,6 +336,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const st
         json.key("shade_ms").value(r.shadeMs);
         json.key("plain_ms").value(r.plainMs);
         json.key("plain_min_ms").value(r.plainMinMs);
+        json.key("plain_bytes").value(static_cast<unsigned long long>(r.plainBytes));
         json.key("ratio").value(r.plainMs > 0 ? r.strataMs / r.plainMs : 0.0);
         json.key("texture_bytes").value(static_cast<unsigned long long>(r.textureBytes));
         json.key("layers_total").value(r.layersTotal);
@@ -239,6 +346,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const st
         json.key("notes").beginArray();
         for (const std::string& note : r.notes) json.value(note);
         json.endArray();
+        writeOpenCsg(json, r.openCsg);
         json.endObject();
     }
     json.endArray();
@@ -251,7 +359,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const st
 int main(int argc, char** argv) {
     Options options;
     CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
-    app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep")
+    app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep, tori, mesh")
         ->delimiter(',')
         ->check(CLI::IsMember(bench::sceneNames()));
     app.add_option("--k", options.ks, "operand counts K")->delimiter(',')->check(CLI::Range(1, 100000));
@@ -260,6 +368,10 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", options.warmup, "untimed frames first")->check(CLI::Range(0, 100000));
     app.add_option("--seed", options.seed, "seed of the random scenes");
     app.add_option("--json", options.json, "also write every figure as one JSON object to FILE");
+    app.add_flag("!--no-opencsg", options.openCsg, "leave OpenCSG out");
+    app.add_option("--opencsg-cap-ms", options.openCsgCapMs,
+                   "an OpenCSG setting with a frame over this many ms is skipped for larger K")
+        ->check(CLI::PositiveNumber);
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -278,6 +390,22 @@ int main(int argc, char** argv) {
         gpu::Context context(contextOptions);
         std::printf("# %s, %s; median of %d frames after %d warm-up, glFinish per frame\n",
                     context.renderer().c_str(), context.version().c_str(), options.frames, options.warmup);
+
+        OpenCsgSide openCsg;
+        if (options.openCsg) {
+            try {
+                openCsg.comparator = bench::openOpenCsgComparator();
+                std::printf("# %s: %s\n", bench::openCsgVersion(), openCsg.comparator->renderer().c_str());
+            } catch (const std::exception& e) {
+                openCsg.unavailable = std::string("OpenCSG unavailable: ") + e.what();
+                std::printf("# %s\n", openCsg.unavailable.c_str());
+            }
+            context.makeCurrent();  // opening the comparator released strata's context
+        } else {
+            openCsg.unavailable = "OpenCSG left out (--no-opencsg)";
+        }
+        // Ascending K, so a setting over the time cap is skipped for every larger K.
+        std::sort(options.ks.begin(), options.ks.end());
         printHeader();
 
         std::vector<Result> results;
@@ -286,7 +414,7 @@ int main(int argc, char** argv) {
                 for (int k : options.ks) {
                     Result result;
                     try {
-                        result = runCase(options, name, k, size);
+                        result = runCase(options, context, openCsg, name, k, size);
                     } catch (const std::exception& e) {
                         result.scene = name;
                         result.k = k;
@@ -298,7 +426,7 @@ int main(int argc, char** argv) {
                 }
 
         if (jsonOut.is_open()) {
-            jsonOut << toJson(options, context, results) << '\n';
+            jsonOut << toJson(options, context, openCsg, results) << '\n';
             jsonOut.close();
             if (!jsonOut) throw Error("--json: cannot write '" + options.json + "'");
         }

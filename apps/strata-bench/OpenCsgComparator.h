@@ -1,0 +1,77 @@
+#pragma once
+// OpenCSG (Goldfeather and SCS) drawing a CSG product, as OpenSCAD's preview
+// does, for the bench to time against strata in the same process.
+//
+// OpenCSG reaches GL through GLEW, which Debian builds for GLX, and draws
+// with the fixed-function pipeline: it needs a GLX compatibility context. So
+// the comparator owns a hidden GLFW window with one, next to strata's EGL
+// 4.5 core context. glvnd lets a thread have one current context of one API
+// at a time, so makeCurrent() first releases the thread's EGL context; the
+// caller makes strata's current again after release(). GLEW and GL headers
+// stay inside OpenCsgComparator.cpp: this header includes none.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "CsgProduct.h"
+#include "ViewMatrices.h"
+
+namespace strata::bench {
+
+enum class CsgAlgorithm { Goldfeather, Scs };
+// OpenCSG's DepthComplexitySetting: none, occlusion queries ("oq") or
+// depth complexity sampling ("dcs").
+enum class DepthComplexity { None, OcclusionQuery, Sampling };
+
+struct OpenCsgSetting {
+    CsgAlgorithm algorithm = CsgAlgorithm::Goldfeather;
+    DepthComplexity depthComplexity = DepthComplexity::None;
+    // "goldfeather", "goldfeather-oq", "goldfeather-dcs", "scs", "scs-oq", "scs-dcs"
+    std::string name() const;
+};
+
+// Every setting the bench times, in that order.
+const std::vector<OpenCsgSetting>& openCsgSettings();
+
+class OpenCsgComparator {
+public:
+    virtual ~OpenCsgComparator() = default;
+
+    virtual std::string renderer() const = 0;  // "GL_RENDERER, GL_VERSION" of the compatibility context
+    virtual void makeCurrent() = 0;            // releases the thread's EGL context first
+    virtual void release() = 0;                // leaves no context current
+
+    // Needs makeCurrent(). Uploads the operands into one vertex buffer, makes
+    // a width x height target (RGBA8, depth 24 + stencil 8), sets each
+    // primitive's screen bounding box from its vertices through `matrices`,
+    // and measures each non-convex operand's convexity (its most front faces
+    // on one pixel) for this view. Throws strata::Error on a GL error.
+    virtual void setScene(const CsgProduct& product, int width, int height, const ViewMatrices& matrices) = 0;
+
+    // One frame: clear, OpenCSG::render() with `setting` (offscreen type:
+    // frame buffer object), then every primitive shaded with
+    // glDepthFunc(GL_EQUAL), glFinish. Returns wall-clock milliseconds.
+    virtual double drawFrame(const OpenCsgSetting& setting) = 0;
+
+    // Reads the last frame's depth: 1 where the CSG product covers the pixel,
+    // rows top first (as strata's Frame). Throws strata::Error on a GL error.
+    virtual std::vector<std::uint8_t> coverage() = 0;
+
+    virtual unsigned maxConvexity() const = 0;  // over the scene's operands
+    // GPU memory the scene takes: vertex buffer, target, and OpenCSG's own
+    // offscreen buffer (RGBA8 + depth-stencil, assumed the target's size).
+    virtual std::size_t bufferBytes() const = 0;
+};
+
+// "OpenCSG 1.5.0": the version the comparator was built against.
+const char* openCsgVersion();
+
+// Opens the comparator (a hidden 64 x 64 window) and leaves no context
+// current. Throws strata::Error saying why it is unavailable: built without
+// OpenCSG, no display, no compatibility context, GLEW failed.
+std::unique_ptr<OpenCsgComparator> openOpenCsgComparator();
+
+}  // namespace strata::bench

@@ -1,0 +1,21 @@
+#pragma once
+// The view and projection every non-strata draw of the bench uses (the plain
+// floor and OpenCSG), so both rasterize the same triangles to the same depths.
+
+#include <glm/mat4x4.hpp>
+
+#include "strata/geometry/Mesh.h"
+#include "strata/render/Camera.h"
+
+namespace strata::bench {
+
+struct ViewMatrices {
+    glm::dmat4 view{1.0};
+    glm::dmat4 projection{1.0};
+};
+
+// The camera's view and projection with near and far planes hugging `bounds`
+// (what the camera sees of the drawn triangles), as a viewer would set them.
+ViewMatrices fittedView(const render::Camera& camera, const geometry::Bounds& bounds);
+
+}  // namespace strata::bench
