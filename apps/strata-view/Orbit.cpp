@@ -1,0 +1,152 @@
+#include "Orbit.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "strata/core/Error.h"
+
+namespace strata::view {
+namespace {
+
+double radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
+double degrees(double radians) { return radians * (180.0 / std::numbers::pi); }
+
+// The smallest distance zooming may reach: below it the eye would sit on the centre.
+constexpr double kMinDistance = 1e-6;
+
+struct PresetAngles {
+    Preset preset;
+    const char* name;
+    double tilt, turn;  // OpenSCAD's $vpr x and z for MainWindow::viewAngle*()
+};
+constexpr std::array<PresetAngles, 7> kPresets{{
+    {Preset::Top, "top", 0.0, 0.0},
+    {Preset::Bottom, "bottom", 180.0, 0.0},
+    {Preset::Left, "left", 90.0, -90.0},
+    {Preset::Right, "right", 90.0, 90.0},
+    {Preset::Front, "front", 90.0, 0.0},
+    {Preset::Back, "back", 90.0, 180.0},
+    {Preset::Diagonal, "diagonal", 55.0, 25.0},
+}};
+
+// The eye offset from the centre for OpenSCAD's gimbal with no roll:
+// Rz(rz) * Rx(rx - 90) * (0, -d, 0), as render::cameraFromArguments places it.
+glm::dvec3 offsetFor(double tilt, double turn, double distance) {
+    const double st = std::sin(radians(tilt)), ct = std::cos(radians(tilt));
+    const double sz = std::sin(radians(turn)), cz = std::cos(radians(turn));
+    return distance * glm::dvec3(st * sz, -st * cz, ct);
+}
+
+}  // namespace
+
+const char* presetName(Preset preset) {
+    for (const PresetAngles& p : kPresets)
+        if (p.preset == preset) return p.name;
+    return "diagonal";
+}
+
+Preset presetFromName(std::string_view name) {
+    for (const PresetAngles& p : kPresets)
+        if (name == p.name) return p.preset;
+    throw Error("unknown view '" + std::string(name) +
+                "' (valid: top, bottom, left, right, front, back, diagonal)");
+}
+
+double Orbit::distance() const { return glm::length(eye - center); }
+
+double Orbit::tiltDegrees() const {
+    const double d = distance();
+    return d > 0.0 ? degrees(std::acos(std::clamp((eye.z - center.z) / d, -1.0, 1.0))) : 90.0;
+}
+
+double Orbit::turnDegrees() const {
+    const glm::dvec3 o = eye - center;
+    // Straight above or below there is no turn to read; the contract then takes
+    // +Y as up, which is the turn 0 view.
+    if (std::hypot(o.x, o.y) < 1e-12 * distance()) return 0.0;
+    return degrees(std::atan2(o.x, -o.y));
+}
+
+void Orbit::orbit(double dx, double dy) {
+    // OpenSCAD adds the drag to object_rot; $vpr is its negation (x: 90 - rot).
+    const double tilt = std::clamp(tiltDegrees() - kDegreesPerPixel * dy, 0.0, 180.0);
+    const double turn = turnDegrees() - kDegreesPerPixel * dx;
+    eye = center + offsetFor(tilt, turn, distance());
+}
+
+void Orbit::pan(double dx, double dy, int viewWidth, int viewHeight) {
+    const render::Camera c = camera(render::Camera{});
+    const double d = distance();
+    const glm::dvec3 move = -c.right() * (dx * kPanPerView * d / std::max(viewWidth, 1)) +
+                            c.up() * (dy * kPanPerView * d / std::max(viewHeight, 1));
+    eye += move;
+    center += move;
+}
+
+void Orbit::zoom(double notches) {
+    const double d = distance();
+    const double scaled = std::max(d * std::pow(kZoomPerNotch, notches), kMinDistance);
+    eye = center + (eye - center) * (scaled / d);
+}
+
+void Orbit::zoomDrag(double dy) { zoom(-dy / kPixelsPerZoomNotch); }
+
+void Orbit::preset(Preset preset) {
+    for (const PresetAngles& p : kPresets)
+        if (p.preset == preset) eye = center + offsetFor(p.tilt, p.turn, distance());
+}
+
+void Orbit::recenter(const glm::dvec3& point) {
+    eye = point + (eye - center);
+    center = point;
+}
+
+render::Camera Orbit::camera(const render::Camera& base) const {
+    render::Camera c = base;
+    c.eye = eye;
+    c.center = center;
+    return c;
+}
+
+Orbit fittedOrbit(const geometry::Bounds& bounds, const render::Camera& base) {
+    return orbitFromCamera(render::defaultCamera(bounds, base));
+}
+
+Orbit viewAll(const Orbit& orbit, const geometry::Bounds& bounds, const render::Camera& base) {
+    const Orbit fitted = fittedOrbit(bounds, base);
+    Orbit result;
+    result.center = fitted.center;
+    result.eye = fitted.center + offsetFor(orbit.tiltDegrees(), orbit.turnDegrees(), fitted.distance());
+    return result;
+}
+
+Orbit orbitFromCamera(const render::Camera& camera) { return Orbit{camera.eye, camera.center}; }
+
+glm::dvec3 pointAtDepth(const render::Camera& camera, int i, int j, double depth) {
+    const render::Ray ray = camera.ray(i, j);
+    const glm::dvec3 f = camera.forward();
+    // Solve dot(origin + t * dir - eye, f) = depth for t.
+    const double t = (depth - glm::dot(ray.origin - camera.eye, f)) / glm::dot(ray.direction, f);
+    return ray.origin + t * ray.direction;
+}
+
+std::string cameraArgument(const render::Camera& camera) {
+    const std::array<double, 6> numbers{camera.eye.x,    camera.eye.y,    camera.eye.z,
+                                        camera.center.x, camera.center.y, camera.center.z};
+    std::string text = "--camera=";
+    for (std::size_t k = 0; k < numbers.size(); ++k) {
+        std::array<char, 32> buffer{};
+        // Shortest round trip: strtod in strata-render reads back the same double.
+        const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), numbers[k]);
+        if (k > 0) text += ',';
+        text.append(buffer.data(), ec == std::errc() ? end : buffer.data());
+    }
+    return text;
+}
+
+}  // namespace strata::view

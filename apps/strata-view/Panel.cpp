@@ -1,0 +1,159 @@
+// The Dear ImGui panel: file and load state, view and render settings,
+// frame figures, the camera as a strata-render argument, and the CSG tree.
+#include "Viewer.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "strata/render/ColorScheme.h"
+
+namespace strata::view {
+namespace {
+
+const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
+
+constexpr std::array<const char*, 4> kDebugNames{"shaded", "depth", "normal", "peel layers"};
+
+}  // namespace
+
+void Viewer::drawPanel() {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    if (!ImGui::Begin("strata-view")) {
+        ImGui::End();
+        return;
+    }
+    ImGui::TextWrapped("%s", path_.c_str());
+    if (loader_.busy()) ImGui::Text("loading... %.1f s", loader_.runningSeconds());
+    if (!loadError_.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+        ImGui::TextWrapped("%s", loadError_.c_str());
+        ImGui::PopStyleColor();
+        ImGui::TextDisabled("(showing the last good version)");
+    }
+    if (!renderError_.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+        ImGui::TextWrapped("%s", renderError_.c_str());
+        ImGui::PopStyleColor();
+    }
+    if (!scene_.tree.warnings.empty() &&
+        ImGui::CollapsingHeader(("warnings (" + std::to_string(scene_.tree.warnings.size()) + ")").c_str())) {
+        for (const Warning& w : scene_.tree.warnings) ImGui::TextWrapped("%s", w.message.c_str());
+    }
+
+    if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
+        constexpr std::array<Preset, 7> presets{Preset::Top,  Preset::Bottom, Preset::Left,    Preset::Right,
+                                                Preset::Front, Preset::Back,  Preset::Diagonal};
+        for (std::size_t k = 0; k < presets.size(); ++k) {
+            if (k % 4 != 0) ImGui::SameLine();
+            if (ImGui::Button(presetName(presets[k]))) {
+                orbit_.preset(presets[k]);
+                viewDirty_ = true;
+            }
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("view all")) viewAllNow();
+        bool ortho = projection_ == render::Projection::Orthographic;
+        if (ImGui::Checkbox("orthographic", &ortho)) toggleProjection();
+        ImGui::SameLine();
+        if (ImGui::Button("reset")) resetView();
+    }
+
+    if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) {
+        bool autoLayers = settings_.layers == 0;
+        if (ImGui::Checkbox("auto layers", &autoLayers)) autoLayers ? setLayers(0) : changeLayers(0);
+        if (!autoLayers) {
+            ImGui::SameLine();
+            int layers = settings_.layers;
+            ImGui::SetNextItemWidth(100);
+            if (ImGui::InputInt("layers", &layers)) setLayers(std::max(1, layers));
+        }
+        const std::string scheme = settings_.colorScheme;
+        if (ImGui::BeginCombo("colours", scheme.c_str())) {
+            for (const std::string& name : render::colorSchemeNames())
+                if (ImGui::Selectable(name.c_str(), name == scheme)) {
+                    settings_.colorScheme = name;
+                    viewDirty_ = true;
+                }
+            ImGui::EndCombo();
+        }
+        int debug = static_cast<int>(debugView_);
+        for (int k = 0; k < static_cast<int>(kDebugNames.size()); ++k) {
+            if (k != 0) ImGui::SameLine();
+            if (ImGui::RadioButton(kDebugNames[static_cast<std::size_t>(k)], &debug, k))
+                setDebugView(static_cast<DebugView>(k));
+        }
+    }
+
+    if (ImGui::CollapsingHeader("frame", ImGuiTreeNodeFlags_DefaultOpen)) {
+        int used = 0;
+        for (int l : stats_.layersPerLeaf) used = std::max(used, l);
+        ImGui::Text("%.1f ms  (peel %.1f, evaluate %.1f, shade %.1f, copy %.1f)", stats_.totalMs, stats_.peelMs,
+                    stats_.evaluateMs, stats_.shadeMs, stats_.readbackMs);
+        ImGui::Text("layers %s, used up to %d; %d operands", settings_.layers == 0 ? "auto" : "fixed", used,
+                    stats_.operands);
+        ImGui::Text("%d x %d px, %.1f MiB of layers, %d tile(s)", target_.width(), target_.height(),
+                    stats_.textureBytes / (1024.0 * 1024.0), stats_.tiles);
+        if (stats_.unresolvedPixels > 0) ImGui::Text("%zu unresolved pixels", stats_.unresolvedPixels);
+        for (const std::string& note : stats_.notes) ImGui::TextWrapped("%s", note.c_str());
+    }
+
+    if (ImGui::CollapsingHeader("camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const std::string line = cameraLine();
+        ImGui::TextWrapped("%s", line.c_str());
+        if (ImGui::Button("copy --camera=")) copyCamera();
+        ImGui::SameLine();
+        if (ImGui::Button("screenshot")) saveNumberedScreenshot();
+        if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+    }
+
+    if (ImGui::CollapsingHeader("tree", ImGuiTreeNodeFlags_DefaultOpen)) drawTreePanel();
+    ImGui::End();
+}
+
+void Viewer::drawTreePanel() {
+    ImGui::TextDisabled("shown / # highlight / node");
+    // A clipper: a tree of a million leaves lists only the rows on screen.
+    ImGuiListClipper clipper;
+    clipper.Begin(static_cast<int>(rows_.size()));
+    while (clipper.Step()) {
+        for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
+            const TreeRow& row = rows_[static_cast<std::size_t>(k)];
+            ImGui::PushID(row.node);
+            bool shown = !edits_.hidden.contains(row.node);
+            if (ImGui::Checkbox("##shown", &shown)) toggleHidden(row.node);
+            ImGui::SameLine();
+            bool highlighted = edits_.highlighted.contains(row.node);
+            if (ImGui::Checkbox("##highlight", &highlighted)) toggleHighlight(row.node);
+            ImGui::SameLine();
+            ImGui::SetCursorPosX(ImGui::GetCursorPosX() + 12.0f * static_cast<float>(row.depth));
+            const int line = scene_.tree.nodes[static_cast<std::size_t>(row.node)].where.line;
+            ImGui::Text("%s%d %s%s", row.background ? "% " : "", row.node, row.label.c_str(),
+                        line > 0 ? (" (line " + std::to_string(line) + ")").c_str() : "");
+            ImGui::PopID();
+        }
+    }
+}
+
+void Viewer::drawPeelLabels() {
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+    for (const PeelTile& tile : peelTiles_) {
+        std::string label =
+            "leaf " + std::to_string(tile.leaf) + " L" + std::to_string(tile.layer) + (tile.far ? " far" : " near");
+        // Small tiles get the leaf number only, on the operand's first tile.
+        if (ImGui::CalcTextSize(label.c_str()).x > tile.w / scale.x - 4) {
+            if (tile.layer != 0 || tile.far) continue;
+            label = std::to_string(tile.leaf);
+        }
+        draw->AddText(ImVec2(tile.x / scale.x + 3, tile.y / scale.y + 2), IM_COL32(255, 220, 120, 255), label.c_str());
+    }
+}
+
+}  // namespace strata::view

@@ -1,0 +1,156 @@
+#include "SceneFile.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "strata/core/Error.h"
+#include "strata/scene/CsgParser.h"
+
+extern char** environ;
+
+namespace strata::view {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// A private folder under the system's temporary folder, removed with everything in it.
+class TempFolder {
+public:
+    TempFolder() {
+        std::string pattern = (fs::temp_directory_path() / "strata-view-XXXXXX").string();
+        if (::mkdtemp(pattern.data()) == nullptr) throw Error("strata-view: cannot create a temporary folder");
+        path_ = pattern;
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+// The first executable `name` on PATH; empty when there is none.
+std::string findOnPath(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::stringstream dirs(path != nullptr ? path : "");
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+        const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+        if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) return candidate.string();
+    }
+    return {};
+}
+
+// OpenSCAD's own complaint, as one line: its last "ERROR:" line (or its last
+// line), with "line N" turned into our file:line: prefix where it names one.
+Error openscadError(const std::string& scad, const std::string& output, int status) {
+    std::string last, lastError;
+    std::istringstream lines(output);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty()) continue;
+        last = line;
+        if (line.find("ERROR") != std::string::npos) lastError = line;
+    }
+    std::string message = !lastError.empty() ? lastError : last;
+    if (message.empty()) message = "exit status " + std::to_string(status);
+    std::smatch m;
+    int line = 0;
+    if (std::regex_search(message, m, std::regex(R"(line (\d+))"))) line = std::stoi(m[1].str());
+    return Error(SourceLocation{scad, line, 0}, "openscad could not export CSG: " + message);
+}
+
+// Runs openscad to turn `scad` into CSG at `csg`; its chatter goes to a log file
+// so it cannot interleave with ours.
+void convertScad(const std::string& scad, const std::string& csg, const fs::path& log) {
+    const std::string openscad = findOnPath("openscad");
+    if (openscad.empty())
+        throw Error(SourceLocation{scad, 0, 0},
+                    "cannot open .scad: openscad is not installed (not found on PATH); export a .csg from OpenSCAD "
+                    "instead");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    std::vector<std::string> args{openscad, "-o", csg, scad};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, openscad.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) throw Error(SourceLocation{scad, 0, 0}, "cannot run openscad (" + openscad + ")");
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::ifstream in(log);
+    std::ostringstream output;
+    output << in.rdbuf();
+    if (code != 0 || !fs::exists(csg)) throw openscadError(scad, output.str(), code);
+}
+
+void checkReadable(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
+    if (fs::is_directory(path, ec)) throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
+    if (std::FILE* f = std::fopen(path.c_str(), "rb"))
+        std::fclose(f);
+    else
+        throw Error(SourceLocation{path, 0, 0}, "cannot open file");
+}
+
+// As strata-render: a .csg through the parser, a mesh as a tree of one Import leaf.
+scene::Tree readTree(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    const bool isMesh = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
+    if (ext != ".csg" && ext != ".scad" && !isMesh)
+        throw Error(SourceLocation{path, 0, 0},
+                    "unknown scene type '" + ext + "' (expected .csg, .scad, .stl, .obj, .off or .ply)");
+    checkReadable(path);
+    if (ext == ".csg") return scene::parseCsgFile(path);
+    if (ext == ".scad") {
+        const TempFolder folder;
+        const std::string csg = (folder.path() / "scene.csg").string();
+        convertScad(path, csg, folder.path() / "openscad.log");
+        // Named after the .scad, and relative imports resolved from its folder,
+        // since the temporary .csg is gone by the time anyone reads a message.
+        std::ifstream in(csg, std::ios::binary);
+        scene::Tree tree = scene::parseCsg(in, path, fs::path(path).parent_path().string());
+        tree.source = path;
+        return tree;
+    }
+    return scene::meshFileTree(path);
+}
+
+}  // namespace
+
+LoadedScene loadSceneFile(const std::string& path) {
+    LoadedScene scene;
+    scene.tree = readTree(path);
+    scene.model = geometry::buildModel(scene.tree);
+    return scene;
+}
+
+}  // namespace strata::view

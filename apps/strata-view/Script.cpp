@@ -1,0 +1,254 @@
+#include "Script.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "Orbit.h"
+
+namespace strata::view {
+namespace {
+
+struct Word {
+    std::string text;
+    int column = 0;
+};
+
+struct Syntax {
+    std::string_view name;
+    CommandKind kind;
+    int minWords, maxWords;  // -1: any number (the rest of the line)
+};
+
+constexpr std::array<Syntax, 24> kSyntax{{
+    {"open", CommandKind::Open, 1, 1},
+    {"size", CommandKind::Size, 2, 2},
+    {"layers", CommandKind::Layers, 1, 1},
+    {"camera", CommandKind::Camera, 1, 1},
+    {"projection", CommandKind::Projection, 1, 1},
+    {"fov", CommandKind::Fov, 1, 1},
+    {"orbit", CommandKind::Orbit, 2, 2},
+    {"pan", CommandKind::Pan, 2, 2},
+    {"zoom", CommandKind::Zoom, 1, 1},
+    {"preset", CommandKind::Preset, 1, 1},
+    {"view-all", CommandKind::ViewAll, 0, 0},
+    {"double-click", CommandKind::DoubleClick, 2, 2},
+    {"toggle", CommandKind::Toggle, 1, 1},
+    {"highlight", CommandKind::Highlight, 1, 1},
+    {"colorscheme", CommandKind::ColorScheme, 1, -1},
+    {"debug", CommandKind::Debug, 1, 1},
+    {"panel", CommandKind::Panel, 1, 1},
+    {"screenshot", CommandKind::Screenshot, 1, 1},
+    {"screenshot-window", CommandKind::ScreenshotWindow, 1, 1},
+    {"copy", CommandKind::Copy, 2, 2},
+    {"wait-reload", CommandKind::WaitReload, 0, 0},
+    {"print", CommandKind::Print, 1, 1},
+    {"sleep", CommandKind::Sleep, 1, 1},
+    {"quit", CommandKind::Quit, 0, 0},
+}};
+
+std::string commandList() {
+    std::string list;
+    for (const Syntax& s : kSyntax) list += (list.empty() ? "" : ", ") + std::string(s.name);
+    return list;
+}
+
+// Splits one line into words; throws on an unterminated quote.
+std::vector<Word> splitWords(const std::string& line, const std::string& name, int lineNumber) {
+    std::vector<Word> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
+            ++i;
+            continue;
+        }
+        if (line[i] == '#') break;
+        Word word;
+        word.column = static_cast<int>(i) + 1;
+        if (line[i] == '"') {
+            const std::size_t close = line.find('"', i + 1);
+            if (close == std::string::npos)
+                throw Error(SourceLocation{name, lineNumber, word.column}, "unterminated quoted word");
+            word.text = line.substr(i + 1, close - i - 1);
+            i = close + 1;
+        } else {
+            while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') word.text += line[i++];
+        }
+        words.push_back(std::move(word));
+    }
+    return words;
+}
+
+bool readNumber(const std::string& text, double& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(text.c_str(), &end);
+    return end == text.c_str() + text.size() && std::isfinite(out);
+}
+
+bool readWhole(const std::string& text, double& out) {
+    return readNumber(text, out) && out == std::floor(out) && text.find_first_of(".eE") == std::string::npos;
+}
+
+// Checks the arguments of one command and fills Command::numbers; messages
+// start with the command's name, so they say whose argument is wrong.
+void checkArguments(Command& c, std::string_view name) {
+    auto fail = [&](const std::string& message, int k) { return c.error(std::string(name) + ": " + message, k); };
+    auto number = [&](int k, const char* what) {
+        double v = 0;
+        if (!readNumber(c.words[k], v)) throw fail(std::string("expected ") + what + ", got '" + c.words[k] + "'", k);
+        c.numbers.push_back(v);
+    };
+    auto whole = [&](int k, double lo, double hi, const char* what) {
+        double v = 0;
+        if (!readWhole(c.words[k], v) || v < lo || v > hi)
+            throw fail(std::string("expected ") + what + ", got '" + c.words[k] + "'", k);
+        c.numbers.push_back(v);
+    };
+    auto oneOf = [&](std::initializer_list<std::string_view> valid) {
+        std::string list;
+        for (std::string_view v : valid) {
+            if (c.words[0] == v) return;
+            list += (list.empty() ? "" : ", ") + std::string(v);
+        }
+        throw fail("expected one of " + list + ", got '" + c.words[0] + "'", 0);
+    };
+
+    switch (c.kind) {
+    case CommandKind::Size:
+        whole(0, 1, kMaxViewSide, "a width from 1 to 16384");
+        whole(1, 1, kMaxViewSide, "a height from 1 to 16384");
+        break;
+    case CommandKind::Layers:
+        if (c.words[0] != "auto") whole(0, 1, kMaxLayers, "'auto' or a whole number from 1 to 1024");
+        break;
+    case CommandKind::Camera: {
+        std::stringstream parts(c.words[0]);
+        std::string part;
+        while (std::getline(parts, part, ',')) {
+            double v = 0;
+            if (!readNumber(part, v)) throw fail("'" + part + "' is not a finite number", 0);
+            c.numbers.push_back(v);
+        }
+        if (c.numbers.size() != 6 && c.numbers.size() != 7)
+            throw fail("expected 6 numbers (eye, center) or 7 (translate, rotate, distance), got " +
+                              std::to_string(c.numbers.size()),
+                          0);
+        break;
+    }
+    case CommandKind::Projection: oneOf({"p", "o"}); break;
+    case CommandKind::Fov:
+        number(0, "degrees between 0 and 180");
+        if (!(c.numbers[0] > 0.0 && c.numbers[0] < 180.0))
+            throw fail("expected degrees between 0 and 180, got '" + c.words[0] + "'", 0);
+        break;
+    case CommandKind::Orbit:
+    case CommandKind::Pan:
+        number(0, "pixels");
+        number(1, "pixels");
+        break;
+    case CommandKind::Zoom: number(0, "wheel notches"); break;
+    case CommandKind::Preset:
+        try {
+            presetFromName(c.words[0]);
+        } catch (const Error& e) {
+            throw fail(e.what(), 0);
+        }
+        break;
+    case CommandKind::DoubleClick:
+        whole(0, 0, kMaxViewSide, "a pixel column");
+        whole(1, 0, kMaxViewSide, "a pixel row");
+        break;
+    case CommandKind::Toggle:
+    case CommandKind::Highlight:
+        // NODE: a node number as the panel shows it, or line:N for the
+        // outermost node written on line N; resolved against the open tree.
+        if (c.words[0].starts_with("line:")) {
+            double v = 0;
+            if (!readWhole(c.words[0].substr(5), v) || v < 1) throw fail("expected line:N with N >= 1", 0);
+        } else {
+            whole(0, 0, 1e9, "a node number or line:N");
+        }
+        break;
+    case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel"}); break;
+    case CommandKind::Panel: oneOf({"on", "off"}); break;
+    case CommandKind::Print: oneOf({"camera", "error", "stats", "tree"}); break;
+    case CommandKind::Sleep: whole(0, 0, 600000, "milliseconds from 0 to 600000"); break;
+    case CommandKind::Screenshot:
+    case CommandKind::ScreenshotWindow:
+        if (!c.words[0].ends_with(".png")) throw fail("expected a .png file name, got '" + c.words[0] + "'", 0);
+        break;
+    default: break;
+    }
+}
+
+}  // namespace
+
+Error Command::error(const std::string& message, int index) const {
+    const SourceLocation& at = index >= 0 && index < static_cast<int>(wordsAt.size()) ? wordsAt[index] : where;
+    return Error(at, message);
+}
+
+std::vector<Command> parseScript(const std::string& text, const std::string& name) {
+    std::vector<Command> commands;
+    std::istringstream in(text);
+    std::string line;
+    int lineNumber = 0;
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        std::vector<Word> words = splitWords(line, name, lineNumber);
+        if (words.empty()) continue;
+        const SourceLocation at{name, lineNumber, words[0].column};
+        const Syntax* syntax = nullptr;
+        for (const Syntax& s : kSyntax)
+            if (words[0].text == s.name) syntax = &s;
+        if (syntax == nullptr)
+            throw Error(at, "unknown command '" + words[0].text + "' (valid: " + commandList() + ")");
+        Command c{syntax->kind, at, {}, {}, {}};
+        if (syntax->maxWords < 0 && words.size() > 2) {
+            // colorscheme Tomorrow Night: the rest of the line is one name.
+            std::string rest;
+            for (std::size_t k = 1; k < words.size(); ++k) rest += (k > 1 ? " " : "") + words[k].text;
+            words.resize(2);
+            words[1].text = rest;
+        }
+        const int given = static_cast<int>(words.size()) - 1;
+        if (given < syntax->minWords || (syntax->maxWords >= 0 && given > syntax->maxWords)) {
+            const std::string expected = syntax->minWords == syntax->maxWords
+                                             ? std::to_string(syntax->minWords)
+                                             : "at least " + std::to_string(syntax->minWords);
+            const SourceLocation extra = given > syntax->minWords
+                                             ? SourceLocation{name, lineNumber, words[syntax->maxWords + 1].column}
+                                             : at;
+            throw Error(extra, std::string(syntax->name) + ": expected " + expected + " argument" +
+                                   (expected == "1" ? "" : "s") + ", got " + std::to_string(given));
+        }
+        for (std::size_t k = 1; k < words.size(); ++k) {
+            c.words.push_back(words[k].text);
+            c.wordsAt.push_back(SourceLocation{name, lineNumber, words[k].column});
+        }
+        checkArguments(c, syntax->name);
+        commands.push_back(std::move(c));
+    }
+    return commands;
+}
+
+std::vector<Command> parseScriptFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(SourceLocation{path, 0, 0}, "cannot open script");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseScript(text.str(), path);
+}
+
+std::string resolveScriptPath(const std::string& scriptPath, const std::string& path) {
+    const std::filesystem::path p(path);
+    if (p.is_absolute()) return path;
+    return (std::filesystem::path(scriptPath).parent_path() / p).lexically_normal().string();
+}
+
+}  // namespace strata::view

@@ -1,0 +1,153 @@
+// The --script commands (Script.h), run between window frames so that a
+// scripted session goes through the same code as mouse, keys and panel.
+#include "Viewer.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "strata/core/Error.h"
+#include "strata/render/ColorScheme.h"
+
+namespace strata::view {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// wait-reload gives up after this long: a test must fail, not hang.
+constexpr auto kReloadTimeout = std::chrono::seconds(30);
+// screenshot-window: frames drawn before the capture, for ImGui's layout to settle.
+constexpr int kWindowShotFrames = 3;
+
+// Replaces `target` by a copy of `source` the way editors save: a new file beside it, renamed over it.
+void replaceFile(const std::string& source, const std::string& target) {
+    const std::string temporary = target + ".strata-view-tmp";
+    std::error_code ec;
+    std::filesystem::copy_file(source, temporary, std::filesystem::copy_options::overwrite_existing, ec);
+    if (!ec) std::filesystem::rename(temporary, target, ec);
+    if (ec) {
+        std::filesystem::remove(temporary);
+        throw Error("cannot replace '" + target + "' by '" + source + "' (" + ec.message() + ")");
+    }
+}
+
+std::string statsLine(const render::FrameStats& s) {
+    int used = 0;
+    for (int l : s.layersPerLeaf) used = std::max(used, l);
+    return "total_ms " + std::to_string(s.totalMs) + " peel_ms " + std::to_string(s.peelMs) + " evaluate_ms " +
+           std::to_string(s.evaluateMs) + " shade_ms " + std::to_string(s.shadeMs) + " layers_used " +
+           std::to_string(used) + " operands " + std::to_string(s.operands);
+}
+
+}  // namespace
+
+bool Viewer::runCommand(const Command& c) {
+    const std::string& script = options_.script;
+    auto path = [&](std::size_t k) { return resolveScriptPath(script, c.words[k]); };
+    try {
+        switch (c.kind) {
+        case CommandKind::Open:
+            if (!waitingSince_) {
+                loader_.request(path(0));
+                loadsAtWait_ = loadsFinished_;
+                waitingSince_ = Clock::now();
+            }
+            [[fallthrough]];
+        case CommandKind::WaitReload:
+            // Done once a load has finished since the last wait and none is under way.
+            if (!waitingSince_) waitingSince_ = Clock::now();
+            if (loadsFinished_ > loadsAtWait_ && !loader_.busy()) {
+                if (c.kind == CommandKind::Open && !loadError_.empty()) throw Error(loadError_);
+                loadsAtWait_ = loadsFinished_;
+                waitingSince_.reset();
+                return true;
+            }
+            if (Clock::now() - *waitingSince_ > kReloadTimeout) throw Error("no reload within 30 s");
+            glfwWaitEventsTimeout(0.02);
+            return false;
+        case CommandKind::Size:
+            fixedSize_ = {static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1])};
+            glfwSetWindowSize(window_.window(), fixedSize_->first, fixedSize_->second);
+            viewDirty_ = true;
+            return true;
+        case CommandKind::Layers: setLayers(c.words[0] == "auto" ? 0 : static_cast<int>(c.numbers[0])); return true;
+        case CommandKind::Camera:
+            orbit_ = orbitFromCamera(render::cameraFromArguments(c.numbers, camera()));
+            viewDirty_ = true;
+            return true;
+        case CommandKind::Projection:
+            projection_ = c.words[0] == "o" ? render::Projection::Orthographic : render::Projection::Perspective;
+            viewDirty_ = true;
+            return true;
+        case CommandKind::Fov:
+            fov_ = c.numbers[0];
+            viewDirty_ = true;
+            return true;
+        case CommandKind::Orbit: orbit_.orbit(c.numbers[0], c.numbers[1]); break;
+        case CommandKind::Pan: orbit_.pan(c.numbers[0], c.numbers[1], camera().width, camera().height); break;
+        case CommandKind::Zoom: orbit_.zoom(c.numbers[0]); break;
+        case CommandKind::Preset: orbit_.preset(presetFromName(c.words[0])); break;
+        case CommandKind::ViewAll: viewAllNow(); return true;
+        case CommandKind::DoubleClick:
+            if (sceneDirty_) uploadScene();
+            recenterAt(static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1]));
+            return true;
+        case CommandKind::Toggle: toggleHidden(findNode(scene_.tree, c.words[0])); return true;
+        case CommandKind::Highlight: toggleHighlight(findNode(scene_.tree, c.words[0])); return true;
+        case CommandKind::ColorScheme:
+            settings_.colorScheme = render::colorScheme(c.words[0]).name;
+            viewDirty_ = true;
+            return true;
+        case CommandKind::Debug: {
+            const std::string& v = c.words[0];
+            setDebugView(v == "depth"    ? DebugView::Depth
+                         : v == "normal" ? DebugView::Normal
+                         : v == "peel"   ? DebugView::Peel
+                                         : DebugView::Shaded);
+            return true;
+        }
+        case CommandKind::Panel: showPanel_ = c.words[0] == "on"; return true;
+        case CommandKind::Screenshot:
+            saveScreenshot(path(0));
+            if (!renderError_.empty()) throw Error(renderError_);
+            return true;
+        case CommandKind::ScreenshotWindow:
+            // Asked here, written by drawWindow() a few frames later.
+            if (windowShotWritten_) {
+                windowShotWritten_ = false;
+                return true;
+            }
+            if (!windowShot_) {
+                windowShot_ = path(0);
+                windowShotFrames_ = kWindowShotFrames;
+            }
+            return false;
+        case CommandKind::Copy: replaceFile(path(0), path(1)); return true;
+        case CommandKind::Print: {
+            const std::string& what = c.words[0];
+            if (what == "camera") std::cout << cameraLine() << std::endl;
+            if (what == "error") std::cout << (loadError_.empty() ? "no error" : loadError_) << std::endl;
+            if (what == "stats") std::cout << statsLine(stats_) << std::endl;
+            if (what == "tree")
+                for (const TreeRow& row : rows_)
+                    std::cout << std::string(static_cast<std::size_t>(row.depth) * 2, ' ') << row.node << ' '
+                              << row.label << '\n';
+            std::cout.flush();
+            return true;
+        }
+        case CommandKind::Sleep:
+            std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<long long>(c.numbers[0])));
+            return true;
+        case CommandKind::Quit: quit_ = true; return true;
+        }
+    } catch (const Error& e) {
+        throw c.error(e.what());
+    }
+    viewDirty_ = true;  // the camera moves
+    return true;
+}
+
+}  // namespace strata::view

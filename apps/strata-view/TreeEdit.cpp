@@ -1,0 +1,90 @@
+#include "TreeEdit.h"
+
+#include <filesystem>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "strata/core/Error.h"
+
+namespace strata::view {
+namespace {
+
+void markHighlight(scene::Tree& tree, int node) {
+    // An explicit stack: parsed trees can nest deeper than the C++ stack allows.
+    std::vector<int> stack{node};
+    while (!stack.empty()) {
+        const scene::Node& n = tree.nodes[static_cast<std::size_t>(stack.back())];
+        stack.pop_back();
+        if (n.kind == scene::NodeKind::Leaf) {
+            scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(n.leaf)];
+            if (leaf.display == scene::Display::Normal) leaf.display = scene::Display::Highlight;
+        }
+        stack.insert(stack.end(), n.children.begin(), n.children.end());
+    }
+}
+
+std::string leafLabel(const scene::Leaf& leaf) {
+    return std::visit(
+        [](const auto& p) -> std::string {
+            using T = std::decay_t<decltype(p)>;
+            if constexpr (std::is_same_v<T, scene::Cube>) return "cube";
+            if constexpr (std::is_same_v<T, scene::Sphere>) return "sphere";
+            if constexpr (std::is_same_v<T, scene::Cylinder>) return "cylinder";
+            if constexpr (std::is_same_v<T, scene::Polyhedron>) return "polyhedron";
+            if constexpr (std::is_same_v<T, scene::Import>)
+                return "import " + std::filesystem::path(p.path).filename().string();
+        },
+        leaf.primitive);
+}
+
+}  // namespace
+
+scene::Tree applyEdits(const scene::Tree& tree, const TreeEdits& edits) {
+    scene::Tree edited = tree;
+    if (edits.empty()) return edited;
+    for (int node : edits.highlighted)
+        if (node >= 0 && node < static_cast<int>(edited.nodes.size()) && !edits.hidden.contains(node))
+            markHighlight(edited, node);
+    for (scene::Node& n : edited.nodes) std::erase_if(n.children, [&](int c) { return edits.hidden.contains(c); });
+    std::erase_if(edited.background, [&](int c) { return edits.hidden.contains(c); });
+    if (edits.hidden.contains(edited.root)) edited.root = edited.addNode(scene::NodeKind::Union, {});
+    return edited;
+}
+
+std::vector<TreeRow> treeRows(const scene::Tree& tree) {
+    std::vector<TreeRow> rows;
+    std::vector<std::pair<int, int>> stack;  // (node, depth), children pushed in reverse
+    auto walk = [&](int root, bool background) {
+        stack.emplace_back(root, 0);
+        while (!stack.empty()) {
+            const auto [node, depth] = stack.back();
+            stack.pop_back();
+            const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
+            TreeRow row{node, depth, background, {}};
+            row.label = n.kind == scene::NodeKind::Leaf ? leafLabel(tree.leaves[static_cast<std::size_t>(n.leaf)])
+                                                        : scene::kindName(n.kind);
+            rows.push_back(std::move(row));
+            for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.emplace_back(*c, depth + 1);
+        }
+    };
+    if (tree.root >= 0) walk(tree.root, false);
+    for (int b : tree.background) walk(b, true);
+    return rows;
+}
+
+int findNode(const scene::Tree& tree, const std::string& spec) {
+    if (spec.starts_with("line:")) {
+        const int line = std::stoi(spec.substr(5));
+        for (const TreeRow& row : treeRows(tree))
+            if (tree.nodes[static_cast<std::size_t>(row.node)].where.line == line) return row.node;
+        throw Error("no node of the tree is written on line " + std::to_string(line));
+    }
+    const long long node = std::stoll(spec);
+    if (tree.nodes.empty()) throw Error("no node " + spec + " (the tree is empty)");
+    if (node < 0 || node >= static_cast<long long>(tree.nodes.size()))
+        throw Error("no node " + spec + " (the tree has nodes 0 to " + std::to_string(tree.nodes.size() - 1) + ")");
+    return static_cast<int>(node);
+}
+
+}  // namespace strata::view

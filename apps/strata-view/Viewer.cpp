@@ -1,0 +1,287 @@
+#include "Viewer.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "strata/core/Error.h"
+#include "strata/gpu/Gl.h"
+#include "strata/io/ImageWriter.h"
+#include "strata/render/ColorScheme.h"
+#include "strata/render/ViewBounds.h"
+
+namespace strata::view {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How often the scene file is stat()ed for changes.
+constexpr auto kReloadPoll = std::chrono::milliseconds(200);
+
+}  // namespace
+
+ImGuiSession::ImGuiSession(gpu::WindowContext& window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
+    ImGui::StyleColorsDark();
+    // Our callbacks are installed first; the backend chains to them.
+    ImGui_ImplGlfw_InitForOpenGL(window.window(), true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+}
+
+ImGuiSession::~ImGuiSession() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
+    : options_(options),
+      window_(gpu::WindowOptions{options.width, options.height, "strata-view: " + options.scene, true, true, false}),
+      loader_([] { glfwPostEmptyEvent(); }),
+      watch_(options.scene),
+      path_(options.scene),
+      scene_(std::move(initial)) {
+    settings_.layers = options.layers;
+    settings_.colorScheme = options.colorScheme;
+    rows_ = treeRows(scene_.tree);
+    installInput();
+    imgui_ = std::make_unique<ImGuiSession>(window_);
+    resetView();
+    for (const Warning& w : scene_.tree.warnings) std::cerr << w.message << '\n';
+}
+
+Viewer::~Viewer() {
+    imgui_.reset();  // before the window's context goes
+}
+
+render::Camera Viewer::camera() const {
+    render::Camera base;
+    base.width = target_.width() > 0 ? target_.width() : window_.framebufferWidth();
+    base.height = target_.height() > 0 ? target_.height() : window_.framebufferHeight();
+    if (fixedSize_) std::tie(base.width, base.height) = *fixedSize_;
+    base.fovDegrees = fov_;
+    base.projection = projection_;
+    return orbit_.camera(base);
+}
+
+int Viewer::run(const std::vector<Command>& script) {
+    std::size_t next = 0;
+    while (!quit_) {
+        const bool scripted = !options_.script.empty();
+        if (scripted && next == script.size()) break;  // a script's end ends the session
+        const bool idle = !viewDirty_ && !sceneDirty_ && !windowShot_;
+        step(!scripted && idle);
+        if (scripted && !quit_ && runCommand(script[next])) ++next;
+    }
+    return 0;
+}
+
+void Viewer::step(bool waitForEvents) {
+    if (waitForEvents)
+        glfwWaitEventsTimeout(loader_.busy() ? 0.1 : std::chrono::duration<double>(kReloadPoll).count());
+    else
+        glfwPollEvents();
+    if (window_.shouldClose()) quit_ = true;
+    pollReload();
+    if (std::optional<LoadResult> result = loader_.poll()) applyLoad(std::move(*result));
+    if (sceneDirty_) uploadScene();
+    const int w = fixedSize_ ? fixedSize_->first : window_.framebufferWidth();
+    const int h = fixedSize_ ? fixedSize_->second : window_.framebufferHeight();
+    if (w > 0 && h > 0 && (w != target_.width() || h != target_.height())) {
+        target_.resize(w, h);
+        viewDirty_ = true;
+    }
+    if (viewDirty_ && w > 0 && h > 0) renderView();
+    drawWindow();
+}
+
+void Viewer::pollReload() {
+    const auto now = Clock::now();
+    if (now - lastPoll_ < kReloadPoll) return;
+    lastPoll_ = now;
+    if (watch_.changed()) loader_.request(path_);
+}
+
+void Viewer::applyLoad(LoadResult result) {
+    ++loadsFinished_;
+    if (!result.scene) {
+        // The last good model stays on screen; the panel shows why the new one did not load.
+        loadError_ = result.error;
+        std::cerr << result.error << '\n';
+        return;
+    }
+    loadError_.clear();
+    for (const Warning& w : result.scene->tree.warnings) std::cerr << w.message << '\n';
+    const bool sameShape = result.scene->tree.nodes.size() == scene_.tree.nodes.size();
+    scene_ = std::move(*result.scene);
+    rows_ = treeRows(scene_.tree);
+    // Node numbers only mean the same nodes while the tree keeps its shape.
+    if (!sameShape) edits_ = {};
+    if (result.path != path_) {
+        path_ = result.path;
+        watch_ = FileWatch(path_);
+        glfwSetWindowTitle(window_.window(), ("strata-view: " + path_).c_str());
+    }
+    sceneDirty_ = true;
+}
+
+void Viewer::uploadScene() {
+    sceneDirty_ = false;
+    viewDirty_ = true;
+    try {
+        renderer_.setScene(applyEdits(scene_.tree, edits_), scene_.model);
+        renderError_.clear();
+    } catch (const Error& e) {
+        renderError_ = e.what();
+    }
+}
+
+void Viewer::renderView() {
+    viewDirty_ = false;
+    peelTiles_.clear();
+    const render::Camera cam = camera();
+    try {
+        if (debugView_ == DebugView::Shaded) {
+            stats_ = renderer_.renderInto(target_.framebuffer(), 0, 0, cam, settings_);
+        } else {
+            render::RenderSettings settings = settings_;
+            settings.keepPeelLayers = debugView_ == DebugView::Peel;
+            const render::Frame frame = renderer_.render(cam, settings);
+            stats_ = frame.stats;
+            if (debugView_ == DebugView::Depth) target_.upload(depthImage(frame).rgba);
+            if (debugView_ == DebugView::Normal) target_.upload(normalImage(frame).rgba);
+            if (debugView_ == DebugView::Peel) {
+                PeelGrid grid = peelGrid(frame, target_.width(), target_.height());
+                target_.upload(grid.image.rgba);
+                peelTiles_ = std::move(grid.tiles);
+            }
+        }
+        renderError_.clear();
+    } catch (const Error& e) {
+        renderError_ = e.what();
+        std::cerr << e.what() << '\n';
+    }
+}
+
+void Viewer::drawWindow() {
+    const int fw = window_.framebufferWidth(), fh = window_.framebufferHeight();
+    if (fw <= 0 || fh <= 0) return;  // minimised
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glViewport(0, 0, fw, fh);
+    const glm::vec4 bg = render::colorScheme(settings_.colorScheme).background;
+    glClearColor(bg.r, bg.g, bg.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (target_.width() > 0) target_.blitToWindow(fh);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (showPanel_) drawPanel();
+    if (debugView_ == DebugView::Peel) drawPeelLabels();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    // ImGui lays a new window out over its first frames: capture a later one.
+    if (windowShot_ && --windowShotFrames_ <= 0) {
+        io::writePng(*windowShot_, fw, fh, readWindow(fw, fh));
+        windowShot_.reset();
+        windowShotWritten_ = true;
+    }
+    window_.swapBuffers();
+}
+
+void Viewer::setLayers(int layers) {
+    settings_.layers = std::clamp(layers, 0, kMaxLayers);
+    viewDirty_ = true;
+}
+
+void Viewer::changeLayers(int delta) {
+    // From auto, step from what auto used in the last frame.
+    int current = settings_.layers;
+    if (current == 0)
+        for (int used : stats_.layersPerLeaf) current = std::max(current, used);
+    setLayers(std::max(1, current + delta));
+}
+
+void Viewer::toggleProjection() {
+    projection_ = projection_ == render::Projection::Perspective ? render::Projection::Orthographic
+                                                                  : render::Projection::Perspective;
+    viewDirty_ = true;
+}
+
+void Viewer::setDebugView(DebugView view) {
+    debugView_ = view;
+    viewDirty_ = true;
+}
+
+void Viewer::resetView() {
+    orbit_ = fittedOrbit(render::viewBounds(scene_.tree, scene_.model), camera());
+    viewDirty_ = true;
+}
+
+void Viewer::viewAllNow() {
+    orbit_ = viewAll(orbit_, render::viewBounds(scene_.tree, scene_.model), camera());
+    viewDirty_ = true;
+}
+
+void Viewer::recenterAt(int i, int j) {
+    const render::Camera cam = camera();
+    if (i < 0 || j < 0 || i >= cam.width || j >= cam.height) return;
+    // The depth AOV of a full read-back frame: costly, but only on a double click.
+    // Called from GLFW's input callbacks: no exception may leave.
+    float depth = INFINITY;
+    try {
+        const render::Frame frame = renderer_.render(cam, settings_);
+        depth = frame.depth[static_cast<std::size_t>(j) * frame.width + i];
+    } catch (const Error& e) {
+        renderError_ = e.what();
+    }
+    if (!std::isfinite(depth)) return;  // the background: OpenSCAD ignores it too
+    orbit_.recenter(pointAtDepth(cam, i, j, depth));
+    viewDirty_ = true;
+}
+
+void Viewer::toggleHidden(int node) {
+    if (!edits_.hidden.erase(node)) edits_.hidden.insert(node);
+    sceneDirty_ = true;
+}
+
+void Viewer::toggleHighlight(int node) {
+    if (!edits_.highlighted.erase(node)) edits_.highlighted.insert(node);
+    sceneDirty_ = true;
+}
+
+void Viewer::saveScreenshot(const std::string& path) {
+    if (viewDirty_ || sceneDirty_) {
+        if (sceneDirty_) uploadScene();
+        renderView();
+    }
+    io::writePng(path, target_.width(), target_.height(), target_.read());
+}
+
+void Viewer::saveNumberedScreenshot() {
+    const std::string path = "strata-view-" + std::to_string(++screenshotCount_) + ".png";
+    try {
+        saveScreenshot(path);
+        message_ = "saved " + path;
+    } catch (const Error& e) {
+        message_ = e.what();
+    }
+}
+
+std::string Viewer::cameraLine() const { return cameraArgument(camera()); }
+
+void Viewer::copyCamera() {
+    glfwSetClipboardString(window_.window(), cameraLine().c_str());
+    message_ = "copied the --camera= argument";
+}
+
+}  // namespace strata::view

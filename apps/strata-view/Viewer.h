@@ -1,0 +1,147 @@
+#pragma once
+// strata-view's window: the state of one viewing session and its event loop.
+// The member functions are split by concern over several files:
+//   Viewer.cpp    the loop, loading and reloading, rendering on demand, actions
+//   Input.cpp     mouse and keys (OpenSCAD's conventions)
+//   Panel.cpp     the Dear ImGui panel and the peel-grid labels
+//   ScriptRun.cpp the --script commands
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "FileWatch.h"
+#include "Loader.h"
+#include "Orbit.h"
+#include "Script.h"
+#include "TreeEdit.h"
+#include "ViewTarget.h"
+#include "DebugImage.h"
+#include "strata/gpu/WindowContext.h"
+#include "strata/render/Renderer.h"
+
+namespace strata::view {
+
+enum class DebugView { Shaded, Depth, Normal, Peel };
+
+struct ViewerOptions {
+    std::string scene;
+    std::string script;           // --script FILE; empty: interactive
+    int width = 1024, height = 768;
+    int layers = 0;               // 0: auto
+    std::string colorScheme = "Cornfield";
+};
+
+// Dear ImGui's context and its GLFW / OpenGL 3 backends, for one window.
+class ImGuiSession {
+public:
+    explicit ImGuiSession(gpu::WindowContext& window);
+    ~ImGuiSession();
+    ImGuiSession(const ImGuiSession&) = delete;
+    ImGuiSession& operator=(const ImGuiSession&) = delete;
+};
+
+class Viewer {
+public:
+    // Opens the window on `initial`, the scene loaded (synchronously, so bad
+    // input fails before any window) from options.scene.
+    Viewer(const ViewerOptions& options, LoadedScene initial);
+    ~Viewer();
+    Viewer(const Viewer&) = delete;
+    Viewer& operator=(const Viewer&) = delete;
+
+    // Until the window closes, or the script ends. Returns the exit status;
+    // a failing script command throws its file:line:col strata::Error.
+    int run(const std::vector<Command>& script);
+
+private:
+    struct Drag {
+        int button = -1;  // GLFW_MOUSE_BUTTON_*; -1: none
+        double x = 0, y = 0;
+    };
+
+    // Viewer.cpp
+    void step(bool waitForEvents);
+    void pollReload();
+    void applyLoad(LoadResult result);
+    void uploadScene();
+    void renderView();
+    void drawWindow();
+    render::Camera camera() const;
+    void setLayers(int layers);
+    void changeLayers(int delta);
+    void toggleProjection();
+    void setDebugView(DebugView view);
+    void resetView();
+    void viewAllNow();
+    void recenterAt(int i, int j);
+    void toggleHidden(int node);
+    void toggleHighlight(int node);
+    void saveScreenshot(const std::string& path);
+    void saveNumberedScreenshot();
+    void copyCamera();
+    std::string cameraLine() const;
+    void viewChanged() { viewDirty_ = true; }
+
+    // Input.cpp
+    void installInput();
+    void onMouseButton(int button, int action, int mods);
+    void onCursor(double x, double y);
+    void onScroll(double dy);
+    void onKey(int key, int action, int mods);
+
+    // Panel.cpp
+    void drawPanel();
+    void drawTreePanel();
+    void drawPeelLabels();
+
+    // ScriptRun.cpp: false while the command still waits (wait-reload, sleep).
+    bool runCommand(const Command& command);
+
+    ViewerOptions options_;
+    // GL objects after the window (destroyed before it), ImGui's among them.
+    gpu::WindowContext window_;
+    std::unique_ptr<ImGuiSession> imgui_;
+    render::Renderer renderer_;
+    ViewTarget target_;
+    Loader loader_;
+    FileWatch watch_;
+    std::chrono::steady_clock::time_point lastPoll_;
+
+    std::string path_;
+    LoadedScene scene_;              // the last good load
+    std::vector<TreeRow> rows_;
+    TreeEdits edits_;
+    std::string loadError_;          // the last load's error; the previous scene stays on screen
+    std::string renderError_;
+    int loadsFinished_ = 0;
+
+    Orbit orbit_;
+    render::Projection projection_ = render::Projection::Perspective;
+    double fov_ = 22.5;
+    render::RenderSettings settings_;
+    DebugView debugView_ = DebugView::Shaded;
+    std::vector<PeelTile> peelTiles_;
+    render::FrameStats stats_;
+    std::optional<std::pair<int, int>> fixedSize_;  // a script's `size`; else the window's
+    bool showPanel_ = true;
+    bool sceneDirty_ = true, viewDirty_ = true;
+    bool quit_ = false;
+
+    Drag drag_;
+    double lastLeftPress_ = -1.0, lastLeftX_ = 0, lastLeftY_ = 0;
+    std::string message_;            // the panel's last note (screenshot saved, camera copied)
+    int screenshotCount_ = 0;
+
+    // Script state
+    std::string scriptPath_;
+    int loadsAtWait_ = 0;
+    std::optional<std::chrono::steady_clock::time_point> waitingSince_;
+    std::optional<std::string> windowShot_;  // screenshot-window: written by drawWindow
+    int windowShotFrames_ = 0;
+    bool windowShotWritten_ = false;
+};
+
+}  // namespace strata::view

@@ -1,0 +1,152 @@
+// strata-view's camera math (apps/strata-view/Orbit.h): OpenSCAD's gimbal
+// angles, its mouse factors, and the --camera= argument's exact round trip.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "Orbit.h"
+#include "strata/core/Error.h"
+
+using namespace strata;
+using view::Orbit;
+using view::Preset;
+
+namespace {
+
+void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance = 1e-9) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+// The eye render::cameraFromArguments places for OpenSCAD's gimbal form.
+glm::dvec3 gimbalEye(const glm::dvec3& center, double rx, double rz, double distance) {
+    return render::cameraFromArguments({center.x, center.y, center.z, rx, 0.0, rz, distance}, render::Camera{}).eye;
+}
+
+}  // namespace
+
+TEST(Orbit, PresetsMatchOpenScadGimbalAngles) {
+    const glm::dvec3 c{1, 2, 3};
+    Orbit orbit{c + glm::dvec3(0, -10, 0), c};
+    const struct {
+        Preset preset;
+        double rx, rz;
+    } cases[] = {{Preset::Top, 0, 0},     {Preset::Bottom, 180, 0}, {Preset::Left, 90, -90}, {Preset::Right, 90, 90},
+                 {Preset::Front, 90, 0},  {Preset::Back, 90, 180},  {Preset::Diagonal, 55, 25}};
+    for (const auto& k : cases) {
+        orbit.preset(k.preset);
+        expectNear(orbit.eye, gimbalEye(c, k.rx, k.rz, 10.0));
+        expectNear(orbit.center, c);
+    }
+    orbit.preset(Preset::Left);
+    EXPECT_LT(orbit.eye.x, c.x - 9.9);  // the left view looks from -X
+    orbit.preset(Preset::Top);
+    EXPECT_GT(orbit.eye.z, c.z + 9.9);
+}
+
+TEST(Orbit, PresetNamesRoundTripAndUnknownIsAnError) {
+    for (Preset p : {Preset::Top, Preset::Bottom, Preset::Left, Preset::Right, Preset::Front, Preset::Back,
+                     Preset::Diagonal})
+        EXPECT_EQ(view::presetFromName(view::presetName(p)), p);
+    EXPECT_THROW(view::presetFromName("sideways"), Error);
+}
+
+TEST(Orbit, DragTurnsByOpenScadFactorAboutTheCentre) {
+    Orbit orbit{gimbalEye({0, 0, 0}, 60, 30, 50), {0, 0, 0}};
+    orbit.orbit(10, -20);  // OpenSCAD: $vpr.z -= 0.7 dx, $vpr.x -= 0.7 dy
+    expectNear(orbit.eye, gimbalEye({0, 0, 0}, 60 + 14, 30 - 7, 50));
+    EXPECT_NEAR(orbit.distance(), 50, 1e-9);
+    EXPECT_NEAR(orbit.tiltDegrees(), 74, 1e-9);
+    EXPECT_NEAR(orbit.turnDegrees(), 23, 1e-9);
+}
+
+TEST(Orbit, TiltStopsAtThePoles) {
+    Orbit orbit{{0, -10, 0}, {0, 0, 0}};
+    orbit.orbit(0, 1000);  // drag far down: towards the top view, no further
+    EXPECT_NEAR(orbit.tiltDegrees(), 0, 1e-9);
+    expectNear(orbit.eye, {0, 0, 10});
+    orbit.orbit(0, -5000);
+    EXPECT_NEAR(orbit.tiltDegrees(), 180, 1e-9);
+}
+
+TEST(Orbit, ZoomScalesTheDistanceByPointNinePerNotch) {
+    Orbit orbit{{0, -100, 0}, {0, 0, 5}};
+    const double d = orbit.distance();
+    orbit.zoom(2);
+    EXPECT_NEAR(orbit.distance(), d * 0.81, 1e-9);
+    orbit.zoomDrag(20);  // 20 px down = 2 notches out
+    EXPECT_NEAR(orbit.distance(), d, 1e-9);
+    expectNear(orbit.center, {0, 0, 5});
+    orbit.zoom(1e6);  // never onto the centre
+    EXPECT_GT(orbit.distance(), 0.0);
+}
+
+TEST(Orbit, PanMovesEyeAndCentreTogetherAcrossTheView) {
+    Orbit orbit{{0, -40, 0}, {0, 0, 0}};
+    orbit.pan(100, 50, 400, 200);  // right and down: the model follows, the camera goes left and up
+    expectNear(orbit.center, {-100 * 3.0 * 40 / 400, 0, 50 * 3.0 * 40 / 200});
+    expectNear(orbit.eye - orbit.center, {0, -40, 0});
+}
+
+TEST(Orbit, RecentreKeepsDirectionAndDistance) {
+    Orbit orbit{{3, -40, 2}, {1, 1, 1}};
+    const glm::dvec3 offset = orbit.eye - orbit.center;
+    orbit.recenter({5, 6, 7});
+    expectNear(orbit.center, {5, 6, 7});
+    expectNear(orbit.eye - orbit.center, offset);
+}
+
+TEST(Orbit, PointAtDepthLiesOnThePixelsRayAtThatViewDepth) {
+    for (render::Projection p : {render::Projection::Perspective, render::Projection::Orthographic}) {
+        render::Camera cam;
+        cam.eye = {4, -30, 9};
+        cam.center = {0, 1, 2};
+        cam.width = 64;
+        cam.height = 48;
+        cam.projection = p;
+        const glm::dvec3 point = view::pointAtDepth(cam, 50, 7, 25.0);
+        EXPECT_NEAR(cam.viewDepth(point), 25.0, 1e-9);
+        const render::Ray ray = cam.ray(50, 7);
+        EXPECT_NEAR(glm::length(glm::cross(point - ray.origin, ray.direction)), 0.0, 1e-9);
+    }
+}
+
+TEST(Orbit, FittedViewIsStrataRendersDefaultCamera) {
+    geometry::Bounds b;
+    b.extend(glm::dvec3(-1, -2, -3));
+    b.extend(glm::dvec3(5, 4, 3));
+    render::Camera base;
+    const render::Camera expected = render::defaultCamera(b, base);
+    const Orbit fitted = view::fittedOrbit(b, base);
+    EXPECT_EQ(fitted.eye, expected.eye);
+    EXPECT_EQ(fitted.center, expected.center);
+    Orbit top = fitted;
+    top.preset(Preset::Top);
+    const Orbit all = view::viewAll(top, b, base);  // keeps the angles, fits centre and distance
+    expectNear(all.center, b.center());
+    EXPECT_NEAR(all.distance(), fitted.distance(), 1e-9);
+    EXPECT_NEAR(all.tiltDegrees(), 0.0, 1e-6);
+}
+
+TEST(Orbit, CameraArgumentReadsBackToTheSameDoubles) {
+    render::Camera cam;
+    cam.eye = {0.1 + 0.2, -1.0 / 3.0, 1e-300};
+    cam.center = {-0.0, 123456789.123456789, 2.5};
+    const std::string arg = view::cameraArgument(cam);
+    ASSERT_TRUE(arg.starts_with("--camera="));
+    std::stringstream parts(arg.substr(9));
+    std::vector<double> numbers;
+    for (std::string part; std::getline(parts, part, ',');) numbers.push_back(std::strtod(part.c_str(), nullptr));
+    ASSERT_EQ(numbers.size(), 6u);
+    EXPECT_EQ(glm::dvec3(numbers[0], numbers[1], numbers[2]), cam.eye);
+    EXPECT_EQ(glm::dvec3(numbers[3], numbers[4], numbers[5]), cam.center);
+    EXPECT_EQ(view::cameraArgument(render::cameraFromArguments(numbers, cam)), arg);
+}

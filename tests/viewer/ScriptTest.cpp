@@ -1,0 +1,88 @@
+// strata-view's --script language (apps/strata-view/Script.h): what it
+// accepts, and that every mistake is one file:line:col line at the right word.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "Script.h"
+
+using namespace strata;
+using view::CommandKind;
+
+namespace {
+
+// The message of the error parsing `text` gives; empty when it parses.
+std::string errorOf(const std::string& text) {
+    try {
+        view::parseScript(text, "s.txt");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return {};
+}
+
+}  // namespace
+
+TEST(Script, ParsesEveryCommandWithItsArguments) {
+    const auto commands = view::parseScript(
+        "# a comment\n"
+        "size 320 240\n"
+        "\n"
+        "layers auto   # trailing comment\n"
+        "layers 3\n"
+        "camera 1,2,3,0,0,0\n"
+        "camera 0,0,0,55,0,25,140\n"
+        "orbit 10 -2.5\n"
+        "preset top\n"
+        "toggle line:4\n"
+        "toggle 7\n"
+        "colorscheme Tomorrow Night\n"
+        "screenshot \"my shots/a.png\"\n"
+        "wait-reload\n"
+        "quit\n",
+        "s.txt");
+    ASSERT_EQ(commands.size(), 13u);
+    EXPECT_EQ(commands[0].kind, CommandKind::Size);
+    EXPECT_EQ(commands[0].numbers, (std::vector<double>{320, 240}));
+    EXPECT_EQ(commands[0].where.str(), "s.txt:2:1");
+    EXPECT_EQ(commands[1].words, (std::vector<std::string>{"auto"}));
+    EXPECT_EQ(commands[2].numbers, (std::vector<double>{3}));
+    EXPECT_EQ(commands[3].numbers.size(), 6u);
+    EXPECT_EQ(commands[4].numbers.size(), 7u);
+    EXPECT_EQ(commands[5].numbers, (std::vector<double>{10, -2.5}));
+    EXPECT_EQ(commands[9].words[0], "Tomorrow Night");
+    EXPECT_EQ(commands[10].words[0], "my shots/a.png");
+    EXPECT_EQ(commands[12].kind, CommandKind::Quit);
+}
+
+TEST(Script, MistakesNameLineColumnAndWord) {
+    EXPECT_EQ(errorOf("size 320 240\n  jump 3\n"),
+              "s.txt:2:3: unknown command 'jump' (valid: open, size, layers, camera, projection, fov, orbit, pan, "
+              "zoom, preset, view-all, double-click, toggle, highlight, colorscheme, debug, panel, screenshot, "
+              "screenshot-window, copy, wait-reload, print, sleep, quit)");
+    EXPECT_EQ(errorOf("layers many\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got 'many'");
+    EXPECT_EQ(errorOf("layers 0\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got '0'");
+    EXPECT_EQ(errorOf("size 320\n"), "s.txt:1:1: size: expected 2 arguments, got 1");
+    EXPECT_EQ(errorOf("quit now\n"), "s.txt:1:6: quit: expected 0 arguments, got 1");
+    EXPECT_EQ(errorOf("camera 1,2,x,4,5,6\n"), "s.txt:1:8: camera: 'x' is not a finite number");
+    EXPECT_EQ(errorOf("camera 1,2,3\n"),
+              "s.txt:1:8: camera: expected 6 numbers (eye, center) or 7 (translate, rotate, distance), got 3");
+    EXPECT_EQ(errorOf("preset sideways\n"),
+              "s.txt:1:8: preset: unknown view 'sideways' (valid: top, bottom, left, right, front, back, diagonal)");
+    EXPECT_EQ(errorOf("orbit 1 nan\n"), "s.txt:1:9: orbit: expected pixels, got 'nan'");
+    EXPECT_EQ(errorOf("screenshot a.jpg\n"), "s.txt:1:12: screenshot: expected a .png file name, got 'a.jpg'");
+    EXPECT_EQ(errorOf("open \"a.csg\n"), "s.txt:1:6: unterminated quoted word");
+    EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N >= 1");
+    EXPECT_EQ(errorOf("debug xray\n"), "s.txt:1:7: debug: expected one of shaded, depth, normal, peel, got 'xray'");
+}
+
+TEST(Script, RelativePathsAreFromTheScriptsFolder) {
+    EXPECT_EQ(view::resolveScriptPath("dir/s.txt", "shots/a.png"), "dir/shots/a.png");
+    EXPECT_EQ(view::resolveScriptPath("dir/s.txt", "/tmp/a.png"), "/tmp/a.png");
+    EXPECT_EQ(view::resolveScriptPath("s.txt", "a.png"), "a.png");
+}
+
+TEST(Script, MissingFileIsAnError) {
+    EXPECT_THROW(view::parseScriptFile("/nonexistent/strata-view-script.txt"), Error);
+}

@@ -1,0 +1,290 @@
+// strata-view run with --script under a display (CI: xvfb-run), its
+// screenshots compared pixel for pixel with strata-render's images at the
+// camera and settings the viewer reports. Exact equality is expected: both
+// draw through the same Renderer at the same camera (the viewer reports its
+// eye and centre as shortest round-trip decimals), and PNG is lossless.
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "RunProcess.h"
+#include "TempDir.h"
+
+using strata::testing::lineCount;
+using strata::testing::ProcessResult;
+using strata::testing::runProcess;
+using strata::testing::TempDir;
+
+namespace {
+
+const std::string kView = STRATA_VIEW_EXE;
+const std::string kRender = STRATA_RENDER_EXE;
+
+// A cube with a spherical hole (concave: two peel layers) and a cylinder beside
+// it. Line 1 is blank so that the difference (line 2) is not on the root's line.
+const std::string kScene = R"(
+difference() {
+	cube(size = [10, 10, 10], center = true);
+	sphere(r = 6.5, $fn = 48);
+}
+multmatrix([[1, 0, 0, 12], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {
+	cylinder(h = 8, r1 = 3, r2 = 3, center = true, $fn = 32);
+}
+)";
+// kScene without the cylinder, and without the difference.
+const std::string kNoCylinder = R"(
+difference() {
+	cube(size = [10, 10, 10], center = true);
+	sphere(r = 6.5, $fn = 48);
+}
+)";
+const std::string kOnlyCylinder = R"(
+multmatrix([[1, 0, 0, 12], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {
+	cylinder(h = 8, r1 = 3, r2 = 3, center = true, $fn = 32);
+}
+)";
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgba;
+    bool operator==(const Image&) const = default;
+};
+
+Image readPng(const std::string& path) {
+    Image image;
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return image;
+    const OIIO::ImageSpec& spec = in->spec();
+    image.width = spec.width;
+    image.height = spec.height;
+    image.rgba.resize(static_cast<std::size_t>(spec.width) * spec.height * 4);
+    if (spec.nchannels != 4 || !in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, image.rgba.data())) return {};
+    return image;
+}
+
+// Pixels unlike the top-left one (the background): the image shows something.
+int drawnPixels(const Image& image) {
+    int n = 0;
+    for (std::size_t k = 0; k < image.rgba.size(); k += 4)
+        n += !std::equal(image.rgba.begin() + static_cast<std::ptrdiff_t>(k),
+                         image.rgba.begin() + static_cast<std::ptrdiff_t>(k) + 4, image.rgba.begin());
+    return n;
+}
+
+int differingPixels(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height) return -1;
+    int n = 0;
+    for (std::size_t k = 0; k < a.rgba.size(); k += 4)
+        n += !std::equal(a.rgba.begin() + static_cast<std::ptrdiff_t>(k),
+                         a.rgba.begin() + static_cast<std::ptrdiff_t>(k) + 4, b.rgba.begin() + static_cast<std::ptrdiff_t>(k));
+    return n;
+}
+
+// The "--camera=..." lines the script printed, in order.
+std::vector<std::string> cameraLines(const std::string& out) {
+    std::vector<std::string> lines;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);)
+        if (line.starts_with("--camera=")) lines.push_back(line);
+    return lines;
+}
+
+class StrataView : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (run under xvfb-run)";
+    }
+
+    ProcessResult view(const std::string& scene, const std::string& script) {
+        const std::string path = dir / "script.txt";
+        std::ofstream(path) << script;
+        return runProcess({kView, scene, "--script", path});
+    }
+
+    // strata-render's image of `scene`, at 320x240 with `args` added.
+    Image render(const std::string& scene, std::vector<std::string> args) {
+        const std::string out = dir / ("render-" + std::to_string(++renders) + ".png");
+        std::vector<std::string> argv{kRender, scene, "--imgsize", "320,240", "-o", out};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const ProcessResult r = runProcess(argv);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return readPng(out);
+    }
+
+    // Asserts `shot` shows the model and equals strata-render's image exactly.
+    void expectSameAsRender(const Image& shot, const Image& rendered) {
+        EXPECT_EQ(shot.width, 320);
+        EXPECT_EQ(shot.height, 240);
+        EXPECT_GT(drawnPixels(shot), 1000) << "the screenshot is (nearly) all background";
+        EXPECT_EQ(differingPixels(shot, rendered), 0);
+    }
+
+    TempDir dir;
+    int renders = 0;
+};
+
+TEST_F(StrataView, ScreenshotEqualsStrataRenderAtTheReportedCamera) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "print camera\n"
+                                 "screenshot default.png\n"
+                                 "layers 1\n"
+                                 "projection o\n"
+                                 "colorscheme Tomorrow Night\n"
+                                 "screenshot settings.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto cams = cameraLines(r.out);
+    ASSERT_EQ(cams.size(), 1u) << r.out;
+    // The default view is strata-render's default camera, to the bit.
+    expectSameAsRender(readPng(dir / "default.png"), render(scene, {}));
+    expectSameAsRender(readPng(dir / "default.png"), render(scene, {cams[0]}));
+    const Image settings = readPng(dir / "settings.png");
+    expectSameAsRender(settings, render(scene, {cams[0], "--layers", "1", "--projection", "o", "--colorscheme",
+                                                "Tomorrow Night"}));
+    EXPECT_GT(differingPixels(settings, readPng(dir / "default.png")), 1000);  // the settings took effect
+}
+
+TEST_F(StrataView, OrbitPanZoomEqualStrataRenderAtTheReportedCamera) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "camera 0,0,0,60,0,30,80\n"
+                                 "print camera\n"
+                                 "screenshot before.png\n"
+                                 "orbit 40 -25\n"
+                                 "pan 12 -6\n"
+                                 "zoom 1.5\n"
+                                 "print camera\n"
+                                 "screenshot after.png\n"
+                                 "preset top\n"
+                                 "print camera\n"
+                                 "screenshot top.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto cams = cameraLines(r.out);
+    ASSERT_EQ(cams.size(), 3u) << r.out;
+    const Image before = readPng(dir / "before.png"), after = readPng(dir / "after.png");
+    expectSameAsRender(before, render(scene, {"--camera=0,0,0,60,0,30,80"}));
+    expectSameAsRender(after, render(scene, {cams[1]}));
+    expectSameAsRender(readPng(dir / "top.png"), render(scene, {cams[2]}));
+    EXPECT_GT(differingPixels(before, after), 1000);  // the drag moved the view
+    EXPECT_NE(cams[0], cams[1]);
+}
+
+TEST_F(StrataView, ToggledNodeEqualsTheSceneWithoutIt) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "camera 6,-60,30,6,0,0\n"
+                                 "toggle line:7\n"
+                                 "screenshot no-cylinder.png\n"
+                                 "toggle line:7\n"
+                                 "toggle line:2\n"
+                                 "screenshot only-cylinder.png\n"
+                                 "toggle line:2\n"
+                                 "screenshot all.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string camera = "--camera=6,-60,30,6,0,0";
+    expectSameAsRender(readPng(dir / "no-cylinder.png"), render(dir.write("b.csg", kNoCylinder), {camera}));
+    expectSameAsRender(readPng(dir / "only-cylinder.png"), render(dir.write("c.csg", kOnlyCylinder), {camera}));
+    expectSameAsRender(readPng(dir / "all.png"), render(scene, {camera}));
+}
+
+TEST_F(StrataView, HighlightEqualsTheSceneWithTheModifier) {
+    const std::string scene = dir.write("a.csg", kScene);
+    std::string marked = kScene;
+    marked.insert(marked.find("difference"), 1, '#');
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "camera 6,-60,30,6,0,0\n"
+                                 "highlight line:2\n"
+                                 "screenshot highlight.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image shot = readPng(dir / "highlight.png");
+    expectSameAsRender(shot, render(dir.write("m.csg", marked), {"--camera=6,-60,30,6,0,0"}));
+    EXPECT_GT(differingPixels(shot, render(scene, {"--camera=6,-60,30,6,0,0"})), 1000);
+}
+
+TEST_F(StrataView, ReloadShowsTheNewFileAndKeepsTheLastGoodOneOnAnError) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const std::string second = dir.write("second.csg", kNoCylinder);
+    const std::string broken = dir.write("broken.csg", "cube(size = [1, 1, 1]);\nsphere(r = );\n");
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "camera 6,-60,30,6,0,0\n"
+                                 "screenshot first.png\n"
+                                 "copy second.csg a.csg\n"
+                                 "wait-reload\n"
+                                 "screenshot second.png\n"
+                                 "print error\n"
+                                 "copy broken.csg a.csg\n"
+                                 "wait-reload\n"
+                                 "screenshot broken.png\n"
+                                 "print error\n"
+                                 "copy second.csg a.csg\n"
+                                 "wait-reload\n"
+                                 "print error\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string camera = "--camera=6,-60,30,6,0,0";
+    const Image first = readPng(dir / "first.png"), shot = readPng(dir / "second.png");
+    expectSameAsRender(first, render(dir.write("orig.csg", kScene), {camera}));  // a.csg itself is replaced by now
+    expectSameAsRender(shot, render(second, {camera}));
+    EXPECT_GT(differingPixels(first, shot), 1000);
+    // The broken file: the last good image stays, and the parser's one-line error is reported.
+    EXPECT_EQ(readPng(dir / "broken.png"), shot);
+    const std::string parseError = runProcess({kRender, broken}).err;  // "broken.csg:2:12: ..."
+    const std::string expected = scene + parseError.substr(broken.size());
+    EXPECT_EQ(r.out, "no error\n" + expected + "no error\n");
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+}
+
+TEST_F(StrataView, DoubleClickRecentresOnTheSurfaceUnderThePixel) {
+    const std::string scene = dir.write("cube.csg", "cube(size = [10, 10, 10], center = true);\n");
+    // Looking along +Y at the face y = -5; pixel (200, 90) of 320x240 hits it.
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "camera 0,-50,0,0,0,0\n"
+                                 "double-click 200 90\n"
+                                 "print camera\n"
+                                 "double-click 2 2\n"
+                                 "print camera\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto cams = cameraLines(r.out);
+    ASSERT_EQ(cams.size(), 2u) << r.out;
+    std::vector<double> n;
+    std::istringstream parts(cams[0].substr(9));
+    for (std::string part; std::getline(parts, part, ',');) n.push_back(std::stod(part));
+    ASSERT_EQ(n.size(), 6u);
+    // The new centre is on the face (depth is float: 45 units to ~1e-5 relative), to the right of and above the old one.
+    EXPECT_NEAR(n[4], -5.0, 1e-3);
+    EXPECT_GT(n[3], 0.5);
+    EXPECT_GT(n[5], 0.5);
+    EXPECT_NEAR(n[1] - n[4], -50.0, 1e-9);  // direction and distance kept
+    EXPECT_EQ(cams[1], cams[0]);            // the background: nothing to centre on
+}
+
+TEST_F(StrataView, ScriptErrorsAtRunTimeNameTheCommand) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene, "size 32 32\ntoggle 999\n");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_TRUE(r.err.starts_with(dir / "script.txt:2:1: no node 999")) << r.err;
+}
+
+TEST_F(StrataView, OpensScadThroughOpenscad) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    const std::string scad = dir.write("a.scad", "difference() { cube(10, center = true); sphere(6.5, $fn = 48); }\n");
+    const ProcessResult r = view(scad, "size 320 240\ncamera 0,0,0,60,0,30,80\nscreenshot scad.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_EQ(runProcess({"/bin/sh", "-c", "openscad -o '" + (dir / "a.csg") + "' '" + scad + "'"}).exitCode, 0);
+    expectSameAsRender(readPng(dir / "scad.png"), render(dir / "a.csg", {"--camera=0,0,0,60,0,30,80"}));
+}
+
+}  // namespace
