@@ -113,6 +113,7 @@ void resetDrawState() {
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -140,13 +141,13 @@ struct Renderer::Impl {
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade and translucent passes over the G-buffer in `targets`.
-    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme);
+    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame);
 };
 
-void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme) {
-    shade.run(targets, scene, view, scheme);
+void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly) {
+    shade.run(targets, scene, view, scheme, markedOnly);
     translucent.run(targets, scene, view, translucentLeaves);
     glFinish();
 }
@@ -240,8 +241,8 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
         start = Clock::now();
-        evaluate.run(targets, peel.layers(), tile, layers, rects);
-        normals.run(targets, scene, view, tile, NormalPass::visibleLeaves(targets, tile));
+        evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects);
+        normals.run(targets, scene, view, tile, operands, rects);
         glFinish();
         stats.evaluateMs += millisecondsSince(start);
         ++tilesDone;
@@ -360,7 +361,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     }
 
     const auto start = Clock::now();
-    shadeFrame(view, scheme);
+    shadeFrame(view, scheme, true);
     stats.shadeMs = millisecondsSince(start);
     stats.totalMs = millisecondsSince(frameStart);
     return view;
@@ -407,7 +408,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     frame.width = w;
     frame.height = h;
     const auto start = Clock::now();
-    impl.shadeFrame(view, scheme);
+    impl.shadeFrame(view, scheme, false);
     frame.stats.shadeMs = millisecondsSince(start);
     impl.readColor(frame);
     frame.depth.assign(result.depth.begin(), result.depth.end());

@@ -9,7 +9,7 @@
 //   normal     NormalPass      the visible leaves redrawn for face normals
 //   shade      ShadePass       colours, Lambert light, Sobel outline
 //   translucent TranslucentPass '%' and '#' leaves over the image
-// GL state on return: depth test, culling, blending and scissor test off;
+// GL state on return: depth test, stencil test, culling, blending and scissor test off;
 // the viewport, bound program, vertex array, textures, storage buffers and
 // draw framebuffer are whatever the last pass used (renderInto: the host's).
 
