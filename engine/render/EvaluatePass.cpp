@@ -77,6 +77,9 @@ gpu::Program& EvaluatePass::programFor(int form) {
 void EvaluatePass::setProgram(const TreeProgram& program) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
+    leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
+    shownFaces_ = gpu::Buffer("shown faces", std::max<std::size_t>(leafCount_, 1) * sizeof(std::uint32_t), nullptr,
+                              GL_DYNAMIC_STORAGE_BIT);
     shown_.assign(operandLeaf_.size(), 0);
     for (std::uint32_t instruction : program.code) {
         const bool literal = (instruction & kOpFromStack) == 0;
@@ -87,6 +90,15 @@ void EvaluatePass::setProgram(const TreeProgram& program) {
         programFor(kRegisterForm);
         if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()));
     }
+}
+
+std::vector<std::uint32_t> EvaluatePass::shownFaces() const {
+    std::vector<std::uint32_t> faces(leafCount_);
+    if (!faces.empty()) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        shownFaces_.downloadSpan(std::span(faces));
+    }
+    return faces;
 }
 
 void EvaluatePass::markCandidates(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
@@ -214,6 +226,8 @@ void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const V
     blocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     blockOperands_.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
     drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+    shownFaces_.clearToZero();
+    shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     targets.evaluateTarget.bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
     // Only candidates run; a pixel the shader writes (does not discard) is marked.

@@ -53,6 +53,11 @@ public:
     // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
     // of two, at least 16.
     static int capacityFor(int count);
+
+    // Per tree leaf, after run(): which of its faces the result shows in the
+    // tile, kFrontFaces | kBackFaces (0: none). Waits for the GPU.
+    std::vector<std::uint32_t> shownFaces() const;
+    static constexpr std::uint32_t kFrontFaces = 1, kBackFaces = 2;
     // MAX_LIVE of evaluate.frag's register form: up to this many operands of
     // one layer each, the tree as a truth table.
     static constexpr int kRegisterForm = 4;
@@ -77,6 +82,8 @@ private:
     gpu::Buffer blockOperands_;
     gpu::Buffer blockNodes_;
     gpu::Buffer drawnBlocks_;
+    gpu::Buffer shownFaces_;  // per tree leaf, see shownFaces()
+    std::size_t leafCount_ = 0;
     std::vector<int> operandLeaf_;
     std::vector<char> shown_;  // per operand: not complemented in the tree, so the result can show it
     gpu::Program candidates_;

@@ -1,5 +1,7 @@
 #include "NormalPass.h"
 
+#include "EvaluatePass.h"
+
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
@@ -18,7 +20,8 @@ constexpr GLint kFirstTriangle = 4;
 NormalPass::NormalPass() : program_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-                     const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects) {
+                     const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
+                     const std::vector<std::uint32_t>& shownFaces) {
     program_.setUniform(kViewProjection, view.viewProjection);
     program_.setUniform(kEye, view.eye);
     program_.setUniform(kForward, view.forward);
@@ -36,12 +39,21 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         const int leaf = operandLeaves[k];
         const PixelRect r = rects[k].intersection(tile);
-        if (r.empty() || scene.leaf(leaf).indexCount == 0) continue;
+        const std::uint32_t faces = shownFaces[static_cast<std::size_t>(leaf)];
+        if (r.empty() || faces == 0 || scene.leaf(leaf).indexCount == 0) continue;
+        // Faces the result does not show here are culled before rasterizing.
+        if (faces == EvaluatePass::kFrontFaces || faces == EvaluatePass::kBackFaces) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(faces == EvaluatePass::kFrontFaces ? GL_BACK : GL_FRONT);
+        } else {
+            glDisable(GL_CULL_FACE);
+        }
         glScissor(r.x, r.y, r.width, r.height);
         program_.setUniform(kLeaf, leaf);
         program_.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(leaf).firstTriangle));
         scene.drawLeaf(leaf);
     }
+    glDisable(GL_CULL_FACE);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_SCISSOR_TEST);
     gpu::checkErrors();

@@ -1,7 +1,9 @@
 #pragma once
 // The normal pass: recovers the world-space outward normal of the evaluated
-// result. Every operand that meets a tile is drawn once more, clipped to its
-// screen rectangle, over the pixels the evaluator wrote (stencil test on
+// result. Every operand the result shows in a tile is drawn once more, only
+// the faces it shows there (front, back or both, as the evaluator recorded:
+// EvaluatePass::shownFaces; the others are culled before rasterizing), clipped
+// to its screen rectangle, over the pixels the evaluator wrote (stencil test on
 // FrameTargets::marks, so no other fragment runs the shader); the fragment
 // whose leaf, facing and tagged depth match the evaluator's choice writes its
 // triangle's face normal (SceneBuffers::faceNormals through gl_PrimitiveID),
@@ -9,7 +11,7 @@
 // instead of storing ids with every peeled layer, and nothing read back.
 //
 // GL state: uses the scissor and stencil tests and turns them off before
-// returning; expects blending, depth test and culling off.
+// returning, and face culling; expects blending and depth test off.
 
 #include <vector>
 
@@ -26,9 +28,12 @@ class NormalPass {
 public:
     NormalPass();
 
-    // `operandLeaves[k]` is operand k's tree leaf and `rects[k]` its screen rectangle.
+    // `operandLeaves[k]` is operand k's tree leaf and `rects[k]` its screen
+    // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
+    // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-             const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects);
+             const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
+             const std::vector<std::uint32_t>& shownFaces);
 
 private:
     gpu::Program program_;

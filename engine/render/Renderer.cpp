@@ -227,7 +227,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
 
         start = Clock::now();
         evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects);
-        normals.run(targets, scene, view, tile, operands, rects);
+        normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces());
         glFinish();
         stats.evaluateMs += millisecondsSince(start);
         ++tilesDone;

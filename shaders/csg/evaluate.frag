@@ -78,6 +78,13 @@ layout(location = 2) uniform ivec2 uTileOrigin;  // the tile's lower-left pixel 
 // have no such limit: the renderer passes a budget no pixel reaches.
 layout(location = 4) uniform int uLoopBudget;
 
+// Per tree leaf: bit 0 set where the evaluator reported one of its front
+// faces, bit 1 where a back face, in this tile. The normal pass draws only
+// those faces of each operand.
+layout(std430, binding = 5) buffer ShownFaces {
+    uint shownFaces[];
+};
+
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 
@@ -99,6 +106,7 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     int leaf = operandEntered ? entryLeaf : exitLeaf;
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
+    atomicOr(shownFaces[leaf], operandEntered ? 1u : 2u);
 }
 
 // The literal's operand's next surface at or after list position `cursor` (0..2n-1:
