@@ -41,13 +41,6 @@ int loopBudgetForThisDriver() {
     return limited ? 30000 : std::numeric_limits<int>::max();
 }
 
-// Uploads `data` into `buffer`, replacing it with a larger one when needed.
-template <class T>
-void put(gpu::Buffer& buffer, const char* label, const std::vector<T>& data) {
-    const std::size_t bytes = std::max<std::size_t>(data.size() * sizeof(T), sizeof(T));
-    if (buffer.size() < bytes) buffer = gpu::Buffer(label, bytes * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
-    if (!data.empty()) buffer.uploadSpan(std::span<const T>(data));
-}
 
 }  // namespace
 
@@ -216,10 +209,10 @@ void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const V
     }
     std::vector<std::uint32_t> drawn;
     for (const auto& [form, list] : byForm) drawn.insert(drawn.end(), list.begin(), list.end());
-    put(blocks_, "evaluate blocks", blocks);
-    put(blockOperands_, "evaluate block literals", literals);
-    put(blockNodes_, "evaluate block nodes", nodes);
-    put(drawnBlocks_, "evaluate drawn blocks", drawn);
+    gpu::Buffer::uploadGrowing(blocks_, "evaluate blocks", blocks);
+    gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", literals);
+    gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", nodes);
+    gpu::Buffer::uploadGrowing(drawnBlocks_, "evaluate drawn blocks", drawn);
 
     layers.bindUnit(0);
     blockNodes_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
