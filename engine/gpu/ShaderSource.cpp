@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
 #include <string>
 
 #include "strata/core/Error.h"
@@ -28,6 +33,35 @@ const detail::EmbeddedEntry* findEntry(std::string_view path) {
     auto it = std::lower_bound(begin, end, path,
                                [](const detail::EmbeddedEntry& e, std::string_view p) { return e.path < p; });
     return it != end && it->path == path ? it : nullptr;
+}
+
+// STRATA_SHADER_DIR, when set, names a folder laid out like shaders/ whose
+// files replace the embedded ones of the same path: edit a shader and rerun,
+// with no rebuild. Texts read are kept for the life of the process, so the
+// views handed out stay valid.
+std::string_view overrideText(std::string_view path) {
+    static const char* dir = std::getenv("STRATA_SHADER_DIR");
+    if (dir == nullptr || *dir == 0) return {};
+    static std::mutex mutex;
+    static std::map<std::string, std::string, std::less<>> texts;
+    const std::lock_guard lock(mutex);
+    auto it = texts.find(path);
+    if (it == texts.end()) {
+        std::ifstream in(std::string(dir) + "/" + std::string(path), std::ios::binary);
+        std::ostringstream text;
+        if (in) text << in.rdbuf();
+        it = texts.emplace(std::string(path), in ? text.str() : std::string()).first;
+    }
+    return it->second;
+}
+
+// The text of `path`: STRATA_SHADER_DIR's copy where there is one, else the
+// embedded one; empty when neither exists.
+std::string_view sourceText(std::string_view path) {
+    const std::string_view text = overrideText(path);
+    if (!text.empty()) return text;
+    const detail::EmbeddedEntry* entry = findEntry(path);
+    return entry == nullptr ? std::string_view{} : entry->text;
 }
 
 // `#include "x"` with only blanks around it (a trailing // comment is allowed).
@@ -68,15 +102,15 @@ struct Assembler {
             }
             const SourceLocation here{"shaders/" + std::string(name), lineNumber, 0};
             if (depth >= kMaxIncludeDepth) throw Error(here, "#include nested too deeply");
-            const detail::EmbeddedEntry* entry = findEntry(target);
-            if (entry == nullptr)
+            const std::string_view includedText = sourceText(target);
+            if (includedText.empty())
                 throw Error(here, "#include \"" + std::string(target) + "\": no such file under shaders/");
             if (std::find(included.begin(), included.end(), target) == included.end()) {
                 included.emplace_back(target);
                 const int child = static_cast<int>(sourceNames.size());
                 sourceNames.emplace_back(target);
                 text += "#line 1 " + std::to_string(child) + "\n";
-                append(entry->path, entry->text, child, depth + 1);
+                append(target, includedText, child, depth + 1);
             }
             // Resume this file on the line after the include.
             text += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(number) + "\n";
@@ -140,7 +174,9 @@ StageSource assembleStage(std::string_view path, std::string_view text, const st
 }
 
 StageSource loadStage(std::string_view path, const std::vector<ShaderDefine>& defines) {
-    return assembleStage(path, embeddedShader(path), defines);
+    const std::string_view text = sourceText(path);
+    if (text.empty()) throw Error("shaders/" + std::string(path) + ": no such shader file");
+    return assembleStage(path, text, defines);
 }
 
 }  // namespace strata::gpu

@@ -8,16 +8,25 @@
 
 #include <glm/vec4.hpp>
 
+#include "SceneBuffers.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
 
 namespace {
 
+// Uniform locations in shaders/csg/surface.vert (the candidates draw).
+constexpr GLint kViewProjection = 0;
+constexpr GLint kEye = 1;
+constexpr GLint kForward = 2;
+
 // Uniform locations in shaders/csg/evaluate.frag.
 constexpr GLint kTileOrigin = 2;
-constexpr GLint kBlocksX = 3;
 constexpr GLint kLoopBudget = 4;
+// ... and in shaders/csg/evaluate.vert.
+constexpr GLint kFirstBlock = 5;
+constexpr GLint kTileSize = 6;
+constexpr GLint kBlocksX = 7;
 
 // llvmpipe stops all loops of one shader invocation after 65535 iterations in
 // total (gallivm's loop limiter); stay inside that, and mark the pixels that
@@ -25,24 +34,19 @@ constexpr GLint kLoopBudget = 4;
 int loopBudgetForThisDriver() {
     const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const bool limited = renderer != nullptr && std::string(renderer).find("llvmpipe") != std::string::npos;
-    // The shader's count is an estimate. Measured on intersections of 96 and
-    // 128 spheres and a slab minus 128 spheres: every pixel it puts under
-    // 30000 matched the CPU reference, and some near 40000 did not (it
-    // undercounts the limiter about twofold).
+    // The shader counts one pixel's iterations; the limiter counts those of
+    // the 8 or 16 pixels that run in lockstep, which can be more where their
+    // walks differ. Half the limit leaves that margin.
+    // intersection of 256 spheres, 512 surfaces, needs about 6000.)
     return limited ? 30000 : std::numeric_limits<int>::max();
 }
 
-// Uploads `data` into `buffer`, replacing it with a larger one when needed.
-template <class T>
-void put(gpu::Buffer& buffer, const char* label, const std::vector<T>& data) {
-    const std::size_t bytes = std::max<std::size_t>(data.size() * sizeof(T), sizeof(T));
-    if (buffer.size() < bytes) buffer = gpu::Buffer(label, bytes * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
-    if (!data.empty()) buffer.uploadSpan(std::span<const T>(data));
-}
 
 }  // namespace
 
-EvaluatePass::EvaluatePass() : empty_("evaluate") {}
+EvaluatePass::EvaluatePass()
+    : candidates_(gpu::Program::fromFiles("candidates", {"csg/surface.vert", "csg/candidates.frag"})),
+      empty_("evaluate") {}
 
 int EvaluatePass::capacityFor(int count) {
     int capacity = 16;
@@ -50,16 +54,14 @@ int EvaluatePass::capacityFor(int count) {
     return capacity;
 }
 
-gpu::Program& EvaluatePass::programFor(int operands, int live) {
-    const std::pair<int, int> key{capacityFor(operands), capacityFor(live)};
-    auto it = programs_.find(key);
+gpu::Program& EvaluatePass::programFor(int form) {
+    auto it = programs_.find(form);
     if (it == programs_.end()) {
-        const std::vector<gpu::ShaderDefine> defines{{"MAX_OPERANDS", std::to_string(key.first)},
-                                                     {"MAX_LIVE", std::to_string(key.second)},
+        const std::vector<gpu::ShaderDefine> defines{{"MAX_LIVE", std::to_string(form)},
                                                      {"BLOCK", std::to_string(kBlock)}};
         it = programs_
-                 .emplace(key, gpu::Program::fromFiles("evaluate", {"common/fullscreen.vert", "csg/evaluate.frag"},
-                                                       defines))
+                 .emplace(form,
+                          gpu::Program::fromFiles("evaluate", {"csg/evaluate.vert", "csg/evaluate.frag"}, defines))
                  .first;
     }
     return it->second;
@@ -68,24 +70,105 @@ gpu::Program& EvaluatePass::programFor(int operands, int live) {
 void EvaluatePass::setProgram(const TreeProgram& program) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
-    // Compile now rather than mid-frame: with up to kMinLive operands this is
-    // the only variant a frame will use.
-    if (!operandLeaf_.empty()) programFor(program.operandCount(), std::min(program.operandCount(), kMinLive));
+    leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
+    shownFaces_ = gpu::Buffer("shown faces", std::max<std::size_t>(leafCount_, 1) * sizeof(std::uint32_t), nullptr,
+                              GL_DYNAMIC_STORAGE_BIT);
+    shown_.assign(operandLeaf_.size(), 0);
+    for (std::uint32_t instruction : program.code) {
+        const bool literal = (instruction & kOpFromStack) == 0;
+        if (literal && (instruction & kOpNegate) == 0) shown_[instruction >> kOperandShift] = 1;
+    }
+    // Compile now rather than mid-frame the variants that most scenes use.
+    if (!operandLeaf_.empty()) {
+        programFor(kRegisterForm);
+        if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()));
+    }
 }
 
-void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
+std::vector<std::uint32_t> EvaluatePass::shownFaces() const {
+    std::vector<std::uint32_t> faces(leafCount_);
+    if (!faces.empty()) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        shownFaces_.downloadSpan(std::span(faces));
+    }
+    return faces;
+}
+
+void EvaluatePass::markCandidates(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
+                                  const PixelRect& tile, const std::vector<PixelRect>& rects) {
+    candidates_.setUniform(kViewProjection, view.viewProjection);
+    candidates_.setUniform(kEye, view.eye);
+    candidates_.setUniform(kForward, view.forward);
+    candidates_.use();
+    targets.evaluateTarget.bindForDraw();
+    glViewport(0, 0, view.width, view.height);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_SCISSOR_TEST);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, FrameTargets::kCandidate, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    scene.vertexArray().bind();
+    for (std::size_t k = 0; k < operandLeaf_.size(); ++k) {
+        const PixelRect r = rects[k].intersection(tile);
+        if (!shown_[k] || r.empty()) continue;
+        glScissor(r.x, r.y, r.width, r.height);
+        scene.drawLeaf(operandLeaf_[k]);
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& code,
+                                              const std::vector<OperandLayers>& operandLayers,
+                                              std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes) const {
+    auto literal = [&](std::uint32_t operand, std::uint32_t parent) {
+        const OperandLayers& layers = operandLayers[operand];
+        return glm::uvec4(static_cast<unsigned>(layers.first), static_cast<unsigned>(layers.count),
+                          static_cast<unsigned>(operandLeaf_[operand]), parent);
+    };
+    // The operands the tree reads, each once.
+    std::vector<std::uint32_t> used;
+    bool onePassEach = true;
+    for (std::uint32_t instruction : code) {
+        if (instruction & kOpFromStack) continue;
+        const std::uint32_t operand = instruction >> kOperandShift;
+        if (std::find(used.begin(), used.end(), operand) != used.end()) continue;
+        used.push_back(operand);
+        onePassEach = onePassEach && operandLayers[operand].count == 1;
+    }
+
+    BlockTree out;
+    if (onePassEach && used.size() <= static_cast<std::size_t>(kRegisterForm)) {
+        // The register form: the tree as a truth table over the inside bits.
+        std::uint32_t table = 0;
+        std::vector<bool> inside(operandLeaf_.size(), false);
+        for (std::uint32_t m = 0; m < (1u << used.size()); ++m) {
+            for (std::size_t i = 0; i < used.size(); ++i) inside[used[i]] = ((m >> i) & 1u) != 0;
+            if (runCode(code, inside)) table |= 1u << m;
+        }
+        out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(used.size()), table, 0u};
+        out.form = kRegisterForm;
+        for (std::uint32_t operand : used) literals.push_back(literal(operand, 0u));
+        return out;
+    }
+    // The array form: the counting tree.
+    const CountingTree tree = countingTree(code);
+    out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(tree.literals.size()),
+                  static_cast<unsigned>(nodes.size()), static_cast<unsigned>(tree.nodes.size())};
+    out.form = capacityFor(static_cast<int>(std::max(tree.literals.size(), tree.nodes.size())));
+    for (const CountingTree::Literal& l : tree.literals)
+        literals.push_back(literal(l.operand, l.parent | (l.negated ? 0x80000000u : 0u)));
+    for (const CountingTree::Node& n : tree.nodes)
+        nodes.emplace_back(n.parent, n.isAnd ? 1u : 0u, n.children, n.trueWhenOutside);
+    return out;
+}
+
+void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
+                       const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects) {
     if (operandLeaf_.empty()) return;
-    std::vector<glm::uvec4> table(operandLeaf_.size());
-    for (std::size_t k = 0; k < table.size(); ++k) {
-        table[k] = {static_cast<unsigned>(operandLayers[k].first), static_cast<unsigned>(operandLayers[k].count),
-                    static_cast<unsigned>(operandLeaf_[k]), 0u};
-    }
-    put(table_, "operand table", table);
-
-    // Per block: x, y the range of its operand list in `lists`; z, w the range
-    // of its specialised program in `code`. Blocks with the same operands
-    // share one program.
+    markCandidates(targets, scene, view, tile, rects);
+    // The operands whose rectangle meets each block.
     const int blocksX = (tile.width + kBlock - 1) / kBlock;
     const int blocksY = (tile.height + kBlock - 1) / kBlock;
     const std::size_t blockCount = static_cast<std::size_t>(blocksX) * static_cast<std::size_t>(blocksY);
@@ -102,50 +185,62 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
             }
         }
     }
+    // Blocks with the same operands share one specialised tree.
     std::vector<glm::uvec4> blocks(blockCount, glm::uvec4(0u));
-    std::vector<std::uint32_t> lists;
-    std::vector<std::uint32_t> code;
-    std::map<std::vector<std::uint32_t>, glm::uvec2> programs;  // operand list -> code range
+    std::vector<glm::uvec4> literals;
+    std::vector<glm::uvec4> nodes;
+    std::map<std::vector<std::uint32_t>, BlockTree> trees;  // operand list -> its tree
     std::vector<char> present(operandLeaf_.size(), 0);
-    std::size_t longest = 0;
+    std::map<int, std::vector<std::uint32_t>> byForm;  // shader variant -> its blocks
     for (std::size_t b = 0; b < blockCount; ++b) {
         const std::vector<std::uint32_t>& list = members[b];
         if (list.empty()) continue;
-        longest = std::max(longest, list.size());
-        auto it = programs.find(list);
-        if (it == programs.end()) {
+        auto it = trees.find(list);
+        if (it == trees.end()) {
             for (std::uint32_t k : list) present[k] = 1;
             const std::vector<std::uint32_t> specialised = specializeProgram(program_, present);
             for (std::uint32_t k : list) present[k] = 0;
-            it = programs.emplace(list, glm::uvec2(code.size(), specialised.size())).first;
-            code.insert(code.end(), specialised.begin(), specialised.end());
+            it = trees.emplace(list, specialised.empty() ? BlockTree{}
+                                                         : addTree(specialised, operandLayers, literals, nodes))
+                     .first;
         }
-        if (it->second.y == 0) continue;  // the result is constant here: nothing to walk
-        blocks[b] = {static_cast<unsigned>(lists.size()), static_cast<unsigned>(list.size()), it->second.x,
-                     it->second.y};
-        lists.insert(lists.end(), list.begin(), list.end());
+        blocks[b] = it->second.record;
+        if (it->second.form > 0) byForm[it->second.form].push_back(static_cast<std::uint32_t>(b));
     }
-    put(blocks_, "evaluate blocks", blocks);
-    put(blockOperands_, "evaluate block operands", lists);
-    put(blockCode_, "evaluate block programs", code);
+    std::vector<std::uint32_t> drawn;
+    for (const auto& [form, list] : byForm) drawn.insert(drawn.end(), list.begin(), list.end());
+    gpu::Buffer::uploadGrowing(blocks_, "evaluate blocks", blocks);
+    gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", literals);
+    gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", nodes);
+    gpu::Buffer::uploadGrowing(drawnBlocks_, "evaluate drawn blocks", drawn);
 
-    const int operands = static_cast<int>(operandLeaf_.size());
-    gpu::Program& program =
-        programFor(operands, std::max(static_cast<int>(longest), std::min(operands, kMinLive)));
-    program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));
-    program.setUniform(kBlocksX, blocksX);
-    static const int loopBudget = loopBudgetForThisDriver();
-    program.setUniform(kLoopBudget, loopBudget);
-    program.use();
     layers.bindUnit(0);
-    blockCode_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-    table_.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    blockNodes_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
     blocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     blockOperands_.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
+    drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+    shownFaces_.clearToZero();
+    shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     targets.evaluateTarget.bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
+    // Only candidates run; a pixel the shader writes (does not discard) is marked.
+    glStencilFunc(GL_EQUAL, FrameTargets::kCandidate, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
     empty_.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    static const int loopBudget = loopBudgetForThisDriver();
+    int first = 0;
+    for (const auto& [form, list] : byForm) {
+        gpu::Program& program = programFor(form);
+        program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));
+        program.setUniform(kLoopBudget, loopBudget);
+        program.setUniform(kFirstBlock, first);
+        program.setUniform(kTileSize, glm::ivec2(tile.width, tile.height));
+        program.setUniform(kBlocksX, blocksX);
+        program.use();
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(list.size()));
+        first += static_cast<int>(list.size());
+    }
+    glDisable(GL_STENCIL_TEST);
     gpu::checkErrors();
 }
 

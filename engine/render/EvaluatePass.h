@@ -1,23 +1,31 @@
 #pragma once
-// The evaluate pass: one fullscreen draw per tile that merges the operands'
-// peeled surfaces per pixel and runs the compiled tree program
-// (shaders/csg/evaluate.frag) to find the first surface where the result's
-// membership changes. Writes FrameTargets::resultDepth and resultLeaf inside
-// the tile.
+// The evaluate pass: per tile, marks the pixels where the result can have a
+// surface (the operands it can show, drawn into the stencil of
+// FrameTargets::marks), then draws the blocks of the tile over those pixels:
+// each pixel merges the operands' peeled surfaces and walks them front to
+// back (shaders/csg/evaluate.frag) to the first surface where the result's
+// membership changes. Writes FrameTargets::resultDepth and resultLeaf, and
+// marks the pixels it wrote, inside the tile.
 //
-// The program and the operand table live in storage buffers: a tree edit only
-// re-uploads them. Each 16x16 block of a tile gets the list of operands whose
-// screen rectangle meets it and the program specialised to them, so a pixel
-// gathers and evaluates only what can matter there. The shader is specialised
-// only by the sizes of its per-pixel arrays: MAX_OPERANDS (one state bit per
-// operand) and MAX_LIVE (the longest block list), each rounded up to a power
-// of two; a variant is compiled on first use and kept.
+// The tree lives in storage buffers: a tree edit only re-uploads them. Each
+// 16x16 block of a tile gets the tree specialised to the operands whose
+// screen rectangle meets it (TreeProgram.h: specializeProgram, then
+// countingTree), so a pixel gathers and evaluates only what can matter there.
+// The shader is specialised only by the size of its per-pixel state,
+// MAX_LIVE: 4 for the register form (up to four operands of one peeled layer
+// each, the tree as a truth table, everything in registers) or a power of two
+// from 16 up for the array form (a heap of surfaces and a counting tree in
+// per-pixel arrays). Each block is drawn (one instanced quad per block) by the
+// cheapest variant that holds it. A variant is compiled on first use and kept.
 //
-// GL state: sets the viewport to the tile; expects blending, depth test,
-// culling and the scissor test off.
+// GL state: sets the viewport, the stencil test and function; leaves the
+// stencil test off. Expects blending, depth test and culling off.
 
+#include <cstdint>
 #include <map>
 #include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "FrameTargets.h"
 #include "PeelPass.h"
@@ -38,26 +46,47 @@ public:
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
-    void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
-             const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects);
+    void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const gpu::Texture& layers,
+             const PixelRect& tile, const std::vector<OperandLayers>& operandLayers,
+             const std::vector<PixelRect>& rects);
 
-    // A per-pixel array size for `count` entries: a power of two, at least 16.
+    // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
+    // of two, at least 16.
     static int capacityFor(int count);
+
+    // Per tree leaf, after run(): which of its faces the result shows in the
+    // tile, kFrontFaces | kBackFaces (0: none). Waits for the GPU.
+    std::vector<std::uint32_t> shownFaces() const;
+    static constexpr std::uint32_t kFrontFaces = 1, kBackFaces = 2;
+    // MAX_LIVE of evaluate.frag's register form: up to this many operands of
+    // one layer each, the tree as a truth table.
+    static constexpr int kRegisterForm = 4;
     static constexpr int kBlock = 16;  // BLOCK in evaluate.frag
-    // Per-pixel head arrays are never sized below this (or the operand
-    // count), so small scenes need a single shader variant.
-    static constexpr int kMinLive = 64;
 
 private:
-    gpu::Program& programFor(int operands, int live);
+    struct BlockTree {
+        glm::uvec4 record{0u};  // the block's entry in `blocks` (evaluate.frag)
+        int form = 0;           // shader variant (MAX_LIVE); 0: constant result, nothing to draw
+    };
+    // Appends the block data of `code` (a specialised program) to `literals`
+    // and `nodes`, in the register form where it fits, else the array form.
+    BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
+                      std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes) const;
+    gpu::Program& programFor(int form);  // by MAX_LIVE: kRegisterForm or a capacityFor() value
+    void markCandidates(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
+                        const PixelRect& tile, const std::vector<PixelRect>& rects);
 
-    std::map<std::pair<int, int>, gpu::Program> programs_;  // by (MAX_OPERANDS, MAX_LIVE)
+    std::map<int, gpu::Program> programs_;  // by MAX_LIVE
     TreeProgram program_;
-    gpu::Buffer table_;
     gpu::Buffer blocks_;
     gpu::Buffer blockOperands_;
-    gpu::Buffer blockCode_;
+    gpu::Buffer blockNodes_;
+    gpu::Buffer drawnBlocks_;
+    gpu::Buffer shownFaces_;  // per tree leaf, see shownFaces()
+    std::size_t leafCount_ = 0;
     std::vector<int> operandLeaf_;
+    std::vector<char> shown_;  // per operand: not complemented in the tree, so the result can show it
+    gpu::Program candidates_;
     gpu::VertexArray empty_;
 };
 

@@ -6,6 +6,15 @@
 //   resultLeaf   R32I     leaf * 2 + flip, -1 on a miss                               (evaluate)
 //   normal       RGBA32F  world-space outward normal of the result, 0 on a miss      (normal)
 //   color        RGBA8    the shaded image                                           (shade, translucent)
+//   marks        D24S8    stencil: 0 nothing here, 1 a candidate (some operand the   (evaluate)
+//                         result can show covers the pixel), 2 the evaluator wrote a
+//                         result (a surface, or a pixel it could not finish)
+//
+// The later passes test the stencil so that they run only where there is
+// something to do: a fragment that fails the stencil test never runs its
+// shader, on llvmpipe as on GPUs, while a shader that branches to skip work
+// costs almost as much as doing it on llvmpipe (it runs both sides of every
+// branch for its 8 or 16 lanes).
 
 #include <cstddef>
 
@@ -18,17 +27,21 @@ class FrameTargets {
 public:
     // (Re)creates the images when the size changes.
     void ensure(int width, int height);
-    // Sets every pixel to "miss": depth +inf, leaf -1, normal 0.
+    // Sets every pixel to "miss": depth +inf, leaf -1, normal 0, marks 0.
     void clearResult();
 
     int width() const { return width_; }
     int height() const { return height_; }
     std::size_t bytes() const;
 
-    gpu::Texture resultDepth, resultLeaf, normal, color;
+    gpu::Texture resultDepth, resultLeaf, normal, color, marks;
+    // Each with `marks` as its stencil.
     gpu::Framebuffer evaluateTarget;  // 0: resultDepth, 1: resultLeaf
     gpu::Framebuffer normalTarget;    // 0: normal
     gpu::Framebuffer colorTarget;     // 0: color
+
+    static constexpr int kCandidate = 1;  // marks values, see above
+    static constexpr int kWritten = 2;
 
 private:
     int width_ = 0, height_ = 0;

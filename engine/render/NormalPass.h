@@ -1,18 +1,17 @@
 #pragma once
 // The normal pass: recovers the world-space outward normal of the evaluated
-// result. The leaves that the evaluator chose somewhere in a tile are drawn
-// once more, each clipped to the pixels that show it; the fragment whose leaf,
-// facing and tagged depth match the evaluator's choice writes its triangle's
-// face normal (SceneBuffers::faceNormals through gl_PrimitiveID), negated
-// where the leaf acts as a subtracted operand. One more geometry pass over
-// the visible leaves instead of storing ids with every peeled layer.
+// result. Every operand the result shows in a tile is drawn once more, only
+// the faces it shows there (front, back or both, as the evaluator recorded:
+// EvaluatePass::shownFaces; the others are culled before rasterizing), clipped
+// to its screen rectangle, over the pixels the evaluator wrote (stencil test on
+// FrameTargets::marks, so no other fragment runs the shader); the fragment
+// whose leaf, facing and tagged depth match the evaluator's choice writes its
+// triangle's face normal (SceneBuffers::faceNormals through gl_PrimitiveID),
+// negated where the leaf acts as a subtracted operand. One more geometry pass
+// instead of storing ids with every peeled layer, and nothing read back.
 //
-// It draws with the peel pass's exact viewport (into a tile-sized scratch
-// image, then copied into FrameTargets::normal), so the depths it computes
-// match the peeled ones bit for bit.
-//
-// GL state: enables the scissor test while it runs and disables it before
-// returning; expects blending, depth test and culling off.
+// GL state: uses the scissor and stencil tests and turns them off before
+// returning, and face culling; expects blending and depth test off.
 
 #include <vector>
 
@@ -25,26 +24,19 @@
 
 namespace strata::render {
 
-struct LeafPixels {
-    int leaf = 0;
-    PixelRect rect;  // tile-relative pixels where the result shows this leaf
-};
-
 class NormalPass {
 public:
     NormalPass();
 
-    // The leaves the result shows in `tile`, read back from
-    // FrameTargets::resultLeaf, each with the rectangle of its pixels.
-    static std::vector<LeafPixels> visibleLeaves(const FrameTargets& targets, const PixelRect& tile);
-
+    // `operandLeaves[k]` is operand k's tree leaf and `rects[k]` its screen
+    // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
+    // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-             const std::vector<LeafPixels>& leaves);
+             const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
+             const std::vector<std::uint32_t>& shownFaces);
 
 private:
     gpu::Program program_;
-    gpu::Texture scratch_;
-    gpu::Framebuffer target_;
 };
 
 }  // namespace strata::render

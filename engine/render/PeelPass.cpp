@@ -24,13 +24,29 @@ void setView(gpu::Program& program, const ViewSetup& view) {
     program.setUniform(kForward, view.forward);
 }
 
+bool canBatch() {
+    return epoxy_has_gl_extension("GL_ARB_shader_draw_parameters") &&
+           epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array");
+}
+
+// glMultiDrawElementsIndirect's record.
+struct DrawElementsIndirectCommand {
+    GLuint count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
+
+
 }  // namespace
 
 PeelPass::PeelPass()
     : first_(gpu::Program::fromFiles("peel first", {"csg/surface.vert", "csg/peel.frag"}, {{"PEEL_FIRST", ""}})),
       next_(gpu::Program::fromFiles("peel next", {"csg/surface.vert", "csg/peel.frag"})),
+      batched_(canBatch()),
       target_("peel"),
       drawn_("peel drawn", GL_ANY_SAMPLES_PASSED) {
+    if (batched_) {
+        batch_ = gpu::Program::fromFiles("peel batch", {"csg/surface.vert", "csg/peel.frag"},
+                                         {{"PEEL_FIRST", ""}, {"LAYERED", ""}});
+    }
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxArrayLayers_);
     target_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
 }
@@ -76,6 +92,35 @@ PixelRect PeelPass::region(const PixelRect& rect, const PixelRect& tile, int blo
     return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
+void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
+                               std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out) {
+    const float cleared[2] = {-FLT_MAX, -FLT_MAX};
+    std::vector<DrawElementsIndirectCommand> commands;
+    std::vector<std::uint32_t> drawLayers;
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        if (out[k].count == 0) continue;
+        // The layer is cleared where the evaluator reads it; the operand's
+        // fragments fall inside its rectangle, so nothing else is touched.
+        const PixelRect valid = region(rects[k], tile, block);
+        glClearTexSubImage(layers_.id(), 0, valid.x, valid.y, out[k].first, valid.width, valid.height, 1, GL_RG,
+                           GL_FLOAT, cleared);
+        const LeafRange& range = scene.leaf(operandLeaves[k]);
+        commands.push_back({static_cast<GLuint>(range.indexCount), 1, static_cast<GLuint>(range.firstIndex), 0, 0});
+        drawLayers.push_back(static_cast<std::uint32_t>(out[k].first));
+    }
+    gpu::Buffer::uploadGrowing(commands_, "peel batch commands", commands);
+    gpu::Buffer::uploadGrowing(drawLayers_, "peel batch layers", drawLayers);
+    target_.attachTexture(GL_COLOR_ATTACHMENT0, layers_);  // layered: gl_Layer picks the layer
+    target_.bindForDraw();
+    glScissor(0, 0, tile.width, tile.height);
+    drawLayers_.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+    commands_.bind(GL_DRAW_INDIRECT_BUFFER);
+    batch_.use();
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    passes_ += static_cast<int>(commands.size());
+}
+
 bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                    std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
                    const PeelRequest& request, std::vector<OperandLayers>& out) {
@@ -88,6 +133,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
 
     setView(first_, view);
     setView(next_, view);
+    if (batched_) setView(batch_, view);
     glViewport(-tile.x, -tile.y, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_BLEND);
@@ -97,11 +143,19 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
 
     const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
     int used = 0;
+    if (batched_) {
+        // Convex operands first, one layer each (reserve() made room for all).
+        for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+            const LeafRange& range = scene.leaf(operandLeaves[k]);
+            if (inTile[k] && range.indexCount > 0 && range.convex) out[k] = {used++, 1};
+        }
+        if (used > 0) peelConvexBatch(scene, tile, operandLeaves, rects, block, out);
+    }
     bool fits = true;
     for (std::size_t k = 0; k < operandLeaves.size() && fits; ++k) {
         const int leaf = operandLeaves[k];
         const LeafRange& range = scene.leaf(leaf);
-        if (!inTile[k] || range.indexCount == 0) continue;
+        if (!inTile[k] || range.indexCount == 0 || out[k].count > 0) continue;
         // Convex: one pass holds every surface. Auto: until a pass draws nothing.
         const bool automatic = request.fixedLayers <= 0 && !range.convex;
         const int most = range.convex ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);

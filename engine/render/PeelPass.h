@@ -10,6 +10,11 @@
 // other in the texture; the texture is sized to the tile and grows as `auto`
 // peeling finds deeper operands, within the memory budget.
 //
+// Convex operands need one pass each and no previous layer: where the driver
+// can route a draw to a layer from the vertex stage (ARB_shader_draw_parameters
+// and ARB_shader_viewport_layer_array), they are all peeled by one multi-draw
+// into the layered texture, instead of one framebuffer change and draw each.
+//
 // GL state: draws into its own framebuffer with viewport (-tile.x, -tile.y, W,
 // H), so the tile's pixels land at the texture's origin with the frame's exact
 // pixel centres; enables blending (MAX) and the scissor test while it runs and
@@ -21,6 +26,7 @@
 
 #include "SceneBuffers.h"
 #include "ViewSetup.h"
+#include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Query.h"
@@ -73,9 +79,16 @@ private:
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
     // the first `keep` layers. False when that exceeds the budget.
     bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
+    // Peels the convex operands with out[k].count == 1 set by run() in one multi-draw.
+    void peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
+                         std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out);
 
     gpu::Program first_;  // PEEL_FIRST: everything passes
     gpu::Program next_;   // reads the previous layer
+    gpu::Program batch_;  // PEEL_FIRST and LAYERED: convex operands in one multi-draw
+    bool batched_ = false;  // the driver has what batch_ needs
+    gpu::Buffer commands_;  // DrawElementsIndirectCommand per operand of the batch
+    gpu::Buffer drawLayers_;
     gpu::Framebuffer target_;
     gpu::Texture layers_;
     gpu::Query drawn_;

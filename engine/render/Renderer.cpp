@@ -76,25 +76,6 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
     return out;
 }
 
-// Screen tiles of at most `pixels` pixels each, covering the frame.
-std::deque<PixelRect> tilesOf(int width, int height, std::size_t pixels) {
-    std::deque<PixelRect> tiles;
-    const std::size_t frame = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    if (pixels >= frame) {
-        tiles.push_back({0, 0, width, height});
-        return tiles;
-    }
-    const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(pixels))));
-    const int tileWidth = std::min(width, side);
-    const int tileHeight = std::clamp(static_cast<int>(pixels / static_cast<std::size_t>(tileWidth)), 1, height);
-    for (int y = 0; y < height; y += tileHeight) {
-        for (int x = 0; x < width; x += tileWidth) {
-            tiles.push_back({x, y, std::min(tileWidth, width - x), std::min(tileHeight, height - y)});
-        }
-    }
-    return tiles;
-}
-
 // Flips the row order: GL's bottom-up rows into image rows, top first, and back.
 template <class T>
 std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, int channels) {
@@ -113,6 +94,7 @@ void resetDrawState() {
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -140,13 +122,13 @@ struct Renderer::Impl {
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade and translucent passes over the G-buffer in `targets`.
-    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme);
+    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame);
 };
 
-void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme) {
-    shade.run(targets, scene, view, scheme);
+void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly) {
+    shade.run(targets, scene, view, scheme, markedOnly);
     translucent.run(targets, scene, view, translucentLeaves);
     glFinish();
 }
@@ -176,40 +158,50 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     FrameStats& stats = frame.stats;
     const std::vector<int>& operands = program.operandLeaf;
     std::vector<PixelRect> rects(operands.size());
-    std::vector<char> inFrame(operands.size());
-    for (std::size_t k = 0; k < operands.size(); ++k) {
-        rects[k] = screenRect(view, scene.leafVertices(operands[k]));
-        inFrame[k] = !rects[k].empty();
-    }
+    for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
 
-    // Tile so that the layers a tile needs (a first guess for auto) stay in budget.
-    const int estimate = PeelPass::estimateLayers(scene, operands, inFrame, settings.layers);
-    const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
-    const std::size_t pixels = std::max<std::size_t>(1, settings.memoryBudget / perPixel);
-    if (pixels < static_cast<std::size_t>(kSmallestTile) &&
-        pixels < static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height)) {
-        throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
-                    std::to_string(estimate) + " peel layers for only " + std::to_string(pixels) +
-                    " pixels at a time; give it at least " +
-                    mebibytes(perPixel * static_cast<std::size_t>(kSmallestTile)));
-    }
-    std::deque<PixelRect> tiles = tilesOf(view.width, view.height, pixels);
-    if (tiles.size() > 1) {
-        stats.notes.push_back("layered textures for " + std::to_string(estimate) + " layers at " +
-                              std::to_string(view.width) + "x" + std::to_string(view.height) + " would take " +
-                              mebibytes(perPixel * static_cast<std::size_t>(view.width) *
-                                        static_cast<std::size_t>(view.height)) +
-                              ", over the budget of " + mebibytes(settings.memoryBudget) + ": rendering in " +
-                              std::to_string(tiles.size()) + " tiles of " + std::to_string(tiles.front().width) +
-                              "x" + std::to_string(tiles.front().height));
-    }
-
+    // Tiles: the whole frame, cut in four (recursively) while the layers its
+    // operands need (a first guess for auto) exceed the budget. Only the
+    // operands whose rectangle meets a tile are peeled for it, so memory
+    // follows the operands per tile, not their number in the frame.
+    std::deque<PixelRect> tiles{PixelRect{0, 0, view.width, view.height}};
+    auto split = [&tiles](const PixelRect& tile) {
+        // Halves on the evaluator's block grid where the tile is wide enough.
+        auto half = [](int size) {
+            const int b = EvaluatePass::kBlock;
+            return size >= 2 * b ? (size / 2 + b - 1) / b * b : std::max(1, size / 2);
+        };
+        const int w0 = half(tile.width), h0 = half(tile.height);
+        for (const PixelRect& part : {PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0},
+                                      PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
+                                      PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
+                                      PixelRect{tile.x, tile.y, w0, h0}}) {
+            if (!part.empty()) tiles.push_front(part);
+        }
+    };
+    std::vector<char> inTile(operands.size());
     const PeelRequest request{settings.layers, settings.memoryBudget};
     std::vector<OperandLayers> layers;
-    int tilesDone = 0, splits = 0;
+    int tilesDone = 0, splits = 0, budgetSplits = 0;
     while (!tiles.empty()) {
         const PixelRect tile = tiles.front();
         tiles.pop_front();
+        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
+        const int estimate = PeelPass::estimateLayers(scene, operands, inTile, settings.layers);
+        const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
+        const auto area = static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+        if (perPixel * area > settings.memoryBudget) {
+            if (area <= static_cast<std::size_t>(kSmallestTile)) {
+                throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
+                            std::to_string(estimate) + " peel layers for only " +
+                            std::to_string(settings.memoryBudget / perPixel) +
+                            " pixels at a time; give it at least " +
+                            mebibytes(perPixel * static_cast<std::size_t>(kSmallestTile)));
+            }
+            split(tile);
+            ++budgetSplits;
+            continue;
+        }
 
         auto start = Clock::now();
         const bool fits = peel.run(scene, view, tile, operands, rects, EvaluatePass::kBlock, request, layers);
@@ -223,13 +215,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
                             " and the GPU's " + std::to_string(peel.maxArrayLayers()) + " array layers allow");
             }
             // Auto peeling went deeper than guessed: split the tile in four.
-            const int w0 = std::max(1, tile.width / 2), h0 = std::max(1, tile.height / 2);
-            for (const PixelRect& part : {PixelRect{tile.x, tile.y, w0, h0},
-                                          PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
-                                          PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
-                                          PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0}}) {
-                if (!part.empty()) tiles.push_front(part);
-            }
+            split(tile);
             ++splits;
             continue;
         }
@@ -240,8 +226,8 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
         start = Clock::now();
-        evaluate.run(targets, peel.layers(), tile, layers, rects);
-        normals.run(targets, scene, view, tile, NormalPass::visibleLeaves(targets, tile));
+        evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects);
+        normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces());
         glFinish();
         stats.evaluateMs += millisecondsSince(start);
         ++tilesDone;
@@ -250,6 +236,12 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
         return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
     });
+    if (budgetSplits > 0) {
+        stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
+                              std::to_string(view.height) + " would exceed the budget of " +
+                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(tilesDone) +
+                              " tiles, each peeling only the operands that meet it");
+    }
     if (splits > 0) {
         stats.notes.push_back("auto peeling needed more layers than estimated: split " + std::to_string(splits) +
                               " tiles to stay within " + mebibytes(settings.memoryBudget));
@@ -360,7 +352,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     }
 
     const auto start = Clock::now();
-    shadeFrame(view, scheme);
+    shadeFrame(view, scheme, true);
     stats.shadeMs = millisecondsSince(start);
     stats.totalMs = millisecondsSince(frameStart);
     return view;
@@ -407,7 +399,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     frame.width = w;
     frame.height = h;
     const auto start = Clock::now();
-    impl.shadeFrame(view, scheme);
+    impl.shadeFrame(view, scheme, false);
     frame.stats.shadeMs = millisecondsSince(start);
     impl.readColor(frame);
     frame.depth.assign(result.depth.begin(), result.depth.end());

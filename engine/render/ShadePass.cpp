@@ -23,7 +23,7 @@ ShadePass::ShadePass()
     : program_(gpu::Program::fromFiles("shade", {"common/fullscreen.vert", "csg/shade.frag"})), empty_("shade") {}
 
 void ShadePass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                    const ColorScheme& scheme) {
+                    const ColorScheme& scheme, bool markedOnly) {
     program_.setUniform(kBackground, scheme.background);
     program_.setUniform(kFaceFront, scheme.faceFront);
     program_.setUniform(kFaceBack, scheme.faceBack);
@@ -40,8 +40,17 @@ void ShadePass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     scene.leafColors().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
+    if (markedOnly) {
+        // The background everywhere, then the shader only where the evaluator wrote.
+        const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
+        targets.colorTarget.clearColor(0, background);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_EQUAL, FrameTargets::kWritten, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
     empty_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_STENCIL_TEST);
     gpu::checkErrors();
 }
 

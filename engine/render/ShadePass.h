@@ -4,8 +4,8 @@
 // light from beside the eye plus ambient, a Sobel outline on the normals, the
 // scheme's background on empty pixels.
 //
-// GL state: viewport = the frame; expects blending, depth test, culling and
-// the scissor test off.
+// GL state: viewport = the frame; leaves the stencil test off; expects
+// blending, depth test, culling and the scissor test off.
 
 #include "FrameTargets.h"
 #include "SceneBuffers.h"
@@ -19,7 +19,11 @@ namespace strata::render {
 class ShadePass {
 public:
     ShadePass();
-    void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const ColorScheme& scheme);
+    // markedOnly: clear to the background and shade only the pixels the
+    // evaluator marked (FrameTargets::marks); otherwise shade every pixel (a
+    // G-buffer that came from elsewhere has no marks).
+    void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const ColorScheme& scheme,
+             bool markedOnly);
 
 private:
     gpu::Program program_;

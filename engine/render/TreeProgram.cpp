@@ -5,6 +5,8 @@
 #include <sstream>
 #include <utility>
 
+#include "strata/core/Error.h"
+
 namespace strata::render {
 
 namespace {
@@ -339,6 +341,108 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
     Entry& result = stack.back();
     if (constant) *constant = result.constant == 1;
     return result.constant >= 0 ? std::vector<std::uint32_t>{} : std::move(result.code);
+}
+
+CountingTree countingTree(const std::vector<std::uint32_t>& code) {
+    // Symbolic run of the stack machine where each entry names a literal or a
+    // node; nodes are numbered as made, then renumbered root first.
+    struct Entry {
+        bool node = false;
+        std::uint32_t index = 0;
+    };
+    CountingTree out;
+    std::vector<CountingTree::Node> made;
+    std::vector<Entry> stack;
+    auto literal = [&](std::uint32_t instruction) {
+        out.literals.push_back({instruction >> kOperandShift, 0, (instruction & kOpNegate) != 0});
+        return Entry{false, static_cast<std::uint32_t>(out.literals.size() - 1)};
+    };
+    auto adopt = [&](std::uint32_t parent, const Entry& child) {
+        if (child.node) {
+            made[child.index].parent = parent;
+        } else {
+            out.literals[child.index].parent = parent;
+        }
+        ++made[parent].children;
+    };
+    for (std::uint32_t instruction : code) {
+        const std::uint32_t op = instruction & 3u;
+        if (op == kOpPush) {
+            stack.push_back(literal(instruction));
+            continue;
+        }
+        Entry source;
+        if (instruction & kOpFromStack) {
+            source = stack.back();
+            stack.pop_back();
+        } else {
+            source = literal(instruction);
+        }
+        const Entry top = stack.back();
+        const bool isAnd = op == kOpAnd;
+        if (top.node && made[top.index].isAnd == isAnd) {
+            adopt(top.index, source);  // (a AND b) AND c is one AND of three
+            continue;
+        }
+        made.push_back({CountingTree::kNoParent, isAnd, 0, 0});
+        const auto node = static_cast<std::uint32_t>(made.size() - 1);
+        adopt(node, top);
+        adopt(node, source);
+        stack.back() = Entry{true, node};
+    }
+    if (stack.size() != 1) throw Error("countingTree: malformed program");
+    if (!stack.back().node) {
+        made.push_back({CountingTree::kNoParent, false, 0, 0});
+        adopt(static_cast<std::uint32_t>(made.size() - 1), stack.back());
+    }
+
+    // Breadth first from the root: every parent before its children.
+    const auto count = made.size();
+    std::vector<std::vector<std::uint32_t>> childNodes(count);
+    std::uint32_t root = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+        if (made[i].parent == CountingTree::kNoParent) {
+            root = i;
+        } else {
+            childNodes[made[i].parent].push_back(i);
+        }
+    }
+    std::vector<std::uint32_t> order{root};
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        for (std::uint32_t c : childNodes[order[k]]) order.push_back(c);
+    }
+    std::vector<std::uint32_t> renumbered(count);
+    for (std::uint32_t k = 0; k < count; ++k) renumbered[order[k]] = k;
+    out.nodes.resize(count);
+    for (std::uint32_t k = 0; k < count; ++k) {
+        out.nodes[k] = made[order[k]];
+        if (out.nodes[k].parent != CountingTree::kNoParent) out.nodes[k].parent = renumbered[out.nodes[k].parent];
+    }
+    for (CountingTree::Literal& l : out.literals) l.parent = renumbered[l.parent];
+
+    // Values with every operand outside, children before parents.
+    for (const CountingTree::Literal& l : out.literals) out.nodes[l.parent].trueWhenOutside += l.negated ? 1u : 0u;
+    for (std::size_t k = count; k-- > 0;) {
+        const CountingTree::Node& n = out.nodes[k];
+        const bool value = n.isAnd ? n.trueWhenOutside == n.children : n.trueWhenOutside > 0;
+        if (value && n.parent != CountingTree::kNoParent) ++out.nodes[n.parent].trueWhenOutside;
+    }
+    return out;
+}
+
+bool runCountingTree(const CountingTree& tree, const std::vector<bool>& operandInside) {
+    std::vector<std::uint32_t> trueChildren(tree.nodes.size(), 0);
+    for (const CountingTree::Literal& l : tree.literals) {
+        if (operandInside.at(l.operand) != l.negated) ++trueChildren[l.parent];
+    }
+    // Children come after their parents: settle nodes from the last one up.
+    bool value = false;
+    for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+        const CountingTree::Node& n = tree.nodes[i];
+        value = n.isAnd ? trueChildren[i] == n.children : trueChildren[i] > 0;
+        if (value && n.parent != CountingTree::kNoParent) ++trueChildren[n.parent];
+    }
+    return value;
 }
 
 bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& operandInside) {

@@ -3,6 +3,7 @@
 // turned into float matrices, near and far planes fitted to the scene, and
 // screen rectangles. OpenGL's window coordinates: rows count from the bottom.
 
+#include <algorithm>
 #include <span>
 
 #include <glm/mat4x4.hpp>
@@ -20,6 +21,12 @@ struct PixelRect {
     bool empty() const { return width <= 0 || height <= 0; }
     bool intersects(const PixelRect& o) const {
         return x < o.x + o.width && o.x < x + width && y < o.y + o.height && o.y < y + height;
+    }
+    // The pixels in both (empty when they do not meet).
+    PixelRect intersection(const PixelRect& o) const {
+        const int x0 = std::max(x, o.x), y0 = std::max(y, o.y);
+        const int x1 = std::min(x + width, o.x + o.width), y1 = std::min(y + height, o.y + o.height);
+        return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
     }
 };
 

@@ -3,64 +3,73 @@
 // Per pixel, every operand's peeled layers give its surfaces in depth order:
 //   near_0 < near_1 < ... < near_{n-1} <= far_{n-1} < ... < far_0
 // (layer l holds (-near_l, far_l); near == far when the last layer caught a
-// single surface). The evaluator merges all operands' lists, walks the
-// surfaces front to back, keeps each operand's inside/outside state (a front
-// face enters, a back face leaves; an operand whose first surface is a back
-// face was inside from the near plane on), runs the compiled tree program
-// (engine/render/TreeProgram.h) after each group of surfaces at one depth, and
+// single surface). The evaluator merges all operands' lists front to back
+// with a binary min-heap of their next surfaces, keeps each operand's
+// inside/outside state (a front face enters, a back face leaves; an operand
+// whose first surface is a back face was inside from the near plane on), and
 // stops at the first depth where the result's membership changes.
 //
-// Memory per pixel: MAX_LIVE heads (depth, cursor, operand: enough for the
-// longest block list) and one state bit per operand (MAX_OPERANDS); the tree
-// itself costs one 32-bit stack word at any depth.
+// The tree is kept up to date incrementally instead of being rerun after each
+// surface: it is n-ary AND/OR over literals (engine/render/TreeProgram.h), so
+// each inner node keeps a count of its children that are true (AND is true
+// when all are, OR when any is). An operand's change adds or removes one from
+// its parent's count and climbs only while the node's own value changes. A
+// pixel with S surfaces and L live operands costs O(S log L) steps, not
+// O(S * L) as a rerun of the whole program would.
 //
-// Output: the visible surface's tagged depth (+inf on a miss) and
-// leaf * 2 + flip (-1 on a miss), flip = 1 where the leaf's own membership
-// changes against the result's (it acts as a subtracted operand there).
+// Two forms of the walk, by MAX_LIVE (the most literals or nodes a block of
+// this draw has): up to four, every per-pixel value is one component of a
+// vector and the walk runs in registers; above that, per-pixel arrays of
+// MAX_LIVE heap entries, live-operand slots and node counts. On llvmpipe each
+// array access is a gather or scatter per lane, several times the cost of
+// the register form, so the renderer draws each block with the smallest
+// form that holds it (EvaluatePass.cpp).
+//
+// Output: the visible surface's tagged depth and leaf * 2 + flip, flip = 1
+// where the leaf's own membership changes against the result's (it acts as a
+// subtracted operand there). Pixels with no surface are discarded: the
+// targets were cleared to "miss", and the stencil marks only pixels written.
 #include "csg/surface.glsl"
 
-#ifndef MAX_OPERANDS
-#define MAX_OPERANDS 64
-#endif
 #ifndef MAX_LIVE
-#define MAX_LIVE MAX_OPERANDS
+#define MAX_LIVE 64
 #endif
 #ifndef BLOCK
 #define BLOCK 16
 #endif
 
-const uint kOpPush = 0u;
-const uint kOpAnd = 1u;
-const uint kOpOr = 2u;
-const uint kOpFromStack = 4u;
-const uint kOpNegate = 8u;
 const float kInfinity = uintBitsToFloat(0x7f800000u);
 const float kCleared = 3.0e38;  // |clear value| of an unwritten layer is FLT_MAX
+const uint kNoParent = 0xffffffffu;
+const uint kNegate = 0x80000000u;
 
 layout(binding = 0) uniform sampler2DArray uLayers;
 
-layout(std430, binding = 0) readonly buffer TreeCode {
-    uint code[];
-};
-// Per operand: x first layer in uLayers, y layers peeled in this tile (0: the
-// operand misses the tile), z its tree leaf index.
-layout(std430, binding = 1) readonly buffer OperandTable {
-    uvec4 operands[];
-};
-// The tile is cut into BLOCK x BLOCK pixel blocks; block b lists the operands
-// whose screen rectangle meets it: blockOperands[blocks[b].x + i] for
-// i < blocks[b].y. Every other operand has no surface in the block, so the
-// block runs its own program, code[blocks[b].z ..] of length blocks[b].w: the
-// tree with those operands folded away (TreeProgram.h, specializeProgram).
+// The tile is cut into BLOCK x BLOCK pixel blocks. Block b's tree is the
+// tree specialised to the operands whose screen rectangle meets it
+// (EvaluatePass.cpp). In the array form blockOperands[blocks[b].x + i],
+// i < blocks[b].y, are its literals, blockNodes[blocks[b].z + n],
+// n < blocks[b].w, its inner nodes, node 0 the root; the register form
+// below has its own layout.
 layout(std430, binding = 2) readonly buffer Blocks {
     uvec4 blocks[];
 };
+flat in uint vBlock;  // this fragment's block (evaluate.vert)
+
+// Per literal (slot): x the operand's first layer in uLayers, y its layers in
+// this tile, z its tree leaf, w (array form) its parent node, block-local,
+// | kNegate.
 layout(std430, binding = 3) readonly buffer BlockOperands {
-    uint blockOperands[];
+    uvec4 blockOperands[];
+};
+// Per inner node: x its parent (block-local, kNoParent for the root), y 1 for
+// AND and 0 for OR, z its child count, w how many children are true when
+// every operand is outside.
+layout(std430, binding = 0) readonly buffer BlockNodes {
+    uvec4 blockNodes[];
 };
 
 layout(location = 2) uniform ivec2 uTileOrigin;  // the tile's lower-left pixel in the frame
-layout(location = 3) uniform int uBlocksX;       // blocks per row of the tile
 // Loop iterations this invocation may spend. llvmpipe ends every loop of a
 // shader invocation once 65535 iterations have run in all (gallivm's loop
 // limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
@@ -69,53 +78,44 @@ layout(location = 3) uniform int uBlocksX;       // blocks per row of the tile
 // have no such limit: the renderer passes a budget no pixel reaches.
 layout(location = 4) uniform int uLoopBudget;
 
+// Per tree leaf: bit 0 set where the evaluator reported one of its front
+// faces, bit 1 where a back face, in this tile. The normal pass draws only
+// those faces of each operand.
+layout(std430, binding = 5) buffer ShownFaces {
+    uint shownFaces[];
+};
+
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 
-uint state[(MAX_OPERANDS + 31) / 32];
+ivec2 pixel;
+uint nodeBase;
+int budget;
 
-uint codeStart;
-uint codeEnd;
-
-bool runProgram() {
-    uint stack = 0u;
-    for (uint pc = codeStart; pc < codeEnd; ++pc) {
-        uint instruction = code[pc];
-        uint value;
-        if ((instruction & kOpFromStack) != 0u) {
-            value = stack & 1u;
-            stack >>= 1;
-        } else {
-            uint operand = instruction >> 4;
-            value = ((state[operand >> 5] >> (operand & 31u)) & 1u) ^ ((instruction >> 3) & 1u);
-        }
-        uint op = instruction & 3u;
-        if (op == kOpPush) {
-            stack = (stack << 1) | value;
-        } else if (op == kOpAnd) {
-            stack &= ~1u | value;
-        } else {
-            stack |= value;
-        }
-    }
-    return (stack & 1u) != 0u;
+void writeUnresolved() {
+    outDepth = kInfinity;
+    outLeaf = -2;
 }
 
-void setInside(uint operand, bool inside) {
-    uint bit = 1u << (operand & 31u);
-    if (inside) {
-        state[operand >> 5] |= bit;
-    } else {
-        state[operand >> 5] &= ~bit;
-    }
+// The result changes at `group` (untagged depth): entered (now true) or left.
+// entrySlotLeaf / exitSlotLeaf: the tree leaf of the first operand that
+// entered / left there, -1 for none. Prefer a surface whose operand changes
+// the same way as the result: it is the result's own face.
+void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
+    bool operandEntered = entered ? entryLeaf >= 0 : exitLeaf < 0;
+    int leaf = operandEntered ? entryLeaf : exitLeaf;
+    outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
+    outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
+    atomicOr(shownFaces[leaf], operandEntered ? 1u : 2u);
 }
 
-// The operand's next surface at or after list position `cursor` (0..2n-1:
+// The literal's operand's next surface at or after list position `cursor` (0..2n-1:
 // near side, then far side backwards), or +inf. Moves `cursor` past it.
-float nextSurface(uvec4 operand, ivec2 pixel, inout int cursor) {
-    int first = int(operand.x);
-    int n = int(operand.y);
+float nextSurface(uvec4 literal, inout int cursor) {
+    int first = int(literal.x);
+    int n = int(literal.y);
     while (cursor < 2 * n) {
+        --budget;
         int j = cursor;
         if (j < n) {
             vec2 layer = texelFetch(uLayers, ivec3(pixel, first + j), 0).rg;
@@ -137,89 +137,211 @@ float nextSurface(uvec4 operand, ivec2 pixel, inout int cursor) {
     return kInfinity;
 }
 
-float headDepth[MAX_LIVE];
-int headCursor[MAX_LIVE];
-int headOperand[MAX_LIVE];
+#if MAX_LIVE <= 4
+
+// The register form, for blocks of at most four operands with one peeled
+// layer each (convex ones, say): each operand has at most two surfaces here,
+// its layer's near and far, and the block's tree is a truth table over the
+// four inside bits. No arrays and no loops but the walk over depths: every
+// slot is one component of a vector.
+//
+// blocks[b]: x first slot in blockOperands, y slot count, z the truth table
+// (bit m: the result when slot i is inside exactly for the bits i of m).
+// blockOperands[x + i]: x the operand's layer in uLayers, z its tree leaf.
+
+vec4 untagged4(vec4 t) {
+    return uintBitsToFloat(floatBitsToUint(t) & ~1u);
+}
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
-    // Only the block's operands are read by its program, and each is set below.
-
-    // Each operand's first surface; a back face first means inside from the start.
-    int live = 0;
-    ivec2 blockXY = pixel / BLOCK;
-    uvec4 block = blocks[blockXY.y * uBlocksX + blockXY.x];
-    codeStart = block.z;
-    codeEnd = block.z + block.w;
-    for (uint i = block.x; i < block.x + block.y; ++i) {
-        int o = int(blockOperands[i]);
-        uvec4 operand = operands[o];
-        int cursor = 0;
-        float d = nextSurface(operand, pixel, cursor);
-        setInside(uint(o), d != kInfinity && isExit(d));
-        if (d == kInfinity) continue;
-        headDepth[live] = d;
-        headCursor[live] = cursor;
-        headOperand[live] = o;
-        ++live;
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    uvec4 block = blocks[vBlock];
+    budget = uLoopBudget;
+    vec4 nearSide = vec4(kInfinity), farSide = vec4(kInfinity);
+    ivec4 leaf = ivec4(-1);
+#define LOAD_SLOT(c)                                                   \
+    if (block.y > uint(c)) {                                           \
+        uvec4 slot = blockOperands[block.x + uint(c)];                 \
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, slot.x), 0).rg;  \
+        leaf[c] = int(slot.z);                                         \
+        if (-layer.r < kCleared) {                                     \
+            nearSide[c] = -layer.r;                                    \
+            if (layer.g > -layer.r) farSide[c] = layer.g;              \
+        }                                                              \
     }
+    LOAD_SLOT(0) LOAD_SLOT(1) LOAD_SLOT(2) LOAD_SLOT(3)
 
-    outDepth = kInfinity;
-    outLeaf = -1;
-    // What each walk step costs in loop iterations, counted generously: the
-    // two loops over the live heads, the program, and the surface fetches.
-    int budget = uLoopBudget - 3 * int(block.y) - int(codeEnd - codeStart);
-    bool inside = runProgram();
-    while (live > 0) {
-        budget -= 2 * live + int(codeEnd - codeStart) + 8;
-        if (budget < 0) {
-            outLeaf = -2;
+    // An operand whose first surface is a back face is inside from the start.
+    uvec4 exits = floatBitsToUint(nearSide) & 1u;
+    uint insideBits = exits.x | (exits.y << 1) | (exits.z << 2) | (exits.w << 3);
+    bool inside = ((block.z >> insideBits) & 1u) != 0u;
+    vec4 head = nearSide;
+    while (true) {
+        float nearest = min(min(head.x, head.y), min(head.z, head.w));
+        if (nearest == kInfinity) break;
+        float group = untagged(nearest);
+        // Every surface at this depth, of any operand, changes its operand's
+        // state before the tree is asked again: coincident faces cancel as
+        // the solids say (a cube minus an equal cube leaves nothing). An
+        // operand can have both its surfaces here (a ray grazing its edge).
+        int entryLeaf = -1, exitLeaf = -1;
+#define TAKE_SURFACE(c)                                                          \
+        if (head[c] != kInfinity && untagged(head[c]) == group) {                \
+            if (isExit(head[c])) {                                               \
+                insideBits &= ~(1u << c);                                        \
+                if (exitLeaf < 0) exitLeaf = leaf[c];                            \
+            } else {                                                             \
+                insideBits |= 1u << c;                                           \
+                if (entryLeaf < 0) entryLeaf = leaf[c];                          \
+            }                                                                    \
+            head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
+        }
+        TAKE_SURFACE(0) TAKE_SURFACE(0) TAKE_SURFACE(1) TAKE_SURFACE(1)
+        TAKE_SURFACE(2) TAKE_SURFACE(2) TAKE_SURFACE(3) TAKE_SURFACE(3)
+        bool now = ((block.z >> insideBits) & 1u) != 0u;
+        if (now != inside) {
+            writeSurface(group, now, entryLeaf, exitLeaf);
             return;
         }
-        float nearest = kInfinity;
-        for (int a = 0; a < live; ++a) nearest = min(nearest, headDepth[a]);
-        float group = untagged(nearest);
+    }
+    discard;
+}
 
+#else
+
+// The array form.
+uint trueChildren[MAX_LIVE];  // per inner node
+
+// Live operands: slot s holds an operand that still has surfaces ahead.
+int slotCursor[MAX_LIVE];     // its position in its surface list
+uint slotEntry[MAX_LIVE];     // its literal in blockOperands
+bool slotInside[MAX_LIVE];
+
+// Min-heap of the slots' next surfaces (tagged depths), root at 0.
+float heapDepth[MAX_LIVE];
+int heapSlot[MAX_LIVE];
+int heapSize;
+
+bool nodeValue(uint node) {
+    uvec4 n = blockNodes[nodeBase + node];
+    return n.y != 0u ? trueChildren[node] == n.z : trueChildren[node] != 0u;
+}
+
+// A literal under `literal`'s parent turned true (or false): update the
+// counts up the tree while values change. Node 0 is the root.
+void literalChanged(uint literal, bool nowTrue) {
+    uint node = literal & ~kNegate;
+    bool rising = nowTrue;
+    while (node != kNoParent) {
+        --budget;
+        bool before = nodeValue(node);
+        if (rising) {
+            ++trueChildren[node];
+        } else {
+            --trueChildren[node];
+        }
+        bool after = nodeValue(node);
+        if (after == before) return;
+        rising = after;
+        node = blockNodes[nodeBase + node].x;
+    }
+}
+
+// Sets slot s's operand inside or outside.
+void setInside(int s, bool inside) {
+    if (slotInside[s] == inside) return;
+    slotInside[s] = inside;
+    uint literal = blockOperands[slotEntry[s]].w;
+    literalChanged(literal, inside != ((literal & kNegate) != 0u));
+}
+
+// Restores the heap order below position i after its depth grew.
+void siftDown(int i) {
+    float depth = heapDepth[i];
+    int slot = heapSlot[i];
+    while (true) {
+        --budget;
+        int child = 2 * i + 1;
+        if (child >= heapSize) break;
+        if (child + 1 < heapSize && heapDepth[child + 1] < heapDepth[child]) ++child;
+        if (heapDepth[child] >= depth) break;
+        heapDepth[i] = heapDepth[child];
+        heapSlot[i] = heapSlot[child];
+        i = child;
+    }
+    heapDepth[i] = depth;
+    heapSlot[i] = slot;
+}
+
+void main() {
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    uvec4 block = blocks[vBlock];
+    nodeBase = block.z;
+    budget = uLoopBudget;
+
+    // Every operand outside: the counts the CPU worked out for that.
+    for (uint n = 0u; n < block.w; ++n) trueChildren[n] = blockNodes[nodeBase + n].w;
+
+    // Each operand's first surface; a back face first means inside from the start.
+    heapSize = 0;
+    for (uint i = 0u; i < block.y; ++i) {
+        int cursor = 0;
+        float d = nextSurface(blockOperands[block.x + i], cursor);
+        if (d == kInfinity) continue;
+        int s = heapSize++;
+        slotCursor[s] = cursor;
+        slotEntry[s] = block.x + i;
+        slotInside[s] = false;
+        if (isExit(d)) setInside(s, true);
+        heapDepth[s] = d;
+        heapSlot[s] = s;
+    }
+    for (int i = heapSize / 2 - 1; i >= 0; --i) siftDown(i);
+
+    bool inside = block.y > 0u && nodeValue(0u);
+    while (heapSize > 0) {
+        if (budget < 0) {
+            writeUnresolved();
+            return;
+        }
+        float group = untagged(heapDepth[0]);
         // Every surface at this depth, of any operand, changes its operand's
         // state before the tree is asked again: coincident faces cancel as
         // the solids say (a cube minus an equal cube leaves nothing).
-        int firstEntry = -1;  // operand of the first entry surface in the group
-        int firstExit = -1;
-        for (int a = 0; a < live;) {
-            int o = headOperand[a];
-            while (untagged(headDepth[a]) == group) {
-                bool exit = isExit(headDepth[a]);
-                setInside(uint(o), !exit);
-                if (exit) {
-                    if (firstExit < 0) firstExit = o;
-                } else {
-                    if (firstEntry < 0) firstEntry = o;
-                }
-                int cursor = headCursor[a];
-                headDepth[a] = nextSurface(operands[o], pixel, cursor);
-                headCursor[a] = cursor;
-            }
-            if (headDepth[a] == kInfinity) {  // operand done: drop it
-                --live;
-                headDepth[a] = headDepth[live];
-                headCursor[a] = headCursor[live];
-                headOperand[a] = headOperand[live];
+        int entryLeaf = -1, exitLeaf = -1;
+        while (heapSize > 0 && untagged(heapDepth[0]) == group) {
+            --budget;
+            int s = heapSlot[0];
+            bool exit = isExit(heapDepth[0]);
+            setInside(s, !exit);
+            uvec4 literal = blockOperands[slotEntry[s]];
+            int leaf = int(literal.z);
+            if (exit) {
+                if (exitLeaf < 0) exitLeaf = leaf;
             } else {
-                ++a;
+                if (entryLeaf < 0) entryLeaf = leaf;
             }
+            int cursor = slotCursor[s];
+            float next = nextSurface(literal, cursor);
+            slotCursor[s] = cursor;
+            if (next == kInfinity) {  // operand done: the last entry takes its place
+                --heapSize;
+                heapDepth[0] = heapDepth[heapSize];
+                heapSlot[0] = heapSlot[heapSize];
+            } else {
+                heapDepth[0] = next;
+            }
+            siftDown(0);
         }
 
-        bool now = runProgram();
+        bool now = nodeValue(0u);
         if (now != inside) {
-            // The result enters (now) or leaves (!now) here. Prefer a surface
-            // whose operand changes the same way: it is the result's own face.
-            bool entered = now;
-            bool operandEntered = entered ? firstEntry >= 0 : firstExit < 0;
-            int o = operandEntered ? firstEntry : firstExit;
-            outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
-            outLeaf = int(operands[o].z) * 2 + (operandEntered != entered ? 1 : 0);
+            writeSurface(group, now, entryLeaf, exitLeaf);
             return;
         }
         inside = now;
     }
+    discard;
 }
+
+#endif

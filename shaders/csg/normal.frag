@@ -1,8 +1,7 @@
-// Normal recovery: the visible leaves are drawn once more (vertex stage
-// surface.vert and the peel pass's viewport, so depths match the peeled ones
-// bit for bit), and the fragment that is the
-// visible surface the evaluator chose (same leaf, same facing, same tagged
-// depth) writes its triangle's world-space face normal, flipped where the
+// Normal recovery: the operands are drawn once more over the pixels the
+// evaluator wrote (vertex stage surface.vert, as the peel pass), and the
+// fragment that is the visible surface the evaluator chose (same leaf, same
+// facing, same tagged depth) writes its triangle's world-space face normal, flipped where the
 // leaf acts as a subtracted operand: the outward normal of the result.
 #include "csg/surface.glsl"
 
@@ -19,18 +18,17 @@ layout(std430, binding = 2) readonly buffer FaceNormals {
 
 layout(location = 3) uniform int uLeaf;           // the leaf being drawn
 layout(location = 4) uniform int uFirstTriangle;  // its first triangle in FaceNormals
-layout(location = 5) uniform ivec2 uTileOrigin;   // the target is one tile; the results are the frame's
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy) + uTileOrigin;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
     int code = texelFetch(uResultLeaf, pixel, 0).r;
     if (code < 0 || (code >> 1) != uLeaf) discard;
     float result = texelFetch(uResultDepth, pixel, 0).r;
     float t = taggedDepth(vViewDepth, gl_FrontFacing);
     if (isExit(t) != isExit(result)) discard;
-    // This pass draws with the peel pass's viewport and vertex stage, so the
-    // same fragment gives the same bits; a few ulps of slack cover a driver
-    // that interpolates differently in another fragment shader.
+    // The same vertex stage as the peel pass; its viewport is the frame's
+    // where the peel pass's was one tile's. A few ulps of slack cover the
+    // rounding that an offset viewport or another fragment shader may bring.
     if (abs(t - result) > 1.0e-6 * result) discard;
     vec3 n = faceNormals[uFirstTriangle + gl_PrimitiveID].xyz;
     outNormal = vec4((code & 1) != 0 ? -n : n, 1.0);

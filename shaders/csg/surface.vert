@@ -4,6 +4,18 @@
 //
 // Inputs: world-space positions (float, location 0).
 // Uniforms: the view-projection matrix, the eye and the unit view direction f.
+//
+// LAYERED (the peel pass's batch of convex operands, one multi-draw with one
+// draw per operand): each draw's triangles go to the array layer
+// drawLayers[gl_DrawID] of a layered framebuffer.
+#ifdef LAYERED
+#extension GL_ARB_shader_draw_parameters : require
+#extension GL_ARB_shader_viewport_layer_array : require
+
+layout(std430, binding = 6) readonly buffer DrawLayers {
+    uint drawLayers[];
+};
+#endif
 
 layout(location = 0) in vec3 aPosition;
 
@@ -18,4 +30,7 @@ layout(location = 0) invariant out float vViewDepth;
 void main() {
     vViewDepth = dot(aPosition - uEye, uForward);
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
+#ifdef LAYERED
+    gl_Layer = int(drawLayers[gl_DrawIDARB]);
+#endif
 }

@@ -263,7 +263,7 @@ int main(int argc, char** argv) {
         expect(refused, "a rolled view is refused");
 
         // 5. Render and read everything back: rows top first.
-        render::RenderSettings settings;  // auto layers, Cornfield, 1 GiB budget
+        render::RenderSettings settings;  // auto layers, Cornfield, 512 MiB budget
         const render::Frame frame = renderer.render(camera, settings);
         const std::size_t centre = static_cast<std::size_t>(height / 2) * width + width / 2;
         std::printf("centre pixel: rgba %d %d %d %d, depth %.6f, leaf %d, normal (%g, %g, %g)\n",

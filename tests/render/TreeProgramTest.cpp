@@ -304,3 +304,88 @@ TEST(TreeProgram, SpecializingACheeseLeavesOnlyTheNearbyHoles) {
     EXPECT_TRUE(render::specializeProgram(program, {0, 1, 1, 1}, &constant).empty());  // no cube: empty
     EXPECT_FALSE(constant);
 }
+
+namespace {
+
+// The evaluator's incremental update (shaders/csg/evaluate.frag, array form):
+// one literal changes, counts climb while node values change.
+struct CountingState {
+    const render::CountingTree& tree;
+    std::vector<std::uint32_t> trueChildren;
+    std::vector<bool> inside;
+
+    CountingState(const render::CountingTree& t, std::size_t operands) : tree(t), inside(operands, false) {
+        for (const render::CountingTree::Node& n : tree.nodes) trueChildren.push_back(n.trueWhenOutside);
+    }
+    bool value(std::uint32_t node) const {
+        const render::CountingTree::Node& n = tree.nodes[node];
+        return n.isAnd ? trueChildren[node] == n.children : trueChildren[node] != 0;
+    }
+    void set(std::uint32_t operand, bool now) {
+        if (inside[operand] == now) return;
+        inside[operand] = now;
+        for (const render::CountingTree::Literal& l : tree.literals) {
+            if (l.operand != operand) continue;
+            bool rising = now != l.negated;
+            for (std::uint32_t node = l.parent; node != render::CountingTree::kNoParent;) {
+                const bool before = value(node);
+                trueChildren[node] += rising ? 1u : std::uint32_t(-1);
+                const bool after = value(node);
+                if (after == before) break;
+                rising = after;
+                node = tree.nodes[node].parent;
+            }
+        }
+    }
+};
+
+}  // namespace
+
+TEST(TreeProgram, CountingTreesFollowTheProgramOneChangeAtATime) {
+    std::mt19937 rng(7);
+    int checked = 0;
+    for (int t = 0; t < 300; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 6);
+        const render::TreeProgram program = render::compileTree(tree);
+        if (program.kind != render::TreeProgram::Kind::Program) continue;
+        const render::CountingTree counting = render::countingTree(program.code);
+
+        // Shape: the root first, every parent before its children, each
+        // literal and non-root node counted once as a child.
+        ASSERT_FALSE(counting.nodes.empty());
+        EXPECT_EQ(counting.nodes[0].parent, render::CountingTree::kNoParent);
+        std::uint32_t children = 0;
+        for (std::size_t i = 0; i < counting.nodes.size(); ++i) {
+            children += counting.nodes[i].children;
+            if (i > 0) EXPECT_LT(counting.nodes[i].parent, i);
+        }
+        EXPECT_EQ(children, counting.literals.size() + counting.nodes.size() - 1);
+
+        const auto operands = static_cast<std::size_t>(program.operandCount());
+        CountingState state(counting, operands);
+        EXPECT_EQ(state.value(0), render::runTreeProgram(program, state.inside));
+        for (int step = 0; step < 40; ++step) {
+            state.set(static_cast<std::uint32_t>(rng() % operands), (rng() & 1u) != 0);
+            ASSERT_EQ(state.value(0), render::runTreeProgram(program, state.inside)) << render::disassemble(program);
+            ASSERT_EQ(render::runCountingTree(counting, state.inside), state.value(0));
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 4000);
+}
+
+TEST(TreeProgram, ACheeseIsOneCountingNode) {
+    // cube - s1 - s2 - s3 = cube AND !s1 AND !s2 AND !s3: one AND of four,
+    // three of them true while everything is outside.
+    Tree tree;
+    std::vector<int> children;
+    for (int i = 0; i < 4; ++i) children.push_back(leaf(tree));
+    tree.root = tree.addNode(NodeKind::Difference, children);
+    const render::CountingTree counting = render::countingTree(render::compileTree(tree).code);
+    ASSERT_EQ(counting.nodes.size(), 1u);
+    EXPECT_TRUE(counting.nodes[0].isAnd);
+    EXPECT_EQ(counting.nodes[0].children, 4u);
+    EXPECT_EQ(counting.nodes[0].trueWhenOutside, 3u);
+    EXPECT_EQ(counting.literals.size(), 4u);
+}

@@ -4,9 +4,11 @@
 // Its size is fixed at creation; to grow, make a new Buffer. Bytes in and out
 // go through spans, so callers pass std::vector, std::array or raw memory.
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "strata/gpu/GlName.h"
 
@@ -35,6 +37,15 @@ public:
     template <class T>
     void uploadSpan(std::span<const T> data, std::size_t offset = 0) {
         upload(std::as_bytes(data), offset);
+    }
+
+    // Writes `data` from offset 0 into `buffer`, first replacing it with one of
+    // twice the size when it is too small (for data rebuilt every frame).
+    template <class T>
+    static void uploadGrowing(Buffer& buffer, std::string_view label, const std::vector<T>& data) {
+        const std::size_t bytes = std::max<std::size_t>(data.size() * sizeof(T), sizeof(T));
+        if (buffer.size() < bytes) buffer = Buffer(label, bytes * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
+        if (!data.empty()) buffer.uploadSpan(std::span<const T>(data));
     }
 
     // Reads `out.size()` bytes from byte `offset` (glGetNamedBufferSubData; waits for the GPU).

@@ -9,7 +9,7 @@
 //   normal     NormalPass      the visible leaves redrawn for face normals
 //   shade      ShadePass       colours, Lambert light, Sobel outline
 //   translucent TranslucentPass '%' and '#' leaves over the image
-// GL state on return: depth test, culling, blending and scissor test off;
+// GL state on return: depth test, stencil test, culling, blending and scissor test off;
 // the viewport, bound program, vertex array, textures, storage buffers and
 // draw framebuffer are whatever the last pass used (renderInto: the host's).
 
@@ -36,7 +36,7 @@ struct RenderSettings {
     std::string colorScheme = "Cornfield";     // OpenSCAD colour scheme name
     // Bytes the layered textures may take; above it the frame is rendered in
     // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
-    std::size_t memoryBudget = std::size_t(1) << 30;
+    std::size_t memoryBudget = std::size_t(512) << 20;
     bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
 };
 

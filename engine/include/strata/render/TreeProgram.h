@@ -68,6 +68,36 @@ TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIs
 std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,
                                              bool* constant = nullptr);
 
+// Instructions (a program or a specialised one) as a tree of counting nodes,
+// the form the evaluator shader walks: each inner node is an n-ary AND or OR
+// that keeps how many of its children are true, so one operand's change
+// updates only the nodes whose value it changes, up to the root.
+struct CountingTree {
+    struct Literal {
+        std::uint32_t operand = 0;
+        std::uint32_t parent = 0;  // index into nodes
+        bool negated = false;
+    };
+    struct Node {
+        std::uint32_t parent = kNoParent;  // index into nodes; kNoParent for the root
+        bool isAnd = false;
+        std::uint32_t children = 0;        // literals and nodes under it
+        std::uint32_t trueWhenOutside = 0; // children true when every operand is outside
+    };
+    static constexpr std::uint32_t kNoParent = 0xffffffffu;
+    std::vector<Literal> literals;  // in program order
+    std::vector<Node> nodes;        // nodes[0] is the root; a parent comes before its children
+};
+
+// Non-empty `code` (as compileTree or specializeProgram give it) as a counting
+// tree. A program of one literal gets a one-child OR root, so there is always
+// a root node. Nested nodes of the same operation merge.
+CountingTree countingTree(const std::vector<std::uint32_t>& code);
+
+// The counting tree's result for the given operand states, computed from the
+// counts as the shader keeps them (for tests).
+bool runCountingTree(const CountingTree& tree, const std::vector<bool>& operandInside);
+
 // Runs instructions on the CPU exactly as the evaluator shader does (an empty
 // sequence gives false). `operandInside[k]` is operand k's membership.
 bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& operandInside);

@@ -1,0 +1,31 @@
+// The evaluate pass's geometry: one quad per BLOCK x BLOCK block of the tile
+// that has a tree to walk, instanced. Blocks whose result is constant (no
+// operand the result can show meets them) are not drawn at all, and each draw
+// takes the blocks of one size class, so each runs the cheapest form of
+// evaluate.frag that holds it. The viewport is the tile.
+
+#ifndef BLOCK
+#define BLOCK 16
+#endif
+
+// Block numbers (row-major in the tile) to draw, this draw's from uFirstBlock on.
+layout(std430, binding = 4) readonly buffer DrawnBlocks {
+    uint drawnBlocks[];
+};
+
+layout(location = 5) uniform int uFirstBlock;
+layout(location = 6) uniform ivec2 uTileSize;  // pixels
+layout(location = 7) uniform int uBlocksX;     // blocks per row of the tile
+
+flat out uint vBlock;
+
+void main() {
+    uint block = drawnBlocks[uFirstBlock + gl_InstanceID];
+    // Two triangles: corners (0,0) (1,0) (0,1) and (1,0) (1,1) (0,1).
+    int v = gl_VertexID;
+    ivec2 corner = ivec2(v == 1 || v == 3 || v == 4 ? 1 : 0, v == 2 || v == 4 || v == 5 ? 1 : 0);
+    ivec2 origin = ivec2(int(block) % uBlocksX, int(block) / uBlocksX) * BLOCK;
+    vec2 p = vec2(min(origin + corner * BLOCK, uTileSize));
+    gl_Position = vec4(p / vec2(uTileSize) * 2.0 - 1.0, 0.0, 1.0);
+    vBlock = block;
+}
