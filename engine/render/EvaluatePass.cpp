@@ -1,6 +1,7 @@
 #include "EvaluatePass.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <map>
 #include <span>
@@ -42,6 +43,46 @@ int loopBudgetForThisDriver() {
 }
 
 
+// Bit m of a truth table: the result when slot i is inside exactly for the bits i of m.
+using TruthTable = std::array<std::uint64_t, 4>;
+
+// `code`'s truth table over the operands `used` (at most 8; slot i is
+// used[i]), all 256 states at once: each stack entry is the 256-bit column
+// of its value.
+TruthTable truthTable(const std::vector<std::uint32_t>& code, const std::vector<std::uint32_t>& used) {
+    auto column = [&](std::uint32_t instruction) {
+        const std::uint32_t operand = instruction >> kOperandShift;
+        const auto slot = static_cast<std::size_t>(std::find(used.begin(), used.end(), operand) - used.begin());
+        TruthTable c{};
+        for (std::uint32_t m = 0; m < 256; ++m) {
+            if ((m >> slot) & 1u) c[m / 64] |= std::uint64_t(1) << (m % 64);
+        }
+        if (instruction & kOpNegate) {
+            for (std::uint64_t& w : c) w = ~w;
+        }
+        return c;
+    };
+    std::vector<TruthTable> stack;
+    for (std::uint32_t instruction : code) {
+        const std::uint32_t op = instruction & 3u;
+        if (op == kOpPush) {
+            stack.push_back(column(instruction));
+            continue;
+        }
+        TruthTable source;
+        if (instruction & kOpFromStack) {
+            source = stack.back();
+            stack.pop_back();
+        } else {
+            source = column(instruction);
+        }
+        for (std::size_t w = 0; w < 4; ++w) {
+            stack.back()[w] = op == kOpAnd ? stack.back()[w] & source[w] : stack.back()[w] | source[w];
+        }
+    }
+    return stack.back();
+}
+
 }  // namespace
 
 EvaluatePass::EvaluatePass()
@@ -80,7 +121,8 @@ void EvaluatePass::setProgram(const TreeProgram& program) {
     }
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
-        programFor(kRegisterForm);
+        programFor(4);
+        if (program.operandCount() > 4) programFor(kRegisterForm);
         if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()));
     }
 }
@@ -140,14 +182,19 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     BlockTree out;
     if (onePassEach && used.size() <= static_cast<std::size_t>(kRegisterForm)) {
         // The register form: the tree as a truth table over the inside bits.
-        std::uint32_t table = 0;
-        std::vector<bool> inside(operandLeaf_.size(), false);
-        for (std::uint32_t m = 0; m < (1u << used.size()); ++m) {
-            for (std::size_t i = 0; i < used.size(); ++i) inside[used[i]] = ((m >> i) & 1u) != 0;
-            if (runCode(code, inside)) table |= 1u << m;
+        const TruthTable table = truthTable(code, used);
+        out.form = used.size() <= 4 ? 4 : kRegisterForm;
+        std::uint32_t tableField = static_cast<std::uint32_t>(table[0] & 0xffffu);
+        if (out.form == kRegisterForm) {
+            tableField = static_cast<std::uint32_t>(nodes.size());
+            for (int half = 0; half < 2; ++half) {
+                const std::uint64_t a = table[static_cast<std::size_t>(half * 2)];
+                const std::uint64_t b = table[static_cast<std::size_t>(half * 2 + 1)];
+                nodes.emplace_back(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(a >> 32),
+                                   static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(b >> 32));
+            }
         }
-        out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(used.size()), table, 0u};
-        out.form = kRegisterForm;
+        out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(used.size()), tableField, 0u};
         for (std::uint32_t operand : used) literals.push_back(literal(operand, 0u));
         return out;
     }

@@ -12,8 +12,8 @@
 // screen rectangle meets it (TreeProgram.h: specializeProgram, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
 // The shader is specialised only by the size of its per-pixel state,
-// MAX_LIVE: 4 for the register form (up to four operands of one peeled layer
-// each, the tree as a truth table, everything in registers) or a power of two
+// MAX_LIVE: 4 or 8 for the register form (up to eight operands of one peeled
+// layer each, the tree as a truth table, everything in registers) or a power of two
 // from 16 up for the array form (a heap of surfaces and a counting tree in
 // per-pixel arrays). Each block is drawn (one instanced quad per block) by the
 // cheapest variant that holds it. A variant is compiled on first use and kept.
@@ -58,9 +58,10 @@ public:
     // tile, kFrontFaces | kBackFaces (0: none). Waits for the GPU.
     std::vector<std::uint32_t> shownFaces() const;
     static constexpr std::uint32_t kFrontFaces = 1, kBackFaces = 2;
-    // MAX_LIVE of evaluate.frag's register form: up to this many operands of
-    // one layer each, the tree as a truth table.
-    static constexpr int kRegisterForm = 4;
+    // The largest MAX_LIVE of evaluate.frag's register form (compiled for 4
+    // and 8): up to this many operands of one layer each, the tree as a
+    // truth table.
+    static constexpr int kRegisterForm = 8;
     static constexpr int kBlock = 16;  // BLOCK in evaluate.frag
 
 private:

@@ -18,8 +18,8 @@
 // O(S * L) as a rerun of the whole program would.
 //
 // Two forms of the walk, by MAX_LIVE (the most literals or nodes a block of
-// this draw has): up to four, every per-pixel value is one component of a
-// vector and the walk runs in registers; above that, per-pixel arrays of
+// this draw has): up to eight operands of one layer each, every per-pixel
+// value is one component of a vector and the walk runs in registers; else per-pixel arrays of
 // MAX_LIVE heap entries, live-operand slots and node counts. On llvmpipe each
 // array access is a gather or scatter per lane, several times the cost of
 // the register form, so the renderer draws each block with the smallest
@@ -137,31 +137,36 @@ float nextSurface(uvec4 literal, inout int cursor) {
     return kInfinity;
 }
 
-#if MAX_LIVE <= 4
+#if MAX_LIVE <= 8
 
-// The register form, for blocks of at most four operands with one peeled
+// The register form, for blocks of at most eight operands with one peeled
 // layer each (convex ones, say): each operand has at most two surfaces here,
 // its layer's near and far, and the block's tree is a truth table over the
-// four inside bits. No arrays and no loops but the walk over depths: every
-// slot is one component of a vector.
+// inside bits. No arrays and no loops but the walk over depths: every slot
+// is one component of a vector (bank A holds slots 0-3, bank B slots 4-7).
+// Compiled for 4 and 8 slots (MAX_LIVE): every instruction runs for every
+// pixel on llvmpipe, used or not.
 //
 // blocks[b]: x first slot in blockOperands, y slot count, z the truth table
-// (bit m: the result when slot i is inside exactly for the bits i of m).
-// blockOperands[x + i]: x the operand's layer in uLayers, z its tree leaf.
-
-vec4 untagged4(vec4 t) {
-    return uintBitsToFloat(floatBitsToUint(t) & ~1u);
-}
+// (bit m: the result when slot i is inside exactly for the bits i of m) for
+// 4 slots, or for 8 the index in blockNodes of its 256 bits (two uvec4, bit
+// m in word m / 32). blockOperands[x + i]: x the operand's layer in uLayers,
+// z its tree leaf.
 
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     uvec4 block = blocks[vBlock];
     budget = uLoopBudget;
-    vec4 nearSide = vec4(kInfinity), farSide = vec4(kInfinity);
-    ivec4 leaf = ivec4(-1);
-#define LOAD_SLOT(c)                                                   \
-    if (block.y > uint(c)) {                                           \
-        uvec4 slot = blockOperands[block.x + uint(c)];                 \
+    vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
+    ivec4 leafA = ivec4(-1);
+#if MAX_LIVE > 4
+    vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
+    ivec4 leafB = ivec4(-1);
+    uvec4 tableLow = blockNodes[block.z], tableHigh = blockNodes[block.z + 1u];
+#endif
+#define LOAD_SLOT(nearSide, farSide, leaf, c, i)                       \
+    if (block.y > uint(i)) {                                           \
+        uvec4 slot = blockOperands[block.x + uint(i)];                 \
         vec2 layer = texelFetch(uLayers, ivec3(pixel, slot.x), 0).rg;  \
         leaf[c] = int(slot.z);                                         \
         if (-layer.r < kCleared) {                                     \
@@ -169,15 +174,31 @@ void main() {
             if (layer.g > -layer.r) farSide[c] = layer.g;              \
         }                                                              \
     }
-    LOAD_SLOT(0) LOAD_SLOT(1) LOAD_SLOT(2) LOAD_SLOT(3)
+    LOAD_SLOT(nearA, farA, leafA, 0, 0) LOAD_SLOT(nearA, farA, leafA, 1, 1)
+    LOAD_SLOT(nearA, farA, leafA, 2, 2) LOAD_SLOT(nearA, farA, leafA, 3, 3)
+#if MAX_LIVE > 4
+    LOAD_SLOT(nearB, farB, leafB, 0, 4) LOAD_SLOT(nearB, farB, leafB, 1, 5)
+    LOAD_SLOT(nearB, farB, leafB, 2, 6) LOAD_SLOT(nearB, farB, leafB, 3, 7)
+#endif
 
     // An operand whose first surface is a back face is inside from the start.
-    uvec4 exits = floatBitsToUint(nearSide) & 1u;
+    uvec4 exits = floatBitsToUint(nearA) & 1u;
     uint insideBits = exits.x | (exits.y << 1) | (exits.z << 2) | (exits.w << 3);
-    bool inside = ((block.z >> insideBits) & 1u) != 0u;
-    vec4 head = nearSide;
+    vec4 headA = nearA;
+#if MAX_LIVE > 4
+    exits = floatBitsToUint(nearB) & 1u;
+    insideBits |= (exits.x << 4) | (exits.y << 5) | (exits.z << 6) | (exits.w << 7);
+    vec4 headB = nearB;
+#define RESULT(bits) ((((bits) < 128u ? tableLow : tableHigh)[((bits) >> 5) & 3u] >> ((bits) & 31u)) & 1u) != 0u
+#else
+#define RESULT(bits) ((block.z >> (bits)) & 1u) != 0u
+#endif
+    bool inside = RESULT(insideBits);
     while (true) {
-        float nearest = min(min(head.x, head.y), min(head.z, head.w));
+        float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
+#if MAX_LIVE > 4
+        nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
+#endif
         if (nearest == kInfinity) break;
         float group = untagged(nearest);
         // Every surface at this depth, of any operand, changes its operand's
@@ -185,20 +206,27 @@ void main() {
         // the solids say (a cube minus an equal cube leaves nothing). An
         // operand can have both its surfaces here (a ray grazing its edge).
         int entryLeaf = -1, exitLeaf = -1;
-#define TAKE_SURFACE(c)                                                          \
+#define TAKE_SURFACE(head, nearSide, farSide, leaf, c, i)                        \
         if (head[c] != kInfinity && untagged(head[c]) == group) {                \
             if (isExit(head[c])) {                                               \
-                insideBits &= ~(1u << c);                                        \
+                insideBits &= ~(1u << i);                                        \
                 if (exitLeaf < 0) exitLeaf = leaf[c];                            \
             } else {                                                             \
-                insideBits |= 1u << c;                                           \
+                insideBits |= 1u << i;                                           \
                 if (entryLeaf < 0) entryLeaf = leaf[c];                          \
             }                                                                    \
             head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
         }
-        TAKE_SURFACE(0) TAKE_SURFACE(0) TAKE_SURFACE(1) TAKE_SURFACE(1)
-        TAKE_SURFACE(2) TAKE_SURFACE(2) TAKE_SURFACE(3) TAKE_SURFACE(3)
-        bool now = ((block.z >> insideBits) & 1u) != 0u;
+#define TAKE_SLOT(head, nearSide, farSide, leaf, c, i)    \
+        TAKE_SURFACE(head, nearSide, farSide, leaf, c, i) \
+        TAKE_SURFACE(head, nearSide, farSide, leaf, c, i)
+        TAKE_SLOT(headA, nearA, farA, leafA, 0, 0) TAKE_SLOT(headA, nearA, farA, leafA, 1, 1)
+        TAKE_SLOT(headA, nearA, farA, leafA, 2, 2) TAKE_SLOT(headA, nearA, farA, leafA, 3, 3)
+#if MAX_LIVE > 4
+        TAKE_SLOT(headB, nearB, farB, leafB, 0, 4) TAKE_SLOT(headB, nearB, farB, leafB, 1, 5)
+        TAKE_SLOT(headB, nearB, farB, leafB, 2, 6) TAKE_SLOT(headB, nearB, farB, leafB, 3, 7)
+#endif
+        bool now = RESULT(insideBits);
         if (now != inside) {
             writeSurface(group, now, entryLeaf, exitLeaf);
             return;
