@@ -145,7 +145,7 @@ ParseResult parseOptions(int argc, char** argv) {
     ParseResult result;
     RenderOptions& o = result.options;
 
-    CLI::App app{"strata-render: image-space CSG rendering, headless (see CONTRACT.md)", "strata-render"};
+    CLI::App app{"strata-render: image-space CSG rendering, headless (options and outputs: docs/contract.md)", "strata-render"};
     app.option_defaults()->always_capture_default(false);
     std::string imgsize, camera, projection, fov, layers;
     app.add_option("SCENE", o.scene, "a .csg file (OpenSCAD's CSG export), or one closed .stl/.obj/.off/.ply mesh")
