@@ -62,25 +62,10 @@ TruthTable truthTable(const std::vector<std::uint32_t>& code, const std::vector<
         }
         return c;
     };
-    std::vector<TruthTable> stack;
-    for (std::uint32_t instruction : code) {
-        const std::uint32_t op = instruction & 3u;
-        if (op == kOpPush) {
-            stack.push_back(column(instruction));
-            continue;
-        }
-        TruthTable source;
-        if (instruction & kOpFromStack) {
-            source = stack.back();
-            stack.pop_back();
-        } else {
-            source = column(instruction);
-        }
-        for (std::size_t w = 0; w < 4; ++w) {
-            stack.back()[w] = op == kOpAnd ? stack.back()[w] & source[w] : stack.back()[w] | source[w];
-        }
-    }
-    return stack.back();
+    auto combine = [](std::uint32_t op, TruthTable& top, const TruthTable& source) {
+        for (std::size_t w = 0; w < top.size(); ++w) top[w] = op == kOpAnd ? top[w] & source[w] : top[w] | source[w];
+    };
+    return foldCode<TruthTable>(code, column, combine);
 }
 
 }  // namespace

@@ -293,7 +293,6 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
         int constant = -1;  // 0 or 1, or -1 for `code`
         std::vector<std::uint32_t> code;
     };
-    std::vector<Entry> stack;
     auto literal = [&](std::uint32_t instruction) {
         Entry e;
         const std::uint32_t operand = instruction >> kOperandShift;
@@ -304,31 +303,18 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
         }
         return e;
     };
-    for (std::uint32_t instruction : program.code) {
-        const std::uint32_t op = instruction & 3u;
-        if (op == kOpPush) {
-            stack.push_back(literal(instruction));
-            continue;
-        }
-        Entry b;
-        if (instruction & kOpFromStack) {
-            b = std::move(stack.back());
-            stack.pop_back();
-        } else {
-            b = literal(instruction);
-        }
-        Entry& a = stack.back();
+    auto combine = [](std::uint32_t op, Entry& a, Entry b) {
         // AND: 0 absorbs, 1 is neutral; OR: the other way round.
         const int absorbing = op == kOpAnd ? 0 : 1;
-        if (a.constant == absorbing) continue;
+        if (a.constant == absorbing) return;
         if (b.constant == absorbing) {
             a = Entry{absorbing, {}};
-            continue;
+            return;
         }
-        if (b.constant >= 0) continue;  // b is the neutral constant
-        if (a.constant >= 0) {          // a is the neutral constant
+        if (b.constant >= 0) return;  // b is the neutral constant
+        if (a.constant >= 0) {        // a is the neutral constant
             a = std::move(b);
-            continue;
+            return;
         }
         // Both computed: a single-literal b fuses back into AND/OR literal.
         if (b.code.size() == 1) {
@@ -337,8 +323,8 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
             a.code.insert(a.code.end(), b.code.begin(), b.code.end());
             a.code.push_back(op | kOpFromStack);
         }
-    }
-    Entry& result = stack.back();
+    };
+    Entry result = foldCode<Entry>(program.code, literal, combine);
     if (constant) *constant = result.constant == 1;
     return result.constant >= 0 ? std::vector<std::uint32_t>{} : std::move(result.code);
 }
@@ -352,7 +338,6 @@ CountingTree countingTree(const std::vector<std::uint32_t>& code) {
     };
     CountingTree out;
     std::vector<CountingTree::Node> made;
-    std::vector<Entry> stack;
     auto literal = [&](std::uint32_t instruction) {
         out.literals.push_back({instruction >> kOperandShift, 0, (instruction & kOpNegate) != 0});
         return Entry{false, static_cast<std::uint32_t>(out.literals.size() - 1)};
@@ -365,35 +350,23 @@ CountingTree countingTree(const std::vector<std::uint32_t>& code) {
         }
         ++made[parent].children;
     };
-    for (std::uint32_t instruction : code) {
-        const std::uint32_t op = instruction & 3u;
-        if (op == kOpPush) {
-            stack.push_back(literal(instruction));
-            continue;
-        }
-        Entry source;
-        if (instruction & kOpFromStack) {
-            source = stack.back();
-            stack.pop_back();
-        } else {
-            source = literal(instruction);
-        }
-        const Entry top = stack.back();
+    auto combine = [&](std::uint32_t op, Entry& top, Entry source) {
         const bool isAnd = op == kOpAnd;
         if (top.node && made[top.index].isAnd == isAnd) {
             adopt(top.index, source);  // (a AND b) AND c is one AND of three
-            continue;
+            return;
         }
         made.push_back({CountingTree::kNoParent, isAnd, 0, 0});
         const auto node = static_cast<std::uint32_t>(made.size() - 1);
         adopt(node, top);
         adopt(node, source);
-        stack.back() = Entry{true, node};
-    }
-    if (stack.size() != 1) throw Error("countingTree: malformed program");
-    if (!stack.back().node) {
+        top = Entry{true, node};
+    };
+    if (code.empty()) throw Error("countingTree: no instructions");
+    const Entry top = foldCode<Entry>(code, literal, combine);
+    if (!top.node) {
         made.push_back({CountingTree::kNoParent, false, 0, 0});
-        adopt(static_cast<std::uint32_t>(made.size() - 1), stack.back());
+        adopt(static_cast<std::uint32_t>(made.size() - 1), top);
     }
 
     // Breadth first from the root: every parent before its children.

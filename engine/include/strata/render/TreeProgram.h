@@ -68,6 +68,32 @@ TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIs
 std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,
                                              bool* constant = nullptr);
 
+// Runs instructions symbolically, for the compilers that turn a program into
+// another form: `literal(instruction)` makes the stack entry of an
+// instruction's literal, `combine(op, top, source)` folds `source` into the
+// stack's `top` entry (op: kOpAnd or kOpOr), in place. Returns the one entry
+// left. Non-empty, well-formed code only.
+template <class Entry, class Literal, class Combine>
+Entry foldCode(const std::vector<std::uint32_t>& code, Literal literal, Combine combine) {
+    std::vector<Entry> stack;
+    for (std::uint32_t instruction : code) {
+        const std::uint32_t op = instruction & 3u;
+        if (op == kOpPush) {
+            stack.push_back(literal(instruction));
+            continue;
+        }
+        Entry source;
+        if (instruction & kOpFromStack) {
+            source = std::move(stack.back());
+            stack.pop_back();
+        } else {
+            source = literal(instruction);
+        }
+        combine(op, stack.back(), std::move(source));
+    }
+    return std::move(stack.back());
+}
+
 // Instructions (a program or a specialised one) as a tree of counting nodes,
 // the form the evaluator shader walks: each inner node is an n-ary AND or OR
 // that keeps how many of its children are true, so one operand's change
