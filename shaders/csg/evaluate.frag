@@ -45,29 +45,7 @@ const uint kNegate = 0x80000000u;
 
 layout(binding = 0) uniform sampler2DArray uLayers;
 
-// The tile is cut into BLOCK x BLOCK pixel blocks. Block b's tree is the
-// tree specialised to the operands whose screen rectangle meets it
-// (EvaluatePass.cpp). In the array form blockOperands[blocks[b].x + i],
-// i < blocks[b].y, are its literals, blockNodes[blocks[b].z + n],
-// n < blocks[b].w, its inner nodes, node 0 the root; the register form
-// below has its own layout.
-layout(std430, binding = 2) readonly buffer Blocks {
-    uvec4 blocks[];
-};
-flat in uint vBlock;  // this fragment's block (evaluate.vert)
-
-// Per literal (slot): x the operand's first layer in uLayers, y its layers in
-// this tile, z its tree leaf, w (array form) its parent node, block-local,
-// | kNegate.
-layout(std430, binding = 3) readonly buffer BlockOperands {
-    uvec4 blockOperands[];
-};
-// Per inner node: x its parent (block-local, kNoParent for the root), y 1 for
-// AND and 0 for OR, z its child count, w how many children are true when
-// every operand is outside.
-layout(std430, binding = 0) readonly buffer BlockNodes {
-    uvec4 blockNodes[];
-};
+#include "csg/blocks.glsl"
 
 layout(location = 2) uniform ivec2 uTileOrigin;  // the tile's lower-left pixel in the frame
 // Loop iterations this invocation may spend. llvmpipe ends every loop of a
@@ -155,30 +133,28 @@ float nextSurface(uvec4 literal, inout int cursor) {
 
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
-    uvec4 block = blocks[vBlock];
+    uvec4 block = vRecord;
     budget = uLoopBudget;
     vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
-    ivec4 leafA = ivec4(-1);
+    ivec4 leafA = ivec4(vLeafA);
 #if MAX_LIVE > 4
     vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
-    ivec4 leafB = ivec4(-1);
-    uvec4 tableLow = blockNodes[block.z], tableHigh = blockNodes[block.z + 1u];
+    ivec4 leafB = ivec4(vLeafB);
+    uvec4 tableLow = vTableLow, tableHigh = vTableHigh;
 #endif
-#define LOAD_SLOT(nearSide, farSide, leaf, c, i)                       \
-    if (block.y > uint(i)) {                                           \
-        uvec4 slot = blockOperands[block.x + uint(i)];                 \
-        vec2 layer = texelFetch(uLayers, ivec3(pixel, slot.x), 0).rg;  \
-        leaf[c] = int(slot.z);                                         \
-        if (-layer.r < kCleared) {                                     \
-            nearSide[c] = -layer.r;                                    \
-            if (layer.g > -layer.r) farSide[c] = layer.g;              \
-        }                                                              \
+#define LOAD_SLOT(nearSide, farSide, layers, c, i)                        \
+    if (block.y > uint(i)) {                                              \
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, layers[c]), 0).rg;  \
+        if (-layer.r < kCleared) {                                        \
+            nearSide[c] = -layer.r;                                       \
+            if (layer.g > -layer.r) farSide[c] = layer.g;                 \
+        }                                                                 \
     }
-    LOAD_SLOT(nearA, farA, leafA, 0, 0) LOAD_SLOT(nearA, farA, leafA, 1, 1)
-    LOAD_SLOT(nearA, farA, leafA, 2, 2) LOAD_SLOT(nearA, farA, leafA, 3, 3)
+    LOAD_SLOT(nearA, farA, vLayerA, 0, 0) LOAD_SLOT(nearA, farA, vLayerA, 1, 1)
+    LOAD_SLOT(nearA, farA, vLayerA, 2, 2) LOAD_SLOT(nearA, farA, vLayerA, 3, 3)
 #if MAX_LIVE > 4
-    LOAD_SLOT(nearB, farB, leafB, 0, 4) LOAD_SLOT(nearB, farB, leafB, 1, 5)
-    LOAD_SLOT(nearB, farB, leafB, 2, 6) LOAD_SLOT(nearB, farB, leafB, 3, 7)
+    LOAD_SLOT(nearB, farB, vLayerB, 0, 4) LOAD_SLOT(nearB, farB, vLayerB, 1, 5)
+    LOAD_SLOT(nearB, farB, vLayerB, 2, 6) LOAD_SLOT(nearB, farB, vLayerB, 3, 7)
 #endif
 
     // An operand whose first surface is a back face is inside from the start.
@@ -303,7 +279,7 @@ void siftDown(int i) {
 
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
-    uvec4 block = blocks[vBlock];
+    uvec4 block = vRecord;
     nodeBase = block.z;
     budget = uLoopBudget;
 

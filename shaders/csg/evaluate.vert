@@ -1,5 +1,6 @@
 // The evaluate pass's geometry: one quad per BLOCK x BLOCK block of the tile
-// that has a tree to walk, instanced. Blocks whose result is constant (no
+// that has a tree to walk, instanced, carrying the block's data to its
+// fragments (csg/blocks.glsl). Blocks whose result is constant (no
 // operand the result can show meets them) are not drawn at all, and each draw
 // takes the blocks of one size class, so each runs the cheapest form of
 // evaluate.frag that holds it. The viewport is the tile.
@@ -7,6 +8,11 @@
 #ifndef BLOCK
 #define BLOCK 16
 #endif
+#ifndef MAX_LIVE
+#define MAX_LIVE 64
+#endif
+#define EVALUATE_VERTEX
+#include "csg/blocks.glsl"
 
 // Block numbers (row-major in the tile) to draw, this draw's from uFirstBlock on.
 layout(std430, binding = 4) readonly buffer DrawnBlocks {
@@ -17,8 +23,6 @@ layout(location = 5) uniform int uFirstBlock;
 layout(location = 6) uniform ivec2 uTileSize;  // pixels
 layout(location = 7) uniform int uBlocksX;     // blocks per row of the tile
 
-flat out uint vBlock;
-
 void main() {
     uint block = drawnBlocks[uFirstBlock + gl_InstanceID];
     // Two triangles: corners (0,0) (1,0) (0,1) and (1,0) (1,1) (0,1).
@@ -27,5 +31,19 @@ void main() {
     ivec2 origin = ivec2(int(block) % uBlocksX, int(block) / uBlocksX) * BLOCK;
     vec2 p = vec2(min(origin + corner * BLOCK, uTileSize));
     gl_Position = vec4(p / vec2(uTileSize) * 2.0 - 1.0, 0.0, 1.0);
-    vBlock = block;
+    vRecord = blocks[block];
+#if MAX_LIVE <= 8
+    // The register form's slots (unused ones are never read).
+    uvec4 slot;
+#define SLOT(layers, leaves, c, i)                              \
+    slot = blockOperands[vRecord.x + min(uint(i), vRecord.y - 1u)]; \
+    layers[c] = slot.x;                                         \
+    leaves[c] = slot.z;
+    SLOT(vLayerA, vLeafA, 0, 0) SLOT(vLayerA, vLeafA, 1, 1) SLOT(vLayerA, vLeafA, 2, 2) SLOT(vLayerA, vLeafA, 3, 3)
+#if MAX_LIVE > 4
+    SLOT(vLayerB, vLeafB, 0, 4) SLOT(vLayerB, vLeafB, 1, 5) SLOT(vLayerB, vLeafB, 2, 6) SLOT(vLayerB, vLeafB, 3, 7)
+    vTableLow = blockNodes[vRecord.z];
+    vTableHigh = blockNodes[vRecord.z + 1u];
+#endif
+#endif
 }

@@ -1,0 +1,42 @@
+// The evaluator's per-block data (EvaluatePass.cpp), read by evaluate.vert
+// and evaluate.frag.
+//
+// The tile is cut into BLOCK x BLOCK pixel blocks. Block b's tree is the
+// tree specialised to the operands whose screen rectangle meets it. In the
+// array form blockOperands[blocks[b].x + i], i < blocks[b].y, are its
+// literals, blockNodes[blocks[b].z + n], n < blocks[b].w, its inner nodes,
+// node 0 the root; the register form (evaluate.frag) has its own layout.
+layout(std430, binding = 2) readonly buffer Blocks {
+    uvec4 blocks[];
+};
+
+// Per literal (slot): x the operand's first layer in uLayers, y its layers in
+// this tile, z its tree leaf, w (array form) its parent node, block-local,
+// | kNegate.
+layout(std430, binding = 3) readonly buffer BlockOperands {
+    uvec4 blockOperands[];
+};
+
+// Per inner node: x its parent (block-local, kNoParent for the root), y 1 for
+// AND and 0 for OR, z its child count, w how many children are true when
+// every operand is outside.
+layout(std430, binding = 0) readonly buffer BlockNodes {
+    uvec4 blockNodes[];
+};
+
+// What the vertex stage hands every fragment of a block (flat): the block's
+// record and, for the register form, its slots, so that no fragment gathers
+// them from the buffers.
+#ifdef EVALUATE_VERTEX
+#define BLOCK_VARYING flat out
+#else
+#define BLOCK_VARYING flat in
+#endif
+BLOCK_VARYING uvec4 vRecord;          // blocks[b] of the fragment's block b
+#if MAX_LIVE <= 8
+BLOCK_VARYING uvec4 vLayerA, vLeafA;  // slots 0-3: first layer in uLayers, tree leaf
+#if MAX_LIVE > 4
+BLOCK_VARYING uvec4 vLayerB, vLeafB;  // slots 4-7
+BLOCK_VARYING uvec4 vTableLow, vTableHigh;
+#endif
+#endif
