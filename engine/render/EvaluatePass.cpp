@@ -21,7 +21,7 @@ constexpr GLint kViewProjection = 0;
 constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 
-// Uniform locations in shaders/csg/evaluate.frag.
+// Uniform locations in shaders/csg/evaluate.frag (the loop budget: array form only).
 constexpr GLint kTileOrigin = 2;
 constexpr GLint kLoopBudget = 4;
 // ... and in shaders/csg/evaluate.vert.
@@ -38,10 +38,8 @@ int loopBudgetForThisDriver() {
     // The shader counts one pixel's iterations; the limiter counts those of
     // the 8 or 16 pixels that run in lockstep, which can be more where their
     // walks differ. Half the limit leaves that margin.
-    // intersection of 256 spheres, 512 surfaces, needs about 6000.)
     return limited ? 30000 : std::numeric_limits<int>::max();
 }
-
 
 // Bit m of a truth table: the result when slot i is inside exactly for the bits i of m.
 using TruthTable = std::array<std::uint64_t, 4>;
@@ -264,7 +262,7 @@ void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const V
     for (const auto& [form, list] : byForm) {
         gpu::Program& program = programFor(form);
         program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));
-        program.setUniform(kLoopBudget, loopBudget);
+        if (form > kRegisterForm) program.setUniform(kLoopBudget, loopBudget);
         program.setUniform(kFirstBlock, first);
         program.setUniform(kTileSize, glm::ivec2(tile.width, tile.height));
         program.setUniform(kBlocksX, blocksX);

@@ -34,7 +34,6 @@ struct DrawElementsIndirectCommand {
     GLuint count, instanceCount, firstIndex, baseVertex, baseInstance;
 };
 
-
 }  // namespace
 
 PeelPass::PeelPass()

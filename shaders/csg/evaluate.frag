@@ -1,4 +1,5 @@
-// The CSG evaluator: one fullscreen pass over a tile.
+// The CSG evaluator: one draw per shader variant over the tile's blocks
+// (evaluate.vert), on the pixels marked as candidates (FrameTargets.h).
 //
 // Per pixel, every operand's peeled layers give its surfaces in depth order:
 //   near_0 < near_1 < ... < near_{n-1} <= far_{n-1} < ... < far_0
@@ -19,11 +20,11 @@
 //
 // Two forms of the walk, by MAX_LIVE (the most literals or nodes a block of
 // this draw has): up to eight operands of one layer each, every per-pixel
-// value is one component of a vector and the walk runs in registers; else per-pixel arrays of
-// MAX_LIVE heap entries, live-operand slots and node counts. On llvmpipe each
-// array access is a gather or scatter per lane, several times the cost of
-// the register form, so the renderer draws each block with the smallest
-// form that holds it (EvaluatePass.cpp).
+// value is one component of a vector and the walk runs in registers; else
+// per-pixel arrays of MAX_LIVE heap entries, live-operand slots and node
+// counts. On llvmpipe each array access is a gather or scatter per lane,
+// several times the cost of the register form, so the renderer draws each
+// block with the smallest form that holds it (EvaluatePass.cpp).
 //
 // Output: the visible surface's tagged depth and leaf * 2 + flip, flip = 1
 // where the leaf's own membership changes against the result's (it acts as a
@@ -40,22 +41,12 @@
 
 const float kInfinity = uintBitsToFloat(0x7f800000u);
 const float kCleared = 3.0e38;  // |clear value| of an unwritten layer is FLT_MAX
-const uint kNoParent = 0xffffffffu;
-const uint kNegate = 0x80000000u;
 
 layout(binding = 0) uniform sampler2DArray uLayers;
 
 #include "csg/blocks.glsl"
 
 layout(location = 2) uniform ivec2 uTileOrigin;  // the tile's lower-left pixel in the frame
-// Loop iterations this invocation may spend. llvmpipe ends every loop of a
-// shader invocation once 65535 iterations have run in all (gallivm's loop
-// limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
-// whose walk would overrun the budget is marked unresolved (leaf code -2, no
-// surface) instead, and the renderer reports how many there were. Real GPUs
-// have no such limit: the renderer passes a budget no pixel reaches.
-layout(location = 4) uniform int uLoopBudget;
-
 // Per tree leaf: bit 0 set where the evaluator reported one of its front
 // faces, bit 1 where a back face, in this tile. The normal pass draws only
 // those faces of each operand.
@@ -67,16 +58,9 @@ layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 
 ivec2 pixel;
-uint nodeBase;
-int budget;
-
-void writeUnresolved() {
-    outDepth = kInfinity;
-    outLeaf = -2;
-}
 
 // The result changes at `group` (untagged depth): entered (now true) or left.
-// entrySlotLeaf / exitSlotLeaf: the tree leaf of the first operand that
+// entryLeaf / exitLeaf: the tree leaf of the first operand that
 // entered / left there, -1 for none. Prefer a surface whose operand changes
 // the same way as the result: it is the result's own face.
 void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
@@ -85,34 +69,6 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
     atomicOr(shownFaces[leaf], operandEntered ? 1u : 2u);
-}
-
-// The literal's operand's next surface at or after list position `cursor` (0..2n-1:
-// near side, then far side backwards), or +inf. Moves `cursor` past it.
-float nextSurface(uvec4 literal, inout int cursor) {
-    int first = int(literal.x);
-    int n = int(literal.y);
-    while (cursor < 2 * n) {
-        --budget;
-        int j = cursor;
-        if (j < n) {
-            vec2 layer = texelFetch(uLayers, ivec3(pixel, first + j), 0).rg;
-            if (-layer.r >= kCleared) {
-                // Layer j caught nothing, nor will any later one: go to the far
-                // side of layer j - 1.
-                cursor = 2 * n - j;
-                continue;
-            }
-            cursor = j + 1;
-            return -layer.r;
-        }
-        int l = 2 * n - 1 - j;
-        vec2 layer = texelFetch(uLayers, ivec3(pixel, first + l), 0).rg;
-        cursor = j + 1;
-        // far == near: the layer caught a single surface, already walked.
-        if (layer.g > -layer.r) return layer.g;
-    }
-    return kInfinity;
 }
 
 #if MAX_LIVE <= 8
@@ -134,7 +90,6 @@ float nextSurface(uvec4 literal, inout int cursor) {
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     uvec4 block = vRecord;
-    budget = uLoopBudget;
     vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
     ivec4 leafA = ivec4(vLeafA);
 #if MAX_LIVE > 4
@@ -214,6 +169,55 @@ void main() {
 #else
 
 // The array form.
+
+const uint kNoParent = 0xffffffffu;
+const uint kNegate = 0x80000000u;
+
+// Loop iterations this invocation may spend. llvmpipe ends every loop of a
+// shader invocation once 65535 iterations have run in all (gallivm's loop
+// limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
+// whose walk would overrun the budget is marked unresolved (leaf code -2, no
+// surface) instead, and the renderer reports how many there were. Real GPUs
+// have no such limit: the renderer passes a budget no pixel reaches.
+layout(location = 4) uniform int uLoopBudget;
+
+int budget;
+uint nodeBase;
+
+void writeUnresolved() {
+    outDepth = kInfinity;
+    outLeaf = -2;
+}
+
+// The literal's operand's next surface at or after list position `cursor`
+// (0..2n-1: near side, then far side backwards), or +inf. Moves `cursor`
+// past it.
+float nextSurface(uvec4 literal, inout int cursor) {
+    int first = int(literal.x);
+    int n = int(literal.y);
+    while (cursor < 2 * n) {
+        --budget;
+        int j = cursor;
+        if (j < n) {
+            vec2 layer = texelFetch(uLayers, ivec3(pixel, first + j), 0).rg;
+            if (-layer.r >= kCleared) {
+                // Layer j caught nothing, nor will any later one: go to the far
+                // side of layer j - 1.
+                cursor = 2 * n - j;
+                continue;
+            }
+            cursor = j + 1;
+            return -layer.r;
+        }
+        int l = 2 * n - 1 - j;
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, first + l), 0).rg;
+        cursor = j + 1;
+        // far == near: the layer caught a single surface, already walked.
+        if (layer.g > -layer.r) return layer.g;
+    }
+    return kInfinity;
+}
+
 uint trueChildren[MAX_LIVE];  // per inner node
 
 // Live operands: slot s holds an operand that still has surfaces ahead.
