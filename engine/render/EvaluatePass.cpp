@@ -21,7 +21,7 @@ constexpr GLint kViewProjection = 0;
 constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 
-// Uniform locations in shaders/csg/evaluate.frag (the loop budget: array form only).
+// Uniform locations in shaders/csg/evaluate.frag (the loop budget: array and product forms).
 constexpr GLint kTileOrigin = 2;
 constexpr GLint kLoopBudget = 4;
 // ... and in shaders/csg/evaluate.vert.
@@ -81,8 +81,12 @@ int EvaluatePass::capacityFor(int count) {
 gpu::Program& EvaluatePass::programFor(int form) {
     auto it = programs_.find(form);
     if (it == programs_.end()) {
-        const std::vector<gpu::ShaderDefine> defines{{"MAX_LIVE", std::to_string(form)},
-                                                     {"BLOCK", std::to_string(kBlock)}};
+        std::vector<gpu::ShaderDefine> defines{{"BLOCK", std::to_string(kBlock)}};
+        if (form == kProductForm) {
+            defines.push_back({"PRODUCT_FORM", "1"});
+        } else {
+            defines.push_back({"MAX_LIVE", std::to_string(form)});
+        }
         it = programs_
                  .emplace(form,
                           gpu::Program::fromFiles("evaluate", {"csg/evaluate.vert", "csg/evaluate.frag"}, defines))
@@ -105,6 +109,7 @@ void EvaluatePass::setProgram(const TreeProgram& program) {
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
         programFor(4);
+        if (program.operandCount() > kRegisterForm) programFor(kProductForm);
         if (program.operandCount() > 4) programFor(kRegisterForm);
         if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()));
     }
@@ -145,7 +150,8 @@ void EvaluatePass::markCandidates(FrameTargets& targets, const SceneBuffers& sce
 
 EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& code,
                                               const std::vector<OperandLayers>& operandLayers,
-                                              std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes) const {
+                                              std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes,
+                                              bool generalOnly) const {
     auto literal = [&](std::uint32_t operand, std::uint32_t parent) {
         const OperandLayers& layers = operandLayers[operand];
         return glm::uvec4(static_cast<unsigned>(layers.first), static_cast<unsigned>(layers.count),
@@ -163,6 +169,7 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     }
 
     BlockTree out;
+    if (generalOnly) onePassEach = false;
     if (onePassEach && used.size() <= static_cast<std::size_t>(kRegisterForm)) {
         // The register form: the tree as a truth table over the inside bits.
         const TruthTable table = truthTable(code, used);
@@ -181,8 +188,19 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
         for (std::uint32_t operand : used) literals.push_back(literal(operand, 0u));
         return out;
     }
-    // The array form: the counting tree.
     const CountingTree tree = countingTree(code);
+    if (onePassEach && tree.nodes.size() == 1) {
+        // The product form: one AND (OR) of literals; each literal's wish is
+        // its own value (its negation, for an OR: the result is then !P).
+        const bool isAnd = tree.nodes[0].isAnd;
+        out.form = kProductForm;
+        out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(tree.literals.size()),
+                      isAnd ? 0u : 1u, 0u};
+        for (const CountingTree::Literal& l : tree.literals)
+            literals.push_back(literal(l.operand, l.negated == isAnd ? 0u : 1u));
+        return out;
+    }
+    // The array form: the counting tree.
     out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(tree.literals.size()),
                   static_cast<unsigned>(nodes.size()), static_cast<unsigned>(tree.nodes.size())};
     out.form = capacityFor(static_cast<int>(std::max(tree.literals.size(), tree.nodes.size())));
@@ -195,7 +213,8 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
 
 void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
                        const gpu::Texture& layers, const PixelRect& tile,
-                       const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects) {
+                       const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
+                       bool generalOnly, FrameStats& stats) {
     if (operandLeaf_.empty()) return;
     markCandidates(targets, scene, view, tile, rects);
     // The operands whose rectangle meets each block.
@@ -231,7 +250,8 @@ void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const V
             const std::vector<std::uint32_t> specialised = specializeProgram(program_, present);
             for (std::uint32_t k : list) present[k] = 0;
             it = trees.emplace(list, specialised.empty() ? BlockTree{}
-                                                         : addTree(specialised, operandLayers, literals, nodes))
+                                                         : addTree(specialised, operandLayers, literals, nodes,
+                                                                   generalOnly))
                      .first;
         }
         blocks[b] = it->second.record;
@@ -260,9 +280,13 @@ void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const V
     static const int loopBudget = loopBudgetForThisDriver();
     int first = 0;
     for (const auto& [form, list] : byForm) {
+        std::size_t& counter = form == kProductForm    ? stats.productBlocks
+                               : form <= kRegisterForm ? stats.registerBlocks
+                                                       : stats.arrayBlocks;
+        counter += list.size();
         gpu::Program& program = programFor(form);
         program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));
-        if (form > kRegisterForm) program.setUniform(kLoopBudget, loopBudget);
+        if (form == kProductForm || form > kRegisterForm) program.setUniform(kLoopBudget, loopBudget);
         program.setUniform(kFirstBlock, first);
         program.setUniform(kTileSize, glm::ivec2(tile.width, tile.height));
         program.setUniform(kBlocksX, blocksX);

@@ -11,12 +11,14 @@
 // 16x16 block of a tile gets the tree specialised to the operands whose
 // screen rectangle meets it (TreeProgram.h: specializeProgram, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
-// The shader is specialised only by the size of its per-pixel state,
-// MAX_LIVE: 4 or 8 for the register form (up to eight operands of one peeled
-// layer each, the tree as a truth table, everything in registers) or a power of two
-// from 16 up for the array form (a heap of surfaces and a counting tree in
-// per-pixel arrays). Each block is drawn (one instanced quad per block) by the
-// cheapest variant that holds it. A variant is compiled on first use and kept.
+// The shader comes in three forms: the register form (up to eight operands
+// of one peeled layer each, the tree as a truth table, everything in
+// registers; MAX_LIVE 4 or 8), the product form (more operands of one layer
+// each under a single AND or OR: a CSG product or a union) and the array form
+// (anything else: a heap of surfaces and a counting tree in per-pixel arrays
+// of MAX_LIVE, a power of two from 16 up). Each block is drawn (one instanced
+// quad per block) by the cheapest variant that holds it. A variant is
+// compiled on first use and kept.
 //
 // GL state: sets the viewport, the stencil test and function; leaves the
 // stencil test off. Expects blending, depth test and culling off.
@@ -33,6 +35,7 @@
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/VertexArray.h"
+#include "strata/render/Renderer.h"
 #include "strata/render/TreeProgram.h"
 
 namespace strata::render {
@@ -46,9 +49,11 @@ public:
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
+    // `generalOnly` draws every block with the array form (tests compare the
+    // forms). Adds the blocks drawn in each form to `stats`.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const gpu::Texture& layers,
              const PixelRect& tile, const std::vector<OperandLayers>& operandLayers,
-             const std::vector<PixelRect>& rects);
+             const std::vector<PixelRect>& rects, bool generalOnly, FrameStats& stats);
 
     // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
     // of two, at least 16.
@@ -62,22 +67,25 @@ public:
     // and 8): up to this many operands of one layer each, the tree as a
     // truth table.
     static constexpr int kRegisterForm = 8;
+    // The product form's variant key (it has no MAX_LIVE: it keeps no arrays).
+    static constexpr int kProductForm = 1;
     static constexpr int kBlock = 16;  // BLOCK in evaluate.frag
 
 private:
     struct BlockTree {
         glm::uvec4 record{0u};  // the block's entry in `blocks` (evaluate.frag)
-        int form = 0;           // shader variant (MAX_LIVE); 0: constant result, nothing to draw
+        int form = 0;           // shader variant (MAX_LIVE or kProductForm); 0: constant result, nothing to draw
     };
     // Appends the block data of `code` (a specialised program) to `literals`
-    // and `nodes`, in the register form where it fits, else the array form.
+    // and `nodes`, in the register or product form where it fits (unless
+    // `generalOnly`), else the array form.
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
-                      std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes) const;
-    gpu::Program& programFor(int form);  // by MAX_LIVE: kRegisterForm or a capacityFor() value
+                      std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
+    gpu::Program& programFor(int form);  // 4, kRegisterForm, kProductForm or a capacityFor() value
     void markCandidates(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
                         const PixelRect& tile, const std::vector<PixelRect>& rects);
 
-    std::map<int, gpu::Program> programs_;  // by MAX_LIVE
+    std::map<int, gpu::Program> programs_;  // by form (BlockTree::form)
     TreeProgram program_;
     gpu::Buffer blocks_;
     gpu::Buffer blockOperands_;

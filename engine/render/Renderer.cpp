@@ -226,7 +226,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
         start = Clock::now();
-        evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects);
+        evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats);
         normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces());
         glFinish();
         stats.evaluateMs += millisecondsSince(start);

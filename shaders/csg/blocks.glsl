@@ -6,13 +6,23 @@
 // array form blockOperands[blocks[b].x + i], i < blocks[b].y, are its
 // literals, blockNodes[blocks[b].z + n], n < blocks[b].w, its inner nodes,
 // node 0 the root; the register form (evaluate.frag) has its own layout.
+//
+// Which walk a variant of evaluate.frag compiles (EvaluatePass::programFor):
+// PRODUCT_FORM defined, the product form; else MAX_LIVE <= 8 the register
+// form, larger the array form.
+#ifdef PRODUCT_FORM
+#define REGISTER_FORM 0
+#else
+#define REGISTER_FORM (MAX_LIVE <= 8)
+#endif
+
 layout(std430, binding = 2) readonly buffer Blocks {
     uvec4 blocks[];
 };
 
 // Per literal (slot): x the operand's first layer in uLayers, y its layers in
 // this tile, z its tree leaf, w (array form) its parent node, block-local,
-// | kNegate.
+// | kNegate, or (product form) 1 where the literal wants its operand inside.
 layout(std430, binding = 3) readonly buffer BlockOperands {
     uvec4 blockOperands[];
 };
@@ -33,7 +43,7 @@ layout(std430, binding = 0) readonly buffer BlockNodes {
 #define BLOCK_VARYING flat in
 #endif
 BLOCK_VARYING uvec4 vRecord;          // blocks[b] of the fragment's block b
-#if MAX_LIVE <= 8
+#if REGISTER_FORM
 BLOCK_VARYING uvec4 vLayerA, vLeafA;  // slots 0-3: first layer in uLayers, tree leaf
 #if MAX_LIVE > 4
 BLOCK_VARYING uvec4 vLayerB, vLeafB;  // slots 4-7

@@ -71,7 +71,25 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     atomicOr(shownFaces[leaf], operandEntered ? 1u : 2u);
 }
 
-#if MAX_LIVE <= 8
+#if !REGISTER_FORM
+// Loop iterations this invocation may spend. llvmpipe ends every loop of a
+// shader invocation once 65535 iterations have run in all (gallivm's loop
+// limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
+// whose walk would overrun the budget is marked unresolved (leaf code -2, no
+// surface) instead, and the renderer reports how many there were. Real GPUs
+// have no such limit: the renderer passes a budget no pixel reaches.
+layout(location = 4) uniform int uLoopBudget;
+
+int budget;
+
+void writeUnresolved() {
+    outDepth = kInfinity;
+    outLeaf = -2;
+}
+
+#endif
+
+#if REGISTER_FORM
 
 // The register form, for blocks of at most eight operands with one peeled
 // layer each (convex ones, say): each operand has at most two surfaces here,
@@ -166,6 +184,8 @@ void main() {
     discard;
 }
 
+#elif defined(PRODUCT_FORM)
+#include "csg/product.glsl"
 #else
 
 // The array form.
@@ -173,21 +193,7 @@ void main() {
 const uint kNoParent = 0xffffffffu;
 const uint kNegate = 0x80000000u;
 
-// Loop iterations this invocation may spend. llvmpipe ends every loop of a
-// shader invocation once 65535 iterations have run in all (gallivm's loop
-// limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
-// whose walk would overrun the budget is marked unresolved (leaf code -2, no
-// surface) instead, and the renderer reports how many there were. Real GPUs
-// have no such limit: the renderer passes a budget no pixel reaches.
-layout(location = 4) uniform int uLoopBudget;
-
-int budget;
 uint nodeBase;
-
-void writeUnresolved() {
-    outDepth = kInfinity;
-    outLeaf = -2;
-}
 
 // The literal's operand's next surface at or after list position `cursor`
 // (0..2n-1: near side, then far side backwards), or +inf. Moves `cursor`

@@ -32,7 +32,7 @@ void main() {
     vec2 p = vec2(min(origin + corner * BLOCK, uTileSize));
     gl_Position = vec4(p / vec2(uTileSize) * 2.0 - 1.0, 0.0, 1.0);
     vRecord = blocks[block];
-#if MAX_LIVE <= 8
+#if REGISTER_FORM
     // The register form's slots (unused ones are never read).
     uvec4 slot;
 #define SLOT(layers, leaves, c, i)                              \

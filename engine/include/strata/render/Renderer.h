@@ -38,6 +38,10 @@ struct RenderSettings {
     // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
     std::size_t memoryBudget = std::size_t(512) << 20;
     bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
+    // Evaluate every pixel with the general (array) form of the evaluator,
+    // not the fastest form that holds its block: slower, the same image
+    // (tests compare the forms).
+    bool generalEvaluator = false;
 };
 
 struct FrameStats {
@@ -48,6 +52,9 @@ struct FrameStats {
     std::size_t coveredPixels = 0;             // pixels where the result has a surface
     std::size_t unresolvedPixels = 0;          // pixels the evaluator could not finish (llvmpipe's loop limit); drawn empty
     int tiles = 1;                             // screen tiles / operand batches used to stay in budget
+    // 16x16 blocks the evaluator drew in each of its forms (EvaluatePass.h);
+    // blocks whose result is constant are not drawn.
+    std::size_t registerBlocks = 0, productBlocks = 0, arrayBlocks = 0;
     std::vector<std::string> notes;            // what the renderer decided (tiling, clamping, ...)
 };
 

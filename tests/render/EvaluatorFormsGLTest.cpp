@@ -1,0 +1,217 @@
+// The evaluator's fast forms against its general one. The register form
+// (few one-layer operands) and the product form (many one-layer operands
+// under one AND or OR) are shortcuts of the array form's walk; the array
+// form is checked against the CPU reference and a brute-force ray caster
+// elsewhere (RendererOracleGLTest, DeepPixelGLTest, the accuracy suite).
+// Here every fast-form frame must equal the array form's frame bit for bit:
+// coverage, tagged depth, leaf and normal, on random products and unions
+// seen from outside and from inside (the near plane cutting operands, so
+// that they start inside).
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "strata/geometry/Model.h"
+#include "strata/gpu/Context.h"
+#include "strata/render/Renderer.h"
+
+using namespace strata;
+using scene::NodeKind;
+
+namespace {
+
+// A random convex solid (cube, sphere, cylinder or cone) near the origin.
+scene::Leaf convexLeaf(std::mt19937& rng, double spread) {
+    std::uniform_real_distribution<double> size(0.6, 1.8), pos(-spread, spread), angle(0.0, 360.0);
+    scene::Leaf leaf;
+    switch (rng() % 3) {
+        case 0: leaf.primitive = scene::Cube{{size(rng), size(rng), size(rng)}, true}; break;
+        case 1: {
+            scene::Sphere s;
+            s.r = size(rng) * 0.7;
+            s.fragments.fn = 8 + static_cast<double>(rng() % 10);
+            leaf.primitive = s;
+            break;
+        }
+        default: {
+            scene::Cylinder c;
+            c.h = size(rng) * 1.5;
+            c.r1 = size(rng) * 0.5;
+            c.r2 = rng() % 3 == 0 ? 0.0 : size(rng) * 0.5;
+            c.center = true;
+            c.fragments.fn = 6 + static_cast<double>(rng() % 10);
+            leaf.primitive = c;
+        }
+    }
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), {pos(rng), pos(rng), pos(rng)});
+    leaf.transform = glm::rotate(m, glm::radians(angle(rng)), glm::normalize(glm::dvec3(0.3, pos(rng), 1.0)));
+    return leaf;
+}
+
+// One node of `count` convex leaves. A difference keeps a big first operand
+// so that something is left; an intersection keeps its operands close.
+scene::Tree flatTree(NodeKind kind, int count, std::mt19937& rng) {
+    scene::Tree tree;
+    std::vector<int> children;
+    for (int i = 0; i < count; ++i) {
+        scene::Leaf leaf = convexLeaf(rng, kind == NodeKind::Intersection ? 0.3 : 1.5);
+        if (kind == NodeKind::Difference && i == 0) leaf.primitive = scene::Cube{{3.0, 3.0, 3.0}, true};
+        if (kind == NodeKind::Intersection) leaf.transform = glm::scale(leaf.transform, glm::dvec3(2.0));
+        children.push_back(tree.addLeaf(std::move(leaf)));
+    }
+    tree.root = tree.addNode(kind, children);
+    return tree;
+}
+
+render::Camera cameraFor(int which, std::mt19937& rng) {
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    glm::dvec3 dir;
+    do dir = {unit(rng), unit(rng), unit(rng)};
+    while (glm::length(dir) < 0.3 || std::abs(glm::normalize(dir).z) > 0.95);
+    dir = glm::normalize(dir);
+    render::Camera camera;
+    camera.width = camera.height = 64;
+    if (which == 0) {  // outside, perspective
+        camera.eye = dir * 9.0;
+        camera.center = glm::dvec3(0.0);
+        camera.fovDegrees = 35.0;
+    } else if (which == 1) {  // outside, orthographic
+        camera.projection = render::Projection::Orthographic;
+        camera.eye = dir * 8.0;
+        camera.center = glm::dvec3(0.0);
+        camera.fovDegrees = 40.0;
+    } else {  // inside the model's box: the near plane cuts operands
+        camera.eye = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 0.4;
+        camera.center = camera.eye - dir;
+        camera.fovDegrees = 80.0;
+    }
+    return camera;
+}
+
+// Bit-for-bit equality of two frames' AOVs; `what` names the case.
+void expectSameFrame(const render::Frame& fast, const render::Frame& general, const std::string& what) {
+    ASSERT_EQ(fast.leaf.size(), general.leaf.size());
+    std::size_t differ = 0;
+    for (std::size_t p = 0; p < fast.leaf.size(); ++p) {
+        const bool same = fast.leaf[p] == general.leaf[p] &&
+                          std::memcmp(&fast.depth[p], &general.depth[p], sizeof(float)) == 0 &&
+                          std::memcmp(&fast.normal[p], &general.normal[p], sizeof(glm::vec3)) == 0;
+        if (!same && ++differ <= 3) {
+            ADD_FAILURE() << what << ", pixel " << p % static_cast<std::size_t>(fast.width) << ","
+                          << p / static_cast<std::size_t>(fast.width) << ": fast form leaf " << fast.leaf[p]
+                          << " depth " << fast.depth[p] << ", array form leaf " << general.leaf[p] << " depth "
+                          << general.depth[p];
+        }
+    }
+    EXPECT_EQ(differ, 0u) << what;
+    EXPECT_EQ(fast.stats.unresolvedPixels, 0u) << what;
+    EXPECT_EQ(general.stats.unresolvedPixels, 0u) << what;
+}
+
+struct FormsCase {
+    NodeKind kind;
+    int count;
+};
+
+std::string nodeName(NodeKind kind) {
+    return kind == NodeKind::Union ? "union" : kind == NodeKind::Intersection ? "intersection" : "difference";
+}
+
+}  // namespace
+
+class EvaluatorForms : public ::testing::TestWithParam<FormsCase> {};
+
+TEST_P(EvaluatorForms, EqualTheArrayForm) {
+    const FormsCase c = GetParam();
+    gpu::Context context;
+    render::Renderer renderer;
+    std::mt19937 rng(static_cast<unsigned>(1000 + c.count * 7 + static_cast<int>(c.kind)));
+    std::size_t covered = 0, insideStarts = 0;
+    render::FrameStats fastBlocks;
+    for (int s = 0; s < 4; ++s) {
+        const scene::Tree tree = flatTree(c.kind, c.count, rng);
+        const geometry::Model model = geometry::buildModel(tree);
+        renderer.setScene(tree, model);
+        for (int which = 0; which < 3; ++which) {
+            const render::Camera camera = cameraFor(which, rng);
+            render::RenderSettings settings;
+            const render::Frame fast = renderer.render(camera, settings);
+            settings.generalEvaluator = true;
+            const render::Frame general = renderer.render(camera, settings);
+            expectSameFrame(fast, general,
+                            nodeName(c.kind) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
+                                ", camera " + std::to_string(which));
+            EXPECT_EQ(general.stats.registerBlocks + general.stats.productBlocks, 0u);
+            fastBlocks.registerBlocks += fast.stats.registerBlocks;
+            fastBlocks.productBlocks += fast.stats.productBlocks;
+            fastBlocks.arrayBlocks += fast.stats.arrayBlocks;
+            covered += fast.stats.coveredPixels;
+            if (which == 2) insideStarts += fast.stats.coveredPixels;
+        }
+    }
+    EXPECT_GT(covered, 12u * 64u * 64u / 10u) << "the scenes must show something";
+    EXPECT_GT(insideStarts, 0u) << "the cameras inside must see something";
+    // The fast forms must have been the ones drawn.
+    EXPECT_EQ(fastBlocks.arrayBlocks, 0u);
+    if (c.count > 8) {
+        EXPECT_GT(fastBlocks.productBlocks, 0u);
+    } else {
+        EXPECT_GT(fastBlocks.registerBlocks, 0u);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Trees, EvaluatorForms,
+                         ::testing::Values(FormsCase{NodeKind::Difference, 6}, FormsCase{NodeKind::Intersection, 5},
+                                           FormsCase{NodeKind::Union, 7}, FormsCase{NodeKind::Difference, 24},
+                                           FormsCase{NodeKind::Intersection, 20}, FormsCase{NodeKind::Union, 30}),
+                         [](const ::testing::TestParamInfo<FormsCase>& info) {
+                             return nodeName(info.param.kind) + std::to_string(info.param.count);
+                         });
+
+// Coincident faces: the forms must settle ties alike. A cube minus copies of
+// itself leaves nothing; a union of cubes that share faces shows them once.
+TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
+    gpu::Context context;
+    render::Renderer renderer;
+    for (NodeKind kind : {NodeKind::Difference, NodeKind::Union, NodeKind::Intersection}) {
+        scene::Tree tree;
+        std::vector<int> children;
+        for (int i = 0; i < 12; ++i) {
+            scene::Leaf leaf;
+            leaf.primitive = scene::Cube{{2.0, 2.0, 2.0}, true};
+            // Unions: a row of cubes sharing faces; the others: one cube, repeated.
+            if (kind == NodeKind::Union) leaf.transform = glm::translate(glm::dmat4(1.0), {2.0 * (i % 4) - 3.0, 0, 0});
+            children.push_back(tree.addLeaf(std::move(leaf)));
+        }
+        tree.root = tree.addNode(kind, children);
+        const geometry::Model model = geometry::buildModel(tree);
+        renderer.setScene(tree, model);
+        render::Camera camera;
+        camera.width = camera.height = 64;
+        camera.eye = {7.0, -9.0, 6.0};
+        camera.center = {0.0, 0.0, 0.0};
+        render::RenderSettings settings;
+        const render::Frame fast = renderer.render(camera, settings);
+        settings.generalEvaluator = true;
+        const render::Frame general = renderer.render(camera, settings);
+        EXPECT_GT(fast.stats.productBlocks, 0u);
+        if (kind == NodeKind::Difference) {
+            EXPECT_EQ(fast.stats.coveredPixels, 0u) << "a cube minus itself is empty";
+        } else {
+            EXPECT_GT(fast.stats.coveredPixels, 500u);
+        }
+        // Coverage, depth and normal must match exactly; the leaf named at a
+        // tie may differ (each form names the first operand it meets).
+        for (std::size_t p = 0; p < fast.leaf.size(); ++p) {
+            ASSERT_EQ(fast.leaf[p] >= 0, general.leaf[p] >= 0) << nodeName(kind) << " pixel " << p;
+            ASSERT_EQ(std::memcmp(&fast.depth[p], &general.depth[p], sizeof(float)), 0) << nodeName(kind);
+            ASSERT_EQ(std::memcmp(&fast.normal[p], &general.normal[p], sizeof(glm::vec3)), 0) << nodeName(kind);
+        }
+    }
+}
