@@ -95,16 +95,18 @@ gpu::Program& EvaluatePass::programFor(int form) {
     return it->second;
 }
 
-void EvaluatePass::setProgram(const TreeProgram& program) {
+void EvaluatePass::setProgram(const TreeProgram& program, const SceneBuffers& scene) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
     leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
     shownFaces_ = gpu::Buffer("shown faces", std::max<std::size_t>(leafCount_, 1) * sizeof(std::uint32_t), nullptr,
                               GL_DYNAMIC_STORAGE_BIT);
-    shown_.assign(operandLeaf_.size(), 0);
-    for (std::uint32_t instruction : program.code) {
-        const bool literal = (instruction & kOpFromStack) == 0;
-        if (literal && (instruction & kOpNegate) == 0) shown_[instruction >> kOperandShift] = 1;
+    covering_.clear();
+    if (!program.code.empty()) {
+        // Drawing cost: the operand's triangles, plus a draw call's worth.
+        std::vector<double> cost;
+        for (int leaf : operandLeaf_) cost.push_back(64.0 + static_cast<double>(scene.leaf(leaf).indexCount / 3));
+        covering_ = coveringOperands(program.code, cost);
     }
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
@@ -138,9 +140,9 @@ void EvaluatePass::markCandidates(FrameTargets& targets, const SceneBuffers& sce
     glStencilFunc(GL_ALWAYS, FrameTargets::kCandidate, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     scene.vertexArray().bind();
-    for (std::size_t k = 0; k < operandLeaf_.size(); ++k) {
+    for (std::uint32_t k : covering_) {
         const PixelRect r = rects[k].intersection(tile);
-        if (!shown_[k] || r.empty()) continue;
+        if (r.empty()) continue;
         glScissor(r.x, r.y, r.width, r.height);
         scene.drawLeaf(operandLeaf_[k]);
     }

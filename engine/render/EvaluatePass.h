@@ -1,8 +1,8 @@
 #pragma once
 // The evaluate pass: per tile, marks the pixels where the result can have a
-// surface (the operands it can show, drawn into the stencil of
-// FrameTargets::marks), then draws the blocks of the tile over those pixels:
-// each pixel merges the operands' peeled surfaces and walks them front to
+// surface (operands that hold the result, drawn into the stencil of
+// FrameTargets::marks: a cheese's block, one of an intersection's operands),
+// then draws the blocks of the tile over those pixels: each pixel merges the operands' peeled surfaces and walks them front to
 // back (shaders/csg/evaluate.frag) to the first surface where the result's
 // membership changes. Writes FrameTargets::resultDepth and resultLeaf, and
 // marks the pixels it wrote, inside the tile.
@@ -45,7 +45,7 @@ public:
     EvaluatePass();
 
     // Uploads the program; operand k of it is tree leaf program.operandLeaf[k].
-    void setProgram(const TreeProgram& program);
+    void setProgram(const TreeProgram& program, const SceneBuffers& scene);
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
@@ -94,7 +94,9 @@ private:
     gpu::Buffer shownFaces_;  // per tree leaf, see shownFaces()
     std::size_t leafCount_ = 0;
     std::vector<int> operandLeaf_;
-    std::vector<char> shown_;  // per operand: not complemented in the tree, so the result can show it
+    // Operands whose pixels hold every pixel where the result can have a
+    // surface (coveringOperands): drawn to mark the candidates.
+    std::vector<std::uint32_t> covering_;
     gpu::Program candidates_;
     gpu::VertexArray empty_;
 };

@@ -147,7 +147,7 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     impl_->program = compileTree(tree, empty);
-    impl_->evaluate.setProgram(impl_->program);
+    impl_->evaluate.setProgram(impl_->program, impl_->scene);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
     impl_->leafCount = tree.leaves.size();
     impl_->hasScene = true;

@@ -389,3 +389,51 @@ TEST(TreeProgram, ACheeseIsOneCountingNode) {
     EXPECT_EQ(counting.nodes[0].trueWhenOutside, 3u);
     EXPECT_EQ(counting.literals.size(), 4u);
 }
+
+TEST(TreeProgram, CoveringOperandsHoldTheResult) {
+    // Wherever the result is true, one of the covering operands is inside.
+    std::mt19937 rng(5);
+    int bounded = 0;
+    for (int t = 0; t < 300; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 5);
+        const render::TreeProgram program = render::compileTree(tree);
+        if (program.kind != render::TreeProgram::Kind::Program) continue;
+        std::vector<double> cost(static_cast<std::size_t>(program.operandCount()));
+        for (double& c : cost) c = static_cast<double>(rng() % 100);
+        const std::vector<std::uint32_t> cover = render::coveringOperands(program.code, cost);
+        ASSERT_FALSE(cover.empty());
+        bounded += static_cast<int>(cover.size()) < program.operandCount() ? 1 : 0;
+        for (int s = 0; s < 64; ++s) {
+            std::vector<bool> inside(cost.size());
+            for (std::size_t k = 0; k < inside.size(); ++k) inside[k] = (rng() & 1u) != 0;
+            if (!render::runTreeProgram(program, inside)) continue;
+            bool covered = false;
+            for (std::uint32_t k : cover) covered = covered || inside[k];
+            ASSERT_TRUE(covered) << render::disassemble(program);
+        }
+    }
+    EXPECT_GT(bounded, 20) << "some covers must leave operands out";
+}
+
+TEST(TreeProgram, CoveringOperandsOfProductsAndUnions) {
+    Tree tree;
+    std::vector<int> children;
+    for (int i = 0; i < 4; ++i) children.push_back(leaf(tree));
+    // A cheese: the cube alone.
+    tree.root = tree.addNode(NodeKind::Difference, children);
+    const std::vector<double> cost{10.0, 1.0, 1.0, 1.0};
+    EXPECT_EQ(render::coveringOperands(render::compileTree(tree).code, cost), (std::vector<std::uint32_t>{0}));
+    // An intersection: its cheapest operand.
+    tree.root = tree.addNode(NodeKind::Intersection, children);
+    EXPECT_EQ(render::coveringOperands(render::compileTree(tree).code, cost), (std::vector<std::uint32_t>{1}));
+    // A union: all of them.
+    tree.root = tree.addNode(NodeKind::Union, children);
+    EXPECT_EQ(render::coveringOperands(render::compileTree(tree).code, cost),
+              (std::vector<std::uint32_t>{0, 1, 2, 3}));
+    // (0 ∩ 1) ∪ (2 - 3): 1 for the first side, 2 for the second.
+    const int a = tree.addNode(NodeKind::Intersection, {children[0], children[1]});
+    const int b = tree.addNode(NodeKind::Difference, {children[2], children[3]});
+    tree.root = tree.addNode(NodeKind::Union, {a, b});
+    EXPECT_EQ(render::coveringOperands(render::compileTree(tree).code, cost), (std::vector<std::uint32_t>{1, 2}));
+}
