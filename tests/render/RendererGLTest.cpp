@@ -237,6 +237,34 @@ TEST_F(RendererGLTest, OrthographicCubeCoversExactlyItsPixels) {
     EXPECT_EQ(f.stats.layersPerLeaf, std::vector<int>{1});
 }
 
+TEST_F(RendererGLTest, ASmallerModelAfterALargeOneLeavesNoTrace) {
+    // The G-buffer is cleared only where the last frame wrote: a big cube
+    // filling the frame, then a small one in a corner, must give exactly the
+    // small cube's pixels, the shaded image included.
+    scene::Tree big;
+    big.root = big.addNode(NodeKind::Union, {big.addLeaf(cubeLeaf({-3, -3, -1}, {3, 3, 1}))});
+    scene::Tree small;
+    small.root = small.addNode(NodeKind::Union, {small.addLeaf(cubeLeaf({1.0, 1.0, -1}, {1.6, 1.6, 1}))});
+    const render::Camera camera = topCamera(render::Projection::Orthographic);
+    const render::Frame first = draw(big, camera);
+    ASSERT_EQ(first.stats.coveredPixels, static_cast<std::size_t>(kSize) * kSize);
+    const render::Frame f = draw(small, camera);
+    // A fresh renderer, whose images were never written, for comparison.
+    render::Renderer fresh;
+    fresh.setScene(small, geometry::buildModel(small));
+    const render::Frame want = fresh.render(camera, {});
+    ASSERT_GT(want.stats.coveredPixels, 0u);
+    ASSERT_LT(want.stats.coveredPixels, static_cast<std::size_t>(kSize) * kSize / 10);
+    EXPECT_EQ(f.stats.coveredPixels, want.stats.coveredPixels);
+    EXPECT_EQ(f.leaf, want.leaf);
+    EXPECT_EQ(f.rgba, want.rgba);
+    for (std::size_t k = 0; k < f.leaf.size(); ++k) {
+        if (f.leaf[k] >= 0) continue;
+        ASSERT_TRUE(std::isinf(f.depth[k])) << k;
+        ASSERT_EQ(f.normal[k], glm::vec3(0.0f)) << k;
+    }
+}
+
 TEST_F(RendererGLTest, PerspectiveCubeSideFaceDepthIsItsPlane) {
     // Seen from the side (eye on -Y), the face y = -1 is a plane of constant
     // view depth: every pixel on it reads |eye.y| - 1, with normal -Y.
