@@ -34,15 +34,10 @@ void FrameTargets::ensure(int width, int height) {
 
     width_ = width;
     height_ = height;
-    touchAll();  // new images hold anything
 }
 
-void FrameTargets::clearResult(const PixelRect& written) {
-    const PixelRect dirty = dirty_;
-    dirty_ = written.intersection(PixelRect{0, 0, width_, height_});
-    if (dirty.empty()) return;
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(dirty.x, dirty.y, dirty.width, dirty.height);
+void FrameTargets::clearResult() {
+    glDisable(GL_SCISSOR_TEST);
     const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
     const GLint leaf[4] = {-1, 0, 0, 0};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -50,7 +45,6 @@ void FrameTargets::clearResult(const PixelRect& written) {
     evaluateTarget.clearColorInt(1, leaf);
     normalTarget.clearColor(0, zero);
     glClearNamedFramebufferfi(evaluateTarget.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glDisable(GL_SCISSOR_TEST);
 }
 
 std::size_t FrameTargets::bytes() const {

@@ -10,10 +10,6 @@
 //                         result can show covers the pixel), 2 the evaluator wrote a
 //                         result (a surface, or a pixel it could not finish)
 //
-// Clearing is confined to what earlier frames may have written (a
-// rectangle): the passes write only inside the rectangles of the operands,
-// so a model that fills part of the frame leaves the rest clean for the next.
-//
 // The later passes test the stencil so that they run only where there is
 // something to do: a fragment that fails the stencil test never runs its
 // shader, on llvmpipe as on GPUs, while a shader that branches to skip work
@@ -22,7 +18,6 @@
 
 #include <cstddef>
 
-#include "ViewSetup.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
 
@@ -32,14 +27,8 @@ class FrameTargets {
 public:
     // (Re)creates the images when the size changes.
     void ensure(int width, int height);
-    // Sets every pixel to "miss" (depth +inf, leaf -1, normal 0, marks 0),
-    // clearing only what may not be; the passes that follow promise to write
-    // inside `written` only.
-    void clearResult(const PixelRect& written);
-    // The images were written everywhere (Renderer::shade uploads them).
-    void touchAll() { dirty_ = PixelRect{0, 0, width_, height_}; }
-    // Where the result images may hold anything but "miss".
-    const PixelRect& written() const { return dirty_; }
+    // Sets every pixel to "miss": depth +inf, leaf -1, normal 0, marks 0.
+    void clearResult();
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -56,7 +45,6 @@ public:
 
 private:
     int width_ = 0, height_ = 0;
-    PixelRect dirty_;  // outside it, every image holds "miss"
 };
 
 }  // namespace strata::render

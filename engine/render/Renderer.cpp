@@ -118,9 +118,7 @@ struct Renderer::Impl {
 
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame);
-    // `rects[k]`: operand k's screen rectangle.
-    void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, const std::vector<PixelRect>& rects,
-                         Frame& frame);
+    void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade and translucent passes over the G-buffer in `targets`.
@@ -156,10 +154,11 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     gpu::checkErrors();
 }
 
-void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
-                                     const std::vector<PixelRect>& rects, Frame& frame) {
+void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame) {
     FrameStats& stats = frame.stats;
     const std::vector<int>& operands = program.operandLeaf;
+    std::vector<PixelRect> rects(operands.size());
+    for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
 
     // Tiles: the whole frame, cut in four (recursively) while the layers its
     // operands need (a first guess for auto) exceed the budget. Only the
@@ -344,18 +343,9 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     resetDrawState();
     targets.ensure(view.width, view.height);
-    // Each operand's screen rectangle: every pass writes inside them.
-    std::vector<PixelRect> rects;
-    PixelRect written;
+    targets.clearResult();
     if (program.kind == TreeProgram::Kind::Program) {
-        for (int leaf : program.operandLeaf) {
-            rects.push_back(screenRect(view, scene.leafVertices(leaf)));
-            written = written.bound(rects.back());
-        }
-    }
-    targets.clearResult(written);
-    if (program.kind == TreeProgram::Kind::Program) {
-        peelAndEvaluate(view, settings, rects, frame);
+        peelAndEvaluate(view, settings, frame);
     } else {
         stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");
@@ -404,7 +394,6 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, flipRows(depth, w, h, 1).data());
     impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, flipRows(code, w, h, 1).data());
     impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, flipRows(normal, w, h, 4).data());
-    impl.targets.touchAll();
 
     Frame frame;
     frame.width = w;

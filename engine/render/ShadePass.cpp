@@ -44,11 +44,6 @@ void ShadePass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         // The background everywhere, then the shader only where the evaluator wrote.
         const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
         targets.colorTarget.clearColor(0, background);
-        // Marked pixels lie where the result images were written.
-        const PixelRect& written = targets.written();
-        if (written.empty()) return;
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(written.x, written.y, written.width, written.height);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(GL_EQUAL, FrameTargets::kWritten, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
@@ -56,7 +51,6 @@ void ShadePass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     empty_.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_STENCIL_TEST);
-    glDisable(GL_SCISSOR_TEST);
     gpu::checkErrors();
 }
 

@@ -28,14 +28,6 @@ struct PixelRect {
         const int x1 = std::min(x + width, o.x + o.width), y1 = std::min(y + height, o.y + o.height);
         return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
     }
-    // The smallest rectangle holding both (an empty one holds nothing).
-    PixelRect bound(const PixelRect& o) const {
-        if (empty()) return o;
-        if (o.empty()) return *this;
-        const int x0 = std::min(x, o.x), y0 = std::min(y, o.y);
-        const int x1 = std::max(x + width, o.x + o.width), y1 = std::max(y + height, o.y + o.height);
-        return {x0, y0, x1 - x0, y1 - y0};
-    }
 };
 
 struct ViewSetup {
