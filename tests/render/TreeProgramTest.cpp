@@ -78,6 +78,19 @@ int randomNode(Tree& tree, std::mt19937& rng, int depth) {
     return tree.addNode(kind, children);
 }
 
+// Calls f(program, rng) for each of 300 seeded random trees (randomNode,
+// `depth` levels) that compiles to a program rather than a constant.
+template <class F>
+void forRandomPrograms(unsigned seed, int depth, F f) {
+    std::mt19937 rng(seed);
+    for (int t = 0; t < 300; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, depth);
+        const render::TreeProgram program = render::compileTree(tree);
+        if (program.kind == render::TreeProgram::Kind::Program) f(program, rng);
+    }
+}
+
 }  // namespace
 
 TEST(TreeProgram, DifferenceBecomesIntersectionWithComplements) {
@@ -262,13 +275,8 @@ TEST(TreeProgram, CyclesAndBadIndicesAreErrors) {
 TEST(TreeProgram, SpecializingToPresentOperandsKeepsTheMeaning) {
     // Where an operand has no surface it is outside: the specialised program
     // must agree with the full one on every state with absent operands outside.
-    std::mt19937 rng(99);
     int folded = 0, constants = 0;
-    for (int t = 0; t < 300; ++t) {
-        Tree tree;
-        tree.root = randomNode(tree, rng, 5);
-        const render::TreeProgram program = render::compileTree(tree);
-        if (program.kind != render::TreeProgram::Kind::Program) continue;
+    forRandomPrograms(99, 5, [&](const render::TreeProgram& program, std::mt19937& rng) {
         for (int m = 0; m < 8; ++m) {
             std::vector<char> present(static_cast<std::size_t>(program.operandCount()));
             for (char& p : present) p = (rng() % 3) != 0;
@@ -285,7 +293,7 @@ TEST(TreeProgram, SpecializingToPresentOperandsKeepsTheMeaning) {
                 ASSERT_EQ(got, want) << render::disassemble(program);
             }
         }
-    }
+    });
     EXPECT_GT(folded, 100);
     EXPECT_GT(constants, 10);
 }
@@ -342,13 +350,8 @@ struct CountingState {
 }  // namespace
 
 TEST(TreeProgram, CountingTreesFollowTheProgramOneChangeAtATime) {
-    std::mt19937 rng(7);
     int checked = 0;
-    for (int t = 0; t < 300; ++t) {
-        Tree tree;
-        tree.root = randomNode(tree, rng, 6);
-        const render::TreeProgram program = render::compileTree(tree);
-        if (program.kind != render::TreeProgram::Kind::Program) continue;
+    forRandomPrograms(7, 6, [&](const render::TreeProgram& program, std::mt19937& rng) {
         const render::CountingTree counting = render::countingTree(program.code);
 
         // Shape: the root first, every parent before its children, each
@@ -371,7 +374,7 @@ TEST(TreeProgram, CountingTreesFollowTheProgramOneChangeAtATime) {
             ASSERT_EQ(render::runCountingTree(counting, state.inside), state.value(0));
             ++checked;
         }
-    }
+    });
     EXPECT_GT(checked, 4000);
 }
 
@@ -392,13 +395,8 @@ TEST(TreeProgram, ACheeseIsOneCountingNode) {
 
 TEST(TreeProgram, CoveringOperandsHoldTheResult) {
     // Wherever the result is true, one of the covering operands is inside.
-    std::mt19937 rng(5);
     int bounded = 0;
-    for (int t = 0; t < 300; ++t) {
-        Tree tree;
-        tree.root = randomNode(tree, rng, 5);
-        const render::TreeProgram program = render::compileTree(tree);
-        if (program.kind != render::TreeProgram::Kind::Program) continue;
+    forRandomPrograms(5, 5, [&](const render::TreeProgram& program, std::mt19937& rng) {
         std::vector<double> cost(static_cast<std::size_t>(program.operandCount()));
         for (double& c : cost) c = static_cast<double>(rng() % 100);
         const std::vector<std::uint32_t> cover = render::coveringOperands(program.code, cost);
@@ -412,7 +410,7 @@ TEST(TreeProgram, CoveringOperandsHoldTheResult) {
             for (std::uint32_t k : cover) covered = covered || inside[k];
             ASSERT_TRUE(covered) << render::disassemble(program);
         }
-    }
+    });
     EXPECT_GT(bounded, 20) << "some covers must leave operands out";
 }
 
