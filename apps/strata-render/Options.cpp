@@ -2,7 +2,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -10,16 +9,10 @@
 #include <string>
 #include <string_view>
 
-#include "strata/core/Error.h"
-#include "strata/render/ColorScheme.h"
+#include "CommandLine.h"
 
 namespace strata::apps {
 namespace {
-
-// A usage mistake: becomes "strata-render: <message>" and exit status 2.
-struct UsageError {
-    std::string message;
-};
 
 std::string lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -133,12 +126,6 @@ void checkOutputName(const std::string& option, const std::string& path, std::st
         throw UsageError{option + ": expected a " + std::string(extension) + " file name, got '" + path + "'"};
 }
 
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
-}
-
 }  // namespace
 
 ParseResult parseOptions(int argc, char** argv) {
@@ -167,8 +154,7 @@ ParseResult parseOptions(int argc, char** argv) {
                  "to compare the two on your own scenes (same outputs, same shading)");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
 
-    try {
-        app.parse(argc, argv);
+    static_cast<CliOutcome&>(result) = parseCommandLine(app, argc, argv, "strata-render", [&] {
         if (!imgsize.empty() || app.count("--imgsize")) parseImageSize(imgsize, o);
         if (app.count("--camera")) parseCamera(camera, o);
         if (app.count("--projection")) parseProjection(projection, o);
@@ -177,26 +163,8 @@ ParseResult parseOptions(int argc, char** argv) {
         if (app.count("-o")) checkOutputName("-o", o.png, ".png");
         if (app.count("--depth")) checkOutputName("--depth", o.depth, ".exr");
         if (app.count("--normal")) checkOutputName("--normal", o.normal, ".exr");
-        if (app.count("--colorscheme")) {
-            try {
-                o.colorScheme = render::colorScheme(o.colorScheme).name;
-            } catch (const Error& e) {
-                throw UsageError{std::string("--colorscheme: ") + e.what()};
-            }
-        }
-    } catch (const CLI::CallForHelp&) {
-        result.exitNow = true;
-        result.exitCode = 0;
-        result.message = app.help();
-    } catch (const CLI::ParseError& e) {
-        result.exitNow = true;
-        result.exitCode = 2;
-        result.message = "strata-render: " + oneLine(e.what());
-    } catch (const UsageError& e) {
-        result.exitNow = true;
-        result.exitCode = 2;
-        result.message = "strata-render: " + e.message;
-    }
+        if (app.count("--colorscheme")) o.colorScheme = checkedColorScheme(o.colorScheme);
+    });
     return result;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "CommandLine.h"
 #include "strata/render/Camera.h"
 
 namespace strata::apps {
@@ -25,13 +26,9 @@ struct RenderOptions {
     std::string colorScheme = "Cornfield";
 };
 
-// What parsing decided: run with the options, or stop (help printed, or a
-// bad option with its one-line message already formatted).
-struct ParseResult {
+// What parsing decided: run with the options, or stop (CliOutcome).
+struct ParseResult : CliOutcome {
     RenderOptions options;
-    bool exitNow = false;
-    int exitCode = 0;
-    std::string message;  // for stdout (help) when exitCode == 0, else one line for stderr
 };
 
 // argv[0] is ignored. Never throws.

@@ -2,30 +2,17 @@
 
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <charconv>
 
+#include "CommandLine.h"
 #include "Script.h"
-#include "strata/core/Error.h"
-#include "strata/render/ColorScheme.h"
 
 namespace strata::view {
 namespace {
 
-// A usage mistake: becomes "strata-view: <message>" and exit status 2.
-struct UsageError {
-    std::string message;
-};
-
 bool parseWhole(std::string_view text, int& out) {
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
     return ec == std::errc() && end == text.data() + text.size();
-}
-
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
 }
 
 }  // namespace
@@ -43,38 +30,20 @@ ParsedOptions parseOptions(int argc, char** argv) {
     app.add_option("--imgsize", imgsize, "window size in pixels (default 1024,768)")->type_name("W,H");
     app.add_option("--layers", layers, "depth-peel layers per operand, or auto (default)")->type_name("N|auto");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
-    try {
-        app.parse(argc, argv);
+    static_cast<apps::CliOutcome&>(result) = apps::parseCommandLine(app, argc, argv, "strata-view", [&] {
         if (app.count("--imgsize")) {
             const std::size_t comma = imgsize.find(',');
             if (comma == std::string::npos || !parseWhole(std::string_view(imgsize).substr(0, comma), o.width) ||
                 !parseWhole(std::string_view(imgsize).substr(comma + 1), o.height) || o.width <= 0 ||
                 o.height <= 0 || o.width > kMaxViewSide || o.height > kMaxViewSide)
-                throw UsageError{"--imgsize: expected W,H (two whole numbers from 1 to 16384), got '" + imgsize + "'"};
+                throw apps::UsageError{"--imgsize: expected W,H (two whole numbers from 1 to 16384), got '" + imgsize + "'"};
         }
         if (app.count("--layers") && layers != "auto") {
             if (!parseWhole(layers, o.layers) || o.layers < 1 || o.layers > kMaxLayers)
-                throw UsageError{"--layers: expected 'auto' or a whole number from 1 to 1024, got '" + layers + "'"};
+                throw apps::UsageError{"--layers: expected 'auto' or a whole number from 1 to 1024, got '" + layers + "'"};
         }
-        if (app.count("--colorscheme")) {
-            try {
-                o.colorScheme = render::colorScheme(o.colorScheme).name;
-            } catch (const Error& e) {
-                throw UsageError{std::string("--colorscheme: ") + e.what()};
-            }
-        }
-    } catch (const CLI::CallForHelp&) {
-        result.exitNow = true;
-        result.message = app.help();
-    } catch (const CLI::ParseError& e) {
-        result.exitNow = true;
-        result.exitCode = 2;
-        result.message = "strata-view: " + oneLine(e.what());
-    } catch (const UsageError& e) {
-        result.exitNow = true;
-        result.exitCode = 2;
-        result.message = "strata-view: " + e.message;
-    }
+        if (app.count("--colorscheme")) o.colorScheme = apps::checkedColorScheme(o.colorScheme);
+    });
     return result;
 }
 

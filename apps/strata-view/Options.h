@@ -4,15 +4,14 @@
 
 #include <string>
 
+#include "CommandLine.h"
 #include "Viewer.h"
 
 namespace strata::view {
 
-struct ParsedOptions {
+// What parsing decided: run with the options, or stop (apps::CliOutcome).
+struct ParsedOptions : apps::CliOutcome {
     ViewerOptions options;
-    bool exitNow = false;
-    int exitCode = 0;
-    std::string message;  // help for stdout when exitCode == 0, else one line for stderr
 };
 
 // argv[0] is ignored. Never throws.
