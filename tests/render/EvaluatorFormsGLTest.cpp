@@ -119,10 +119,6 @@ struct FormsCase {
     int count;
 };
 
-std::string nodeName(NodeKind kind) {
-    return kind == NodeKind::Union ? "union" : kind == NodeKind::Intersection ? "intersection" : "difference";
-}
-
 }  // namespace
 
 class EvaluatorForms : public ::testing::TestWithParam<FormsCase> {};
@@ -145,7 +141,7 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
             settings.generalEvaluator = true;
             const render::Frame general = renderer.render(camera, settings);
             expectSameFrame(fast, general,
-                            nodeName(c.kind) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
+                            std::string(scene::kindName(c.kind)) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
                                 ", camera " + std::to_string(which));
             EXPECT_EQ(general.stats.registerBlocks + general.stats.productBlocks, 0u);
             fastBlocks.registerBlocks += fast.stats.registerBlocks;
@@ -171,7 +167,7 @@ INSTANTIATE_TEST_SUITE_P(Trees, EvaluatorForms,
                                            FormsCase{NodeKind::Union, 7}, FormsCase{NodeKind::Difference, 24},
                                            FormsCase{NodeKind::Intersection, 20}, FormsCase{NodeKind::Union, 30}),
                          [](const ::testing::TestParamInfo<FormsCase>& info) {
-                             return nodeName(info.param.kind) + std::to_string(info.param.count);
+                             return std::string(scene::kindName(info.param.kind)) + std::to_string(info.param.count);
                          });
 
 // Coincident faces: the forms must settle ties alike. A cube minus copies of
@@ -209,9 +205,9 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
         // Coverage, depth and normal must match exactly; the leaf named at a
         // tie may differ (each form names the first operand it meets).
         for (std::size_t p = 0; p < fast.leaf.size(); ++p) {
-            ASSERT_EQ(fast.leaf[p] >= 0, general.leaf[p] >= 0) << nodeName(kind) << " pixel " << p;
-            ASSERT_EQ(std::memcmp(&fast.depth[p], &general.depth[p], sizeof(float)), 0) << nodeName(kind);
-            ASSERT_EQ(std::memcmp(&fast.normal[p], &general.normal[p], sizeof(glm::vec3)), 0) << nodeName(kind);
+            ASSERT_EQ(fast.leaf[p] >= 0, general.leaf[p] >= 0) << scene::kindName(kind) << " pixel " << p;
+            ASSERT_EQ(std::memcmp(&fast.depth[p], &general.depth[p], sizeof(float)), 0) << scene::kindName(kind);
+            ASSERT_EQ(std::memcmp(&fast.normal[p], &general.normal[p], sizeof(glm::vec3)), 0) << scene::kindName(kind);
         }
     }
 }
