@@ -111,7 +111,8 @@ void EvaluatePass::setProgram(const TreeProgram& program, const SceneBuffers& sc
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
         programFor(4);
-        if (program.operandCount() > kRegisterForm) programFor(kProductForm);
+        const bool product = !program.code.empty() && countingTree(program.code).nodes.size() == 1;  // one AND or OR
+        if (product && program.operandCount() > kRegisterForm) programFor(kProductForm);
         if (program.operandCount() > 4) programFor(kRegisterForm);
         if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()));
     }
@@ -171,8 +172,8 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     }
 
     BlockTree out;
-    if (generalOnly) onePassEach = false;
-    if (onePassEach && used.size() <= static_cast<std::size_t>(kRegisterForm)) {
+    const bool fastForms = onePassEach && !generalOnly;
+    if (fastForms && used.size() <= static_cast<std::size_t>(kRegisterForm)) {
         // The register form: the tree as a truth table over the inside bits.
         const TruthTable table = truthTable(code, used);
         out.form = used.size() <= 4 ? 4 : kRegisterForm;
@@ -191,7 +192,7 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
         return out;
     }
     const CountingTree tree = countingTree(code);
-    if (onePassEach && tree.nodes.size() == 1) {
+    if (fastForms && tree.nodes.size() == 1) {
         // The product form: one AND (OR) of literals; each literal's wish is
         // its own value (its negation, for an OR: the result is then !P).
         const bool isAnd = tree.nodes[0].isAnd;
