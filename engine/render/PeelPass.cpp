@@ -80,6 +80,7 @@ bool PeelPass::reserve(int width, int height, int needed, int keep, std::size_t 
                            0, std::min(width, layers_.width()), std::min(height, layers_.height()), keep);
     }
     layers_ = std::move(bigger);
+    ++allocations_;
     return true;
 }
 
@@ -125,6 +126,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
                    const PeelRequest& request, std::vector<OperandLayers>& out) {
     out.assign(operandLeaves.size(), {});
     passes_ = 0;
+    allocations_ = 0;
     std::vector<char> inTile(operandLeaves.size());
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
     const int estimate = estimateLayers(scene, operandLeaves, inTile, request.fixedLayers);

@@ -74,6 +74,7 @@ public:
     std::size_t textureBytes() const { return layers_.id() ? layers_.byteSize() : 0; }
     int maxArrayLayers() const { return maxArrayLayers_; }
     int passes() const { return passes_; }  // geometry passes in the last run()
+    int allocations() const { return allocations_; }  // layer textures created in the last run()
 
 private:
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
@@ -94,6 +95,7 @@ private:
     gpu::Query drawn_;
     int maxArrayLayers_ = 256;
     int passes_ = 0;
+    int allocations_ = 0;
 };
 
 }  // namespace strata::render

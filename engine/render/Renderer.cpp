@@ -32,9 +32,9 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Below this many pixels a tile is not split further: the scene needs more
-// layers at one spot than the budget (or the GPU's array-layer limit) allows.
-constexpr long kSmallestTile = 16 * 16;
+// The smallest tile that quarters() leaves (one evaluator block): a scene
+// that needs more layers there than the budget holds cannot be drawn.
+constexpr long kSmallestTile = static_cast<long>(EvaluatePass::kBlock) * EvaluatePass::kBlock;
 
 std::string mebibytes(std::size_t bytes) {
     char text[32];
@@ -86,6 +86,26 @@ std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, i
                     row, out.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)));
     }
     return out;
+}
+
+// `tile` cut in four on the evaluator's block grid: each side of at least two
+// blocks is halved (rounded up to whole blocks), a shorter one is kept, so
+// no tile is thinner than a block unless the frame is. Empty parts are left
+// out; a tile that cannot be cut comes back alone.
+std::vector<PixelRect> quarters(const PixelRect& tile) {
+    auto half = [](int size) {
+        const int b = EvaluatePass::kBlock;
+        return size >= 2 * b ? (size / 2 + b - 1) / b * b : size;
+    };
+    const int w0 = half(tile.width), h0 = half(tile.height);
+    std::vector<PixelRect> parts;
+    for (const PixelRect& part : {PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0},
+                                  PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
+                                  PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
+                                  PixelRect{tile.x, tile.y, w0, h0}}) {
+        if (!part.empty()) parts.push_back(part);
+    }
+    return parts;
 }
 
 // The fixed-function state every pass of a frame starts from.
@@ -160,38 +180,48 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     std::vector<PixelRect> rects(operands.size());
     for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
 
-    // Tiles: the whole frame, cut in four (recursively) while the layers its
-    // operands need (a first guess for auto) exceed the budget. Only the
+    // Tiles: the whole frame, or an even grid of quarters, of quarters of
+    // those, ..., as fine as the densest tile needs for the layers its
+    // operands need (a first guess for auto) to fit the budget. Only the
     // operands whose rectangle meets a tile are peeled for it, so memory
-    // follows the operands per tile, not their number in the frame.
-    std::deque<PixelRect> tiles{PixelRect{0, 0, view.width, view.height}};
-    auto split = [&tiles](const PixelRect& tile) {
-        // Halves on the evaluator's block grid where the tile is wide enough.
-        auto half = [](int size) {
-            const int b = EvaluatePass::kBlock;
-            return size >= 2 * b ? (size / 2 + b - 1) / b * b : std::max(1, size / 2);
-        };
-        const int w0 = half(tile.width), h0 = half(tile.height);
-        for (const PixelRect& part : {PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0},
-                                      PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
-                                      PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
-                                      PixelRect{tile.x, tile.y, w0, h0}}) {
-            if (!part.empty()) tiles.push_front(part);
-        }
-    };
+    // follows the operands per tile, not their number in the frame. One tile
+    // size for the whole frame lets every tile (and the next frame) reuse one
+    // layer texture: llvmpipe zeroes each new texture, and a fresh 512 MiB
+    // costs more than the peel of several extra tiles.
     std::vector<char> inTile(operands.size());
+    auto layersFor = [&](const PixelRect& tile) {
+        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
+        return PeelPass::estimateLayers(scene, operands, inTile, settings.layers);
+    };
+    auto fitsBudget = [&](const PixelRect& tile) {
+        const auto area = static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+        return 8u * static_cast<std::size_t>(layersFor(tile)) * area <= settings.memoryBudget;
+    };
+    std::vector<PixelRect> grid{PixelRect{0, 0, view.width, view.height}};
+    for (;;) {
+        if (std::all_of(grid.begin(), grid.end(), fitsBudget)) break;
+        std::vector<PixelRect> finer;
+        for (const PixelRect& tile : grid) {
+            for (const PixelRect& part : quarters(tile)) finer.push_back(part);
+        }
+        if (finer.size() == grid.size()) break;  // no tile can be cut: the loop below reports it
+        grid = std::move(finer);
+    }
+    std::deque<PixelRect> tiles(grid.begin(), grid.end());
+    auto split = [&tiles](const PixelRect& tile) {
+        for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
+    };
     const PeelRequest request{settings.layers, settings.memoryBudget};
     std::vector<OperandLayers> layers;
-    int tilesDone = 0, splits = 0, budgetSplits = 0;
+    int tilesDone = 0, splits = 0, budgetSplits = grid.size() > 1 ? 1 : 0;
     while (!tiles.empty()) {
         const PixelRect tile = tiles.front();
         tiles.pop_front();
-        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
-        const int estimate = PeelPass::estimateLayers(scene, operands, inTile, settings.layers);
+        const int estimate = layersFor(tile);
         const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
         const auto area = static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
         if (perPixel * area > settings.memoryBudget) {
-            if (area <= static_cast<std::size_t>(kSmallestTile)) {
+            if (quarters(tile).size() == 1) {
                 throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
                             std::to_string(estimate) + " peel layers for only " +
                             std::to_string(settings.memoryBudget / perPixel) +
@@ -208,8 +238,9 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         glFinish();
         stats.peelMs += millisecondsSince(start);
         stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
+        stats.textureAllocations += peel.allocations();
         if (!fits) {
-            if (static_cast<long>(tile.width) * tile.height <= kSmallestTile) {
+            if (quarters(tile).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
                             std::string("the memory budget of ") + mebibytes(settings.memoryBudget) +
                             " and the GPU's " + std::to_string(peel.maxArrayLayers()) + " array layers allow");

@@ -48,6 +48,7 @@ struct FrameStats {
     double peelMs = 0, evaluateMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
     std::vector<int> layersPerLeaf;            // peel passes used, per tree leaf (0 for leaves not drawn)
     std::size_t textureBytes = 0;              // layered-texture memory in use
+    int textureAllocations = 0;                // layered textures (re)created during the frame
     int operands = 0;                          // leaves in the CSG product
     std::size_t coveredPixels = 0;             // pixels where the result has a surface
     std::size_t unresolvedPixels = 0;          // pixels the evaluator could not finish (llvmpipe's loop limit); drawn empty
