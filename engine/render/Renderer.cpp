@@ -32,10 +32,6 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// The smallest tile that quarters() leaves (one evaluator block): a scene
-// that needs more layers there than the budget holds cannot be drawn.
-constexpr long kSmallestTile = static_cast<long>(EvaluatePass::kBlock) * EvaluatePass::kBlock;
-
 std::string mebibytes(std::size_t bytes) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
@@ -193,18 +189,28 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
         return PeelPass::estimateLayers(scene, operands, inTile, settings.layers);
     };
+    auto area = [](const PixelRect& tile) {
+        return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+    };
     auto fitsBudget = [&](const PixelRect& tile) {
-        const auto area = static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
-        return 8u * static_cast<std::size_t>(layersFor(tile)) * area <= settings.memoryBudget;
+        return 8u * static_cast<std::size_t>(layersFor(tile)) * area(tile) <= settings.memoryBudget;
     };
     std::vector<PixelRect> grid{PixelRect{0, 0, view.width, view.height}};
     for (;;) {
-        if (std::all_of(grid.begin(), grid.end(), fitsBudget)) break;
+        const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
+        if (over == grid.end()) break;
         std::vector<PixelRect> finer;
         for (const PixelRect& tile : grid) {
             for (const PixelRect& part : quarters(tile)) finer.push_back(part);
         }
-        if (finer.size() == grid.size()) break;  // no tile can be cut: the loop below reports it
+        if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
+            const int estimate = layersFor(*over);
+            const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
+            throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
+                        std::to_string(estimate) + " peel layers for only " +
+                        std::to_string(settings.memoryBudget / perPixel) + " pixels at a time; give it at least " +
+                        mebibytes(perPixel * area(*over)));
+        }
         grid = std::move(finer);
     }
     std::deque<PixelRect> tiles(grid.begin(), grid.end());
@@ -213,25 +219,12 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     };
     const PeelRequest request{settings.layers, settings.memoryBudget};
     std::vector<OperandLayers> layers;
-    int tilesDone = 0, splits = 0, budgetSplits = grid.size() > 1 ? 1 : 0;
+    int tilesDone = 0, splits = 0;
     while (!tiles.empty()) {
+        // Every tile fits the budget by its estimate: the grid's, and their
+        // quarters (fewer operands, fewer pixels) split off below.
         const PixelRect tile = tiles.front();
         tiles.pop_front();
-        const int estimate = layersFor(tile);
-        const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
-        const auto area = static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
-        if (perPixel * area > settings.memoryBudget) {
-            if (quarters(tile).size() == 1) {
-                throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
-                            std::to_string(estimate) + " peel layers for only " +
-                            std::to_string(settings.memoryBudget / perPixel) +
-                            " pixels at a time; give it at least " +
-                            mebibytes(perPixel * static_cast<std::size_t>(kSmallestTile)));
-            }
-            split(tile);
-            ++budgetSplits;
-            continue;
-        }
 
         auto start = Clock::now();
         const bool fits = peel.run(scene, view, tile, operands, rects, EvaluatePass::kBlock, request, layers);
@@ -267,7 +260,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
         return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
     });
-    if (budgetSplits > 0) {
+    if (grid.size() > 1) {
         stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
                               std::to_string(view.height) + " would exceed the budget of " +
                               mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(tilesDone) +
