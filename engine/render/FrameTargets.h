@@ -4,7 +4,8 @@
 //
 //   resultDepth  R32F     tagged view depth of the visible surface, +inf on a miss   (evaluate)
 //   resultLeaf   R32I     leaf * 2 + flip, -1 on a miss                               (evaluate)
-//   normal       RGBA32F  world-space outward normal of the result, 0 on a miss      (normal)
+//   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
+//                         base colour (ShadePass::packBaseColor); 0 on a miss
 //   color        RGBA8    the shaded image                                           (shade, translucent)
 //   marks        D24S8    stencil: 0 nothing here, 1 a candidate (some operand the   (evaluate)
 //                         result can show covers the pixel), 2 the evaluator wrote a

@@ -14,6 +14,7 @@ constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 constexpr GLint kLeaf = 3;
 constexpr GLint kFirstTriangle = 4;
+constexpr GLint kBaseColor = 5;
 
 }  // namespace
 
@@ -21,7 +22,7 @@ NormalPass::NormalPass() : program_(gpu::Program::fromFiles("normal", {"csg/surf
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                      const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
-                     const std::vector<std::uint32_t>& shownFaces) {
+                     const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors) {
     program_.setUniform(kViewProjection, view.viewProjection);
     program_.setUniform(kEye, view.eye);
     program_.setUniform(kForward, view.forward);
@@ -51,6 +52,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
         glScissor(r.x, r.y, r.width, r.height);
         program_.setUniform(kLeaf, leaf);
         program_.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(leaf).firstTriangle));
+        program_.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
         scene.drawLeaf(leaf);
     }
     glDisable(GL_CULL_FACE);

@@ -7,13 +7,16 @@
 // FrameTargets::marks, so no other fragment runs the shader); the fragment
 // whose leaf, facing and tagged depth match the evaluator's choice writes its
 // triangle's face normal (SceneBuffers::faceNormals through gl_PrimitiveID),
-// negated where the leaf acts as a subtracted operand. One more geometry pass
+// negated where the leaf acts as a subtracted operand, and in w the surface's
+// base colour for the shade pass (ShadePass::baseColors). One more geometry pass
 // instead of storing ids with every peeled layer, and nothing read back.
 //
 // GL state: uses the scissor and stencil tests and turns them off before
 // returning, and face culling; expects blending and depth test off.
 
 #include <vector>
+
+#include <glm/vec2.hpp>
 
 #include "FrameTargets.h"
 #include "SceneBuffers.h"
@@ -31,9 +34,10 @@ public:
     // `operandLeaves[k]` is operand k's tree leaf and `rects[k]` its screen
     // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
     // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
+    // `baseColors[leaf]` is the leaf's ShadePass::baseColors entry.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
              const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
-             const std::vector<std::uint32_t>& shownFaces);
+             const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors);
 
 private:
     gpu::Program program_;

@@ -126,6 +126,7 @@ struct Renderer::Impl {
     SceneBuffers scene;
     TreeProgram program;
     std::vector<TranslucentLeaf> translucentLeaves;
+    std::vector<glm::vec2> baseColors;  // this frame's ShadePass::baseColors
     std::size_t leafCount = 0;
     bool hasScene = false;
     GLint maxTextureSize = 0;
@@ -144,7 +145,7 @@ struct Renderer::Impl {
 };
 
 void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly) {
-    shade.run(targets, scene, view, scheme, markedOnly);
+    shade.run(targets, view, scheme, markedOnly);
     translucent.run(targets, scene, view, translucentLeaves);
     glFinish();
 }
@@ -251,7 +252,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
 
         start = Clock::now();
         evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats);
-        normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces());
+        normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces(), baseColors);
         glFinish();
         stats.evaluateMs += millisecondsSince(start);
         ++tilesDone;
@@ -365,6 +366,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.operands = program.operandCount();
     stats.tiles = 0;
 
+    baseColors = ShadePass::baseColors(scene, scheme);
     resetDrawState();
     targets.ensure(view.width, view.height);
     targets.clearResult();
@@ -403,20 +405,24 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     if (result.depth.size() != n || result.normal.size() != n || result.leaf.size() != n || result.cut.size() != n)
         throw Error("renderer: shade() needs width * height values in every AOV");
 
-    // The G-buffer coded as the evaluate pass writes it, then flipped to GL's bottom-up rows.
+    // The G-buffer as the normal pass writes it, then flipped to GL's bottom-up rows.
+    const std::vector<glm::vec2> bases = ShadePass::baseColors(impl.scene, scheme);
     std::vector<float> depth(result.depth.begin(), result.depth.end());
-    std::vector<std::int32_t> code(n);
     std::vector<float> normal(n * 4, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-        code[i] = result.leaf[i] < 0 ? -1 : result.leaf[i] * 2 + (result.cut[i] ? 1 : 0);
+        const int leaf = result.leaf[i];
+        if (leaf < 0) continue;
+        if (static_cast<std::size_t>(leaf) >= bases.size())
+            throw Error("renderer: shade() got leaf " + std::to_string(leaf) + ", which the scene lacks");
+        const glm::vec2 base = bases[static_cast<std::size_t>(leaf)];
         normal[i * 4 + 0] = result.normal[i].x;
         normal[i * 4 + 1] = result.normal[i].y;
         normal[i * 4 + 2] = result.normal[i].z;
+        normal[i * 4 + 3] = result.cut[i] ? base.y : base.x;
     }
     resetDrawState();
     impl.targets.ensure(w, h);
     impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, flipRows(depth, w, h, 1).data());
-    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, flipRows(code, w, h, 1).data());
     impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, flipRows(normal, w, h, 4).data());
 
     Frame frame;

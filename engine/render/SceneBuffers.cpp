@@ -21,8 +21,8 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
     firstVertex_.assign(1, 0);
     std::vector<std::uint32_t> indices;   // #F by 3, absolute
     std::vector<glm::vec4> normals;       // #F
-    std::vector<glm::vec4> colors;        // one per leaf
     leaves_.assign(model.leafMeshes.size(), {});
+    leafColors_.clear();
     bounds_ = {};
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
         const geometry::Mesh& mesh = model.leafMeshes[i];
@@ -51,12 +51,11 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
         range.convex = range.indexCount > 0 && isConvexLeaf(tree.leaves[i].primitive, mesh);
         if (range.indexCount > 0) bounds_.extend(range.bounds);
         const auto& c = tree.leaves[i].color;
-        colors.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+        leafColors_.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     }
     positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions), 0);
     indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices), 0);
     faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const glm::vec4>(normals), 0);
-    leafColors_ = gpu::Buffer::fromSpan("scene leaf colours", std::span<const glm::vec4>(colors), 0);
     vertexArray_ = gpu::VertexArray("scene");
     vertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
     vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
@@ -76,7 +75,7 @@ std::span<const glm::vec3> SceneBuffers::leafVertices(int leaf) const {
 }
 
 std::size_t SceneBuffers::bytes() const {
-    return positions_.size() + indices_.size() + faceNormals_.size() + leafColors_.size();
+    return positions_.size() + indices_.size() + faceNormals_.size();
 }
 
 }  // namespace strata::render

@@ -1,13 +1,14 @@
 #pragma once
 // The scene on the GPU: every leaf's world-space triangles in one vertex and
-// one index buffer, with per-leaf ranges, plus per-triangle face normals and
-// per-leaf colours in storage buffers. Shared by every pass that draws leaves.
+// one index buffer, with per-leaf ranges, plus per-triangle face normals in a
+// storage buffer. Shared by every pass that draws leaves.
 
 #include <cstddef>
 #include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Buffer.h"
@@ -37,8 +38,8 @@ public:
     const gpu::VertexArray& vertexArray() const { return vertexArray_; }
     // std430 vec4 per triangle: xyz the outward unit face normal, w 0.
     const gpu::Buffer& faceNormals() const { return faceNormals_; }
-    // std430 vec4 per leaf: its color() in rgba, a = -1 when it has none.
-    const gpu::Buffer& leafColors() const { return leafColors_; }
+    // Per leaf: its color() in rgba, a = -1 when it has none.
+    const std::vector<glm::vec4>& leafColors() const { return leafColors_; }
     const std::vector<LeafRange>& leaves() const { return leaves_; }
     const LeafRange& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
     // Of every leaf with triangles, background leaves included.
@@ -51,9 +52,9 @@ private:
     gpu::Buffer positions_;
     gpu::Buffer indices_;
     gpu::Buffer faceNormals_;
-    gpu::Buffer leafColors_;
     gpu::VertexArray vertexArray_;
     std::vector<LeafRange> leaves_;
+    std::vector<glm::vec4> leafColors_;
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_
     std::vector<std::size_t> firstVertex_;     // per leaf, and one past the last
     geometry::Bounds bounds_;

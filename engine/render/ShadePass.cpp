@@ -1,5 +1,8 @@
 #include "ShadePass.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
@@ -8,8 +11,6 @@ namespace {
 
 // Uniform locations in shaders/csg/shade.frag.
 constexpr GLint kBackground = 0;
-constexpr GLint kFaceFront = 1;
-constexpr GLint kFaceBack = 2;
 constexpr GLint kForward = 3;
 constexpr GLint kRight = 4;
 constexpr GLint kUp = 5;
@@ -22,11 +23,24 @@ constexpr GLint kSize = 8;
 ShadePass::ShadePass()
     : program_(gpu::Program::fromFiles("shade", {"common/fullscreen.vert", "csg/shade.frag"})), empty_("shade") {}
 
-void ShadePass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                    const ColorScheme& scheme, bool markedOnly) {
+float ShadePass::packBaseColor(const glm::vec3& rgb) {
+    auto byte = [](float c) { return static_cast<std::uint32_t>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
+    return static_cast<float>(1u + (byte(rgb.r) << 16 | byte(rgb.g) << 8 | byte(rgb.b)));
+}
+
+std::vector<glm::vec2> ShadePass::baseColors(const SceneBuffers& scene, const ColorScheme& scheme) {
+    std::vector<glm::vec2> bases;
+    bases.reserve(scene.leafColors().size());
+    for (const glm::vec4& own : scene.leafColors()) {
+        const bool has = own.a >= 0.0f;
+        bases.emplace_back(packBaseColor(has ? glm::vec3(own) : glm::vec3(scheme.faceFront)),
+                           packBaseColor(has ? glm::vec3(own) : glm::vec3(scheme.faceBack)));
+    }
+    return bases;
+}
+
+void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme, bool markedOnly) {
     program_.setUniform(kBackground, scheme.background);
-    program_.setUniform(kFaceFront, scheme.faceFront);
-    program_.setUniform(kFaceBack, scheme.faceBack);
     program_.setUniform(kForward, view.forward);
     program_.setUniform(kRight, view.right);
     program_.setUniform(kUp, view.up);
@@ -34,10 +48,7 @@ void ShadePass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     program_.setUniform(kOrthographic, view.orthographic ? 1 : 0);
     program_.setUniform(kSize, glm::ivec2(view.width, view.height));
     program_.use();
-    targets.resultDepth.bindUnit(0);
-    targets.resultLeaf.bindUnit(1);
-    targets.normal.bindUnit(2);
-    scene.leafColors().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    targets.normal.bindUnit(0);
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     if (markedOnly) {

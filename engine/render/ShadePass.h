@@ -1,11 +1,17 @@
 #pragma once
 // The shade pass (deferred): one fullscreen draw that turns the G-buffer into
-// the colour image (shaders/csg/shade.frag): leaf or scheme colours, Lambert
+// the colour image (shaders/csg/shade.frag): each pixel's base colour (leaf or
+// scheme colour, which the normal pass stores beside the normal), Lambert
 // light from beside the eye plus ambient, a Sobel outline on the normals, the
 // scheme's background on empty pixels.
 //
 // GL state: viewport = the frame; leaves the stencil test off; expects
 // blending, depth test, culling and the scissor test off.
+
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "FrameTargets.h"
 #include "SceneBuffers.h"
@@ -22,8 +28,17 @@ public:
     // markedOnly: clear to the background and shade only the pixels the
     // evaluator marked (FrameTargets::marks); otherwise shade every pixel (a
     // G-buffer that came from elsewhere has no marks).
-    void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const ColorScheme& scheme,
-             bool markedOnly);
+    void run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme, bool markedOnly);
+
+    // A base colour as the G-buffer carries it (FrameTargets::normal's w):
+    // 1 + its 8-bit RGB as the integer r * 65536 + g * 256 + b, exact in a
+    // float; 0 means no surface. The shader unpacks it, so the per-pixel
+    // colour costs no lookup by leaf.
+    static float packBaseColor(const glm::vec3& rgb);
+    // Per tree leaf, packed: x where the result shows the leaf's own surface
+    // (its color(), else the scheme's face colour), y where the leaf is cut
+    // (its color(), else the scheme's cut-face colour).
+    static std::vector<glm::vec2> baseColors(const SceneBuffers& scene, const ColorScheme& scheme);
 
 private:
     gpu::Program program_;

@@ -2,7 +2,8 @@
 // evaluator wrote (vertex stage surface.vert, as the peel pass), and the
 // fragment that is the visible surface the evaluator chose (same leaf, same
 // facing, same tagged depth) writes its triangle's world-space face normal, flipped where the
-// leaf acts as a subtracted operand: the outward normal of the result.
+// leaf acts as a subtracted operand: the outward normal of the result. Its w
+// is the surface's base colour for the shade pass, a uniform of this draw.
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
@@ -18,6 +19,8 @@ layout(std430, binding = 2) readonly buffer FaceNormals {
 
 layout(location = 3) uniform int uLeaf;           // the leaf being drawn
 layout(location = 4) uniform int uFirstTriangle;  // its first triangle in FaceNormals
+// The leaf's packed base colours (ShadePass::baseColors): x its own surface, y cut.
+layout(location = 5) uniform vec2 uBaseColor;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -31,5 +34,6 @@ void main() {
     // rounding that an offset viewport or another fragment shader may bring.
     if (abs(t - result) > 1.0e-6 * result) discard;
     vec3 n = faceNormals[uFirstTriangle + gl_PrimitiveID].xyz;
-    outNormal = vec4((code & 1) != 0 ? -n : n, 1.0);
+    bool cut = (code & 1) != 0;
+    outNormal = vec4(cut ? -n : n, cut ? uBaseColor.y : uBaseColor.x);
 }

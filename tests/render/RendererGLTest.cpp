@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -582,6 +583,22 @@ TEST_F(RendererGLTest, ColoursFollowTheSchemeAndTheLeaves) {
     const render::Frame night = draw(tree, topCamera(), starnight);
     EXPECT_EQ(night.rgba[bg + 0], 0);
     EXPECT_EQ(night.rgba[bg + 3], 255);
+}
+
+TEST_F(RendererGLTest, ShadingAFramesOwnResultGivesItsImage) {
+    // render() gets each pixel's base colour from the normal pass, shade()
+    // (strata-render --reference) packs it on the CPU: fed render()'s own
+    // AOVs, shade() must give render()'s image to the bit.
+    scene::Tree tree = paperPair(NodeKind::Difference);
+    tree.leaves[0].color = glm::dvec4(0.2, 0.6, 0.9, 1.0);  // the cube its own; the cut sphere the scheme's
+    const render::Camera camera = topCamera();
+    const render::Frame f = draw(tree, camera);
+    std::vector<std::uint8_t> cut(f.leaf.size());
+    for (std::size_t k = 0; k < cut.size(); ++k) cut[k] = f.leaf[k] == 1 ? 1 : 0;  // the sphere acts subtracted
+    ASSERT_GT(std::count(cut.begin(), cut.end(), 1), 100);
+    ASSERT_GT(std::count(f.leaf.begin(), f.leaf.end(), 0), 100);
+    const render::Frame shaded = renderer_->shade(camera, {}, {f.depth, f.normal, f.leaf, cut});
+    EXPECT_EQ(shaded.rgba, f.rgba);
 }
 
 TEST_F(RendererGLTest, BackgroundLeavesAreDrawnButNotInTheCsg) {
