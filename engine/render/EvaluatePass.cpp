@@ -16,11 +16,6 @@ namespace strata::render {
 
 namespace {
 
-// Uniform locations in shaders/csg/surface.vert (the candidates draw).
-constexpr GLint kViewProjection = 0;
-constexpr GLint kEye = 1;
-constexpr GLint kForward = 2;
-
 // Uniform locations in shaders/csg/evaluate.frag (the loop budget: array and product forms).
 constexpr GLint kTileOrigin = 2;
 constexpr GLint kLoopBudget = 4;
@@ -68,9 +63,7 @@ TruthTable truthTable(const std::vector<std::uint32_t>& code, const std::vector<
 
 }  // namespace
 
-EvaluatePass::EvaluatePass()
-    : candidates_(gpu::Program::fromFiles("candidates", {"csg/surface.vert", "csg/candidates.frag"})),
-      empty_("evaluate") {}
+EvaluatePass::EvaluatePass() : empty_("evaluate") {}
 
 int EvaluatePass::capacityFor(int count) {
     int capacity = 16;
@@ -95,19 +88,12 @@ gpu::Program& EvaluatePass::programFor(int form) {
     return it->second;
 }
 
-void EvaluatePass::setProgram(const TreeProgram& program, const SceneBuffers& scene) {
+void EvaluatePass::setProgram(const TreeProgram& program) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
     leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
     shownFaces_ = gpu::Buffer("shown faces", std::max<std::size_t>(leafCount_, 1) * sizeof(std::uint32_t), nullptr,
                               GL_DYNAMIC_STORAGE_BIT);
-    covering_.clear();
-    if (!program.code.empty()) {
-        // Drawing cost: the operand's triangles, plus a draw call's worth.
-        std::vector<double> cost;
-        for (int leaf : operandLeaf_) cost.push_back(64.0 + static_cast<double>(scene.leaf(leaf).indexCount / 3));
-        covering_ = coveringOperands(program.code, cost);
-    }
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
         programFor(4);
@@ -125,30 +111,6 @@ std::vector<std::uint32_t> EvaluatePass::shownFaces() const {
         shownFaces_.downloadSpan(std::span(faces));
     }
     return faces;
-}
-
-void EvaluatePass::markCandidates(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                                  const PixelRect& tile, const std::vector<PixelRect>& rects) {
-    candidates_.setUniform(kViewProjection, view.viewProjection);
-    candidates_.setUniform(kEye, view.eye);
-    candidates_.setUniform(kForward, view.forward);
-    candidates_.use();
-    targets.evaluateTarget.bindForDraw();
-    glViewport(0, 0, view.width, view.height);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glEnable(GL_SCISSOR_TEST);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, FrameTargets::kCandidate, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    scene.vertexArray().bind();
-    for (std::uint32_t k : covering_) {
-        const PixelRect r = rects[k].intersection(tile);
-        if (r.empty()) continue;
-        glScissor(r.x, r.y, r.width, r.height);
-        scene.drawLeaf(operandLeaf_[k]);
-    }
-    glDisable(GL_SCISSOR_TEST);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& code,
@@ -214,12 +176,10 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     return out;
 }
 
-void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                       const gpu::Texture& layers, const PixelRect& tile,
+void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
                        bool generalOnly, FrameStats& stats) {
     if (operandLeaf_.empty()) return;
-    markCandidates(targets, scene, view, tile, rects);
     // The operands whose rectangle meets each block.
     const int blocksX = (tile.width + kBlock - 1) / kBlock;
     const int blocksY = (tile.height + kBlock - 1) / kBlock;
@@ -276,9 +236,10 @@ void EvaluatePass::run(FrameTargets& targets, const SceneBuffers& scene, const V
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     targets.evaluateTarget.bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
-    // Only candidates run; a pixel the shader writes (does not discard) is marked.
-    glStencilFunc(GL_EQUAL, FrameTargets::kCandidate, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    // A pixel the shader writes (does not discard) is marked for the later passes.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, FrameTargets::kWritten, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     empty_.bind();
     static const int loopBudget = loopBudgetForThisDriver();
     int first = 0;

@@ -1,11 +1,10 @@
 #pragma once
-// The evaluate pass: per tile, marks the pixels where the result can have a
-// surface (operands that hold the result, drawn into the stencil of
-// FrameTargets::marks: a cheese's block, one of an intersection's operands),
-// then draws the blocks of the tile over those pixels: each pixel merges the operands' peeled surfaces and walks them front to
-// back (shaders/csg/evaluate.frag) to the first surface where the result's
-// membership changes. Writes FrameTargets::resultDepth and resultLeaf, and
-// marks the pixels it wrote, inside the tile.
+// The evaluate pass: per tile, draws the blocks of the tile where the result
+// can have a surface: each pixel merges the operands' peeled surfaces and
+// walks them front to back (shaders/csg/evaluate.frag) to the first surface
+// where the result's membership changes. Writes FrameTargets::resultDepth and
+// resultLeaf, and marks the pixels it wrote in the stencil of
+// FrameTargets::marks, inside the tile.
 //
 // The tree lives in storage buffers: a tree edit only re-uploads them. Each
 // 16x16 block of a tile gets the tree specialised to the operands whose
@@ -45,15 +44,15 @@ public:
     EvaluatePass();
 
     // Uploads the program; operand k of it is tree leaf program.operandLeaf[k].
-    void setProgram(const TreeProgram& program, const SceneBuffers& scene);
+    void setProgram(const TreeProgram& program);
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
     // `generalOnly` draws every block with the array form (tests compare the
     // forms). Adds the blocks drawn in each form to `stats`.
-    void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const gpu::Texture& layers,
-             const PixelRect& tile, const std::vector<OperandLayers>& operandLayers,
-             const std::vector<PixelRect>& rects, bool generalOnly, FrameStats& stats);
+    void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
+             const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects, bool generalOnly,
+             FrameStats& stats);
 
     // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
     // of two, at least 16.
@@ -82,8 +81,6 @@ private:
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
     gpu::Program& programFor(int form);  // 4, kRegisterForm, kProductForm or a capacityFor() value
-    void markCandidates(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                        const PixelRect& tile, const std::vector<PixelRect>& rects);
 
     std::map<int, gpu::Program> programs_;  // by form (BlockTree::form)
     TreeProgram program_;
@@ -94,10 +91,6 @@ private:
     gpu::Buffer shownFaces_;  // per tree leaf, see shownFaces()
     std::size_t leafCount_ = 0;
     std::vector<int> operandLeaf_;
-    // Operands whose pixels hold every pixel where the result can have a
-    // surface (coveringOperands): drawn to mark the candidates.
-    std::vector<std::uint32_t> covering_;
-    gpu::Program candidates_;
     gpu::VertexArray empty_;
 };
 

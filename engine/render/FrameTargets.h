@@ -7,9 +7,8 @@
 //   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
 //                         base colour (ShadePass::packBaseColor); 0 on a miss
 //   color        RGBA8    the shaded image                                           (shade, translucent)
-//   marks        D24S8    stencil: 0 nothing here, 1 a candidate (some operand the   (evaluate)
-//                         result can show covers the pixel), 2 the evaluator wrote a
-//                         result (a surface, or a pixel it could not finish)
+//   marks        D24S8    stencil: 2 where the evaluator wrote a result (a surface,  (evaluate)
+//                         or a pixel it could not finish), else 0
 //
 // The later passes test the stencil so that they run only where there is
 // something to do: a fragment that fails the stencil test never runs its
@@ -41,8 +40,7 @@ public:
     gpu::Framebuffer normalTarget;    // 0: normal
     gpu::Framebuffer colorTarget;     // 0: color
 
-    static constexpr int kCandidate = 1;  // marks values, see above
-    static constexpr int kWritten = 2;
+    static constexpr int kWritten = 2;  // marks value, see above
 
 private:
     int width_ = 0, height_ = 0;

@@ -164,7 +164,7 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     impl_->program = compileTree(tree, empty);
-    impl_->evaluate.setProgram(impl_->program, impl_->scene);
+    impl_->evaluate.setProgram(impl_->program);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
     impl_->leafCount = tree.leaves.size();
     impl_->hasScene = true;
@@ -251,7 +251,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
         start = Clock::now();
-        evaluate.run(targets, scene, view, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats);
+        evaluate.run(targets, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats);
         normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces(), baseColors);
         glFinish();
         stats.evaluateMs += millisecondsSince(start);

@@ -329,46 +329,6 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
     return result.constant >= 0 ? std::vector<std::uint32_t>{} : std::move(result.code);
 }
 
-std::vector<std::uint32_t> coveringOperands(const std::vector<std::uint32_t>& code,
-                                            const std::vector<double>& cost) {
-    struct Cover {
-        bool bounded = false;  // false: the whole screen
-        std::vector<std::uint32_t> operands;
-        double cost = 0.0;
-    };
-    auto literal = [&](std::uint32_t instruction) {
-        Cover c;
-        if (instruction & kOpNegate) return c;
-        const std::uint32_t operand = instruction >> kOperandShift;
-        c.bounded = true;
-        c.operands.push_back(operand);
-        c.cost = cost.at(operand);
-        return c;
-    };
-    auto combine = [](std::uint32_t op, Cover& top, Cover&& source) {
-        if (op == kOpAnd) {
-            if (source.bounded && (!top.bounded || source.cost < top.cost)) top = std::move(source);
-            return;
-        }
-        if (!top.bounded || !source.bounded) {
-            top = Cover{};
-            return;
-        }
-        top.operands.insert(top.operands.end(), source.operands.begin(), source.operands.end());
-        top.cost += source.cost;
-    };
-    Cover cover = foldCode<Cover>(code, literal, combine);
-    if (!cover.bounded) {
-        for (std::uint32_t instruction : code) {
-            if ((instruction & kOpFromStack) == 0 && (instruction & kOpNegate) == 0)
-                cover.operands.push_back(instruction >> kOperandShift);
-        }
-    }
-    std::sort(cover.operands.begin(), cover.operands.end());
-    cover.operands.erase(std::unique(cover.operands.begin(), cover.operands.end()), cover.operands.end());
-    return cover.operands;
-}
-
 CountingTree countingTree(const std::vector<std::uint32_t>& code) {
     // Symbolic run of the stack machine where each entry names a literal or a
     // node; nodes are numbered as made, then renumbered root first.

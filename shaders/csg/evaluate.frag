@@ -1,5 +1,5 @@
 // The CSG evaluator: one draw per shader variant over the tile's blocks
-// (evaluate.vert), on the pixels marked as candidates (FrameTargets.h).
+// (evaluate.vert) whose tree is not constant.
 //
 // Per pixel, every operand's peeled layers give its surfaces in depth order:
 //   near_0 < near_1 < ... < near_{n-1} <= far_{n-1} < ... < far_0

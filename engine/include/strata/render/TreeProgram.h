@@ -94,16 +94,6 @@ Entry foldCode(const std::vector<std::uint32_t>& code, Literal literal, Combine 
     return std::move(stack.back());
 }
 
-// Operands whose drawn pixels hold every pixel where `code`'s result can
-// have a surface, cheaply chosen: the result lies inside each operand of an
-// AND and inside the union of an OR's, so an AND keeps the cheaper of its
-// sides (by `cost[operand]`, the sum over the operands kept) and an OR both.
-// A complemented operand bounds nothing. Returns the operands in ascending
-// order, or every non-complemented one when the result is unbounded (a
-// complement alone). Non-empty, well-formed code only.
-std::vector<std::uint32_t> coveringOperands(const std::vector<std::uint32_t>& code,
-                                            const std::vector<double>& cost);
-
 // Instructions (a program or a specialised one) as a tree of counting nodes,
 // the form the evaluator shader walks: each inner node is an n-ary AND or OR
 // that keeps how many of its children are true, so one operand's change
