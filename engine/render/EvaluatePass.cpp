@@ -24,6 +24,12 @@ constexpr GLint kFirstBlock = 5;
 constexpr GLint kTileSize = 6;
 constexpr GLint kBlocksX = 7;
 
+// The register form's slot (blocks.glsl): the vertex stage packs its layer
+// number below kSlotLayers and, above it, its operand's bit in the truth
+// table, plus kSlotFirstLayer on the operand's first layer.
+constexpr int kSlotLayers = 1 << 16;
+constexpr unsigned kSlotFirstLayer = 8u;
+
 // llvmpipe stops all loops of one shader invocation after 65535 iterations in
 // total (gallivm's loop limiter); stay inside that, and mark the pixels that
 // would not fit (see uLoopBudget in evaluate.frag).
@@ -122,23 +128,26 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
         return glm::uvec4(static_cast<unsigned>(layers.first), static_cast<unsigned>(layers.count),
                           static_cast<unsigned>(operandLeaf_[operand]), parent);
     };
-    // The operands the tree reads, each once.
+    // The operands the tree reads, each once, and their layers in all.
     std::vector<std::uint32_t> used;
-    bool onePassEach = true;
+    int slots = 0;
+    bool slotsReach = true;  // every layer number fits a slot's field
     for (std::uint32_t instruction : code) {
         if (instruction & kOpFromStack) continue;
         const std::uint32_t operand = instruction >> kOperandShift;
         if (std::find(used.begin(), used.end(), operand) != used.end()) continue;
         used.push_back(operand);
-        onePassEach = onePassEach && operandLayers[operand].count == 1;
+        slots += operandLayers[operand].count;
+        slotsReach = slotsReach && operandLayers[operand].first + operandLayers[operand].count <= kSlotLayers;
     }
+    const bool onePassEach = slots == static_cast<int>(used.size());
 
     BlockTree out;
-    const bool fastForms = onePassEach && !generalOnly;
-    if (fastForms && used.size() <= static_cast<std::size_t>(kRegisterForm)) {
-        // The register form: the tree as a truth table over the inside bits.
+    if (!generalOnly && slots <= kRegisterForm && slotsReach) {
+        // The register form: a slot per peeled layer, the tree as a truth
+        // table over the operands' inside bits.
         const TruthTable table = truthTable(code, used);
-        out.form = used.size() <= 4 ? 4 : kRegisterForm;
+        out.form = slots <= 4 ? 4 : kRegisterForm;
         std::uint32_t tableField = static_cast<std::uint32_t>(table[0] & 0xffffu);
         if (out.form == kRegisterForm) {
             tableField = static_cast<std::uint32_t>(nodes.size());
@@ -149,12 +158,19 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
                                    static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(b >> 32));
             }
         }
-        out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(used.size()), tableField, 0u};
-        for (std::uint32_t operand : used) literals.push_back(literal(operand, 0u));
+        out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(slots), tableField, 0u};
+        for (std::size_t bit = 0; bit < used.size(); ++bit) {
+            const std::uint32_t operand = used[bit];
+            for (int layer = 0; layer < operandLayers[operand].count; ++layer) {
+                const unsigned info = static_cast<unsigned>(bit) | (layer == 0 ? kSlotFirstLayer : 0u);
+                literals.emplace_back(static_cast<unsigned>(operandLayers[operand].first + layer), info,
+                                      static_cast<unsigned>(operandLeaf_[operand]), 0u);
+            }
+        }
         return out;
     }
     const CountingTree tree = countingTree(code);
-    if (fastForms && tree.nodes.size() == 1) {
+    if (onePassEach && !generalOnly && tree.nodes.size() == 1) {
         // The product form: one AND (OR) of literals; each literal's wish is
         // its own value (its negation, for an OR: the result is then !P).
         const bool isAnd = tree.nodes[0].isAnd;

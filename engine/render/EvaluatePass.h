@@ -10,9 +10,9 @@
 // 16x16 block of a tile gets the tree specialised to the operands whose
 // screen rectangle meets it (TreeProgram.h: specializeProgram, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
-// The shader comes in three forms: the register form (up to eight operands
-// of one peeled layer each, the tree as a truth table, everything in
-// registers; MAX_LIVE 4 or 8), the product form (more operands of one layer
+// The shader comes in three forms: the register form (operands of up to
+// eight peeled layers in all, a slot per layer, the tree as a truth table,
+// everything in registers; MAX_LIVE 4 or 8 slots), the product form (more operands of one layer
 // each under a single AND or OR: a CSG product or a union) and the array form
 // (anything else: a heap of surfaces and a counting tree in per-pixel arrays
 // of MAX_LIVE, a power of two from 16 up). Each block is drawn (one instanced
@@ -63,8 +63,8 @@ public:
     std::vector<std::uint32_t> shownFaces() const;
     static constexpr std::uint32_t kFrontFaces = 1, kBackFaces = 2;
     // The largest MAX_LIVE of evaluate.frag's register form (compiled for 4
-    // and 8): up to this many operands of one layer each, the tree as a
-    // truth table.
+    // and 8): up to this many peeled layers of the block's operands, the
+    // tree as a truth table.
     static constexpr int kRegisterForm = 8;
     // The product form's variant key (it has no MAX_LIVE: it keeps no arrays).
     static constexpr int kProductForm = 1;

@@ -44,7 +44,7 @@ layout(std430, binding = 0) readonly buffer BlockNodes {
 #endif
 BLOCK_VARYING uvec4 vRecord;          // blocks[b] of the fragment's block b
 #if REGISTER_FORM
-BLOCK_VARYING uvec4 vLayerA, vLeafA;  // slots 0-3: first layer in uLayers, tree leaf
+BLOCK_VARYING uvec4 vLayerA, vLeafA;  // slots 0-3: layer in uLayers | operand info << 16, tree leaf
 #if MAX_LIVE > 4
 BLOCK_VARYING uvec4 vLayerB, vLeafB;  // slots 4-7
 BLOCK_VARYING uvec4 vTableLow, vTableHigh;

@@ -91,33 +91,43 @@ void writeUnresolved() {
 
 #if REGISTER_FORM
 
-// The register form, for blocks of at most eight operands with one peeled
-// layer each (convex ones, say): each operand has at most two surfaces here,
-// its layer's near and far, and the block's tree is a truth table over the
-// inside bits. No arrays and no loops but the walk over depths: every slot
-// is one component of a vector (bank A holds slots 0-3, bank B slots 4-7).
-// Compiled for 4 and 8 slots (MAX_LIVE): every instruction runs for every
-// pixel on llvmpipe, used or not.
+// The register form, for blocks whose operands have at most eight peeled
+// layers in all (eight convex operands, say, or a mesh of three layers and
+// five spheres): a slot per layer, each holding at most two surfaces here,
+// the layer's near and far, and the block's tree is a truth table over the
+// operands' inside bits. No arrays and no loops but the walk over depths:
+// every slot is one component of a vector (bank A holds slots 0-3, bank B
+// slots 4-7). Compiled for 4 and 8 slots (MAX_LIVE): every instruction runs
+// for every pixel on llvmpipe, used or not.
+//
+// An operand's inside bit follows its surfaces as the array form's walk
+// does: a front face enters, a back face leaves, and where one depth holds
+// several of its surfaces (its layers meet there, or a ray grazes its edge)
+// a back face among them wins, as it comes last in tagged order. An operand
+// whose first layer's near surface is a back face starts inside.
 //
 // blocks[b]: x first slot in blockOperands, y slot count, z the truth table
-// (bit m: the result when slot i is inside exactly for the bits i of m) for
-// 4 slots, or for 8 the index in blockNodes of its 256 bits (two uvec4, bit
-// m in word m / 32). blockOperands[x + i]: x the operand's layer in uLayers,
-// z its tree leaf.
+// (bit m: the result when operand i is inside exactly for the bits i of m)
+// for 4 slots, or for 8 the index in blockNodes of its 256 bits (two uvec4,
+// bit m in word m / 32). blockOperands[x + i]: x the slot's layer in
+// uLayers, y its operand's bit in the table | 8 on the operand's first
+// layer, z its tree leaf.
 
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     uvec4 block = vRecord;
     vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
     ivec4 leafA = ivec4(vLeafA);
+    uvec4 bitA = uvec4(1u) << ((vLayerA >> 16) & 7u);  // the slot's operand in the table
 #if MAX_LIVE > 4
     vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
     ivec4 leafB = ivec4(vLeafB);
+    uvec4 bitB = uvec4(1u) << ((vLayerB >> 16) & 7u);
     uvec4 tableLow = vTableLow, tableHigh = vTableHigh;
 #endif
-#define LOAD_SLOT(nearSide, farSide, layers, c, i)                        \
-    if (block.y > uint(i)) {                                              \
-        vec2 layer = texelFetch(uLayers, ivec3(pixel, layers[c]), 0).rg;  \
+#define LOAD_SLOT(nearSide, farSide, layers, c, i)                                  \
+    if (block.y > uint(i)) {                                                        \
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, layers[c] & 0xffffu), 0).rg;  \
         if (-layer.r < kCleared) {                                        \
             nearSide[c] = -layer.r;                                       \
             if (layer.g > -layer.r) farSide[c] = layer.g;                 \
@@ -130,13 +140,14 @@ void main() {
     LOAD_SLOT(nearB, farB, vLayerB, 2, 6) LOAD_SLOT(nearB, farB, vLayerB, 3, 7)
 #endif
 
-    // An operand whose first surface is a back face is inside from the start.
-    uvec4 exits = floatBitsToUint(nearA) & 1u;
-    uint insideBits = exits.x | (exits.y << 1) | (exits.z << 2) | (exits.w << 3);
+    // An operand whose first surface is a back face is inside from the start
+    // (the near side of its first layer, flagged 8 in the slot's info).
+    uvec4 starts = bitA * (floatBitsToUint(nearA) & (vLayerA >> 19) & 1u);
+    uint insideBits = starts.x | starts.y | starts.z | starts.w;
     vec4 headA = nearA;
 #if MAX_LIVE > 4
-    exits = floatBitsToUint(nearB) & 1u;
-    insideBits |= (exits.x << 4) | (exits.y << 5) | (exits.z << 6) | (exits.w << 7);
+    starts = bitB * (floatBitsToUint(nearB) & (vLayerB >> 19) & 1u);
+    insideBits |= starts.x | starts.y | starts.z | starts.w;
     vec4 headB = nearB;
 #define RESULT(bits) ((((bits) < 128u ? tableLow : tableHigh)[((bits) >> 5) & 3u] >> ((bits) & 31u)) & 1u) != 0u
 #else
@@ -155,26 +166,28 @@ void main() {
         // the solids say (a cube minus an equal cube leaves nothing). An
         // operand can have both its surfaces here (a ray grazing its edge).
         int entryLeaf = -1, exitLeaf = -1;
-#define TAKE_SURFACE(head, nearSide, farSide, leaf, c, i)                        \
+        uint entered = 0u, left = 0u;  // operand bits
+#define TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)                     \
         if (head[c] != kInfinity && untagged(head[c]) == group) {                \
             if (isExit(head[c])) {                                               \
-                insideBits &= ~(1u << i);                                        \
+                left |= bits[c];                                                 \
                 if (exitLeaf < 0) exitLeaf = leaf[c];                            \
             } else {                                                             \
-                insideBits |= 1u << i;                                           \
+                entered |= bits[c];                                              \
                 if (entryLeaf < 0) entryLeaf = leaf[c];                          \
             }                                                                    \
             head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
         }
-#define TAKE_SLOT(head, nearSide, farSide, leaf, c, i)    \
-        TAKE_SURFACE(head, nearSide, farSide, leaf, c, i) \
-        TAKE_SURFACE(head, nearSide, farSide, leaf, c, i)
-        TAKE_SLOT(headA, nearA, farA, leafA, 0, 0) TAKE_SLOT(headA, nearA, farA, leafA, 1, 1)
-        TAKE_SLOT(headA, nearA, farA, leafA, 2, 2) TAKE_SLOT(headA, nearA, farA, leafA, 3, 3)
+#define TAKE_SLOT(head, nearSide, farSide, leaf, bits, c)    \
+        TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c) \
+        TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)
+        TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
+        TAKE_SLOT(headA, nearA, farA, leafA, bitA, 2) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 3)
 #if MAX_LIVE > 4
-        TAKE_SLOT(headB, nearB, farB, leafB, 0, 4) TAKE_SLOT(headB, nearB, farB, leafB, 1, 5)
-        TAKE_SLOT(headB, nearB, farB, leafB, 2, 6) TAKE_SLOT(headB, nearB, farB, leafB, 3, 7)
+        TAKE_SLOT(headB, nearB, farB, leafB, bitB, 0) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 1)
+        TAKE_SLOT(headB, nearB, farB, leafB, bitB, 2) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 3)
 #endif
+        insideBits = (insideBits | entered) & ~left;  // a back face wins, as in the array form
         bool now = RESULT(insideBits);
         if (now != inside) {
             writeSurface(group, now, entryLeaf, exitLeaf);

@@ -33,11 +33,12 @@ void main() {
     gl_Position = vec4(p / vec2(uTileSize) * 2.0 - 1.0, 0.0, 1.0);
     vRecord = blocks[block];
 #if REGISTER_FORM
-    // The register form's slots (unused ones are never read).
+    // The register form's slots (unused ones are never read): the layer in
+    // the low 16 bits, the operand's bit and first-layer flag above.
     uvec4 slot;
 #define SLOT(layers, leaves, c, i)                              \
     slot = blockOperands[vRecord.x + min(uint(i), vRecord.y - 1u)]; \
-    layers[c] = slot.x;                                         \
+    layers[c] = slot.x | (slot.y << 16);                        \
     leaves[c] = slot.z;
     SLOT(vLayerA, vLeafA, 0, 0) SLOT(vLayerA, vLeafA, 1, 1) SLOT(vLayerA, vLeafA, 2, 2) SLOT(vLayerA, vLeafA, 3, 3)
 #if MAX_LIVE > 4

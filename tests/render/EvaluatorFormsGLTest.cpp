@@ -1,6 +1,7 @@
 // The evaluator's fast forms against its general one. The register form
-// (few one-layer operands) and the product form (many one-layer operands
-// under one AND or OR) are shortcuts of the array form's walk; the array
+// (operands of at most eight peeled layers in all, convex or not) and the
+// product form (many one-layer operands under one AND or OR) are shortcuts
+// of the array form's walk; the array
 // form is checked against the CPU reference and a brute-force ray caster
 // elsewhere (RendererOracleGLTest, DeepPixelGLTest, the accuracy suite).
 // Here every fast-form frame must equal the array form's frame bit for bit:
@@ -20,6 +21,7 @@
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/render/Renderer.h"
+#include "SphereShells.h"
 
 using namespace strata;
 using scene::NodeKind;
@@ -54,13 +56,20 @@ scene::Leaf convexLeaf(std::mt19937& rng, double spread) {
     return leaf;
 }
 
-// One node of `count` convex leaves. A difference keeps a big first operand
-// so that something is left; an intersection keeps its operands close.
-scene::Tree flatTree(NodeKind kind, int count, std::mt19937& rng) {
+// One node of `count` leaves, the last `shells` of them non-convex (two
+// sphere shells in one polyhedron: two peeled layers where they overlap on
+// screen), the others convex. A difference keeps a big first operand so that
+// something is left; an intersection keeps its operands close.
+scene::Tree flatTree(NodeKind kind, int count, std::mt19937& rng, int shells = 0) {
     scene::Tree tree;
     std::vector<int> children;
     for (int i = 0; i < count; ++i) {
         scene::Leaf leaf = convexLeaf(rng, kind == NodeKind::Intersection ? 0.3 : 1.5);
+        if (i >= count - shells) {
+            std::uniform_real_distribution<double> unit(-1.0, 1.0);
+            const glm::dvec3 half = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 0.45;
+            leaf.primitive = test::sphereShells({-half, half}, 0.55, 12);
+        }
         if (kind == NodeKind::Difference && i == 0) leaf.primitive = scene::Cube{{3.0, 3.0, 3.0}, true};
         if (kind == NodeKind::Intersection) leaf.transform = glm::scale(leaf.transform, glm::dvec3(2.0));
         children.push_back(tree.addLeaf(std::move(leaf)));
@@ -117,6 +126,7 @@ void expectSameFrame(const render::Frame& fast, const render::Frame& general, co
 struct FormsCase {
     NodeKind kind;
     int count;
+    int shells = 0;  // non-convex leaves among them (flatTree)
 };
 
 }  // namespace
@@ -127,11 +137,11 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
     const FormsCase c = GetParam();
     gpu::Context context;
     render::Renderer renderer;
-    std::mt19937 rng(static_cast<unsigned>(1000 + c.count * 7 + static_cast<int>(c.kind)));
-    std::size_t covered = 0, insideStarts = 0;
+    std::mt19937 rng(static_cast<unsigned>(1000 + c.count * 7 + static_cast<int>(c.kind) + c.shells * 101));
+    std::size_t covered = 0, insideStarts = 0, multiLayer = 0;
     render::FrameStats fastBlocks;
     for (int s = 0; s < 4; ++s) {
-        const scene::Tree tree = flatTree(c.kind, c.count, rng);
+        const scene::Tree tree = flatTree(c.kind, c.count, rng, c.shells);
         const geometry::Model model = geometry::buildModel(tree);
         renderer.setScene(tree, model);
         for (int which = 0; which < 3; ++which) {
@@ -149,13 +159,18 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
             fastBlocks.arrayBlocks += fast.stats.arrayBlocks;
             covered += fast.stats.coveredPixels;
             if (which == 2) insideStarts += fast.stats.coveredPixels;
+            for (int layers : fast.stats.layersPerLeaf) multiLayer += layers > 1 ? 1 : 0;
         }
     }
     EXPECT_GT(covered, 12u * 64u * 64u / 10u) << "the scenes must show something";
     EXPECT_GT(insideStarts, 0u) << "the cameras inside must see something";
-    // The fast forms must have been the ones drawn.
+    // The fast forms must have been the ones drawn: a shells leaf has at
+    // most two layers, so every block fits the register form's eight slots.
     EXPECT_EQ(fastBlocks.arrayBlocks, 0u);
-    if (c.count > 8) {
+    if (c.shells > 0) {
+        EXPECT_GT(multiLayer, 0u) << "some shells must have needed two layers";
+        EXPECT_GT(fastBlocks.registerBlocks, 0u);
+    } else if (c.count > 8) {
         EXPECT_GT(fastBlocks.productBlocks, 0u);
     } else {
         EXPECT_GT(fastBlocks.registerBlocks, 0u);
@@ -165,9 +180,12 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
 INSTANTIATE_TEST_SUITE_P(Trees, EvaluatorForms,
                          ::testing::Values(FormsCase{NodeKind::Difference, 6}, FormsCase{NodeKind::Intersection, 5},
                                            FormsCase{NodeKind::Union, 7}, FormsCase{NodeKind::Difference, 24},
-                                           FormsCase{NodeKind::Intersection, 20}, FormsCase{NodeKind::Union, 30}),
+                                           FormsCase{NodeKind::Intersection, 20}, FormsCase{NodeKind::Union, 30},
+                                           FormsCase{NodeKind::Difference, 4, 3}, FormsCase{NodeKind::Union, 4, 4},
+                                           FormsCase{NodeKind::Intersection, 3, 2}),
                          [](const ::testing::TestParamInfo<FormsCase>& info) {
-                             return std::string(scene::kindName(info.param.kind)) + std::to_string(info.param.count);
+                             return std::string(scene::kindName(info.param.kind)) + std::to_string(info.param.count) +
+                                    (info.param.shells > 0 ? "Shells" + std::to_string(info.param.shells) : "");
                          });
 
 // Coincident faces: the forms must settle ties alike. A cube minus copies of
@@ -210,4 +228,42 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
             ASSERT_EQ(std::memcmp(&fast.normal[p], &general.normal[p], sizeof(glm::vec3)), 0) << scene::kindName(kind);
         }
     }
+}
+
+// A flat solid: its top and bottom faces lie at one depth on every ray down,
+// an entry and an exit of one operand at one depth. The back face wins (it
+// comes last in the array form's tagged order), so the flat solid encloses
+// nothing and shows nowhere, in every form.
+TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
+    gpu::Context context;
+    render::Renderer renderer;
+    scene::Tree tree;
+    scene::Leaf cube;
+    cube.primitive = scene::Cube{{2.0, 2.0, 2.0}, true};
+    const int block = tree.addLeaf(std::move(cube));
+    scene::Polyhedron flat;
+    flat.points = {{-2, -2, 1.5}, {2, -2, 1.5}, {2, 2, 1.5}, {-2, 2, 1.5}};
+    flat.faces = {{0, 3, 2}, {0, 2, 1}, {1, 2, 3}, {1, 3, 0}};  // top, bottom: clockwise from outside
+    scene::Leaf sheet;
+    sheet.primitive = flat;
+    const int sheetLeaf = tree.addLeaf(std::move(sheet));
+    tree.root = tree.addNode(NodeKind::Union, {block, sheetLeaf});
+    renderer.setScene(tree, geometry::buildModel(tree));
+    render::Camera camera;  // straight down, orthographic: both faces at exactly one depth
+    camera.width = camera.height = 64;
+    camera.projection = render::Projection::Orthographic;
+    camera.eye = {0.0, 0.0, 10.0};
+    camera.center = {0.0, 0.0, 0.0};
+    render::RenderSettings settings;
+    const render::Frame fast = renderer.render(camera, settings);
+    settings.generalEvaluator = true;
+    const render::Frame general = renderer.render(camera, settings);
+    EXPECT_GT(fast.stats.registerBlocks, 0u);
+    expectSameFrame(fast, general, "a cube and a flat solid");
+    std::size_t cubePixels = 0;
+    for (int leaf : fast.leaf) {
+        EXPECT_NE(leaf, sheetLeaf);
+        cubePixels += leaf == block ? 1 : 0;
+    }
+    EXPECT_GT(cubePixels, 500u);
 }

@@ -32,6 +32,7 @@
 
 #include "strata/geometry/Model.h"
 #include "strata/geometry/Primitives.h"
+#include "SphereShells.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
@@ -73,22 +74,8 @@ scene::Leaf sphereLeaf(glm::dvec3 centre, double radius) {
 
 // One polyhedron leaf made of several sphere shells: a non-convex operand.
 scene::Leaf shellsLeaf(const std::vector<glm::dvec3>& centres, double radius) {
-    scene::Polyhedron poly;
-    scene::Sphere s;
-    s.r = radius;
-    s.fragments.fn = kFn;
-    const geometry::Mesh sphere = geometry::tessellate(s);
-    for (const glm::dvec3& c : centres) {
-        const int base = static_cast<int>(poly.points.size());
-        for (const glm::dvec3& p : sphere.positions) poly.points.push_back(p + c);
-        // OpenSCAD lists polyhedron faces clockwise seen from outside.
-        for (const auto& t : sphere.triangles) {
-            poly.faces.push_back({base + static_cast<int>(t[2]), base + static_cast<int>(t[1]),
-                                  base + static_cast<int>(t[0])});
-        }
-    }
     scene::Leaf leaf;
-    leaf.primitive = poly;
+    leaf.primitive = test::sphereShells(centres, radius, kFn);
     return leaf;
 }
 

@@ -25,6 +25,7 @@
 
 #include "strata/geometry/Model.h"
 #include "strata/geometry/Primitives.h"
+#include "SphereShells.h"
 #include "strata/gpu/Context.h"
 #include "strata/render/Renderer.h"
 
@@ -162,22 +163,11 @@ private:
 scene::Polyhedron shells(std::mt19937& rng) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     const glm::dvec3 step = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 0.8;
-    scene::Sphere ball;
-    ball.r = 0.35;
-    ball.fragments.fn = 10;
-    const geometry::Mesh mesh = geometry::tessellate(ball);
-    scene::Polyhedron poly;
     const int count = 2 + static_cast<int>(rng() % 2);
-    for (int k = 0; k < count; ++k) {
-        const int base = static_cast<int>(poly.points.size());
-        const glm::dvec3 centre = step * (k - 0.5 * (count - 1)) * (1.0 / std::max(0.5, glm::length(step)));
-        for (const glm::dvec3& p : mesh.positions) poly.points.push_back(p + centre);
-        for (const auto& t : mesh.triangles) {  // OpenSCAD's order: clockwise from outside
-            poly.faces.push_back({base + static_cast<int>(t[2]), base + static_cast<int>(t[1]),
-                                  base + static_cast<int>(t[0])});
-        }
-    }
-    return poly;
+    std::vector<glm::dvec3> centres;
+    for (int k = 0; k < count; ++k)
+        centres.push_back(step * (k - 0.5 * (count - 1)) * (1.0 / std::max(0.5, glm::length(step))));
+    return test::sphereShells(centres, 0.35, 10);
 }
 
 scene::Primitive randomPrimitive(std::mt19937& rng) {
