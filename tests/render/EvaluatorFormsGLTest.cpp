@@ -14,6 +14,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -123,6 +124,15 @@ void expectSameFrame(const render::Frame& fast, const render::Frame& general, co
     EXPECT_EQ(general.stats.unresolvedPixels, 0u) << what;
 }
 
+// One view drawn twice: by the cheapest form of each block, then by the
+// array form alone.
+std::pair<render::Frame, render::Frame> fastAndGeneral(render::Renderer& renderer, const render::Camera& camera) {
+    render::RenderSettings settings;
+    render::Frame fast = renderer.render(camera, settings);
+    settings.generalEvaluator = true;
+    return {std::move(fast), renderer.render(camera, settings)};
+}
+
 struct FormsCase {
     NodeKind kind;
     int count;
@@ -146,10 +156,7 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
         renderer.setScene(tree, model);
         for (int which = 0; which < 3; ++which) {
             const render::Camera camera = cameraFor(which, rng);
-            render::RenderSettings settings;
-            const render::Frame fast = renderer.render(camera, settings);
-            settings.generalEvaluator = true;
-            const render::Frame general = renderer.render(camera, settings);
+            const auto [fast, general] = fastAndGeneral(renderer, camera);
             expectSameFrame(fast, general,
                             std::string(scene::kindName(c.kind)) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
                                 ", camera " + std::to_string(which));
@@ -210,10 +217,7 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
         camera.width = camera.height = 64;
         camera.eye = {7.0, -9.0, 6.0};
         camera.center = {0.0, 0.0, 0.0};
-        render::RenderSettings settings;
-        const render::Frame fast = renderer.render(camera, settings);
-        settings.generalEvaluator = true;
-        const render::Frame general = renderer.render(camera, settings);
+        const auto [fast, general] = fastAndGeneral(renderer, camera);
         EXPECT_GT(fast.stats.productBlocks, 0u);
         if (kind == NodeKind::Difference) {
             EXPECT_EQ(fast.stats.coveredPixels, 0u) << "a cube minus itself is empty";
@@ -254,10 +258,7 @@ TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
     camera.projection = render::Projection::Orthographic;
     camera.eye = {0.0, 0.0, 10.0};
     camera.center = {0.0, 0.0, 0.0};
-    render::RenderSettings settings;
-    const render::Frame fast = renderer.render(camera, settings);
-    settings.generalEvaluator = true;
-    const render::Frame general = renderer.render(camera, settings);
+    const auto [fast, general] = fastAndGeneral(renderer, camera);
     EXPECT_GT(fast.stats.registerBlocks, 0u);
     expectSameFrame(fast, general, "a cube and a flat solid");
     std::size_t cubePixels = 0;
