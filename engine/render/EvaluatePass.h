@@ -12,12 +12,12 @@
 // countingTree), so a pixel gathers and evaluates only what can matter there.
 // The shader comes in three forms: the register form (operands of up to
 // eight peeled layers in all, a slot per layer, the tree as a truth table,
-// everything in registers; MAX_LIVE 4 or 8 slots), the product form (more operands of one layer
-// each under a single AND or OR: a CSG product or a union) and the array form
-// (anything else: a heap of surfaces and a counting tree in per-pixel arrays
-// of MAX_LIVE, a power of two from 16 up). Each block is drawn (one instanced
-// quad per block) by the cheapest variant that holds it. A variant is
-// compiled on first use and kept.
+// everything in registers; MAX_LIVE 4 or 8 slots), the product form (more
+// operands of one layer each under a single AND or OR: a CSG product or a
+// union) and the array form (anything else: a heap of surfaces and a
+// counting tree in per-pixel arrays of MAX_LIVE, a power of two from 16 up).
+// Each block is drawn (one instanced quad per block) by the cheapest variant
+// that holds it. A variant is compiled on first use and kept.
 //
 // GL state: sets the viewport, the stencil test and function; leaves the
 // stencil test off. Expects blending, depth test and culling off.

@@ -18,9 +18,10 @@
 // pixel with S surfaces and L live operands costs O(S log L) steps, not
 // O(S * L) as a rerun of the whole program would.
 //
-// Two forms of the walk, by MAX_LIVE (the most literals or nodes a block of
-// this draw has): up to eight operands of one layer each, every per-pixel
-// value is one component of a vector and the walk runs in registers; else
+// Two forms of the walk, by MAX_LIVE (the most slots, literals or nodes a
+// block of this draw has): up to eight peeled layers of the block's
+// operands, every per-pixel value is one component of a vector and the walk
+// runs in registers; else
 // per-pixel arrays of MAX_LIVE heap entries, live-operand slots and node
 // counts. On llvmpipe each array access is a gather or scatter per lane,
 // several times the cost of the register form, so the renderer draws each
@@ -128,10 +129,10 @@ void main() {
 #define LOAD_SLOT(nearSide, farSide, layers, c, i)                                  \
     if (block.y > uint(i)) {                                                        \
         vec2 layer = texelFetch(uLayers, ivec3(pixel, layers[c] & 0xffffu), 0).rg;  \
-        if (-layer.r < kCleared) {                                        \
-            nearSide[c] = -layer.r;                                       \
-            if (layer.g > -layer.r) farSide[c] = layer.g;                 \
-        }                                                                 \
+        if (-layer.r < kCleared) {                                                  \
+            nearSide[c] = -layer.r;                                                 \
+            if (layer.g > -layer.r) farSide[c] = layer.g;                           \
+        }                                                                           \
     }
     LOAD_SLOT(nearA, farA, vLayerA, 0, 0) LOAD_SLOT(nearA, farA, vLayerA, 1, 1)
     LOAD_SLOT(nearA, farA, vLayerA, 2, 2) LOAD_SLOT(nearA, farA, vLayerA, 3, 3)
