@@ -16,7 +16,6 @@ constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 constexpr GLint kPreviousLayer = 3;
 
-constexpr std::size_t kBytesPerTexel = 8;  // RG32F
 
 void setView(gpu::Program& program, const ViewSetup& view) {
     program.setUniform(kViewProjection, view.viewProjection);

@@ -60,6 +60,8 @@ public:
              std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
              const PeelRequest& request, std::vector<OperandLayers>& out);
 
+    static constexpr std::size_t kBytesPerTexel = 8;  // one RG32F texel of a layer
+
     // How many layers the operands would need if the fixed count holds, or a
     // first guess for auto (1 per convex operand, 2 per other, 1 scratch).
     static int estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,

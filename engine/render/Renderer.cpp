@@ -126,7 +126,6 @@ struct Renderer::Impl {
     SceneBuffers scene;
     TreeProgram program;
     std::vector<TranslucentLeaf> translucentLeaves;
-    std::vector<glm::vec2> baseColors;  // this frame's ShadePass::baseColors
     std::size_t leafCount = 0;
     bool hasScene = false;
     GLint maxTextureSize = 0;
@@ -135,7 +134,9 @@ struct Renderer::Impl {
 
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame);
-    void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame);
+    // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
+    void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
+                         const std::vector<glm::vec2>& baseColors, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade and translucent passes over the G-buffer in `targets`.
@@ -171,7 +172,8 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     gpu::checkErrors();
 }
 
-void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings, Frame& frame) {
+void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
+                                     const std::vector<glm::vec2>& baseColors, Frame& frame) {
     FrameStats& stats = frame.stats;
     const std::vector<int>& operands = program.operandLeaf;
     std::vector<PixelRect> rects(operands.size());
@@ -194,7 +196,8 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
     };
     auto fitsBudget = [&](const PixelRect& tile) {
-        return 8u * static_cast<std::size_t>(layersFor(tile)) * area(tile) <= settings.memoryBudget;
+        return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <=
+               settings.memoryBudget;
     };
     std::vector<PixelRect> grid{PixelRect{0, 0, view.width, view.height}};
     for (;;) {
@@ -206,7 +209,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         }
         if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
             const int estimate = layersFor(*over);
-            const std::size_t perPixel = 8u * static_cast<std::size_t>(estimate);
+            const std::size_t perPixel = PeelPass::kBytesPerTexel * static_cast<std::size_t>(estimate);
             throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
                         std::to_string(estimate) + " peel layers for only " +
                         std::to_string(settings.memoryBudget / perPixel) + " pixels at a time; give it at least " +
@@ -366,12 +369,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.operands = program.operandCount();
     stats.tiles = 0;
 
-    baseColors = ShadePass::baseColors(scene, scheme);
     resetDrawState();
     targets.ensure(view.width, view.height);
     targets.clearResult();
     if (program.kind == TreeProgram::Kind::Program) {
-        peelAndEvaluate(view, settings, frame);
+        peelAndEvaluate(view, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
         stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");

@@ -25,7 +25,7 @@ layout(location = 8) uniform ivec2 uSize;
 const float kAmbient = 0.35;
 const float kDiffuse = 0.65;
 
-// The normal `offset` pixels away, the edge pixel's beyond the frame. The
+// The normal (dx, dy) pixels away, the edge pixel's beyond the frame. The
 // sampler's offset and clamp cost llvmpipe less than clamping the
 // coordinates for texelFetch.
 #define NORMAL_AT(dx, dy) textureOffset(uNormal, vUv, ivec2(dx, dy)).xyz

@@ -31,7 +31,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "strata/geometry/Model.h"
-#include "strata/geometry/Primitives.h"
 #include "SphereShells.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Framebuffer.h"

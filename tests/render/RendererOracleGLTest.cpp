@@ -24,7 +24,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "strata/geometry/Model.h"
-#include "strata/geometry/Primitives.h"
 #include "SphereShells.h"
 #include "strata/gpu/Context.h"
 #include "strata/render/Renderer.h"
