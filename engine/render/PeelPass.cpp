@@ -40,13 +40,17 @@ PeelPass::PeelPass()
       next_(gpu::Program::fromFiles("peel next", {"csg/surface.vert", "csg/peel.frag"})),
       batched_(canBatch()),
       target_("peel"),
-      drawn_("peel drawn", GL_ANY_SAMPLES_PASSED) {
+      counted_("peel counted"),
+      deeper_(gpu::Program::fromFiles("peel deeper", {"common/fullscreen.vert", "csg/deeper.frag"})),
+      drawn_("peel drawn", GL_ANY_SAMPLES_PASSED),
+      deeperDrawn_("peel deeper drawn", GL_ANY_SAMPLES_PASSED) {
     if (batched_) {
         batch_ = gpu::Program::fromFiles("peel batch", {"csg/surface.vert", "csg/peel.frag"},
                                          {{"PEEL_FIRST", ""}, {"LAYERED", ""}});
     }
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxArrayLayers_);
     target_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    counted_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
 }
 
 int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
@@ -62,6 +66,10 @@ int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> ope
 }
 
 bool PeelPass::reserve(int width, int height, int needed, int keep, std::size_t budgetBytes) {
+    if (!counts_.id() || counts_.width() < width || counts_.height() < height) {
+        counts_ = gpu::Texture::create2D("peel counts", GL_STENCIL_INDEX8, width, height);
+        counted_.attachTexture(GL_STENCIL_ATTACHMENT, counts_);
+    }
     if (layers_.id() && layers_.width() >= width && layers_.height() >= height && layers_.layers() >= needed &&
         layers_.byteSize() <= budgetBytes) {
         return true;
@@ -120,6 +128,24 @@ void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile,
     passes_ += static_cast<int>(commands.size());
 }
 
+bool PeelPass::anyDeeperThan(int surfaces) {
+    if (surfaces >= 255) return true;
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_LESS, surfaces, 0xff);  // passes where surfaces < count
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    deeper_.use();
+    // The scene's vertex array stays bound: the fullscreen triangle reads no
+    // attribute, and on llvmpipe each switch of vertex array between the
+    // operand's draws cost more than the draw itself.
+    deeperDrawn_.begin();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    deeperDrawn_.end();
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_STENCIL_TEST);
+    return deeperDrawn_.result() != 0;
+}
+
 bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                    std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
                    const PeelRequest& request, std::vector<OperandLayers>& out) {
@@ -156,21 +182,45 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
         const int leaf = operandLeaves[k];
         const LeafRange& range = scene.leaf(leaf);
         if (!inTile[k] || range.indexCount == 0 || out[k].count > 0) continue;
-        // Convex: one pass holds every surface. Auto: until a pass draws nothing.
+        // Convex: one pass holds every surface. Auto: until no surface is left.
         const bool automatic = request.fixedLayers <= 0 && !range.convex;
         const int most = range.convex ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);
         const PixelRect valid = region(rects[k], tile, block);
         glScissor(valid.x, valid.y, valid.width, valid.height);
         int count = 0;
         for (int pass = 0; pass < most; ++pass) {
+            if (automatic && pass > 0) {
+                // Surfaces left somewhere? Waiting for that answer also
+                // finishes the last pass, so its own query costs no wait.
+                const bool deeper = anyDeeperThan(2 * pass);
+                // Surfaces at one depth peel together, so the counts can
+                // promise more than was left: then the last layer is scratch.
+                if (drawn_.result() == 0) {
+                    --count;
+                    break;
+                }
+                if (!deeper) break;
+            }
             const int layer = used + count;
             if (!reserve(tile.width, tile.height, layer + 1, used + count, request.budgetBytes)) {
                 fits = false;
                 break;
             }
-            target_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
-            target_.bindForDraw();
-            target_.clearColor(0, cleared);
+            counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
+            counted_.bindForDraw();
+            counted_.clearColor(0, cleared);
+            if (automatic) {
+                glEnable(GL_STENCIL_TEST);
+                if (pass == 0) {
+                    const GLint zero = 0;
+                    glClearNamedFramebufferiv(counted_.id(), GL_STENCIL, 0, &zero);
+                    glStencilFunc(GL_ALWAYS, 0, 0xff);
+                    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+                } else {
+                    glStencilFunc(GL_LESS, 2 * pass, 0xff);
+                    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+                }
+            }
             gpu::Program& program = pass == 0 ? first_ : next_;
             if (pass > 0) {
                 // The previous layer was rendered by the last draw: make it
@@ -185,7 +235,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
             ++passes_;
             if (automatic) {
                 drawn_.end();
-                if (drawn_.result() == 0) break;  // nothing left: the layer stays scratch
+                glDisable(GL_STENCIL_TEST);
             }
             ++count;
         }
@@ -196,7 +246,9 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
     target_.detach(GL_COLOR_ATTACHMENT0);
+    counted_.detach(GL_COLOR_ATTACHMENT0);
     gpu::checkErrors();
     return fits;
 }

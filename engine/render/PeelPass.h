@@ -10,6 +10,14 @@
 // other in the texture; the texture is sized to the tile and grows as `auto`
 // peeling finds deeper operands, within the memory budget.
 //
+// Auto peeling stops once a pass would find nothing: the first pass of a
+// non-convex operand counts each pixel's surfaces into a stencil texture
+// (INCR), and before pass l an occlusion query over a fullscreen triangle,
+// stencil-tested "count > 2l", asks whether any pixel has surfaces left. The
+// final, empty geometry pass of plain query-after-draw peeling becomes a
+// rectangle of stencil reads. Passes l >= 1 test the same stencil too, so
+// pixels already peeled to the end are dropped before the shader runs.
+//
 // Convex operands need one pass each and no previous layer: where the driver
 // can route a draw to a layer from the vertex stage (ARB_shader_draw_parameters
 // and ARB_shader_viewport_layer_array), they are all peeled by one multi-draw
@@ -92,9 +100,18 @@ private:
     bool batched_ = false;  // the driver has what batch_ needs
     gpu::Buffer commands_;  // DrawElementsIndirectCommand per operand of the batch
     gpu::Buffer drawLayers_;
-    gpu::Framebuffer target_;
+    // Whether a pixel of the operand being peeled has more than `surfaces`
+    // surfaces, by the counts of its first pass (see above). True where the
+    // 8-bit counts cannot tell (surfaces >= 255).
+    bool anyDeeperThan(int surfaces);
+
+    gpu::Framebuffer target_;  // layered, for the convex batch
+    gpu::Framebuffer counted_;  // one layer and the counts: the other passes
     gpu::Texture layers_;
-    gpu::Query drawn_;
+    gpu::Texture counts_;  // STENCIL_INDEX8 per pixel of a tile: surfaces of the operand being peeled
+    gpu::Program deeper_;  // fullscreen, stencil-tested, no output
+    gpu::Query drawn_;         // did the last pass draw anything?
+    gpu::Query deeperDrawn_;   // did deeper_ pass anywhere?
     int maxArrayLayers_ = 256;
     int passes_ = 0;
     int allocations_ = 0;

@@ -236,6 +236,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         stats.peelMs += millisecondsSince(start);
         stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
         stats.textureAllocations += peel.allocations();
+        stats.peelPasses += peel.passes();
         if (!fits) {
             if (quarters(tile).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
@@ -368,6 +369,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.layersPerLeaf.assign(leafCount, 0);
     stats.operands = program.operandCount();
     stats.tiles = 0;
+    stats.peelPasses = 0;
 
     resetDrawState();
     targets.ensure(view.width, view.height);

@@ -12,6 +12,12 @@ layout(location = 0) in float vViewDepth;
 layout(location = 0) out vec2 outDepths;
 
 #ifndef PEEL_FIRST
+// Auto peeling tests the stencil (the pixel's surface count against the
+// surfaces peeled so far) before the shader runs: pixels with nothing left
+// cost no texture fetch. The test writes nothing, so running it early changes
+// no result.
+layout(early_fragment_tests) in;
+
 // The previous layer. Another layer of the same texture is the render target:
 // GL allows that read after a glTextureBarrier() (ARB_texture_barrier, core in
 // 4.5) as long as no texel is both read and written by one draw.

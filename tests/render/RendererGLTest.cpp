@@ -312,11 +312,41 @@ TEST_F(RendererGLTest, StackedSubtractionNeedsAllLayersOfANonConvexOperand) {
         expectCentre(right, truth, 1, {0, 0, 1});
         EXPECT_EQ(right.stats.layersPerLeaf[1], 3);  // 6 surfaces, 2 per layer
         EXPECT_EQ(right.stats.layersPerLeaf[0], 1);  // the slab is convex
+        // The first pass counted 6 surfaces: no fourth pass to find nothing.
+        EXPECT_EQ(right.stats.peelPasses, 1 + 3);
 
         render::RenderSettings three;
         three.layers = 3;
         expectCentre(draw(tree, topCamera(p), three), truth, 1, {0, 0, 1});
     }
+}
+
+TEST_F(RendererGLTest, AutoPeelingStopsWhereCountedSurfacesCoincide) {
+    // One polyhedron of two boxes, the narrow one inside the wide one with
+    // its top and bottom in the wide one's planes. Over the narrow box the
+    // first pass counts four surfaces at two depths; the first layer peels
+    // both pairs at once. The second pass is drawn (the counts promise more),
+    // finds nothing and is not kept. Orthographic, so that both boxes' tops
+    // interpolate to the very same depth (in perspective the two triangles
+    // may differ by an ulp, and the second layer is real).
+    scene::Polyhedron poly;
+    for (const double half : {1.5, 0.5}) {
+        const geometry::Mesh box = geometry::tessellate(scene::Cube{{2 * half, 2 * half, 1.0}, true});
+        const int base = static_cast<int>(poly.points.size());
+        for (const glm::dvec3& p : box.positions) poly.points.push_back(p);
+        for (const auto& t : box.triangles) {  // OpenSCAD's order: clockwise seen from outside
+            poly.faces.push_back({base + static_cast<int>(t[2]), base + static_cast<int>(t[1]),
+                                  base + static_cast<int>(t[0])});
+        }
+    }
+    scene::Tree tree;
+    scene::Leaf boxes;
+    boxes.primitive = poly;
+    tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(boxes)});
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    expectCentre(f, kEyeHeight - 0.5, 0, {0, 0, 1});
+    EXPECT_EQ(f.stats.layersPerLeaf[0], 1);
+    EXPECT_EQ(f.stats.peelPasses, 2);
 }
 
 TEST_F(RendererGLTest, PeeledLayersHoldTheSurfacesInOrder) {
@@ -494,12 +524,12 @@ TEST_F(RendererGLTest, TiledFramesReuseOneLayerTexture) {
 }
 
 TEST_F(RendererGLTest, AutoPeelingDeeperThanGuessedSplitsTheTile) {
-    // The guess is 2 layers for a non-convex operand; the shells need 3 (and
-    // a scratch layer for the empty check). A budget of exactly the guess
-    // for the whole frame forces a split once peeling goes deeper.
+    // The guess is 2 layers for a non-convex operand (and a scratch layer);
+    // four shells stacked on the view axis need 4. A budget of exactly the
+    // guess for the whole frame forces a split once peeling goes deeper.
     scene::Tree tree;
     const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
-    const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
+    const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}, {0, 0, -2}}, 0.4));
     tree.root = tree.addNode(NodeKind::Difference, {slab, spheres});
     render::RenderSettings tight;
     tight.memoryBudget = static_cast<std::size_t>(kSize) * kSize * 8 * (1 + 2 + 1);
@@ -509,7 +539,7 @@ TEST_F(RendererGLTest, AutoPeelingDeeperThanGuessedSplitsTheTile) {
     ASSERT_FALSE(f.stats.notes.empty());
     EXPECT_NE(f.stats.notes.back().find("split"), std::string::npos) << f.stats.notes.back();
     expectCentre(f, kEyeHeight - capHeight(1.0, 0.4, -1), 1, {0, 0, 1});
-    EXPECT_EQ(f.stats.layersPerLeaf[1], 3);
+    EXPECT_EQ(f.stats.layersPerLeaf[1], 4);
 }
 
 TEST_F(RendererGLTest, ABudgetTooSmallForOnePixelIsAnError) {

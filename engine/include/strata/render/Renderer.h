@@ -53,6 +53,7 @@ struct FrameStats {
     std::size_t coveredPixels = 0;             // pixels where the result has a surface
     std::size_t unresolvedPixels = 0;          // pixels the evaluator could not finish (llvmpipe's loop limit); drawn empty
     int tiles = 1;                             // screen tiles / operand batches used to stay in budget
+    int peelPasses = 0;                        // geometry passes of the peel: one per operand and layer, every tile
     // 16x16 blocks the evaluator drew in each of its forms (EvaluatePass.h);
     // blocks whose result is constant are not drawn.
     std::size_t registerBlocks = 0, productBlocks = 0, arrayBlocks = 0;
