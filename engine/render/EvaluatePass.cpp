@@ -77,17 +77,19 @@ int EvaluatePass::capacityFor(int count) {
     return capacity;
 }
 
-gpu::Program& EvaluatePass::programFor(int form) {
-    auto it = programs_.find(form);
+gpu::Program& EvaluatePass::programFor(int form, bool leafMarks) {
+    const int key = form * 2 + (leafMarks ? 1 : 0);
+    auto it = programs_.find(key);
     if (it == programs_.end()) {
         std::vector<gpu::ShaderDefine> defines{{"BLOCK", std::to_string(kBlock)}};
+        if (leafMarks) defines.push_back({"LEAF_MARKS", "1"});
         if (form == kProductForm) {
             defines.push_back({"PRODUCT_FORM", "1"});
         } else {
             defines.push_back({"MAX_LIVE", std::to_string(form)});
         }
         it = programs_
-                 .emplace(form,
+                 .emplace(key,
                           gpu::Program::fromFiles("evaluate", {"csg/evaluate.vert", "csg/evaluate.frag"}, defines))
                  .first;
     }
@@ -102,11 +104,12 @@ void EvaluatePass::setProgram(const TreeProgram& program) {
                               GL_DYNAMIC_STORAGE_BIT);
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
-        programFor(4);
+        const bool marks = FrameTargets::canMarkLeaves();
+        programFor(4, marks);
         const bool product = !program.code.empty() && countingTree(program.code).nodes.size() == 1;  // one AND or OR
-        if (product && program.operandCount() > kRegisterForm) programFor(kProductForm);
-        if (program.operandCount() > 4) programFor(kRegisterForm);
-        if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()));
+        if (product && program.operandCount() > kRegisterForm) programFor(kProductForm, marks);
+        if (program.operandCount() > 4) programFor(kRegisterForm, marks);
+        if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()), marks);
     }
 }
 
@@ -252,7 +255,8 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     targets.evaluateTarget.bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
-    // A pixel the shader writes (does not discard) is marked for the later passes.
+    // A pixel the shader writes (does not discard) is marked for the later
+    // passes: with kWritten, or with the value the shader gives (leaf marks).
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, FrameTargets::kWritten, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
@@ -264,7 +268,7 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
                                : form <= kRegisterForm ? stats.registerBlocks
                                                        : stats.arrayBlocks;
         counter += list.size();
-        gpu::Program& program = programFor(form);
+        gpu::Program& program = programFor(form, targets.leafMarks);
         program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));
         if (form == kProductForm || form > kRegisterForm) program.setUniform(kLoopBudget, loopBudget);
         program.setUniform(kFirstBlock, first);

@@ -4,7 +4,7 @@
 // walks them front to back (shaders/csg/evaluate.frag) to the first surface
 // where the result's membership changes. Writes FrameTargets::resultDepth and
 // resultLeaf, and marks the pixels it wrote in the stencil of
-// FrameTargets::marks, inside the tile.
+// FrameTargets::marks, inside the tile (FrameTargets::mark).
 //
 // The tree lives in storage buffers: a tree edit only re-uploads them. Each
 // 16x16 block of a tile gets the tree specialised to the operands whose
@@ -80,9 +80,11 @@ private:
     // `generalOnly`), else the array form.
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
-    gpu::Program& programFor(int form);  // 4, kRegisterForm, kProductForm or a capacityFor() value
+    // `form`: 4, kRegisterForm, kProductForm or a capacityFor() value;
+    // `leafMarks`: the shader writes FrameTargets::mark(leaf) to the stencil.
+    gpu::Program& programFor(int form, bool leafMarks);
 
-    std::map<int, gpu::Program> programs_;  // by form (BlockTree::form)
+    std::map<int, gpu::Program> programs_;  // by form (BlockTree::form) * 2 + leaf marks
     TreeProgram program_;
     gpu::Buffer blocks_;
     gpu::Buffer blockOperands_;

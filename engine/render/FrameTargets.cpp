@@ -47,6 +47,10 @@ void FrameTargets::clearResult() {
     glClearNamedFramebufferfi(evaluateTarget.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
 }
 
+bool FrameTargets::canMarkLeaves() {
+    return epoxy_has_gl_extension("GL_ARB_shader_stencil_export");
+}
+
 std::size_t FrameTargets::bytes() const {
     return resultDepth.byteSize() + resultLeaf.byteSize() + normal.byteSize() + color.byteSize() + marks.byteSize();
 }

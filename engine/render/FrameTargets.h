@@ -7,14 +7,19 @@
 //   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
 //                         base colour (ShadePass::packBaseColor); 0 on a miss
 //   color        RGBA8    the shaded image                                           (shade, translucent)
-//   marks        D24S8    stencil: 2 where the evaluator wrote a result (a surface,  (evaluate)
-//                         or a pixel it could not finish), else 0
+//   marks        D24S8    stencil: mark(leaf) where the evaluator found a surface   (evaluate)
+//                         of that leaf, else 0
 //
 // The later passes test the stencil so that they run only where there is
 // something to do: a fragment that fails the stencil test never runs its
 // shader, on llvmpipe as on GPUs, while a shader that branches to skip work
 // costs almost as much as doing it on llvmpipe (it runs both sides of every
-// branch for its 8 or 16 lanes).
+// branch for its 8 or 16 lanes). Where the driver lets a fragment shader
+// write the stencil value (ARB_shader_stencil_export), the mark names the
+// leaf (1 + leaf mod 255), so the normal pass, drawing one leaf at a time,
+// skips the other leaves' pixels before its shader runs; elsewhere every
+// written pixel gets kWritten (and the evaluator's pixels it could not finish
+// get it too, where with leaf marks they get 0).
 
 #include <cstddef>
 
@@ -40,7 +45,14 @@ public:
     gpu::Framebuffer normalTarget;    // 0: normal
     gpu::Framebuffer colorTarget;     // 0: color
 
-    static constexpr int kWritten = 2;  // marks value, see above
+    static constexpr int kWritten = 2;  // the mark without leaf marks, see above
+
+    // Whether the driver can give each pixel its leaf's mark (asks GL).
+    static bool canMarkLeaves();
+    // This frame's choice, set by the renderer before the evaluate pass.
+    bool leafMarks = false;
+    // The stencil value of a pixel showing `leaf`.
+    int mark(int leaf) const { return leafMarks ? 1 + leaf % 255 : kWritten; }
 
 private:
     int width_ = 0, height_ = 0;

@@ -34,7 +34,6 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, FrameTargets::kWritten, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     scene.vertexArray().bind();
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
@@ -50,6 +49,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
             glDisable(GL_CULL_FACE);
         }
         glScissor(r.x, r.y, r.width, r.height);
+        glStencilFunc(GL_EQUAL, targets.mark(leaf), 0xff);
         program_.setUniform(kLeaf, leaf);
         program_.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(leaf).firstTriangle));
         program_.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);

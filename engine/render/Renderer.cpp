@@ -129,6 +129,7 @@ struct Renderer::Impl {
     std::size_t leafCount = 0;
     bool hasScene = false;
     GLint maxTextureSize = 0;
+    bool canMarkLeaves = FrameTargets::canMarkLeaves();
 
     Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
 
@@ -374,6 +375,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     resetDrawState();
     targets.ensure(view.width, view.height);
     targets.clearResult();
+    targets.leafMarks = settings.leafMarks && canMarkLeaves;
     if (program.kind == TreeProgram::Kind::Program) {
         peelAndEvaluate(view, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {

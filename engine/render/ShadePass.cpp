@@ -56,7 +56,7 @@ void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorSch
         const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
         targets.colorTarget.clearColor(0, background);
         glEnable(GL_STENCIL_TEST);
-        glStencilFunc(GL_EQUAL, FrameTargets::kWritten, 0xff);
+        glStencilFunc(GL_NOTEQUAL, 0, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     }
     empty_.bind();

@@ -31,6 +31,10 @@
 // where the leaf's own membership changes against the result's (it acts as a
 // subtracted operand there). Pixels with no surface are discarded: the
 // targets were cleared to "miss", and the stencil marks only pixels written.
+// LEAF_MARKS: the mark names the leaf (FrameTargets::mark).
+#ifdef LEAF_MARKS
+#extension GL_ARB_shader_stencil_export : require
+#endif
 #include "csg/surface.glsl"
 
 #ifndef MAX_LIVE
@@ -70,6 +74,9 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
     atomicOr(shownFaces[leaf], operandEntered ? 1u : 2u);
+#ifdef LEAF_MARKS
+    gl_FragStencilRefARB = 1 + leaf % 255;
+#endif
 }
 
 #if !REGISTER_FORM
@@ -86,6 +93,9 @@ int budget;
 void writeUnresolved() {
     outDepth = kInfinity;
     outLeaf = -2;
+#ifdef LEAF_MARKS
+    gl_FragStencilRefARB = 0;  // no surface: no later pass needs the pixel
+#endif
 }
 
 #endif

@@ -4,6 +4,12 @@
 // facing, same tagged depth) writes its triangle's world-space face normal, flipped where the
 // leaf acts as a subtracted operand: the outward normal of the result. Its w
 // is the surface's base colour for the shade pass, a uniform of this draw.
+// The stencil holds the evaluator's marks (FrameTargets.h) and this pass
+// only tests them: testing before the shader runs changes no result, and
+// spares the shader on the other leaves' pixels (llvmpipe tests late, after
+// the shader, in a shader that may discard, unless told otherwise).
+layout(early_fragment_tests) in;
+
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;

@@ -20,10 +20,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -485,6 +487,39 @@ void expectSameAsUntiled(const render::Frame& tiled, const render::Frame& whole)
         }
     }
     EXPECT_EQ(differ, 0u);
+}
+
+TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
+    // A slab minus 300 small spheres and a pair of shells: more leaves than
+    // the stencil's 255 leaf marks, so marks repeat (leaves 1 and 256 share
+    // one) and the normal pass must still tell them apart. With leaf marks
+    // (where the driver has them) and with one mark for all, every AOV and
+    // the image must be the same to the bit.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> across(-1.8, 1.8), height(0.7, 1.1);
+    scene::Tree tree;
+    std::vector<int> children{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
+    for (int i = 0; i < 300; ++i) children.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.15)));
+    children.push_back(tree.addLeaf(shellsLeaf({{0.5, 0.5, 1}, {0.5, 0.5, 0.3}}, 0.3)));
+    tree.root = tree.addNode(NodeKind::Difference, children);
+    render::RenderSettings oneMark;
+    oneMark.leafMarks = false;
+    for (render::Projection p : kProjections) {
+        const render::Frame marked = draw(tree, topCamera(p));
+        const render::Frame plain = renderer_->render(topCamera(p), oneMark);
+        ASSERT_EQ(marked.leaf.size(), plain.leaf.size());
+        std::size_t differ = 0, fromHighLeaves = 0;
+        for (std::size_t k = 0; k < plain.leaf.size(); ++k) {
+            differ += marked.leaf[k] != plain.leaf[k] ||
+                      std::memcmp(&marked.depth[k], &plain.depth[k], sizeof(float)) != 0 ||
+                      std::memcmp(&marked.normal[k], &plain.normal[k], sizeof(glm::vec3)) != 0;
+            fromHighLeaves += plain.leaf[k] >= 255;
+        }
+        EXPECT_EQ(differ, 0u);
+        EXPECT_EQ(marked.rgba, plain.rgba);
+        EXPECT_GT(fromHighLeaves, 50u) << "leaves past the 255th must show";
+        EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
+    }
 }
 
 TEST_F(RendererGLTest, TilesGiveTheSameImageWithinABudget) {

@@ -42,6 +42,10 @@ struct RenderSettings {
     // not the fastest form that holds its block: slower, the same image
     // (tests compare the forms).
     bool generalEvaluator = false;
+    // Mark each pixel's leaf in the stencil where the driver can
+    // (ARB_shader_stencil_export), so the normal pass skips other leaves'
+    // pixels early; false: one mark for all (tests compare the two).
+    bool leafMarks = true;
 };
 
 struct FrameStats {
