@@ -25,8 +25,10 @@
 //
 // GL state: draws into its own framebuffer with viewport (-tile.x, -tile.y, W,
 // H), so the tile's pixels land at the texture's origin with the frame's exact
-// pixel centres; enables blending (MAX) and the scissor test while it runs and
-// disables both before returning. Depth test and face culling must be off.
+// pixel centres; enables blending (MAX), the scissor test and (for auto
+// peeling's counts, in its own stencil texture) the stencil test while it
+// runs, sets the stencil function, and disables all three before returning.
+// Depth test and face culling must be off.
 
 #include <cstddef>
 #include <span>
