@@ -10,26 +10,26 @@ void FrameTargets::ensure(int width, int height) {
     resultLeaf = gpu::Texture::create2D("result leaf", GL_R32I, width, height);
     normal = gpu::Texture::create2D("result normal", GL_RGBA32F, width, height);
     color = gpu::Texture::create2D("colour", GL_RGBA8, width, height);
-    marks = gpu::Texture::create2D("marks", GL_DEPTH24_STENCIL8, width, height);
+    marks = gpu::Texture::create2D("marks", GL_STENCIL_INDEX8, width, height);
 
     evaluateTarget = gpu::Framebuffer("evaluate");
     evaluateTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
     evaluateTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
     evaluateTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
-    evaluateTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, marks);
+    evaluateTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
     evaluateTarget.checkComplete();
 
     normalTarget = gpu::Framebuffer("normal");
     normalTarget.attachTexture(GL_COLOR_ATTACHMENT0, normal);
     normalTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
-    normalTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, marks);
+    normalTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
     normalTarget.checkComplete();
 
     colorTarget = gpu::Framebuffer("colour");
     colorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
     colorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
     colorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
-    colorTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, marks);
+    colorTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
     colorTarget.checkComplete();
 
     width_ = width;
@@ -44,7 +44,8 @@ void FrameTargets::clearResult() {
     evaluateTarget.clearColor(0, depth);
     evaluateTarget.clearColorInt(1, leaf);
     normalTarget.clearColor(0, zero);
-    glClearNamedFramebufferfi(evaluateTarget.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    const GLint noMark = 0;
+    glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);
 }
 
 bool FrameTargets::canMarkLeaves() {

@@ -7,7 +7,7 @@
 //   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
 //                         base colour (ShadePass::packBaseColor); 0 on a miss
 //   color        RGBA8    the shaded image                                           (shade, translucent)
-//   marks        D24S8    stencil: mark(leaf) where the evaluator found a surface   (evaluate)
+//   marks        S8       stencil: mark(leaf) where the evaluator found a surface   (evaluate)
 //                         of that leaf, else 0
 //
 // The later passes test the stencil so that they run only where there is
