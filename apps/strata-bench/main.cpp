@@ -3,18 +3,22 @@
 // a depth test (PlainDraw.h), in the same process and GL context, and
 // against OpenCSG (OpenCsgRun.h) in a second, compatibility context of the
 // same process where OpenCSG was built in and an X display is there.
+// Your own scene files (.csg, or one closed mesh) run the same way, from
+// OpenSCAD's default view, with K their number of leaves.
 // Run by hand (docs/benchmarks.md); never by CI.
 //
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
-//                [--frames 10] [--warmup 2] [--seed 1] [--json FILE]
-//                [--no-opencsg] [--opencsg-cap-ms 2000]
+//                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
+//                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <exception>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -24,6 +28,7 @@
 
 #include "OpenCsgRun.h"
 #include "PlainDraw.h"
+#include "SceneLoad.h"
 #include "Scenes.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Model.h"
@@ -77,6 +82,7 @@ Size parseSize(const std::string& text) {
 struct Options {
     std::vector<std::string> scenes = bench::sceneNames();
     std::vector<int> ks{1, 8, 32, 64, 128, 256};
+    std::vector<std::string> files;  // scene files, each once per size
     std::vector<std::string> sizes{"1024x768"};
     int frames = 10;
     int warmup = 2;
@@ -119,8 +125,9 @@ std::vector<std::uint8_t> coverageOf(const render::Frame& frame) {
     return out;
 }
 
+// `make` builds the scene for a camera carrying the image size.
 Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openCsg, const std::string& name, int k,
-               Size size) {
+               Size size, const std::function<bench::BenchScene(const render::Camera& base)>& make) {
     Result result;
     result.scene = name;
     result.k = k;
@@ -130,7 +137,7 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     base.width = size.width;
     base.height = size.height;
     const auto setupStart = Clock::now();
-    bench::BenchScene benchScene = bench::makeScene(name, k, options.seed, base);
+    bench::BenchScene benchScene = make(base);
     const geometry::Model model = geometry::buildModel(benchScene.tree);
     const render::Camera camera =
         benchScene.camera ? *benchScene.camera : render::defaultCamera(render::viewBounds(benchScene.tree, model), base);
@@ -359,9 +366,14 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
 int main(int argc, char** argv) {
     Options options;
     CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
-    app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep, tori, mesh")
-        ->delimiter(',')
-        ->check(CLI::IsMember(bench::sceneNames()));
+    CLI::Option* scenes =
+        app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep, tori, mesh")
+            ->delimiter(',')
+            ->check(CLI::IsMember(bench::sceneNames()));
+    app.add_option("--files", options.files,
+                   "scene files (.csg, .stl, .obj, .off, .ply) to time as well, from OpenSCAD's default view; "
+                   "alone, without --scenes, only these")
+        ->delimiter(',');
     app.add_option("--k", options.ks, "operand counts K")->delimiter(',')->check(CLI::Range(1, 100000));
     app.add_option("--size", options.sizes, "image sizes WxH")->delimiter(',');
     app.add_option("--frames", options.frames, "timed frames per case")->check(CLI::Range(1, 100000));
@@ -373,8 +385,13 @@ int main(int argc, char** argv) {
                    "an OpenCSG setting with a frame over this many ms is skipped for larger K")
         ->check(CLI::PositiveNumber);
     CLI11_PARSE(app, argc, argv);
+    if (!options.files.empty() && scenes->count() == 0) options.scenes.clear();
 
     try {
+        // Loaded first, so a bad file fails before minutes of frames.
+        std::vector<scene::Tree> fileTrees;
+        for (const std::string& path : options.files) fileTrees.push_back(apps::loadSceneFile(path));
+
         std::vector<Size> sizes;
         for (const std::string& s : options.sizes) sizes.push_back(parseSize(s));
 
@@ -409,21 +426,32 @@ int main(int argc, char** argv) {
         printHeader();
 
         std::vector<Result> results;
-        for (const Size& size : sizes)
+        auto run = [&](const std::string& name, int k, Size size,
+                       const std::function<bench::BenchScene(const render::Camera&)>& make) {
+            Result result;
+            try {
+                result = runCase(options, context, openCsg, name, k, size, make);
+            } catch (const std::exception& e) {
+                result.scene = name;
+                result.k = k;
+                result.size = size;
+                result.error = e.what();
+            }
+            printRow(result);
+            results.push_back(std::move(result));
+        };
+        for (const Size& size : sizes) {
             for (const std::string& name : options.scenes)
-                for (int k : options.ks) {
-                    Result result;
-                    try {
-                        result = runCase(options, context, openCsg, name, k, size);
-                    } catch (const std::exception& e) {
-                        result.scene = name;
-                        result.k = k;
-                        result.size = size;
-                        result.error = e.what();
-                    }
-                    printRow(result);
-                    results.push_back(std::move(result));
-                }
+                for (int k : options.ks)
+                    run(name, k, size, [&](const render::Camera& base) {
+                        return bench::makeScene(name, k, options.seed, base);
+                    });
+            for (std::size_t f = 0; f < fileTrees.size(); ++f) {
+                const scene::Tree& tree = fileTrees[f];
+                run(std::filesystem::path(options.files[f]).filename().string(), static_cast<int>(tree.leaves.size()),
+                    size, [&](const render::Camera&) { return bench::BenchScene{tree, std::nullopt}; });
+            }
+        }
 
         if (jsonOut.is_open()) {
             jsonOut << toJson(options, context, openCsg, results) << '\n';

@@ -4,15 +4,14 @@
 // is written, and every output is staged before any is committed, so a
 // failure leaves no output file behind.
 
-#include <cctype>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "Options.h"
+#include "SceneLoad.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
@@ -22,7 +21,6 @@
 #include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
 #include "strata/render/ViewBounds.h"
-#include "strata/scene/CsgParser.h"
 #include "strata/scene/Tree.h"
 
 namespace {
@@ -32,32 +30,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-// A .csg through the parser, or one mesh file as a tree of a single Import leaf.
-scene::Tree loadScene(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    const bool isMesh = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
-    if (ext != ".csg" && !isMesh)
-        throw Error(SourceLocation{path, 0, 0}, "unknown scene type '" + ext +
-                                                    "' (expected .csg, .stl, .obj, .off or .ply)");
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
-    if (std::FILE* f = std::fopen(path.c_str(), "rb"))
-        std::fclose(f);
-    else
-        throw Error(SourceLocation{path, 0, 0}, "cannot open file");
-
-    if (!isMesh) return scene::parseCsgFile(path);
-    return scene::meshFileTree(path);
 }
 
 // Fails before the (possibly long) render when an output's folder is missing;
@@ -82,7 +54,7 @@ int run(const apps::RenderOptions& options) {
     checkOutputFolder(options.normal);
 
     auto t = Clock::now();
-    const scene::Tree tree = loadScene(options.scene);
+    const scene::Tree tree = apps::loadSceneFile(options.scene);
     stats.parseMs = msSince(t);
     for (const Warning& w : tree.warnings) {
         std::cerr << w.message << '\n';

@@ -1,0 +1,41 @@
+#include "SceneLoad.h"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+#include "strata/core/Error.h"
+#include "strata/scene/CsgParser.h"
+
+namespace strata::apps {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+scene::Tree loadSceneFile(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    const bool isMesh = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
+    if (ext != ".csg" && !isMesh)
+        throw Error(SourceLocation{path, 0, 0}, "unknown scene type '" + ext +
+                                                    "' (expected .csg, .stl, .obj, .off or .ply)");
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
+    if (std::FILE* f = std::fopen(path.c_str(), "rb"))
+        std::fclose(f);
+    else
+        throw Error(SourceLocation{path, 0, 0}, "cannot open file");
+
+    if (!isMesh) return scene::parseCsgFile(path);
+    return scene::meshFileTree(path);
+}
+
+}  // namespace strata::apps
