@@ -33,6 +33,15 @@ ProductOperand operand(const scene::Tree& tree, const geometry::Model& model, in
     return out;
 }
 
+// `index`, or the node it stands for: an operation with a single child (an
+// OpenSCAD group() around one object, a mesh file's tree) is its child.
+const scene::Node& throughSingles(const scene::Tree& tree, int index) {
+    const scene::Node* node = &tree.nodes[static_cast<std::size_t>(index)];
+    while (node->kind != scene::NodeKind::Leaf && node->children.size() == 1)
+        node = &tree.nodes[static_cast<std::size_t>(node->children[0])];
+    return *node;
+}
+
 }  // namespace
 
 CsgProduct csgProduct(const scene::Tree& tree, const geometry::Model& model) {
@@ -41,7 +50,7 @@ CsgProduct csgProduct(const scene::Tree& tree, const geometry::Model& model) {
         out.notProduct = "empty scene";
         return out;
     }
-    const scene::Node& root = tree.nodes[static_cast<std::size_t>(tree.root)];
+    const scene::Node& root = throughSingles(tree, tree.root);
     if (root.kind == scene::NodeKind::Leaf) {
         out.operands.push_back(operand(tree, model, root.leaf, false, out.bounds));
         return out;
@@ -51,7 +60,7 @@ CsgProduct csgProduct(const scene::Tree& tree, const geometry::Model& model) {
         return out;
     }
     for (std::size_t i = 0; i < root.children.size(); ++i) {
-        const scene::Node& child = tree.nodes[static_cast<std::size_t>(root.children[i])];
+        const scene::Node& child = throughSingles(tree, root.children[i]);
         if (child.kind != scene::NodeKind::Leaf) {
             out = {};
             out.notProduct = "not one CSG product (nested operations)";

@@ -53,14 +53,24 @@ PeelPass::PeelPass()
     counted_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
 }
 
+namespace {
+
+// Whether operand k takes one pass: convex, or first layer only.
+bool onePass(const LeafRange& leaf, const PeelRequest& request, std::size_t k) {
+    return leaf.convex || (k < request.firstLayerOnly.size() && request.firstLayerOnly[k]);
+}
+
+}  // namespace
+
 int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
-                             std::span<const char> inTile, int fixedLayers) {
+                             std::span<const char> inTile, const PeelRequest& request) {
+    const int fixedLayers = request.fixedLayers;
     int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         if (!inTile[k]) continue;
         const LeafRange& leaf = scene.leaf(operandLeaves[k]);
         if (leaf.indexCount == 0) continue;
-        layers += leaf.convex ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
+        layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
     }
     return std::max(layers, 1);
 }
@@ -154,7 +164,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     allocations_ = 0;
     std::vector<char> inTile(operandLeaves.size());
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
-    const int estimate = estimateLayers(scene, operandLeaves, inTile, request.fixedLayers);
+    const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
     if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
 
     setView(first_, view);
@@ -170,10 +180,11 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
     int used = 0;
     if (batched_) {
-        // Convex operands first, one layer each (reserve() made room for all).
+        // Convex (and first-layer-only) operands first, one layer each
+        // (reserve() made room for all).
         for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
             const LeafRange& range = scene.leaf(operandLeaves[k]);
-            if (inTile[k] && range.indexCount > 0 && range.convex) out[k] = {used++, 1};
+            if (inTile[k] && range.indexCount > 0 && onePass(range, request, k)) out[k] = {used++, 1};
         }
         if (used > 0) peelConvexBatch(scene, tile, operandLeaves, rects, block, out);
     }
@@ -182,9 +193,11 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
         const int leaf = operandLeaves[k];
         const LeafRange& range = scene.leaf(leaf);
         if (!inTile[k] || range.indexCount == 0 || out[k].count > 0) continue;
-        // Convex: one pass holds every surface. Auto: until no surface is left.
-        const bool automatic = request.fixedLayers <= 0 && !range.convex;
-        const int most = range.convex ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);
+        // Convex: one pass holds every surface (first layer only: all that
+        // matters). Auto: until no surface is left.
+        const bool one = onePass(range, request, k);
+        const bool automatic = request.fixedLayers <= 0 && !one;
+        const int most = one ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);
         const PixelRect valid = region(rects[k], tile, block);
         glScissor(valid.x, valid.y, valid.width, valid.height);
         int count = 0;

@@ -52,6 +52,11 @@ struct OperandLayers {
 struct PeelRequest {
     int fixedLayers = 0;              // > 0: that many passes per non-convex operand; 0: auto
     std::size_t budgetBytes = 0;      // most bytes the layer texture may take
+    // Per operand (empty: none): its first layer is all the result can
+    // show of it, so it is peeled once like a convex operand (see
+    // Renderer.cpp: operands that only unions lead to, every ray starting
+    // outside).
+    std::span<const char> firstLayerOnly;
 };
 
 class PeelPass {
@@ -73,9 +78,10 @@ public:
     static constexpr std::size_t kBytesPerTexel = 8;  // one RG32F texel of a layer
 
     // How many layers the operands would need if the fixed count holds, or a
-    // first guess for auto (1 per convex operand, 2 per other, 1 scratch).
+    // first guess for auto (1 per convex or first-layer-only operand, 2 per
+    // other, 1 scratch).
     static int estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
-                              std::span<const char> inTile, int fixedLayers);
+                              std::span<const char> inTile, const PeelRequest& request);
 
     // Where operand layers are valid: `rect` (frame pixels) widened to whole
     // `block`s counted from the tile's corner, clipped to the tile, in texture

@@ -72,6 +72,30 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
     return out;
 }
 
+// Per operand of `program`: whether only unions (or operations of a single
+// child) lead from the root to its leaf. The result is then true wherever
+// the operand is: once a ray enters it, the result is entered, at the latest
+// there. So where every ray starts outside every operand, its nearest
+// surface (the first peeled layer) is all the result can show of it.
+std::vector<char> reachedByUnionsOnly(const scene::Tree& tree, const TreeProgram& program) {
+    std::vector<char> leafFlag(tree.leaves.size(), 0);
+    std::vector<int> stack;
+    if (tree.root >= 0) stack.push_back(tree.root);
+    while (!stack.empty()) {
+        const scene::Node& node = tree.nodes[static_cast<std::size_t>(stack.back())];
+        stack.pop_back();
+        if (node.kind == scene::NodeKind::Leaf) {
+            if (node.leaf >= 0 && static_cast<std::size_t>(node.leaf) < leafFlag.size())
+                leafFlag[static_cast<std::size_t>(node.leaf)] = 1;
+        } else if (node.kind == scene::NodeKind::Union || node.children.size() == 1) {
+            stack.insert(stack.end(), node.children.begin(), node.children.end());
+        }
+    }
+    std::vector<char> out;
+    for (int leaf : program.operandLeaf) out.push_back(leafFlag[static_cast<std::size_t>(leaf)]);
+    return out;
+}
+
 // Flips the row order: GL's bottom-up rows into image rows, top first, and back.
 template <class T>
 std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, int channels) {
@@ -126,6 +150,7 @@ struct Renderer::Impl {
     SceneBuffers scene;
     TreeProgram program;
     std::vector<TranslucentLeaf> translucentLeaves;
+    std::vector<char> unionsOnly;  // reachedByUnionsOnly, per operand
     std::size_t leafCount = 0;
     bool hasScene = false;
     GLint maxTextureSize = 0;
@@ -167,6 +192,7 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     impl_->program = compileTree(tree, empty);
     impl_->evaluate.setProgram(impl_->program);
+    impl_->unionsOnly = reachedByUnionsOnly(tree, impl_->program);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
     impl_->leafCount = tree.leaves.size();
     impl_->hasScene = true;
@@ -179,6 +205,10 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     const std::vector<int>& operands = program.operandLeaf;
     std::vector<PixelRect> rects(operands.size());
     for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
+    PeelRequest request{settings.layers, settings.memoryBudget, {}};
+    // Every ray starts outside every operand: those that only unions lead to
+    // need their first layer alone (the debug views show every layer).
+    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) request.firstLayerOnly = unionsOnly;
 
     // Tiles: the whole frame, or an even grid of quarters, of quarters of
     // those, ..., as fine as the densest tile needs for the layers its
@@ -191,7 +221,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     std::vector<char> inTile(operands.size());
     auto layersFor = [&](const PixelRect& tile) {
         for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
-        return PeelPass::estimateLayers(scene, operands, inTile, settings.layers);
+        return PeelPass::estimateLayers(scene, operands, inTile, request);
     };
     auto area = [](const PixelRect& tile) {
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
@@ -222,7 +252,6 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     auto split = [&tiles](const PixelRect& tile) {
         for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
     };
-    const PeelRequest request{settings.layers, settings.memoryBudget};
     std::vector<OperandLayers> layers;
     int tilesDone = 0, splits = 0;
     while (!tiles.empty()) {

@@ -116,6 +116,14 @@ PixelRect RectBuilder::rect() const {
 
 }  // namespace
 
+bool beyondNearPlane(const ViewSetup& view, const geometry::Bounds& box) {
+    if (box.empty()) return true;
+    for (const glm::dvec3& c : corners(box)) {
+        if (glm::dot(c - view.eyeD, view.forwardD) <= view.nearPlane) return false;
+    }
+    return true;
+}
+
 PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box) {
     if (box.empty()) return {};
     RectBuilder builder{view};

@@ -47,6 +47,10 @@ struct ViewSetup {
 // that cannot make an image (zero size, eye == center, bad field of view).
 ViewSetup makeView(const Camera& camera, const geometry::Bounds& sceneBounds);
 
+// Whether all of `box` lies beyond the near plane: then every ray starts
+// outside every solid in it.
+bool beyondNearPlane(const ViewSetup& view, const geometry::Bounds& box);
+
 // The pixels that `box` can cover (with a pixel of margin), clamped to the
 // frame; the whole frame when the box reaches the near plane.
 PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box);

@@ -49,3 +49,26 @@ TEST(BenchScenes, EveryProductSceneBecomesOpenCsgOperands) {
         EXPECT_EQ(product.operands.back().convex, name != "tori") << name;
     }
 }
+
+TEST(BenchScenes, SingleChildGroupsAreTheirChild) {
+    // OpenSCAD's export wraps objects in group() nodes of one child, and a
+    // mesh file is a one-leaf tree: OpenCSG can still take them.
+    scene::Tree tree;
+    scene::Leaf cube, sphere;
+    cube.primitive = scene::Cube{};
+    sphere.primitive = scene::Sphere{};
+    const int cubeInGroup = tree.addNode(scene::NodeKind::Union, {tree.addLeaf(cube)});
+    const int difference = tree.addNode(scene::NodeKind::Difference, {cubeInGroup, tree.addLeaf(sphere)});
+    tree.root = tree.addNode(scene::NodeKind::Union, {difference});
+    const geometry::Model model = geometry::buildModel(tree);
+    const bench::CsgProduct product = bench::csgProduct(tree, model);
+    ASSERT_TRUE(product.notProduct.empty()) << product.notProduct;
+    ASSERT_EQ(product.operands.size(), 2u);
+    EXPECT_FALSE(product.operands[0].subtract);
+    EXPECT_TRUE(product.operands[1].subtract);
+
+    // Two objects side by side are a union, not a product.
+    scene::Tree two;
+    two.root = two.addNode(scene::NodeKind::Union, {two.addLeaf(cube), two.addLeaf(sphere)});
+    EXPECT_FALSE(bench::csgProduct(two, geometry::buildModel(two)).notProduct.empty());
+}

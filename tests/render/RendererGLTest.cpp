@@ -341,14 +341,53 @@ TEST_F(RendererGLTest, AutoPeelingStopsWhereCountedSurfacesCoincide) {
                                   base + static_cast<int>(t[0])});
         }
     }
+    // Intersected with a larger cube, so that its inner surfaces could matter
+    // and all of them are peeled.
     scene::Tree tree;
     scene::Leaf boxes;
     boxes.primitive = poly;
-    tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(boxes)});
+    tree.root = tree.addNode(NodeKind::Intersection, {tree.addLeaf(boxes), tree.addLeaf(cubeLeaf({-2, -2, -2}, {2, 2, 2}))});
     const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
     expectCentre(f, kEyeHeight - 0.5, 0, {0, 0, 1});
     EXPECT_EQ(f.stats.layersPerLeaf[0], 1);
-    EXPECT_EQ(f.stats.peelPasses, 2);
+    EXPECT_EQ(f.stats.peelPasses, 1 + 2);  // the cube, then the boxes' two
+}
+
+TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
+    // A union of the three shells (six surfaces on the axis) and a cube
+    // beside them. Seen from outside, the union's first surface on any ray is
+    // the first surface of one of its operands, so one layer of the shells is
+    // all it can show: the frame must equal the one that peels all three
+    // (the debug views' setting, which peels every layer).
+    scene::Tree tree;
+    const int shells = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
+    const int cube = tree.addLeaf(cubeLeaf({1, 1, -1}, {1.8, 1.8, 0.5}));
+    tree.root = tree.addNode(NodeKind::Union, {tree.addNode(NodeKind::Union, {shells}), cube});
+    render::RenderSettings everyLayer;
+    everyLayer.keepPeelLayers = true;
+    for (render::Projection p : kProjections) {
+        const render::Frame once = draw(tree, topCamera(p));
+        EXPECT_EQ(once.stats.layersPerLeaf[0], 1);
+        EXPECT_EQ(once.stats.peelPasses, 2);  // one batch draw each
+        expectCentre(once, kEyeHeight - capHeight(1.0, 0.4, +1), 0, {0, 0, 1});
+        const render::Frame all = renderer_->render(topCamera(p), everyLayer);
+        EXPECT_EQ(all.stats.layersPerLeaf[0], 3);
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < all.leaf.size(); ++k) {
+            differ += once.leaf[k] != all.leaf[k] || std::memcmp(&once.depth[k], &all.depth[k], sizeof(float)) != 0 ||
+                      std::memcmp(&once.normal[k], &all.normal[k], sizeof(glm::vec3)) != 0;
+        }
+        EXPECT_EQ(differ, 0u);
+        EXPECT_EQ(once.rgba, all.rgba);
+    }
+    // From inside the model's box the near plane may cut operands, and the
+    // union can start inside one: then every layer counts again. Here, just
+    // outside the middle shell and looking down, the rays meet the middle and
+    // the lower shells: four surfaces, two layers.
+    render::Camera inside = topCamera();
+    inside.eye = {0.3, 0.3, 0.2};
+    inside.center = {0.3, 0.3, -5.0};
+    EXPECT_EQ(draw(tree, inside).stats.layersPerLeaf[0], 2);
 }
 
 TEST_F(RendererGLTest, PeeledLayersHoldTheSurfacesInOrder) {
