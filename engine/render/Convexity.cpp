@@ -1,7 +1,9 @@
 #include "Convexity.h"
 
 #include <cmath>
+#include <numeric>
 #include <variant>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -24,6 +26,34 @@ bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh,
         for (const glm::dvec3& p : mesh.positions) {
             if (glm::dot(p - a, unit) > tolerance) return false;
         }
+    }
+    return true;
+}
+
+bool everyShellHasVolume(const geometry::Mesh& mesh) {
+    // Shells: the vertices joined by triangles (union-find).
+    std::vector<std::uint32_t> parent(mesh.positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const auto& t : mesh.triangles) {
+        parent[find(t[1])] = find(t[0]);
+        parent[find(t[2])] = find(t[0]);
+    }
+    // Each shell's signed volume, by the divergence theorem.
+    std::vector<double> volume(mesh.positions.size(), 0.0);
+    std::vector<char> used(mesh.positions.size(), 0);
+    for (const auto& t : mesh.triangles) {
+        const std::uint32_t shell = find(t[0]);
+        volume[shell] += glm::dot(mesh.positions[t[0]], glm::cross(mesh.positions[t[1]], mesh.positions[t[2]])) / 6.0;
+        used[shell] = 1;
+    }
+    const double size = geometry::boundsOf(mesh).diagonal();
+    const double least = 1e-12 * size * size * size;
+    for (std::size_t v = 0; v < volume.size(); ++v) {
+        if (used[v] && std::abs(volume[v]) <= least) return false;
     }
     return true;
 }

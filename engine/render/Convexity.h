@@ -1,7 +1,8 @@
 #pragma once
 // Which leaves are convex: a convex operand has at most two surfaces on any
 // ray, so one dual-peel pass captures it completely and `auto` peeling needs
-// no occlusion query for it.
+// no occlusion query for it. And which leaves have a shell of no volume,
+// whose entry and exit share one depth.
 
 #include "strata/geometry/Mesh.h"
 #include "strata/scene/Tree.h"
@@ -15,5 +16,12 @@ namespace strata::render {
 // assumed non-convex above it.
 bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh,
                   double maxWork = 4.0e6);
+
+// False when a connected shell of `mesh` encloses no volume (within 1e-12
+// of its bounding box's diagonal cubed): a flat, double-sided part, which a
+// ray enters and leaves at one depth. The renderer peels such a leaf in
+// full even where one layer would otherwise do (Renderer.cpp), since the
+// first layer alone would keep the entry and lose the exit.
+bool everyShellHasVolume(const geometry::Mesh& mesh);
 
 }  // namespace strata::render

@@ -76,8 +76,12 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
 // child) lead from the root to its leaf. The result is then true wherever
 // the operand is: once a ray enters it, the result is entered, at the latest
 // there. So where every ray starts outside every operand, its nearest
-// surface (the first peeled layer) is all the result can show of it.
-std::vector<char> reachedByUnionsOnly(const scene::Tree& tree, const TreeProgram& program) {
+// surface (the first peeled layer) is all the result can show of it. Not
+// for a leaf with a shell of no volume (SceneBuffers: solidShells): there
+// the nearest entry can have an exit at its very depth, which the first
+// layer would lose.
+std::vector<char> reachedByUnionsOnly(const scene::Tree& tree, const TreeProgram& program,
+                                      const SceneBuffers& scene) {
     std::vector<char> leafFlag(tree.leaves.size(), 0);
     std::vector<int> stack;
     if (tree.root >= 0) stack.push_back(tree.root);
@@ -92,7 +96,8 @@ std::vector<char> reachedByUnionsOnly(const scene::Tree& tree, const TreeProgram
         }
     }
     std::vector<char> out;
-    for (int leaf : program.operandLeaf) out.push_back(leafFlag[static_cast<std::size_t>(leaf)]);
+    for (int leaf : program.operandLeaf)
+        out.push_back(leafFlag[static_cast<std::size_t>(leaf)] && scene.leaf(leaf).solidShells ? 1 : 0);
     return out;
 }
 
@@ -192,7 +197,7 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     impl_->program = compileTree(tree, empty);
     impl_->evaluate.setProgram(impl_->program);
-    impl_->unionsOnly = reachedByUnionsOnly(tree, impl_->program);
+    impl_->unionsOnly = reachedByUnionsOnly(tree, impl_->program, impl_->scene);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
     impl_->leafCount = tree.leaves.size();
     impl_->hasScene = true;

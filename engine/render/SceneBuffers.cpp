@@ -49,6 +49,7 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
         }
         range.indexCount = indices.size() - range.firstIndex;
         range.convex = range.indexCount > 0 && isConvexLeaf(tree.leaves[i].primitive, mesh);
+        range.solidShells = range.convex || everyShellHasVolume(mesh);
         if (range.indexCount > 0) bounds_.extend(range.bounds);
         const auto& c = tree.leaves[i].color;
         leafColors_.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));

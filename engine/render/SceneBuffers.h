@@ -23,6 +23,7 @@ struct LeafRange {
     std::size_t firstTriangle = 0;  // into the face-normal buffer (and gl_PrimitiveID's origin)
     geometry::Bounds bounds;        // world space
     bool convex = false;
+    bool solidShells = true;        // everyShellHasVolume (Convexity.h)
 };
 
 class SceneBuffers {

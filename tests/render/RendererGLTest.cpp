@@ -74,6 +74,18 @@ scene::Leaf sphereLeaf(glm::dvec3 centre, double radius) {
 }
 
 // One polyhedron leaf made of several sphere shells: a non-convex operand.
+// Adds a closed box, 2 * half wide and deep, z from -0.5 to 0.5, to `poly`
+// as one more shell.
+void appendBox(scene::Polyhedron& poly, double half) {
+    const geometry::Mesh box = geometry::tessellate(scene::Cube{{2 * half, 2 * half, 1.0}, true});
+    const int base = static_cast<int>(poly.points.size());
+    for (const glm::dvec3& p : box.positions) poly.points.push_back(p);
+    for (const auto& t : box.triangles) {  // OpenSCAD's order: clockwise seen from outside
+        poly.faces.push_back({base + static_cast<int>(t[2]), base + static_cast<int>(t[1]),
+                              base + static_cast<int>(t[0])});
+    }
+}
+
 scene::Leaf shellsLeaf(const std::vector<glm::dvec3>& centres, double radius) {
     scene::Leaf leaf;
     leaf.primitive = test::sphereShells(centres, radius, kFn);
@@ -332,15 +344,7 @@ TEST_F(RendererGLTest, AutoPeelingStopsWhereCountedSurfacesCoincide) {
     // interpolate to the very same depth (in perspective the two triangles
     // may differ by an ulp, and the second layer is real).
     scene::Polyhedron poly;
-    for (const double half : {1.5, 0.5}) {
-        const geometry::Mesh box = geometry::tessellate(scene::Cube{{2 * half, 2 * half, 1.0}, true});
-        const int base = static_cast<int>(poly.points.size());
-        for (const glm::dvec3& p : box.positions) poly.points.push_back(p);
-        for (const auto& t : box.triangles) {  // OpenSCAD's order: clockwise seen from outside
-            poly.faces.push_back({base + static_cast<int>(t[2]), base + static_cast<int>(t[1]),
-                                  base + static_cast<int>(t[0])});
-        }
-    }
+    for (const double half : {1.5, 0.5}) appendBox(poly, half);
     // Intersected with a larger cube, so that its inner surfaces could matter
     // and all of them are peeled.
     scene::Tree tree;
@@ -388,6 +392,28 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
     inside.eye = {0.3, 0.3, 0.2};
     inside.center = {0.3, 0.3, -5.0};
     EXPECT_EQ(draw(tree, inside).stats.layersPerLeaf[0], 2);
+}
+
+TEST_F(RendererGLTest, AFlatShellKeepsEveryLayerOfItsOperand) {
+    // One polyhedron: a box, and above it a flat sheet (two faces at one
+    // depth, a shell of no volume). A ray enters and leaves the sheet at one
+    // depth, so the sheet shows nowhere and the box's top does. Only a union
+    // leads to the leaf, but its first layer alone would keep the sheet's
+    // entry and lose its exit: the leaf must be peeled in full.
+    scene::Polyhedron poly;
+    appendBox(poly, 1.0);
+    const int base = static_cast<int>(poly.points.size());
+    for (const glm::dvec3& p : {glm::dvec3{-2, -2, 1.5}, {2, -2, 1.5}, {2, 2, 1.5}, {-2, 2, 1.5}}) poly.points.push_back(p);
+    for (const std::vector<int>& face : {std::vector<int>{0, 3, 2}, {0, 2, 1}, {1, 2, 3}, {1, 3, 0}}) {
+        poly.faces.push_back({base + face[0], base + face[1], base + face[2]});
+    }
+    scene::Tree tree;
+    scene::Leaf both;
+    both.primitive = poly;
+    tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(both)});
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));  // both faces at one depth
+    expectCentre(f, kEyeHeight - 0.5, 0, {0, 0, 1});
+    EXPECT_EQ(f.stats.layersPerLeaf[0], 2);
 }
 
 TEST_F(RendererGLTest, PeeledLayersHoldTheSurfacesInOrder) {
