@@ -29,9 +29,11 @@
 namespace strata::render {
 
 struct RenderSettings {
-    // Dual-peel passes per operand; 0 = auto (until a pass draws nothing).
+    // Dual-peel passes per operand; 0 = auto (until no surface is left).
     // A convex operand (cube, sphere, cylinder, convex polyhedron) always
-    // takes one: it has at most two surfaces on any ray.
+    // takes one: it has at most two surfaces on any ray. So does one that
+    // only unions lead to, seen from outside the model: its nearest surface
+    // is all the result can show of it (docs/algorithm.md).
     int layers = 0;
     std::string colorScheme = "Cornfield";     // OpenSCAD colour scheme name
     // Bytes the layered textures may take; above it the frame is rendered in
