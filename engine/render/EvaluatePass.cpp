@@ -96,7 +96,7 @@ gpu::Program& EvaluatePass::programFor(int form, bool leafMarks) {
     return it->second;
 }
 
-void EvaluatePass::setProgram(const TreeProgram& program) {
+void EvaluatePass::setProgram(const TreeProgram& program, bool leafMarks) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
     leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
@@ -104,12 +104,11 @@ void EvaluatePass::setProgram(const TreeProgram& program) {
                               GL_DYNAMIC_STORAGE_BIT);
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
-        const bool marks = FrameTargets::canMarkLeaves();
-        programFor(4, marks);
+        programFor(4, leafMarks);
         const bool product = !program.code.empty() && countingTree(program.code).nodes.size() == 1;  // one AND or OR
-        if (product && program.operandCount() > kRegisterForm) programFor(kProductForm, marks);
-        if (program.operandCount() > 4) programFor(kRegisterForm, marks);
-        if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()), marks);
+        if (product && program.operandCount() > kRegisterForm) programFor(kProductForm, leafMarks);
+        if (program.operandCount() > 4) programFor(kRegisterForm, leafMarks);
+        if (program.operandCount() > kRegisterForm) programFor(capacityFor(program.operandCount()), leafMarks);
     }
 }
 

@@ -44,7 +44,9 @@ public:
     EvaluatePass();
 
     // Uploads the program; operand k of it is tree leaf program.operandLeaf[k].
-    void setProgram(const TreeProgram& program);
+    // Compiles now the variants the program will likely use, writing leaf
+    // marks or not (`leafMarks`, as the frames will ask: FrameTargets::leafMarks).
+    void setProgram(const TreeProgram& program, bool leafMarks);
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.

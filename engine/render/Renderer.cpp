@@ -72,32 +72,29 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
     return out;
 }
 
-// Per operand of `program`: whether only unions (or operations of a single
-// child) lead from the root to its leaf. The result is then true wherever
-// the operand is: once a ray enters it, the result is entered, at the latest
-// there. So where every ray starts outside every operand, its nearest
-// surface (the first peeled layer) is all the result can show of it. Not
-// for a leaf with a shell of no volume (SceneBuffers: solidShells): there
-// the nearest entry can have an exit at its very depth, which the first
-// layer would lose.
-std::vector<char> reachedByUnionsOnly(const scene::Tree& tree, const TreeProgram& program,
-                                      const SceneBuffers& scene) {
-    std::vector<char> leafFlag(tree.leaves.size(), 0);
-    std::vector<int> stack;
-    if (tree.root >= 0) stack.push_back(tree.root);
-    while (!stack.empty()) {
-        const scene::Node& node = tree.nodes[static_cast<std::size_t>(stack.back())];
-        stack.pop_back();
-        if (node.kind == scene::NodeKind::Leaf) {
-            if (node.leaf >= 0 && static_cast<std::size_t>(node.leaf) < leafFlag.size())
-                leafFlag[static_cast<std::size_t>(node.leaf)] = 1;
-        } else if (node.kind == scene::NodeKind::Union || node.children.size() == 1) {
-            stack.insert(stack.end(), node.children.begin(), node.children.end());
+// Per operand of `program`: whether only ORs lead from the result to its
+// (not complemented) literal. The result is then true wherever the operand
+// is: once a ray enters it, the result is entered, at the latest there. So
+// where every ray starts outside every operand, its nearest surface (the
+// first peeled layer) is all the result can show of it. Not for a leaf with
+// a shell of no volume (SceneBuffers: solidShells): there the nearest entry
+// can have an exit at its very depth, which the first layer would lose.
+std::vector<char> reachedByUnionsOnly(const TreeProgram& program, const SceneBuffers& scene) {
+    std::vector<char> out(program.operandLeaf.size(), 0);
+    if (program.code.empty()) return out;
+    using Operands = std::vector<std::uint32_t>;
+    auto literal = [](std::uint32_t instruction) {
+        return instruction & kOpNegate ? Operands{} : Operands{instruction >> kOperandShift};
+    };
+    auto combine = [](std::uint32_t op, Operands& top, Operands&& source) {
+        if (op == kOpAnd) {
+            top.clear();
+        } else {
+            top.insert(top.end(), source.begin(), source.end());
         }
-    }
-    std::vector<char> out;
-    for (int leaf : program.operandLeaf)
-        out.push_back(leafFlag[static_cast<std::size_t>(leaf)] && scene.leaf(leaf).solidShells ? 1 : 0);
+    };
+    for (std::uint32_t k : foldCode<Operands>(program.code, literal, combine))
+        out[k] = scene.leaf(program.operandLeaf[k]).solidShells ? 1 : 0;
     return out;
 }
 
@@ -196,8 +193,8 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     impl_->program = compileTree(tree, empty);
-    impl_->evaluate.setProgram(impl_->program);
-    impl_->unionsOnly = reachedByUnionsOnly(tree, impl_->program, impl_->scene);
+    impl_->evaluate.setProgram(impl_->program, impl_->canMarkLeaves);
+    impl_->unionsOnly = reachedByUnionsOnly(impl_->program, impl_->scene);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
     impl_->leafCount = tree.leaves.size();
     impl_->hasScene = true;
