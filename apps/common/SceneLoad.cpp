@@ -9,22 +9,15 @@
 
 namespace strata::apps {
 
-namespace {
-
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
 }
 
-}  // namespace
+bool isMeshExtension(const std::string& ext) { return ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply"; }
 
-scene::Tree loadSceneFile(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    const bool isMesh = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
-    if (ext != ".csg" && !isMesh)
-        throw Error(SourceLocation{path, 0, 0}, "unknown scene type '" + ext +
-                                                    "' (expected .csg, .stl, .obj, .off or .ply)");
+void checkReadable(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
     if (std::filesystem::is_directory(path, ec))
@@ -33,7 +26,15 @@ scene::Tree loadSceneFile(const std::string& path) {
         std::fclose(f);
     else
         throw Error(SourceLocation{path, 0, 0}, "cannot open file");
+}
 
+scene::Tree loadSceneFile(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    const bool isMesh = isMeshExtension(ext);
+    if (ext != ".csg" && !isMesh)
+        throw Error(SourceLocation{path, 0, 0}, "unknown scene type '" + ext +
+                                                    "' (expected .csg, .stl, .obj, .off or .ply)");
+    checkReadable(path);
     if (!isMesh) return scene::parseCsgFile(path);
     return scene::meshFileTree(path);
 }

@@ -15,4 +15,12 @@ namespace strata::apps {
 // directory.
 scene::Tree loadSceneFile(const std::string& path);
 
+// Its parts, for a program that takes more kinds of file (strata-view's
+// .scad): the extension, dot included, in lower case ("model.STL" -> ".stl");
+// whether it names a mesh format; and a throw, naming the file, unless
+// `path` is a file that can be opened.
+std::string lowerExtension(const std::string& path);
+bool isMeshExtension(const std::string& ext);
+void checkReadable(const std::string& path);
+
 }  // namespace strata::apps

@@ -5,8 +5,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cctype>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "SceneLoad.h"
 #include "strata/core/Error.h"
 #include "strata/scene/CsgParser.h"
 
@@ -23,12 +22,6 @@ namespace strata::view {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 // A private folder under the system's temporary folder, removed with everything in it.
 class TempFolder {
@@ -111,24 +104,13 @@ void convertScad(const std::string& scad, const std::string& csg, const fs::path
     if (code != 0 || !fs::exists(csg)) throw openscadError(scad, output.str(), code);
 }
 
-void checkReadable(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
-    if (fs::is_directory(path, ec)) throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
-    if (std::FILE* f = std::fopen(path.c_str(), "rb"))
-        std::fclose(f);
-    else
-        throw Error(SourceLocation{path, 0, 0}, "cannot open file");
-}
-
 // As strata-render: a .csg through the parser, a mesh as a tree of one Import leaf.
 scene::Tree readTree(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    const bool isMesh = ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply";
-    if (ext != ".csg" && ext != ".scad" && !isMesh)
+    const std::string ext = apps::lowerExtension(path);
+    if (ext != ".csg" && ext != ".scad" && !apps::isMeshExtension(ext))
         throw Error(SourceLocation{path, 0, 0},
                     "unknown scene type '" + ext + "' (expected .csg, .scad, .stl, .obj, .off or .ply)");
-    checkReadable(path);
+    apps::checkReadable(path);
     if (ext == ".csg") return scene::parseCsgFile(path);
     if (ext == ".scad") {
         const TempFolder folder;
