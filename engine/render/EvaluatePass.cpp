@@ -85,6 +85,8 @@ gpu::Program& EvaluatePass::programFor(int form, bool leafMarks) {
         if (leafMarks) defines.push_back({"LEAF_MARKS", "1"});
         if (form == kProductForm) {
             defines.push_back({"PRODUCT_FORM", "1"});
+        } else if (form == kFirstSurfaceForm) {
+            defines.push_back({"FIRST_SURFACE_FORM", "1"});
         } else {
             defines.push_back({"MAX_LIVE", std::to_string(form)});
         }
@@ -104,6 +106,7 @@ void EvaluatePass::setProgram(const TreeProgram& program, bool leafMarks) {
                               GL_DYNAMIC_STORAGE_BIT);
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
+        programFor(kFirstSurfaceForm, leafMarks);
         programFor(4, leafMarks);
         const bool product = !program.code.empty() && countingTree(program.code).nodes.size() == 1;  // one AND or OR
         if (product && program.operandCount() > kRegisterForm) programFor(kProductForm, leafMarks);
@@ -145,6 +148,15 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     const bool onePassEach = slots == static_cast<int>(used.size());
 
     BlockTree out;
+    if (!generalOnly && code.size() == 1 && (code[0] & kOpNegate) == 0 && slots == 1) {
+        // The first-surface form: the tree is the operand itself, of one
+        // layer. Its record holds that layer and the leaf; no literals.
+        const std::uint32_t operand = used[0];
+        out.form = kFirstSurfaceForm;
+        out.record = {static_cast<unsigned>(operandLayers[operand].first), static_cast<unsigned>(operandLeaf_[operand]),
+                      0u, 0u};
+        return out;
+    }
     if (!generalOnly && slots <= kRegisterForm && slotsReach) {
         // The register form: a slot per peeled layer, the tree as a truth
         // table over the operands' inside bits.
@@ -240,6 +252,14 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     }
     std::vector<std::uint32_t> drawn;
     for (const auto& [form, list] : byForm) drawn.insert(drawn.end(), list.begin(), list.end());
+    // The first-surface form reports only back faces: the front faces of its
+    // operands count as shown beforehand. Where none shows (the eye inside the
+    // operand, or the operand misses the block's pixels), the normal pass
+    // draws them for nothing, and its mark test keeps them out of the image.
+    std::vector<std::uint32_t> faces(leafCount_, 0u);
+    for (const auto& [list, tree] : trees) {
+        if (tree.form == kFirstSurfaceForm) faces[tree.record.y] |= kFrontFaces;
+    }
     gpu::Buffer::uploadGrowing(blocks_, "evaluate blocks", blocks);
     gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", literals);
     gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", nodes);
@@ -250,7 +270,7 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     blocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     blockOperands_.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
     drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
-    shownFaces_.clearToZero();
+    if (!faces.empty()) shownFaces_.uploadSpan(std::span<const std::uint32_t>(faces));
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     targets.evaluateTarget.bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
@@ -263,9 +283,10 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     static const int loopBudget = loopBudgetForThisDriver();
     int first = 0;
     for (const auto& [form, list] : byForm) {
-        std::size_t& counter = form == kProductForm    ? stats.productBlocks
-                               : form <= kRegisterForm ? stats.registerBlocks
-                                                       : stats.arrayBlocks;
+        std::size_t& counter = form == kFirstSurfaceForm ? stats.firstSurfaceBlocks
+                               : form == kProductForm    ? stats.productBlocks
+                               : form <= kRegisterForm   ? stats.registerBlocks
+                                                         : stats.arrayBlocks;
         counter += list.size();
         gpu::Program& program = programFor(form, targets.leafMarks);
         program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));

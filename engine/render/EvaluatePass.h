@@ -10,7 +10,9 @@
 // 16x16 block of a tile gets the tree specialised to the operands whose
 // screen rectangle meets it (TreeProgram.h: specializeProgram, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
-// The shader comes in three forms: the register form (operands of up to
+// The shader comes in four forms: the first-surface form (the block's tree
+// is one operand, so the result's first surface is the operand's), the
+// register form (operands of up to
 // eight peeled layers in all, a slot per layer, the tree as a truth table,
 // everything in registers; MAX_LIVE 4 or 8 slots), the product form (more
 // operands of one layer each under a single AND or OR: a CSG product or a
@@ -68,21 +70,23 @@ public:
     // and 8): up to this many peeled layers of the block's operands, the
     // tree as a truth table.
     static constexpr int kRegisterForm = 8;
-    // The product form's variant key (it has no MAX_LIVE: it keeps no arrays).
+    // The product and first-surface forms' variant keys (they have no
+    // MAX_LIVE: they keep no arrays).
     static constexpr int kProductForm = 1;
+    static constexpr int kFirstSurfaceForm = 2;
     static constexpr int kBlock = 16;  // BLOCK in evaluate.frag
 
 private:
     struct BlockTree {
         glm::uvec4 record{0u};  // the block's entry in `blocks` (evaluate.frag)
-        int form = 0;           // shader variant (MAX_LIVE or kProductForm); 0: constant result, nothing to draw
+        int form = 0;           // shader variant (MAX_LIVE, kProductForm or kFirstSurfaceForm); 0: constant result, nothing to draw
     };
     // Appends the block data of `code` (a specialised program) to `literals`
-    // and `nodes`, in the register or product form where it fits (unless
-    // `generalOnly`), else the array form.
+    // and `nodes`, in the first-surface, register or product form where it
+    // fits (unless `generalOnly`), else the array form.
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
-    // `form`: 4, kRegisterForm, kProductForm or a capacityFor() value;
+    // `form`: 4, kRegisterForm, kProductForm, kFirstSurfaceForm or a capacityFor() value;
     // `leafMarks`: the shader writes FrameTargets::mark(leaf) to the stencil.
     gpu::Program& programFor(int form, bool leafMarks);
 

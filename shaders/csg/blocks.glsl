@@ -8,9 +8,11 @@
 // node 0 the root; the register form (evaluate.frag) has its own layout.
 //
 // Which walk a variant of evaluate.frag compiles (EvaluatePass::programFor):
-// PRODUCT_FORM defined, the product form; else MAX_LIVE <= 8 the register
-// form, larger the array form.
-#ifdef PRODUCT_FORM
+// FIRST_SURFACE_FORM defined, the first-surface form; PRODUCT_FORM defined,
+// the product form; else MAX_LIVE <= 8 the register form, larger the array
+// form. The first-surface form keeps nothing in blockOperands: its record is
+// x the operand's first layer in uLayers, y its tree leaf.
+#if defined(PRODUCT_FORM) || defined(FIRST_SURFACE_FORM)
 #define REGISTER_FORM 0
 #else
 #define REGISTER_FORM (MAX_LIVE <= 8)

@@ -79,7 +79,7 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
 #endif
 }
 
-#if !REGISTER_FORM
+#if !REGISTER_FORM && !defined(FIRST_SURFACE_FORM)
 // Loop iterations this invocation may spend. llvmpipe ends every loop of a
 // shader invocation once 65535 iterations have run in all (gallivm's loop
 // limiter), which would leave a deep pixel half-evaluated and wrong. A pixel
@@ -100,7 +100,33 @@ void writeUnresolved() {
 
 #endif
 
-#if REGISTER_FORM
+#if defined(FIRST_SURFACE_FORM)
+
+// The first-surface form, for blocks whose tree is one operand, not negated,
+// of one peeled layer (a cheese's cube where no hole reaches, one tooth of a
+// union of teeth): the result is the operand, so its first surface is the
+// result's. A front face there enters both; a back face (the eye inside the
+// operand) leaves both. Where the layer's two surfaces lie at one depth (a
+// ray grazing an edge, a flat sheet) the operand is entered and left at once
+// and the result shows nothing. This is the register form's walk for one
+// slot, step for step. Nothing to flip.
+// The renderer marks the leaf's front faces shown for every such block
+// (EvaluatePass::run), so only the rare back face needs the atomic.
+void main() {
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
+    float first = -layer.r;
+    if (first >= kCleared || (layer.g > first && untagged(layer.g) == untagged(first))) discard;
+    int leaf = int(vRecord.y);
+    outDepth = first;
+    outLeaf = leaf * 2;
+    if (isExit(first)) atomicOr(shownFaces[leaf], 2u);
+#ifdef LEAF_MARKS
+    gl_FragStencilRefARB = 1 + leaf % 255;
+#endif
+}
+
+#elif REGISTER_FORM
 
 // The register form, for blocks whose operands have at most eight peeled
 // layers in all (eight convex operands, say, or a mesh of three layers and

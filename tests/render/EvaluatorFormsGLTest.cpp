@@ -1,13 +1,13 @@
-// The evaluator's fast forms against its general one. The register form
-// (operands of at most eight peeled layers in all, convex or not) and the
-// product form (many one-layer operands under one AND or OR) are shortcuts
-// of the array form's walk; the array
-// form is checked against the CPU reference and a brute-force ray caster
-// elsewhere (RendererOracleGLTest, DeepPixelGLTest, the accuracy suite).
-// Here every fast-form frame must equal the array form's frame bit for bit:
-// coverage, tagged depth, leaf and normal, on random products and unions
-// seen from outside and from inside (the near plane cutting operands, so
-// that they start inside).
+// The evaluator's fast forms against its general one. The first-surface form
+// (a block's tree is one operand of one layer), the register form (operands
+// of at most eight peeled layers in all, convex or not) and the product form
+// (many one-layer operands under one AND or OR) are shortcuts of the array
+// form's walk; the array form is checked against the CPU reference and a
+// brute-force ray caster elsewhere (RendererOracleGLTest, DeepPixelGLTest,
+// the accuracy suite). Here every fast-form frame must equal the array
+// form's frame bit for bit: coverage, tagged depth, leaf and normal, on
+// random products and unions seen from outside and from inside (the near
+// plane cutting operands, so that they start inside).
 
 #include <gtest/gtest.h>
 
@@ -160,7 +160,8 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
             expectSameFrame(fast, general,
                             std::string(scene::kindName(c.kind)) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
                                 ", camera " + std::to_string(which));
-            EXPECT_EQ(general.stats.registerBlocks + general.stats.productBlocks, 0u);
+            EXPECT_EQ(general.stats.firstSurfaceBlocks + general.stats.registerBlocks + general.stats.productBlocks, 0u);
+            fastBlocks.firstSurfaceBlocks += fast.stats.firstSurfaceBlocks;
             fastBlocks.registerBlocks += fast.stats.registerBlocks;
             fastBlocks.productBlocks += fast.stats.productBlocks;
             fastBlocks.arrayBlocks += fast.stats.arrayBlocks;
@@ -174,6 +175,9 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
     // The fast forms must have been the ones drawn: a shells leaf has at
     // most two layers, so every block fits the register form's eight slots.
     EXPECT_EQ(fastBlocks.arrayBlocks, 0u);
+    // Blocks that one operand alone meets take the first-surface form: the
+    // first operand of a difference, any operand of a union.
+    if (c.kind != NodeKind::Intersection) EXPECT_GT(fastBlocks.firstSurfaceBlocks, 0u);
     if (c.shells > 0) {
         EXPECT_GT(multiLayer, 0u) << "some shells must have needed two layers";
         EXPECT_GT(fastBlocks.registerBlocks, 0u);
@@ -267,4 +271,17 @@ TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
         cubePixels += leaf == block ? 1 : 0;
     }
     EXPECT_GT(cubePixels, 500u);
+
+    // The sheet alone: a tree of one operand of one layer, the first-surface
+    // form's case, which must see the entry and the exit together too.
+    scene::Tree alone;
+    scene::Leaf onlySheet;
+    onlySheet.primitive = flat;
+    alone.root = alone.addLeaf(std::move(onlySheet));
+    renderer.setScene(alone, geometry::buildModel(alone));
+    const auto [fastAlone, generalAlone] = fastAndGeneral(renderer, camera);
+    EXPECT_GT(fastAlone.stats.firstSurfaceBlocks, 0u);
+    EXPECT_EQ(fastAlone.stats.layersPerLeaf.at(0), 1);
+    EXPECT_EQ(fastAlone.stats.coveredPixels, 0u) << "a flat solid alone shows nowhere";
+    expectSameFrame(fastAlone, generalAlone, "a flat solid alone");
 }

@@ -62,7 +62,7 @@ struct FrameStats {
     int peelPasses = 0;                        // geometry passes of the peel: one per operand and layer, every tile
     // 16x16 blocks the evaluator drew in each of its forms (EvaluatePass.h);
     // blocks whose result is constant are not drawn.
-    std::size_t registerBlocks = 0, productBlocks = 0, arrayBlocks = 0;
+    std::size_t firstSurfaceBlocks = 0, registerBlocks = 0, productBlocks = 0, arrayBlocks = 0;
     std::vector<std::string> notes;            // what the renderer decided (tiling, clamping, ...)
 };
 
