@@ -63,9 +63,12 @@ public:
     static int capacityFor(int count);
 
     // Per tree leaf, after run(): which of its faces the result shows in the
-    // tile, kFrontFaces | kBackFaces (0: none). Waits for the GPU.
+    // tile, kFrontFaces | kBackFaces (0: none) where the leaf is the result's
+    // own surface, the same shifted by kFlipped where it acts subtracted (its
+    // normal flipped). Waits for the GPU.
     std::vector<std::uint32_t> shownFaces() const;
     static constexpr std::uint32_t kFrontFaces = 1, kBackFaces = 2;
+    static constexpr int kFlipped = 2;
     // The largest MAX_LIVE of evaluate.frag's register form (compiled for 4
     // and 8): up to this many peeled layers of the block's operands, the
     // tree as a truth table.
@@ -87,7 +90,7 @@ private:
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
     // `form`: 4, kRegisterForm, kProductForm, kFirstSurfaceForm or a capacityFor() value;
-    // `leafMarks`: the shader writes FrameTargets::mark(leaf) to the stencil.
+    // `leafMarks`: the shader writes FrameTargets::mark(leaf, exit, flip) to the stencil.
     gpu::Program& programFor(int form, bool leafMarks);
 
     std::map<int, gpu::Program> programs_;  // by form (BlockTree::form) * 2 + leaf marks

@@ -7,8 +7,8 @@
 //   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
 //                         base colour (ShadePass::packBaseColor); 0 on a miss
 //   color        RGBA8    the shaded image                                           (shade, translucent)
-//   marks        S8       stencil: mark(leaf) where the evaluator found a surface   (evaluate)
-//                         of that leaf, else 0
+//   marks        S8       stencil: mark(leaf, exit, flip) where the evaluator     (evaluate)
+//                         found a surface of that leaf, else 0
 //
 // The later passes test the stencil so that they run only where there is
 // something to do: a fragment that fails the stencil test never runs its
@@ -16,10 +16,12 @@
 // costs almost as much as doing it on llvmpipe (it runs both sides of every
 // branch for its 8 or 16 lanes). Where the driver lets a fragment shader
 // write the stencil value (ARB_shader_stencil_export), the mark names the
-// leaf (1 + leaf mod 255), so the normal pass, drawing one leaf at a time,
-// skips the other leaves' pixels before its shader runs; elsewhere every
-// written pixel gets kWritten (and the evaluator's pixels it could not finish
-// get it too, where with leaf marks they get 0).
+// leaf, the facing of its surface there and whether the leaf acts subtracted
+// (1 + (4 leaf + exit + 2 flip) mod 255: unique up to 63 leaves, see
+// forEachLeafSharingMarks), so the normal pass, drawing one leaf at a time, skips the other
+// leaves' pixels before its shader runs; elsewhere every written pixel gets
+// kWritten (and the evaluator's pixels it could not finish get it too, where
+// with leaf marks they get 0).
 
 #include <cstddef>
 
@@ -51,8 +53,23 @@ public:
     static bool canMarkLeaves();
     // This frame's choice, set by the renderer before the evaluate pass.
     bool leafMarks = false;
-    // The stencil value of a pixel showing `leaf`.
-    int mark(int leaf) const { return leafMarks ? 1 + leaf % 255 : kWritten; }
+    // The stencil value of a pixel showing `leaf`'s front face (its back
+    // face: `exit`), flipped (the leaf acts subtracted there) or not.
+    int mark(int leaf, bool exit, bool flip) const {
+        return leafMarks ? 1 + (leaf * 4 + (exit ? 1 : 0) + (flip ? 2 : 0)) % 255 : kWritten;
+    }
+    // Calls f(M) for every leaf M < leafEnd other than `leaf` that has a mark
+    // equal to one of `leaf`'s: 4 M + j = 4 leaf + i (mod 255) for some i, j
+    // in 0..3, that is M = leaf + 64 d (mod 255) with |d| <= 3, since
+    // 4 * 64 = 1 (mod 255). Up to 63 leaves, there are none.
+    template <class F>
+    static void forEachLeafSharingMarks(int leaf, int leafEnd, F f) {
+        for (int d = -3; d <= 3; ++d) {
+            for (int m = ((leaf + 64 * d) % 255 + 255) % 255; m < leafEnd; m += 255) {
+                if (m != leaf) f(m);
+            }
+        }
+    }
 
 private:
     int width_ = 0, height_ = 0;

@@ -1,5 +1,7 @@
 #include "NormalPass.h"
 
+#include <algorithm>
+
 #include "EvaluatePass.h"
 
 #include "strata/gpu/Check.h"
@@ -15,18 +17,46 @@ constexpr GLint kForward = 2;
 constexpr GLint kLeaf = 3;
 constexpr GLint kFirstTriangle = 4;
 constexpr GLint kBaseColor = 5;
+constexpr GLint kFlip = 6;  // TRUST_MARKS only
+
+// Per operand k: whether the stencil marks in its rectangle within `tile`
+// are its own, that is, no other operand whose marks can equal k's meets
+// that rectangle (the evaluator writes an operand's leaf only inside its
+// rectangle, as this pass draws it only there).
+std::vector<char> marksOwnedInRect(const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
+                                   const PixelRect& tile) {
+    const int leafEnd = operandLeaves.empty() ? 0 : *std::max_element(operandLeaves.begin(), operandLeaves.end()) + 1;
+    std::vector<int> operandOf(static_cast<std::size_t>(leafEnd), -1);
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) operandOf[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k);
+    std::vector<char> owned(operandLeaves.size(), 1);
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        const PixelRect r = rects[k].intersection(tile);
+        FrameTargets::forEachLeafSharingMarks(operandLeaves[k], leafEnd, [&](int other) {
+            const int o = operandOf[static_cast<std::size_t>(other)];
+            if (o >= 0 && rects[static_cast<std::size_t>(o)].intersection(tile).intersects(r)) owned[k] = 0;
+        });
+    }
+    return owned;
+}
 
 }  // namespace
 
-NormalPass::NormalPass() : program_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"})) {}
+NormalPass::NormalPass()
+    : checked_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"})),
+      trusted_(gpu::Program::fromFiles("normal (trusting marks)", {"csg/surface.vert", "csg/normal.frag"},
+                                       {{"TRUST_MARKS", "1"}})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                      const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
                      const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors) {
-    program_.setUniform(kViewProjection, view.viewProjection);
-    program_.setUniform(kEye, view.eye);
-    program_.setUniform(kForward, view.forward);
-    program_.use();
+    for (gpu::Program* program : {&checked_, &trusted_}) {
+        program->setUniform(kViewProjection, view.viewProjection);
+        program->setUniform(kEye, view.eye);
+        program->setUniform(kForward, view.forward);
+    }
+    const std::vector<char> ownMarks =
+        targets.leafMarks ? marksOwnedInRect(operandLeaves, rects, tile) : std::vector<char>(operandLeaves.size(), 0);
+    const gpu::Program* inUse = nullptr;
     targets.resultDepth.bindUnit(0);
     targets.resultLeaf.bindUnit(1);
     scene.faceNormals().bindBase(GL_SHADER_STORAGE_BUFFER, 2);
@@ -39,21 +69,35 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         const int leaf = operandLeaves[k];
         const PixelRect r = rects[k].intersection(tile);
-        const std::uint32_t faces = shownFaces[static_cast<std::size_t>(leaf)];
-        if (r.empty() || faces == 0 || scene.leaf(leaf).indexCount == 0) continue;
-        // Faces the result does not show here are culled before rasterizing.
-        if (faces == EvaluatePass::kFrontFaces || faces == EvaluatePass::kBackFaces) {
-            glEnable(GL_CULL_FACE);
-            glCullFace(faces == EvaluatePass::kFrontFaces ? GL_BACK : GL_FRONT);
-        } else {
-            glDisable(GL_CULL_FACE);
-        }
+        const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
+        if (r.empty() || shown == 0 || scene.leaf(leaf).indexCount == 0) continue;
         glScissor(r.x, r.y, r.width, r.height);
-        glStencilFunc(GL_EQUAL, targets.mark(leaf), 0xff);
-        program_.setUniform(kLeaf, leaf);
-        program_.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(leaf).firstTriangle));
-        program_.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
-        scene.drawLeaf(leaf);
+        gpu::Program& program = ownMarks[k] && scene.leaf(leaf).convex ? trusted_ : checked_;
+        if (&program != inUse) {
+            program.use();
+            inUse = &program;
+        }
+        program.setUniform(kLeaf, leaf);
+        program.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(leaf).firstTriangle));
+        program.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
+        // Marks tell flips apart: a draw per flip the leaf shows. One mark for
+        // all does not: one draw, and the shader reads the flip.
+        for (int flip = 0; flip < (targets.leafMarks ? 2 : 1); ++flip) {
+            const std::uint32_t faces = targets.leafMarks ? (shown >> (flip * EvaluatePass::kFlipped)) & 3u
+                                                          : (shown | shown >> EvaluatePass::kFlipped) & 3u;
+            if (faces == 0) continue;
+            // Faces the result does not show here are culled before rasterizing.
+            if (faces == EvaluatePass::kFrontFaces || faces == EvaluatePass::kBackFaces) {
+                glEnable(GL_CULL_FACE);
+                glCullFace(faces == EvaluatePass::kFrontFaces ? GL_BACK : GL_FRONT);
+            } else {
+                glDisable(GL_CULL_FACE);
+            }
+            glStencilFuncSeparate(GL_FRONT, GL_EQUAL, targets.mark(leaf, false, flip != 0), 0xff);
+            glStencilFuncSeparate(GL_BACK, GL_EQUAL, targets.mark(leaf, true, flip != 0), 0xff);
+            if (&program == &trusted_) program.setUniform(kFlip, flip);
+            scene.drawLeaf(leaf);
+        }
     }
     glDisable(GL_CULL_FACE);
     glDisable(GL_STENCIL_TEST);

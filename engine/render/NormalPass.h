@@ -11,6 +11,14 @@
 // base colour for the shade pass (ShadePass::baseColors). One more geometry pass
 // instead of storing ids with every peeled layer, and nothing read back.
 //
+// With leaf marks (FrameTargets::mark) the stencil test lets through only the
+// pixels that show the drawn leaf with the fragment's facing and the draw's
+// flip (a leaf is drawn once per flip it shows). Where no other operand
+// whose marks can equal the leaf's meets its rectangle (always, up to 63
+// leaves: FrameTargets::forEachLeafSharingMarks), a convex leaf's fragments
+// that pass are the evaluator's surfaces, so they skip the comparisons
+// (normal.frag's TRUST_MARKS).
+//
 // GL state: uses the scissor and stencil tests and turns them off before
 // returning, and face culling; expects blending and depth test off.
 
@@ -40,7 +48,8 @@ public:
              const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors);
 
 private:
-    gpu::Program program_;
+    gpu::Program checked_;  // compares leaf, facing and depth with the evaluator's
+    gpu::Program trusted_;  // TRUST_MARKS: the stencil test has done that
 };
 
 }  // namespace strata::render

@@ -53,8 +53,9 @@ layout(binding = 0) uniform sampler2DArray uLayers;
 
 layout(location = 2) uniform ivec2 uTileOrigin;  // the tile's lower-left pixel in the frame
 // Per tree leaf: bit 0 set where the evaluator reported one of its front
-// faces, bit 1 where a back face, in this tile. The normal pass draws only
-// those faces of each operand.
+// faces, bit 1 where a back face, bits 2 and 3 the same where the leaf acts
+// subtracted (flipped), in this tile. The normal pass draws only those faces
+// of each operand.
 layout(std430, binding = 5) buffer ShownFaces {
     uint shownFaces[];
 };
@@ -73,9 +74,10 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     int leaf = operandEntered ? entryLeaf : exitLeaf;
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
-    atomicOr(shownFaces[leaf], operandEntered ? 1u : 2u);
+    int faceBit = (operandEntered ? 0 : 1) + (operandEntered != entered ? 2 : 0);
+    atomicOr(shownFaces[leaf], 1u << faceBit);
 #ifdef LEAF_MARKS
-    gl_FragStencilRefARB = 1 + leaf % 255;
+    gl_FragStencilRefARB = 1 + (leaf * 4 + faceBit) % 255;
 #endif
 }
 
@@ -120,9 +122,10 @@ void main() {
     int leaf = int(vRecord.y);
     outDepth = first;
     outLeaf = leaf * 2;
-    if (isExit(first)) atomicOr(shownFaces[leaf], 2u);
+    int faceBit = isExit(first) ? 1 : 0;
+    if (faceBit != 0) atomicOr(shownFaces[leaf], 2u);
 #ifdef LEAF_MARKS
-    gl_FragStencilRefARB = 1 + leaf % 255;
+    gl_FragStencilRefARB = 1 + (leaf * 4 + faceBit) % 255;
 #endif
 }
 

@@ -28,6 +28,20 @@ layout(location = 4) uniform int uFirstTriangle;  // its first triangle in FaceN
 // The leaf's packed base colours (ShadePass::baseColors): x its own surface, y cut.
 layout(location = 5) uniform vec2 uBaseColor;
 
+#ifdef TRUST_MARKS
+// A convex leaf whose marks no other leaf shares in its rectangle
+// (NormalPass.cpp: marksOwnedInRect): the stencil test
+// this draw passes already says that the pixel shows this leaf, this facing
+// and this flip, and a convex leaf has one fragment of each facing on a ray,
+// so the checks below could only agree. The draw's flip is a uniform.
+layout(location = 6) uniform int uFlip;
+
+void main() {
+    vec3 n = faceNormals[uFirstTriangle + gl_PrimitiveID].xyz;
+    bool cut = uFlip != 0;
+    outNormal = vec4(cut ? -n : n, cut ? uBaseColor.y : uBaseColor.x);
+}
+#else
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int code = texelFetch(uResultLeaf, pixel, 0).r;
@@ -43,3 +57,4 @@ void main() {
     bool cut = (code & 1) != 0;
     outNormal = vec4(cut ? -n : n, cut ? uBaseColor.y : uBaseColor.x);
 }
+#endif

@@ -587,6 +587,41 @@ TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
     }
 }
 
+TEST_F(RendererGLTest, UniqueLeafMarksGiveTheFrameOfOneMark) {
+    // Few enough leaves that every leaf, facing and flip has a mark of its
+    // own: the normal pass then trusts the stencil test alone for convex
+    // leaves. A slab minus spheres (their back faces, flipped), a block
+    // sharing the slab's top face (a tie), a sphere cut by an intersection
+    // (its own faces) and a pair of shells (non-convex: checked as before),
+    // seen from above and from inside the slab (its back faces first).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> across(-1.6, 1.6), height(0.6, 1.0);
+    scene::Tree tree;
+    std::vector<int> holes{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
+    for (int i = 0; i < 40; ++i) holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.3)));
+    holes.push_back(tree.addLeaf(cubeLeaf({1, 1, 0}, {3, 3, 1})));
+    holes.push_back(tree.addLeaf(shellsLeaf({{-0.5, 0.5, 1}, {-0.5, 0.5, 0.3}}, 0.3)));
+    const int slab = tree.addNode(NodeKind::Difference, holes);
+    const int lens = tree.addNode(NodeKind::Intersection, {tree.addLeaf(sphereLeaf({0, -2.2, 1.2}, 0.8)),
+                                                          tree.addLeaf(cubeLeaf({-1, -3, 1.0}, {1, -1.5, 2}))});
+    tree.root = tree.addNode(NodeKind::Union, {slab, lens});
+    ASSERT_LE(tree.leaves.size(), 63u);
+    render::RenderSettings oneMark;
+    oneMark.leafMarks = false;
+    for (const double eyeHeight : {kEyeHeight, 0.5}) {
+        for (render::Projection p : kProjections) {
+            const render::Frame marked = draw(tree, topCamera(p, eyeHeight));
+            const render::Frame plain = renderer_->render(topCamera(p, eyeHeight), oneMark);
+            EXPECT_EQ(pixelsDiffering(marked, plain), 0u);
+            EXPECT_EQ(marked.rgba, plain.rgba);
+            EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
+            const auto holeWalls =
+                std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l > 0 && l <= 40; });
+            if (eyeHeight > 1.0) EXPECT_GT(holeWalls, 100) << "the holes' walls (flipped) must show";
+        }
+    }
+}
+
 TEST_F(RendererGLTest, TilesGiveTheSameImageWithinABudget) {
     const scene::Tree tree = paperPair(NodeKind::Difference);
     const render::Frame whole = draw(tree, topCamera());
