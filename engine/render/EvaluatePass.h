@@ -11,10 +11,10 @@
 // screen rectangle meets it (TreeProgram.h: specializeProgram, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
 // The shader comes in four forms: the first-surface form (the block's tree
-// is one operand, so the result's first surface is the operand's), the
-// register form (operands of up to
-// eight peeled layers in all, a slot per layer, the tree as a truth table,
-// everything in registers; MAX_LIVE 4 or 8 slots), the product form (more
+// is one operand of one layer, so the result's first surface is the
+// operand's), the register form (operands of up to eight peeled layers in
+// all, a slot per layer, the tree as a truth table, everything in
+// registers; MAX_LIVE 4 or 8 slots), the product form (more
 // operands of one layer each under a single AND or OR: a CSG product or a
 // union) and the array form (anything else: a heap of surfaces and a
 // counting tree in per-pixel arrays of MAX_LIVE, a power of two from 16 up).
@@ -89,8 +89,9 @@ private:
     // fits (unless `generalOnly`), else the array form.
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
-    // `form`: 4, kRegisterForm, kProductForm, kFirstSurfaceForm or a capacityFor() value;
-    // `leafMarks`: the shader writes FrameTargets::mark(leaf, exit, flip) to the stencil.
+    // `form`: 4, kRegisterForm, kProductForm, kFirstSurfaceForm or a
+    // capacityFor() value; `leafMarks`: the shader writes
+    // FrameTargets::mark(leaf, exit, flip) to the stencil.
     gpu::Program& programFor(int form, bool leafMarks);
 
     std::map<int, gpu::Program> programs_;  // by form (BlockTree::form) * 2 + leaf marks

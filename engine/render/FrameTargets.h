@@ -18,10 +18,11 @@
 // write the stencil value (ARB_shader_stencil_export), the mark names the
 // leaf, the facing of its surface there and whether the leaf acts subtracted
 // (1 + (4 leaf + exit + 2 flip) mod 255: unique up to 63 leaves, see
-// forEachLeafSharingMarks), so the normal pass, drawing one leaf at a time, skips the other
-// leaves' pixels before its shader runs; elsewhere every written pixel gets
-// kWritten (and the evaluator's pixels it could not finish get it too, where
-// with leaf marks they get 0).
+// forEachLeafSharingMarks; evaluate.frag computes the same), so the normal
+// pass, drawing one leaf at a time, skips the other leaves' pixels before
+// its shader runs; elsewhere every written pixel gets kWritten (and the
+// evaluator's pixels it could not finish get it too, where with leaf marks
+// they get 0).
 
 #include <cstddef>
 

@@ -27,7 +27,9 @@ std::vector<char> marksOwnedInRect(const std::vector<int>& operandLeaves, const 
                                    const PixelRect& tile) {
     const int leafEnd = operandLeaves.empty() ? 0 : *std::max_element(operandLeaves.begin(), operandLeaves.end()) + 1;
     std::vector<int> operandOf(static_cast<std::size_t>(leafEnd), -1);
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) operandOf[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k);
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        operandOf[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k);
+    }
     std::vector<char> owned(operandLeaves.size(), 1);
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         const PixelRect r = rects[k].intersection(tile);

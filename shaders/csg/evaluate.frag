@@ -74,6 +74,8 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     int leaf = operandEntered ? entryLeaf : exitLeaf;
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
+    // exit + 2 flip: the bit in shownFaces, and the mark's offset
+    // (FrameTargets::mark: 1 + (4 leaf + exit + 2 flip) mod 255).
     int faceBit = (operandEntered ? 0 : 1) + (operandEntered != entered ? 2 : 0);
     atomicOr(shownFaces[leaf], 1u << faceBit);
 #ifdef LEAF_MARKS

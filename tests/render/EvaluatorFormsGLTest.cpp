@@ -160,7 +160,8 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
             expectSameFrame(fast, general,
                             std::string(scene::kindName(c.kind)) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
                                 ", camera " + std::to_string(which));
-            EXPECT_EQ(general.stats.firstSurfaceBlocks + general.stats.registerBlocks + general.stats.productBlocks, 0u);
+            EXPECT_EQ(general.stats.firstSurfaceBlocks + general.stats.registerBlocks + general.stats.productBlocks,
+                      0u);
             fastBlocks.firstSurfaceBlocks += fast.stats.firstSurfaceBlocks;
             fastBlocks.registerBlocks += fast.stats.registerBlocks;
             fastBlocks.productBlocks += fast.stats.productBlocks;

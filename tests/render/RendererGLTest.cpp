@@ -598,7 +598,9 @@ TEST_F(RendererGLTest, UniqueLeafMarksGiveTheFrameOfOneMark) {
     std::uniform_real_distribution<double> across(-1.6, 1.6), height(0.6, 1.0);
     scene::Tree tree;
     std::vector<int> holes{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
-    for (int i = 0; i < 40; ++i) holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.3)));
+    for (int i = 0; i < 40; ++i) {
+        holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.3)));
+    }
     holes.push_back(tree.addLeaf(cubeLeaf({1, 1, 0}, {3, 3, 1})));
     holes.push_back(tree.addLeaf(shellsLeaf({{-0.5, 0.5, 1}, {-0.5, 0.5, 0.3}}, 0.3)));
     const int slab = tree.addNode(NodeKind::Difference, holes);
