@@ -71,6 +71,13 @@ TruthTable truthTable(const std::vector<std::uint32_t>& code, const std::vector<
 
 EvaluatePass::EvaluatePass() : empty_("evaluate") {}
 
+BlockForm EvaluatePass::blockForm(int variant) {
+    return variant == kFirstSurfaceForm ? BlockForm::FirstSurface
+           : variant == kProductForm    ? BlockForm::Product
+           : variant <= kRegisterForm   ? BlockForm::Register
+                                        : BlockForm::Array;
+}
+
 int EvaluatePass::capacityFor(int count) {
     int capacity = 16;
     while (capacity < count) capacity *= 2;
@@ -208,7 +215,7 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
 
 void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                       bool generalOnly, FrameStats& stats) {
+                       bool generalOnly, FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
     // The operands whose rectangle meets each block.
     const int blocksX = (tile.width + kBlock - 1) / kBlock;
@@ -252,6 +259,12 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     }
     std::vector<std::uint32_t> drawn;
     for (const auto& [form, list] : byForm) drawn.insert(drawn.end(), list.begin(), list.end());
+    if (forms != nullptr) {
+        forms->assign(blockCount, BlockForm::None);
+        for (const auto& [form, list] : byForm) {
+            for (std::uint32_t b : list) (*forms)[b] = blockForm(form);
+        }
+    }
     // The first-surface form reports only back faces: the front faces of its
     // operands count as shown beforehand. Where none shows (the eye inside the
     // operand, or the operand misses the block's pixels), the normal pass
@@ -283,11 +296,12 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     static const int loopBudget = loopBudgetForThisDriver();
     int first = 0;
     for (const auto& [form, list] : byForm) {
-        std::size_t& counter = form == kFirstSurfaceForm ? stats.firstSurfaceBlocks
-                               : form == kProductForm    ? stats.productBlocks
-                               : form <= kRegisterForm   ? stats.registerBlocks
-                                                         : stats.arrayBlocks;
-        counter += list.size();
+        switch (blockForm(form)) {
+            case BlockForm::FirstSurface: stats.firstSurfaceBlocks += list.size(); break;
+            case BlockForm::Product: stats.productBlocks += list.size(); break;
+            case BlockForm::Register: stats.registerBlocks += list.size(); break;
+            default: stats.arrayBlocks += list.size();
+        }
         gpu::Program& program = programFor(form, targets.leafMarks);
         program.setUniform(kTileOrigin, glm::ivec2(tile.x, tile.y));
         if (form == kProductForm || form > kRegisterForm) program.setUniform(kLoopBudget, loopBudget);

@@ -53,10 +53,12 @@ public:
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
     // `generalOnly` draws every block with the array form (tests compare the
-    // forms). Adds the blocks drawn in each form to `stats`.
+    // forms). Adds the blocks drawn in each form to `stats`, and where
+    // `forms` is given sets it to each block's form (blocks of the tile
+    // row by row from its lower-left corner, kBlock pixels square).
     void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
              const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects, bool generalOnly,
-             FrameStats& stats);
+             FrameStats& stats, std::vector<BlockForm>* forms = nullptr);
 
     // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
     // of two, at least 16.
@@ -89,6 +91,8 @@ private:
     // fits (unless `generalOnly`), else the array form.
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
+    // The form a shader variant (BlockTree::form, not 0) draws.
+    static BlockForm blockForm(int variant);
     // `form`: 4, kRegisterForm, kProductForm, kFirstSurfaceForm or a
     // capacityFor() value; `leafMarks`: the shader writes
     // FrameTargets::mark(leaf, exit, flip) to the stencil.

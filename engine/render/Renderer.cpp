@@ -165,6 +165,8 @@ struct Renderer::Impl {
     // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
     void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, Frame& frame);
+    // Paints the tile's blocks' forms (EvaluatePass::run) into frame.blockForms.
+    void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade and translucent passes over the G-buffer in `targets`.
@@ -287,7 +289,10 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
         start = Clock::now();
-        evaluate.run(targets, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats);
+        std::vector<BlockForm> forms;
+        evaluate.run(targets, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats,
+                     settings.keepBlockForms ? &forms : nullptr);
+        if (settings.keepBlockForms) keepBlockForms(tile, forms, frame);
         normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces(), baseColors);
         glFinish();
         stats.evaluateMs += millisecondsSince(start);
@@ -313,6 +318,20 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
     }
 
+}
+
+void Renderer::Impl::keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame) {
+    if (forms.empty()) return;  // nothing drawn in the tile
+    const std::size_t w = static_cast<std::size_t>(frame.width);
+    constexpr int block = EvaluatePass::kBlock;
+    const int blocksX = (tile.width + block - 1) / block;
+    for (int y = 0; y < tile.height; ++y) {
+        const std::size_t row = static_cast<std::size_t>(frame.height - 1 - (tile.y + y));  // rows top first
+        for (int x = 0; x < tile.width; ++x) {
+            const std::size_t b = static_cast<std::size_t>((y / block) * blocksX + x / block);
+            frame.blockForms[row * w + static_cast<std::size_t>(tile.x + x)] = forms[b];
+        }
+    }
 }
 
 void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& operands,
@@ -399,6 +418,10 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     frame.height = view.height;
     FrameStats& stats = frame.stats;
     stats.layersPerLeaf.assign(leafCount, 0);
+    if (settings.keepBlockForms) {
+        frame.blockForms.assign(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height),
+                                BlockForm::None);
+    }
     stats.operands = program.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;

@@ -1,8 +1,9 @@
 // strata-algorithm-figures: the pictures of docs/algorithm.md, rendered by
 // strata itself through its public API, in the manner of the original
 // image-space CSG papers' figures: each operand's peeled layers, the evaluated
-// result (depth, leaf id, normal), the shaded image, and the one-layer failure
-// next to its fix. Not a test; scripts/algorithm-figures.sh runs it.
+// result (depth, leaf id, normal), the shaded image, the one-layer failure
+// next to its fix, and the evaluator's form per 16x16 block. Not a test;
+// scripts/algorithm-figures.sh runs it.
 //
 //   strata-algorithm-figures OUTPUT_DIR
 //
@@ -366,6 +367,66 @@ int cheeseFigures(render::Renderer& renderer, const Writer& write) {
     return 0;
 }
 
+// Which form of the evaluator drew each 16x16 block (RenderSettings::
+// keepBlockForms), over the shaded image: a cube with four holes in front
+// and a cluster of twelve small ones on top, united with a lens (a sphere
+// cut by a box) that overlaps part of the cluster. The cube alone: the
+// first-surface form; a few holes: the register form; the cluster: the
+// product form (more than eight operands under one AND); cluster and lens
+// together: the array form (more than eight, not one AND or OR).
+int formFigures(render::Renderer& renderer, const Writer& write) {
+    std::printf("forms: the evaluator's form per 16x16 block\n");
+    scene::Tree tree;
+    std::vector<int> body{tree.addLeaf(cubeLeaf({-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0}))};
+    auto addSphere = [&](std::vector<int>& to, glm::dvec3 centre, double radius) {
+        scene::Leaf leaf = sphereLeaf(radius, 16);
+        leaf.transform = glm::translate(glm::dmat4(1.0), centre);
+        to.push_back(tree.addLeaf(std::move(leaf)));
+    };
+    for (double x : {-0.5, 0.5}) {
+        for (double z : {-0.5, 0.4}) addSphere(body, {x, -1.0, z}, 0.28);
+    }
+    for (int i = 0; i < 12; ++i) addSphere(body, {-0.45 + 0.1 * (i % 4), -0.1 + 0.1 * (i / 4), 1.0}, 0.14);
+    const int holed = tree.addNode(NodeKind::Difference, body);
+    std::vector<int> lens;
+    addSphere(lens, {0.1, 0.45, 1.1}, 0.4);
+    lens.push_back(tree.addLeaf(cubeLeaf({-0.35, 0.05, 1.0}, {0.55, 0.9, 1.8})));
+    tree.root = tree.addNode(NodeKind::Union, {holed, tree.addNode(NodeKind::Intersection, lens)});
+
+    geometry::Bounds bounds;
+    bounds.extend(glm::dvec3(-1.0));
+    bounds.extend(glm::dvec3(1.0, 1.0, 1.6));
+    render::Camera base;
+    base.width = base.height = kSize;
+    const render::Camera camera = render::defaultCamera(bounds, base);
+    render::RenderSettings settings;
+    settings.keepBlockForms = true;
+    const render::Frame frame = draw(renderer, tree, camera, settings);
+    const render::FrameStats& s = frame.stats;
+    std::printf("  blocks: first-surface %zu, register %zu, product %zu, array %zu (of %d)\n",
+                s.firstSurfaceBlocks, s.registerBlocks, s.productBlocks, s.arrayBlocks, (kSize / 16) * (kSize / 16));
+
+    // Each drawn block tinted by its form; undrawn blocks dimmed.
+    constexpr Rgb kFormColors[] = {{0, 0, 0}, {0, 158, 115}, {86, 180, 233}, {230, 159, 0}, {204, 121, 167}};
+    Image image = frame.rgba;
+    for (std::size_t p = 0; p < frame.blockForms.size(); ++p) {
+        const auto form = static_cast<std::size_t>(frame.blockForms[p]);
+        const std::size_t x = p % kSize, y = p / kSize;
+        const bool edge = x % 16 == 0 || (kSize - 1 - y) % 16 == 0;  // blocks count from the bottom row
+        for (int c = 0; c < 3; ++c) {
+            const int shaded = image[p * 4 + static_cast<std::size_t>(c)];
+            const Rgb tint = kFormColors[form];
+            const int t = c == 0 ? tint.r : c == 1 ? tint.g : tint.b;
+            const int v = form == 0 ? shaded / 2 + 40 : (edge ? t * 3 / 4 : (shaded + t) / 2);
+            image[p * 4 + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(v);
+        }
+    }
+    write("forms", image);
+    const bool all = s.firstSurfaceBlocks > 0 && s.registerBlocks > 0 && s.productBlocks > 0 && s.arrayBlocks > 0;
+    if (!all) std::fprintf(stderr, "forms: every form should draw some blocks\n");
+    return all ? 0 : 1;
+}
+
 // The compiled program of a small tree, as docs/algorithm.md lists it:
 // (A ∪ B) − (C ∩ D) − E. Only the tree matters here, not the meshes.
 void printProgram() {
@@ -396,7 +457,8 @@ int main(int argc, char** argv) {
         render::Renderer renderer;
         const Writer write(dir);
         printProgram();
-        const int failures = stackFigures(renderer, write) + cheeseFigures(renderer, write);
+        const int failures =
+            stackFigures(renderer, write) + cheeseFigures(renderer, write) + formFigures(renderer, write);
         if (failures != 0) {
             std::fprintf(stderr, "strata-algorithm-figures: %d figure(s) contradict docs/algorithm.md\n", failures);
             return 1;

@@ -286,3 +286,82 @@ TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
     EXPECT_EQ(fastAlone.stats.coveredPixels, 0u) << "a flat solid alone shows nowhere";
     expectSameFrame(fastAlone, generalAlone, "a flat solid alone");
 }
+
+// The form map (RenderSettings::keepBlockForms): a cube minus a row of holes
+// and a cluster of ten small ones. Where the cube alone meets a block it is
+// the first-surface form; a hole's wall is drawn by the register form, or by
+// the product form inside the cluster (more than eight operands). The map
+// must agree with the block counts, and the array form alone must draw the
+// same blocks.
+TEST(EvaluatorFormsMap, EachPixelKnowsItsBlocksForm) {
+    gpu::Context context;
+    render::Renderer renderer;
+    scene::Tree tree;
+    std::vector<int> children;
+    scene::Leaf cube;
+    cube.primitive = scene::Cube{{4.0, 4.0, 2.0}, true};
+    children.push_back(tree.addLeaf(std::move(cube)));
+    auto addSphere = [&](glm::dvec3 centre, double r) {
+        scene::Leaf leaf;
+        scene::Sphere s;
+        s.r = r;
+        s.fragments.fn = 12;
+        leaf.primitive = s;
+        leaf.transform = glm::translate(glm::dmat4(1.0), centre);
+        children.push_back(tree.addLeaf(std::move(leaf)));
+    };
+    for (double x : {-1.2, 0.0}) addSphere({x, -1.0, 1.0}, 0.4);
+    for (int i = 0; i < 10; ++i) addSphere({0.9 + 0.08 * (i % 5), 0.9 + 0.1 * (i / 5), 1.0}, 0.25);
+    tree.root = tree.addNode(NodeKind::Difference, children);
+    renderer.setScene(tree, geometry::buildModel(tree));
+    render::Camera camera;
+    camera.width = camera.height = 96;
+    camera.projection = render::Projection::Orthographic;
+    camera.eye = {0.0, 0.0, 10.0};
+    camera.center = {0.0, 0.0, 0.0};
+    camera.fovDegrees = 30.0;
+    render::RenderSettings settings;
+    settings.keepBlockForms = true;
+    const render::Frame fast = renderer.render(camera, settings);
+    settings.generalEvaluator = true;
+    const render::Frame general = renderer.render(camera, settings);
+    const std::size_t n = static_cast<std::size_t>(camera.width * camera.height);
+    ASSERT_EQ(fast.blockForms.size(), n);
+    ASSERT_EQ(general.blockForms.size(), n);
+
+    std::size_t cubeAlone = 0, walls = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+        const render::BlockForm f = fast.blockForms[p];
+        EXPECT_EQ(f == render::BlockForm::None, general.blockForms[p] == render::BlockForm::None) << p;
+        if (general.blockForms[p] != render::BlockForm::None) {
+            EXPECT_EQ(general.blockForms[p], render::BlockForm::Array);
+        }
+        if (fast.leaf[p] >= 0) EXPECT_NE(f, render::BlockForm::None) << "a surface outside any drawn block";
+        if (f == render::BlockForm::FirstSurface && fast.leaf[p] >= 0) {
+            EXPECT_EQ(fast.leaf[p], 0) << "only the cube is alone in a block";
+            ++cubeAlone;
+        }
+        if (fast.leaf[p] > 0) {
+            EXPECT_TRUE(f == render::BlockForm::Register || f == render::BlockForm::Product) << p;
+            ++walls;
+        }
+    }
+    EXPECT_GT(cubeAlone, n / 4);
+    EXPECT_GT(walls, 50u);
+
+    // One pixel per block (its lower-left one, GL rows counting up) gives the counts.
+    std::size_t counts[5] = {};
+    for (int by = 0; by * 16 < camera.height; ++by) {
+        for (int bx = 0; bx * 16 < camera.width; ++bx) {
+            const std::size_t row = static_cast<std::size_t>(camera.height - 1 - by * 16);
+            ++counts[static_cast<int>(fast.blockForms[row * static_cast<std::size_t>(camera.width) +
+                                                      static_cast<std::size_t>(bx * 16)])];
+        }
+    }
+    EXPECT_EQ(counts[static_cast<int>(render::BlockForm::FirstSurface)], fast.stats.firstSurfaceBlocks);
+    EXPECT_EQ(counts[static_cast<int>(render::BlockForm::Register)], fast.stats.registerBlocks);
+    EXPECT_EQ(counts[static_cast<int>(render::BlockForm::Product)], fast.stats.productBlocks);
+    EXPECT_EQ(counts[static_cast<int>(render::BlockForm::Array)], fast.stats.arrayBlocks);
+    EXPECT_GT(fast.stats.productBlocks, 0u) << "the cluster's blocks hold more than eight operands";
+    EXPECT_GT(fast.stats.registerBlocks, 0u);
+}

@@ -40,6 +40,7 @@ struct RenderSettings {
     // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
     std::size_t memoryBudget = std::size_t(512) << 20;
     bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
+    bool keepBlockForms = false;               // record each pixel's evaluator form in Frame::blockForms (figures, tests)
     // Evaluate every pixel with the general (array) form of the evaluator,
     // not the fastest form that holds its block: slower, the same image
     // (tests compare the forms).
@@ -77,6 +78,11 @@ struct PeelLayerImage {
     std::vector<float> farDepth;    // W*H: the layer's farthest surface
 };
 
+// The form of the evaluator a 16x16 block of pixels was drawn with
+// (docs/algorithm.md, "Per 16x16 block"); None: the result is constant there
+// and the block was not drawn.
+enum class BlockForm : std::uint8_t { None, FirstSurface, Register, Product, Array };
+
 // One rendered frame, read back. Row 0 is the TOP row (as in image files).
 struct Frame {
     int width = 0, height = 0;
@@ -85,6 +91,7 @@ struct Frame {
     std::vector<glm::vec3> normal;    // W*H, world-space unit outward normal of the result; 0 on miss
     std::vector<std::int32_t> leaf;   // W*H, tree leaf index of the visible surface; -1 on miss
     std::vector<PeelLayerImage> peelLayers;  // with RenderSettings::keepPeelLayers: by operand, then layer
+    std::vector<BlockForm> blockForms;       // with RenderSettings::keepBlockForms: W*H, each pixel's block's form
     FrameStats stats;
 };
 
