@@ -1,13 +1,15 @@
 // Normal recovery: the operands are drawn once more over the pixels the
 // evaluator wrote (vertex stage surface.vert, as the peel pass), and the
 // fragment that is the visible surface the evaluator chose (same leaf, same
-// facing, same tagged depth) writes its triangle's world-space face normal, flipped where the
-// leaf acts as a subtracted operand: the outward normal of the result. Its w
-// is the surface's base colour for the shade pass, a uniform of this draw.
-// The stencil holds the evaluator's marks (FrameTargets.h) and this pass
-// only tests them: testing before the shader runs changes no result, and
-// spares the shader on the other leaves' pixels (llvmpipe tests late, after
-// the shader, in a shader that may discard, unless told otherwise).
+// facing, same tagged depth) writes its triangle's world-space face normal,
+// flipped where the leaf acts as a subtracted operand: the outward normal
+// of the result. Its w is the surface's base colour for the shade pass, a
+// uniform of this draw. The stencil holds the evaluator's marks
+// (FrameTargets.h) and this pass only tests them: testing before the shader
+// runs changes no result, and spares the shader on the other leaves' pixels
+// (llvmpipe tests late, after the shader, in a shader that may discard,
+// unless told otherwise). Two variants: TRUST_MARKS (below) for convex
+// leaves whose marks are their own, and the checking one.
 layout(early_fragment_tests) in;
 
 #include "csg/surface.glsl"
@@ -30,10 +32,10 @@ layout(location = 5) uniform vec2 uBaseColor;
 
 #ifdef TRUST_MARKS
 // A convex leaf whose marks no other leaf shares in its rectangle
-// (NormalPass.cpp: marksOwnedInRect): the stencil test
-// this draw passes already says that the pixel shows this leaf, this facing
-// and this flip, and a convex leaf has one fragment of each facing on a ray,
-// so the checks below could only agree. The draw's flip is a uniform.
+// (NormalPass.cpp: marksOwnedInRect): the stencil test this draw passes
+// already says that the pixel shows this leaf, this facing and this flip,
+// and a convex leaf has one fragment of each facing on a ray, so the checks
+// below could only agree. The draw's flip is a uniform.
 layout(location = 6) uniform int uFlip;
 
 void main() {
