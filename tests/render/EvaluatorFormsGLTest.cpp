@@ -178,7 +178,9 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
     EXPECT_EQ(fastBlocks.arrayBlocks, 0u);
     // Blocks that one operand alone meets take the first-surface form: the
     // first operand of a difference, any operand of a union.
-    if (c.kind != NodeKind::Intersection) EXPECT_GT(fastBlocks.firstSurfaceBlocks, 0u);
+    if (c.kind != NodeKind::Intersection) {
+        EXPECT_GT(fastBlocks.firstSurfaceBlocks, 0u);
+    }
     if (c.shells > 0) {
         EXPECT_GT(multiLayer, 0u) << "some shells must have needed two layers";
         EXPECT_GT(fastBlocks.registerBlocks, 0u);
@@ -336,7 +338,9 @@ TEST(EvaluatorFormsMap, EachPixelKnowsItsBlocksForm) {
         if (general.blockForms[p] != render::BlockForm::None) {
             EXPECT_EQ(general.blockForms[p], render::BlockForm::Array);
         }
-        if (fast.leaf[p] >= 0) EXPECT_NE(f, render::BlockForm::None) << "a surface outside any drawn block";
+        if (fast.leaf[p] >= 0) {
+            EXPECT_NE(f, render::BlockForm::None) << "a surface outside any drawn block";
+        }
         if (f == render::BlockForm::FirstSurface && fast.leaf[p] >= 0) {
             EXPECT_EQ(fast.leaf[p], 0) << "only the cube is alone in a block";
             ++cubeAlone;

@@ -619,7 +619,9 @@ TEST_F(RendererGLTest, UniqueLeafMarksGiveTheFrameOfOneMark) {
             EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
             const auto holeWalls =
                 std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l > 0 && l <= 40; });
-            if (eyeHeight > 1.0) EXPECT_GT(holeWalls, 100) << "the holes' walls (flipped) must show";
+            if (eyeHeight > 1.0) {
+                EXPECT_GT(holeWalls, 100) << "the holes' walls (flipped) must show";
+            }
         }
     }
 }
