@@ -52,6 +52,18 @@ DebugImage depthImage(const render::Frame& frame) {
     return image;
 }
 
+DebugImage formsImage(const render::Frame& frame) {
+    DebugImage image{frame.width, frame.height, frame.rgba};
+    for (std::size_t k = 0; k < frame.blockForms.size() && k * 4 < image.rgba.size(); ++k) {
+        const auto form = static_cast<std::size_t>(frame.blockForms[k]);
+        for (std::size_t c = 0; c < 3; ++c) {
+            std::uint8_t& v = image.rgba[k * 4 + c];
+            v = static_cast<std::uint8_t>(form == 0 ? v / 3 : (v + kFormColors[form][c]) / 2);
+        }
+    }
+    return image;
+}
+
 DebugImage normalImage(const render::Frame& frame) {
     DebugImage image{frame.width, frame.height, std::vector<std::uint8_t>(frame.normal.size() * 4)};
     for (std::size_t k = 0; k < frame.normal.size(); ++k) {

@@ -1,6 +1,7 @@
 #pragma once
 // The debug views, drawn on the CPU from a read-back render::Frame (a debug
-// view may afford the read-back): the depth and normal AOVs as colours, and
+// view may afford the read-back): the depth and normal AOVs as colours, the
+// evaluator's form per block over the shaded image, and
 // every operand's peeled layers as a grid of small images, like Fig. 8 of
 // Guha et al., "Application of the two-sided depth test to CSG rendering"
 // (one row per operand, for each layer its nearest and farthest surface).
@@ -22,6 +23,13 @@ struct DebugImage {
 DebugImage depthImage(const render::Frame& frame);
 // World-space normal n as the colour (n + 1) / 2; misses are black.
 DebugImage normalImage(const render::Frame& frame);
+// The shaded image, each 16x16 block tinted by the evaluator form that drew
+// it (Frame::blockForms): green first-surface, blue register, orange
+// product, pink array; blocks not drawn (constant result) dimmed.
+// kFormColors[form] is the tint.
+DebugImage formsImage(const render::Frame& frame);
+inline constexpr std::uint8_t kFormColors[5][3] = {
+    {0, 0, 0}, {0, 158, 115}, {86, 180, 233}, {230, 159, 0}, {204, 121, 167}};
 
 // Where one small image of the peel grid lies, for its label.
 struct PeelTile {

@@ -99,7 +99,7 @@ void Viewer::onKey(int key, int action, int mods) {
     case GLFW_KEY_MINUS:
     case GLFW_KEY_KP_SUBTRACT: changeLayers(-1); return;
     case GLFW_KEY_A: setLayers(0); return;
-    case GLFW_KEY_D: setDebugView(static_cast<DebugView>((static_cast<int>(debugView_) + 1) % 4)); return;
+    case GLFW_KEY_D: setDebugView(static_cast<DebugView>((static_cast<int>(debugView_) + 1) % kDebugViews)); return;
     case GLFW_KEY_H: showPanel_ = !showPanel_; return;
     case GLFW_KEY_C: copyCamera(); return;
     case GLFW_KEY_F5: loader_.request(path_); return;

@@ -17,7 +17,7 @@ namespace {
 
 const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 
-constexpr std::array<const char*, 4> kDebugNames{"shaded", "depth", "normal", "peel layers"};
+constexpr std::array<const char*, kDebugViews> kDebugNames{"shaded", "depth", "normal", "peel layers", "forms"};
 
 }  // namespace
 

@@ -106,6 +106,7 @@ bool Viewer::runCommand(const Command& c) {
             setDebugView(v == "depth"    ? DebugView::Depth
                          : v == "normal" ? DebugView::Normal
                          : v == "peel"   ? DebugView::Peel
+                         : v == "forms"  ? DebugView::Forms
                                          : DebugView::Shaded);
             return true;
         }

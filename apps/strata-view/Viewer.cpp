@@ -154,10 +154,12 @@ void Viewer::renderView() {
         } else {
             render::RenderSettings settings = settings_;
             settings.keepPeelLayers = debugView_ == DebugView::Peel;
+            settings.keepBlockForms = debugView_ == DebugView::Forms;
             const render::Frame frame = renderer_.render(cam, settings);
             stats_ = frame.stats;
             if (debugView_ == DebugView::Depth) target_.upload(depthImage(frame).rgba);
             if (debugView_ == DebugView::Normal) target_.upload(normalImage(frame).rgba);
+            if (debugView_ == DebugView::Forms) target_.upload(formsImage(frame).rgba);
             if (debugView_ == DebugView::Peel) {
                 PeelGrid grid = peelGrid(frame, target_.width(), target_.height());
                 target_.upload(grid.image.rgba);

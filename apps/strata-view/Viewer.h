@@ -24,7 +24,8 @@
 
 namespace strata::view {
 
-enum class DebugView { Shaded, Depth, Normal, Peel };
+enum class DebugView { Shaded, Depth, Normal, Peel, Forms };
+inline constexpr int kDebugViews = 5;
 
 struct ViewerOptions {
     std::string scene;

@@ -42,3 +42,19 @@ TEST(DebugImage, PeelGridHasABlockPerOperandAndNearFarPerLayer) {
     const std::size_t p = (static_cast<std::size_t>(last.y) * 200 + last.x) * 4;
     EXPECT_EQ(grid.image.rgba[p], 255);
 }
+
+TEST(DebugImage, FormsTintTheShadedImageByBlockForm) {
+    render::Frame frame;
+    frame.width = 3;
+    frame.height = 1;
+    frame.rgba = {200, 100, 50, 255, 200, 100, 50, 255, 90, 90, 90, 255};
+    frame.blockForms = {render::BlockForm::None, render::BlockForm::FirstSurface, render::BlockForm::Array};
+    const view::DebugImage forms = view::formsImage(frame);
+    ASSERT_EQ(forms.rgba.size(), 12u);
+    EXPECT_EQ((std::vector<std::uint8_t>(forms.rgba.begin(), forms.rgba.begin() + 4)),
+              (std::vector<std::uint8_t>{66, 33, 16, 255}));  // not drawn: dimmed to a third
+    EXPECT_EQ((std::vector<std::uint8_t>(forms.rgba.begin() + 4, forms.rgba.begin() + 8)),
+              (std::vector<std::uint8_t>{100, 129, 82, 255}));  // halfway to the first-surface green
+    EXPECT_EQ((std::vector<std::uint8_t>(forms.rgba.begin() + 8, forms.rgba.end())),
+              (std::vector<std::uint8_t>{147, 105, 128, 255}));  // halfway to the array form's pink
+}

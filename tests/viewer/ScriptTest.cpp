@@ -74,7 +74,8 @@ TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("screenshot a.jpg\n"), "s.txt:1:12: screenshot: expected a .png file name, got 'a.jpg'");
     EXPECT_EQ(errorOf("open \"a.csg\n"), "s.txt:1:6: unterminated quoted word");
     EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N >= 1");
-    EXPECT_EQ(errorOf("debug xray\n"), "s.txt:1:7: debug: expected one of shaded, depth, normal, peel, got 'xray'");
+    EXPECT_EQ(errorOf("debug xray\n"),
+              "s.txt:1:7: debug: expected one of shaded, depth, normal, peel, forms, got 'xray'");
 }
 
 TEST(Script, RelativePathsAreFromTheScriptsFolder) {
