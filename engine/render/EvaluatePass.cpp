@@ -257,8 +257,26 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
         blocks[b] = it->second.record;
         if (it->second.form > 0) byForm[it->second.form].push_back(static_cast<std::uint32_t>(b));
     }
-    std::vector<std::uint32_t> drawn;
-    for (const auto& [form, list] : byForm) drawn.insert(drawn.end(), list.begin(), list.end());
+    // Each draw's instances: runs of blocks along a row that share a record
+    // (one tree: the same operands), one quad each. A cheese's cube alone
+    // covers whole rows of blocks, and on llvmpipe every small triangle
+    // costs its setup and binning.
+    std::vector<glm::uvec2> drawn;  // first block, blocks in the run
+    std::map<int, std::size_t> runs;  // shader variant -> its instances
+    for (const auto& [form, list] : byForm) {
+        const std::size_t before = drawn.size();
+        for (std::size_t i = 0; i < list.size();) {
+            const std::uint32_t b = list[i];
+            std::size_t n = 1;
+            while (i + n < list.size() && list[i + n] == b + n && (b + n) % static_cast<std::uint32_t>(blocksX) != 0 &&
+                   blocks[list[i + n]] == blocks[b]) {
+                ++n;
+            }
+            drawn.emplace_back(b, static_cast<std::uint32_t>(n));
+            i += n;
+        }
+        runs[form] = drawn.size() - before;
+    }
     if (forms != nullptr) {
         forms->assign(blockCount, BlockForm::None);
         for (const auto& [form, list] : byForm) {
@@ -309,8 +327,8 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
         program.setUniform(kTileSize, glm::ivec2(tile.width, tile.height));
         program.setUniform(kBlocksX, blocksX);
         program.use();
-        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(list.size()));
-        first += static_cast<int>(list.size());
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(runs[form]));
+        first += static_cast<int>(runs[form]);
     }
     glDisable(GL_STENCIL_TEST);
     gpu::checkErrors();

@@ -1,6 +1,6 @@
-// The evaluate pass's geometry: one quad per BLOCK x BLOCK block of the tile
-// that has a tree to walk, instanced, carrying the block's data to its
-// fragments (csg/blocks.glsl). Blocks whose result is constant (no
+// The evaluate pass's geometry: one quad per run of BLOCK x BLOCK blocks of
+// the tile that share a tree to walk, instanced, carrying the blocks' data
+// to their fragments (csg/blocks.glsl). Blocks whose result is constant (no
 // operand the result can show meets them) are not drawn at all, and each draw
 // takes the blocks of one size class, so each runs the cheapest form of
 // evaluate.frag that holds it. The viewport is the tile.
@@ -14,9 +14,11 @@
 #define EVALUATE_VERTEX
 #include "csg/blocks.glsl"
 
-// Block numbers (row-major in the tile) to draw, this draw's from uFirstBlock on.
+// Runs of blocks to draw, this draw's from uFirstBlock on: x the first
+// block's number (row-major in the tile), y how many blocks along its row
+// share its record. One quad covers the run.
 layout(std430, binding = 4) readonly buffer DrawnBlocks {
-    uint drawnBlocks[];
+    uvec2 drawnBlocks[];
 };
 
 layout(location = 5) uniform int uFirstBlock;
@@ -24,12 +26,13 @@ layout(location = 6) uniform ivec2 uTileSize;  // pixels
 layout(location = 7) uniform int uBlocksX;     // blocks per row of the tile
 
 void main() {
-    uint block = drawnBlocks[uFirstBlock + gl_InstanceID];
+    uvec2 run = drawnBlocks[uFirstBlock + gl_InstanceID];
+    uint block = run.x;
     // Two triangles: corners (0,0) (1,0) (0,1) and (1,0) (1,1) (0,1).
     int v = gl_VertexID;
     ivec2 corner = ivec2(v == 1 || v == 3 || v == 4 ? 1 : 0, v == 2 || v == 4 || v == 5 ? 1 : 0);
     ivec2 origin = ivec2(int(block) % uBlocksX, int(block) / uBlocksX) * BLOCK;
-    vec2 p = vec2(min(origin + corner * BLOCK, uTileSize));
+    vec2 p = vec2(min(origin + corner * ivec2(BLOCK * int(run.y), BLOCK), uTileSize));
     gl_Position = vec4(p / vec2(uTileSize) * 2.0 - 1.0, 0.0, 1.0);
     vRecord = blocks[block];
 #if REGISTER_FORM
