@@ -25,7 +25,7 @@
 namespace strata::view {
 
 enum class DebugView { Shaded, Depth, Normal, Peel, Forms };
-inline constexpr int kDebugViews = 5;
+inline constexpr int kDebugViews = static_cast<int>(DebugView::Forms) + 1;  // Forms is the last
 
 struct ViewerOptions {
     std::string scene;
