@@ -51,6 +51,7 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("unresolved_pixels").value(static_cast<std::uint64_t>(f.unresolvedPixels));
     json.key("tiles").value(f.tiles);
     json.key("peel_passes").value(f.peelPasses);
+    json.key("list_peeled_operands").value(f.listPeeledOperands);
 
     json.key("notes").beginArray();
     for (const std::string& note : f.notes) json.value(note);

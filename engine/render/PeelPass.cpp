@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <limits>
+#include <string>
 
 #include "strata/gpu/Check.h"
 
@@ -15,6 +16,9 @@ constexpr GLint kViewProjection = 0;
 constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 constexpr GLint kPreviousLayer = 3;
+// In shaders/csg/resolve.frag.
+constexpr GLint kFirstLayer = 0;
+constexpr GLint kLayerCount = 1;
 
 
 void setView(gpu::Program& program, const ViewSetup& view) {
@@ -43,7 +47,13 @@ PeelPass::PeelPass()
       counted_("peel counted"),
       deeper_(gpu::Program::fromFiles("peel deeper", {"common/fullscreen.vert", "csg/deeper.frag"})),
       drawn_("peel drawn", GL_ANY_SAMPLES_PASSED),
-      deeperDrawn_("peel deeper drawn", GL_ANY_SAMPLES_PASSED) {
+      deeperDrawn_("peel deeper drawn", GL_ANY_SAMPLES_PASSED),
+      collect_(gpu::Program::fromFiles("peel collect", {"csg/surface.vert", "csg/peel.frag"},
+                                       {{"PEEL_FIRST", ""}, {"COLLECT", ""},
+                                        {"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
+      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"})),
+      listTarget_("peel lists"),
+      resolveStats_("peel resolve stats", 2 * sizeof(GLuint)) {
     if (batched_) {
         batch_ = gpu::Program::fromFiles("peel batch", {"csg/surface.vert", "csg/peel.frag"},
                                          {{"PEEL_FIRST", ""}, {"LAYERED", ""}});
@@ -60,18 +70,30 @@ bool onePass(const LeafRange& leaf, const PeelRequest& request, std::size_t k) {
     return leaf.convex || (k < request.firstLayerOnly.size() && request.firstLayerOnly[k]);
 }
 
+// Whether operand k is first tried through fragment lists.
+bool listed(const LeafRange& leaf, const PeelRequest& request, std::size_t k) {
+    return !onePass(leaf, request, k) && request.listTriangles >= 0 &&
+           leaf.indexCount / 3 >= static_cast<std::size_t>(request.listTriangles);
+}
+
 }  // namespace
 
 int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
                              std::span<const char> inTile, const PeelRequest& request) {
     const int fixedLayers = request.fixedLayers;
     int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
+    bool lists = false;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         if (!inTile[k]) continue;
         const LeafRange& leaf = scene.leaf(operandLeaves[k]);
         if (leaf.indexCount == 0) continue;
-        layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
+        const bool one = onePass(leaf, request, k);
+        layers += one ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
+        lists = lists || listed(leaf, request, k);
     }
+    // Collecting: the lists' images, and auto's room for a list's every
+    // layer while it is resolved (the guess above gives each operand 2).
+    if (lists) layers += kCollectScratchLayers + (fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2);
     return std::max(layers, 1);
 }
 
@@ -156,12 +178,58 @@ bool PeelPass::anyDeeperThan(int surfaces) {
     return deeperDrawn_.result() != 0;
 }
 
+int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile, const PixelRect& valid, int first,
+                      int layerCount, bool automatic) {
+    if (!fragmentCounts_.id() || fragmentCounts_.width() < tile.width || fragmentCounts_.height() < tile.height) {
+        const int width = std::max(tile.width, fragmentCounts_.id() ? fragmentCounts_.width() : 0);
+        const int height = std::max(tile.height, fragmentCounts_.id() ? fragmentCounts_.height() : 0);
+        fragments_ = gpu::Texture::create2DArray("peel fragment lists", GL_R32F, width, height, kCollectCapacity);
+        fragmentCounts_ = gpu::Texture::create2D("peel fragment counts", GL_R32UI, width, height);
+        const GLuint none = 0;  // from then on the resolve sets each count it read back to 0
+        fragmentCounts_.clear(GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+        glNamedFramebufferParameteri(listTarget_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+        glNamedFramebufferParameteri(listTarget_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+        ++allocations_;
+    }
+    // The resolve writes only the layers a pixel has; the rest read as cleared.
+    const float cleared[2] = {-FLT_MAX, -FLT_MAX};
+    glClearTexSubImage(layers_.id(), 0, valid.x, valid.y, first, valid.width, valid.height, layerCount, GL_RG,
+                       GL_FLOAT, cleared);
+    resolveStats_.clearToZero();
+
+    listTarget_.bindForDraw();
+    fragmentCounts_.bindImage(1, GL_READ_WRITE);
+    fragments_.bindImage(2, GL_READ_WRITE);
+    collect_.use();
+    scene.drawLeaf(leaf);
+    ++passes_;
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    layers_.bindImage(3, GL_WRITE_ONLY);
+    resolveStats_.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    resolve_.use();
+    resolve_.setUniform(kFirstLayer, first);
+    resolve_.setUniform(kLayerCount, std::min(layerCount, kCollectCapacity / 2));
+    glDrawArrays(GL_TRIANGLES, 0, 3);  // the scene's vertex array stays bound, see anyDeeperThan
+    // Image stores become visible to later image loads and sampling (the
+    // evaluator), copies and read-backs of the layers (reserve(), the debug
+    // views), and the stats' read-back.
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                    GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint most[2] = {0, 0};  // layers, and fragments where a list overflowed
+    resolveStats_.downloadSpan(std::span<GLuint>(most));
+    if (most[1] > 0) return -1;
+    ++collected_;
+    return automatic ? static_cast<int>(most[0]) : layerCount;
+}
+
 bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                    std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
                    const PeelRequest& request, std::vector<OperandLayers>& out) {
     out.assign(operandLeaves.size(), {});
     passes_ = 0;
     allocations_ = 0;
+    collected_ = 0;
     std::vector<char> inTile(operandLeaves.size());
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
     const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
@@ -169,6 +237,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
 
     setView(first_, view);
     setView(next_, view);
+    setView(collect_, view);
     if (batched_) setView(batch_, view);
     glViewport(-tile.x, -tile.y, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
@@ -200,6 +269,24 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
         const int most = one ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);
         const PixelRect valid = region(rects[k], tile, block);
         glScissor(valid.x, valid.y, valid.width, valid.height);
+        if (listed(range, request, k)) {
+            // One pass through fragment lists where they hold every
+            // fragment; else the passes below.
+            const int room = automatic ? kCollectCapacity / 2 : request.fixedLayers;
+            const std::size_t scratch = static_cast<std::size_t>(kCollectScratchLayers) * kBytesPerTexel *
+                                        static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+            if (!reserve(tile.width, tile.height, used + room, used,
+                         request.budgetBytes > scratch ? request.budgetBytes - scratch : 0)) {
+                fits = false;
+                break;
+            }
+            const int count = collect(scene, leaf, tile, valid, used, room, automatic);
+            if (count >= 0) {
+                out[k] = {used, count};
+                used += count;
+                continue;
+            }
+        }
         int count = 0;
         for (int pass = 0; pass < most; ++pass) {
             if (automatic && pass > 0) {

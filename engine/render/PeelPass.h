@@ -18,6 +18,16 @@
 // rectangle of stencil reads. Passes l >= 1 test the same stencil too, so
 // pixels already peeled to the end are dropped before the shader runs.
 //
+// A non-convex operand of many triangles is first peeled in one geometry
+// pass instead (`PeelRequest::listTriangles`): each fragment appends its tagged depth to its
+// pixel's list of up to kCollectCapacity (an atomic count and an array image,
+// a k-buffer), and a fullscreen pass over the operand's rectangle derives
+// every layer from the list by the same rule as the passes above (layer l
+// keeps what lies strictly between layer l-1's near and far), writing them
+// with image stores. Where a pixel holds more fragments than that, the lists
+// are dropped and the operand is peeled pass by pass as above. The layers are
+// the same either way, bit for bit (tests compare them).
+//
 // Convex operands need one pass each and no previous layer: where the driver
 // can route a draw to a layer from the vertex stage (ARB_shader_draw_parameters
 // and ARB_shader_viewport_layer_array), they are all peeled by one multi-draw
@@ -57,6 +67,9 @@ struct PeelRequest {
     // Renderer.cpp: operands that only unions lead to, every ray starting
     // outside).
     std::span<const char> firstLayerOnly;
+    // Peel non-convex operands of at least this many triangles in one pass
+    // through per-pixel fragment lists where they fit (see above); < 0: none.
+    int listTriangles = 0;
 };
 
 class PeelPass {
@@ -76,6 +89,12 @@ public:
              const PeelRequest& request, std::vector<OperandLayers>& out);
 
     static constexpr std::size_t kBytesPerTexel = 8;  // one RG32F texel of a layer
+    // Fragments a pixel's list holds when collecting (shaders/csg/resolve.frag
+    // is written for this many): up to 4 layers.
+    static constexpr int kCollectCapacity = 8;
+    // The lists' images (kCollectCapacity R32F layers and an R32UI count) per
+    // pixel, in layers' bytes, counted in the estimate where they are needed.
+    static constexpr int kCollectScratchLayers = (kCollectCapacity * 4 + 4 + 7) / 8;
 
     // How many layers the operands would need if the fixed count holds, or a
     // first guess for auto (1 per convex or first-layer-only operand, 2 per
@@ -89,9 +108,14 @@ public:
     static PixelRect region(const PixelRect& rect, const PixelRect& tile, int block);
 
     const gpu::Texture& layers() const { return layers_; }
-    std::size_t textureBytes() const { return layers_.id() ? layers_.byteSize() : 0; }
+    // The layers and, once an operand was collected, the fragment lists.
+    std::size_t textureBytes() const {
+        return (layers_.id() ? layers_.byteSize() : 0) + (fragments_.id() ? fragments_.byteSize() : 0) +
+               (fragmentCounts_.id() ? fragmentCounts_.byteSize() : 0);
+    }
     int maxArrayLayers() const { return maxArrayLayers_; }
     int passes() const { return passes_; }  // geometry passes in the last run()
+    int collected() const { return collected_; }  // operands peeled through fragment lists in the last run()
     int allocations() const { return allocations_; }  // layer textures created in the last run()
 
 private:
@@ -112,6 +136,12 @@ private:
     // surfaces, by the counts of its first pass (see above). True where the
     // 8-bit counts cannot tell (surfaces >= 255).
     bool anyDeeperThan(int surfaces);
+    // Peels operand `leaf` through fragment lists into `layerCount` layers
+    // from `first` (auto: up to kCollectCapacity / 2), reserved by the
+    // caller. Returns the layers it holds, or -1 where a pixel's fragments
+    // overflowed its list (nothing useful drawn).
+    int collect(const SceneBuffers& scene, int leaf, const PixelRect& tile, const PixelRect& valid, int first,
+                int layerCount, bool automatic);
 
     gpu::Framebuffer target_;  // layered, for the convex batch
     gpu::Framebuffer counted_;  // one layer and the counts: the other passes
@@ -120,8 +150,15 @@ private:
     gpu::Program deeper_;  // fullscreen, stencil-tested, no output
     gpu::Query drawn_;         // did the last pass draw anything?
     gpu::Query deeperDrawn_;   // did deeper_ pass anywhere?
+    gpu::Program collect_;  // COLLECT: appends each fragment to its pixel's list
+    gpu::Program resolve_;  // fullscreen: lists to layers
+    gpu::Framebuffer listTarget_;  // no attachments, the tile's size: collect_ and resolve_ write images only
+    gpu::Texture fragments_;       // R32F, kCollectCapacity layers: each pixel's list
+    gpu::Texture fragmentCounts_;  // R32UI: fragments appended per pixel
+    gpu::Buffer resolveStats_;     // uint most layers, uint most fragments (resolve.frag)
     int maxArrayLayers_ = 256;
     int passes_ = 0;
+    int collected_ = 0;
     int allocations_ = 0;
 };
 

@@ -209,7 +209,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     const std::vector<int>& operands = program.operandLeaf;
     std::vector<PixelRect> rects(operands.size());
     for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
-    PeelRequest request{settings.layers, settings.memoryBudget, {}};
+    PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) request.firstLayerOnly = unionsOnly;
@@ -271,6 +271,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
         stats.textureAllocations += peel.allocations();
         stats.peelPasses += peel.passes();
+        stats.listPeeledOperands += peel.collected();
         if (!fits) {
             if (quarters(tile).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +

@@ -9,7 +9,15 @@
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
+#ifdef COLLECT
+// Collecting (PeelPass::collect): each fragment appends its tagged depth to
+// its pixel's list; resolve.frag turns the lists into layers. A pixel whose
+// fragments overflow the list keeps counting, so the resolve can tell.
+layout(binding = 1, r32ui) uniform coherent uimage2D uFragmentCounts;
+layout(binding = 2, r32f) uniform writeonly image2DArray uFragments;
+#else
 layout(location = 0) out vec2 outDepths;
+#endif
 
 #ifndef PEEL_FIRST
 // Auto peeling tests the stencil (the pixel's surface count against the
@@ -27,9 +35,15 @@ layout(location = 3) uniform int uPreviousLayer;
 
 void main() {
     float t = taggedDepth(vViewDepth, gl_FrontFacing);
+#ifdef COLLECT
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    uint slot = imageAtomicAdd(uFragmentCounts, pixel, 1u);
+    if (slot < uint(COLLECT_CAPACITY)) imageStore(uFragments, ivec3(pixel, int(slot)), vec4(t));
+#else
 #ifndef PEEL_FIRST
     vec2 previous = texelFetch(uLayers, ivec3(gl_FragCoord.xy, uPreviousLayer), 0).rg;
     if (t <= -previous.r || t >= previous.g) discard;
 #endif
     outDepths = vec2(-t, t);
+#endif
 }

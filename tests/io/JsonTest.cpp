@@ -59,6 +59,7 @@ TEST(Stats, HoldsEveryFigureOfTheContract) {
     s.frame.coveredPixels = 100;
     s.frame.tiles = 2;
     s.frame.peelPasses = 5;
+    s.frame.listPeeledOperands = 1;
     s.frame.notes = {"tiled"};
     s.warnings = {"a.csg:3:1: warning: unsupported 'hull'"};
     s.unsupported = {{"hull", 1}};
@@ -69,7 +70,8 @@ TEST(Stats, HoldsEveryFigureOfTheContract) {
     for (const char* part : {R"("scene": "a \"quoted\".csg")", R"("width": 64)", R"("height": 32)",
                              R"("peel": 1.25)", R"("layers_per_operand": [1, 3, 0])", R"("layers_max": 3)",
                              R"("layers_total": 4)", R"("operands": 2)", R"("texture_bytes": 4096)",
-                             R"("covered_pixels": 100)", R"("tiles": 2)", R"("peel_passes": 5)", R"("notes": ["tiled"])",
+                             R"("covered_pixels": 100)", R"("tiles": 2)", R"("peel_passes": 5)",
+                             R"("list_peeled_operands": 1)", R"("notes": ["tiled"])",
                              R"("warnings": ["a.csg:3:1: warning: unsupported 'hull'"])",
                              R"("unsupported": {"hull": 1})"})
         EXPECT_NE(json.find(part), std::string::npos) << part << "\nin " << json;

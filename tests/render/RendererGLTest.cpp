@@ -333,12 +333,24 @@ TEST_F(RendererGLTest, StackedSubtractionNeedsAllLayersOfANonConvexOperand) {
         EXPECT_TRUE(std::isinf(wrong.depth[c])) << "one layer should miss the cavity floor, got " << wrong.depth[c];
         EXPECT_EQ(wrong.leaf[c], -1);
 
-        const render::Frame right = draw(tree, topCamera(p));  // auto
+        render::RenderSettings lists;  // however few triangles the shells have
+        lists.fragmentListTriangles = 0;
+        const render::Frame right = draw(tree, topCamera(p), lists);  // auto
         expectCentre(right, truth, 1, {0, 0, 1});
         EXPECT_EQ(right.stats.layersPerLeaf[1], 3);  // 6 surfaces, 2 per layer
         EXPECT_EQ(right.stats.layersPerLeaf[0], 1);  // the slab is convex
+        // One pass each: the shells' 6 surfaces fit a fragment list.
+        EXPECT_EQ(right.stats.peelPasses, 1 + 1);
+        EXPECT_EQ(right.stats.listPeeledOperands, 1);
+
+        render::RenderSettings passes;
+        passes.fragmentListTriangles = -1;
+        const render::Frame peeled = draw(tree, topCamera(p), passes);
+        expectCentre(peeled, truth, 1, {0, 0, 1});
+        EXPECT_EQ(peeled.stats.layersPerLeaf[1], 3);
         // The first pass counted 6 surfaces: no fourth pass to find nothing.
-        EXPECT_EQ(right.stats.peelPasses, 1 + 3);
+        EXPECT_EQ(peeled.stats.peelPasses, 1 + 3);
+        EXPECT_EQ(peeled.stats.listPeeledOperands, 0);
 
         render::RenderSettings three;
         three.layers = 3;
@@ -362,10 +374,20 @@ TEST_F(RendererGLTest, AutoPeelingStopsWhereCountedSurfacesCoincide) {
     scene::Leaf boxes;
     boxes.primitive = poly;
     tree.root = tree.addNode(NodeKind::Intersection, {tree.addLeaf(boxes), tree.addLeaf(cubeLeaf({-2, -2, -2}, {2, 2, 2}))});
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    render::RenderSettings passes;
+    passes.fragmentListTriangles = -1;
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic), passes);
     expectCentre(f, kEyeHeight - 0.5, 0, {0, 0, 1});
     EXPECT_EQ(f.stats.layersPerLeaf[0], 1);
     EXPECT_EQ(f.stats.peelPasses, 1 + 2);  // the cube, then the boxes' two
+    // A fragment list holds all four; they make one layer all the same.
+    render::RenderSettings lists;
+    lists.fragmentListTriangles = 0;
+    const render::Frame listed = draw(tree, topCamera(render::Projection::Orthographic), lists);
+    expectCentre(listed, kEyeHeight - 0.5, 0, {0, 0, 1});
+    EXPECT_EQ(listed.stats.layersPerLeaf[0], 1);
+    EXPECT_EQ(listed.stats.peelPasses, 1 + 1);
+    EXPECT_EQ(listed.stats.listPeeledOperands, 1);
 }
 
 TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
@@ -665,12 +687,14 @@ TEST_F(RendererGLTest, TiledFramesReuseOneLayerTexture) {
 TEST_F(RendererGLTest, AutoPeelingDeeperThanGuessedSplitsTheTile) {
     // The guess is 2 layers for a non-convex operand (and a scratch layer);
     // four shells stacked on the view axis need 4. A budget of exactly the
-    // guess for the whole frame forces a split once peeling goes deeper.
+    // guess for the whole frame forces a split once peeling pass by pass
+    // goes deeper. (Fragment lists make room for 4 layers from the start.)
     scene::Tree tree;
     const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
     const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}, {0, 0, -2}}, 0.4));
     tree.root = tree.addNode(NodeKind::Difference, {slab, spheres});
     render::RenderSettings tight;
+    tight.fragmentListTriangles = -1;
     tight.memoryBudget = static_cast<std::size_t>(kSize) * kSize * 8 * (1 + 2 + 1);
     const render::Frame f = draw(tree, topCamera(), tight);
     EXPECT_GT(f.stats.tiles, 1);

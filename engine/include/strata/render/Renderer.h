@@ -49,6 +49,13 @@ struct RenderSettings {
     // (ARB_shader_stencil_export), so the normal pass skips other leaves'
     // pixels early; false: one mark for all (tests compare the two).
     bool leafMarks = true;
+    // Peel a non-convex operand of at least this many triangles in one
+    // geometry pass, through per-pixel lists of its fragments, where no pixel
+    // holds more than 8 of them; smaller ones a dual-peel pass per layer,
+    // which costs them less than the lists' clears, resolve and read-back.
+    // 0: every non-convex operand; -1: none. The layers are the same either
+    // way (tests compare them).
+    int fragmentListTriangles = 4096;
 };
 
 struct FrameStats {
@@ -61,6 +68,7 @@ struct FrameStats {
     std::size_t unresolvedPixels = 0;          // pixels the evaluator could not finish (llvmpipe's loop limit); drawn empty
     int tiles = 1;                             // screen tiles / operand batches used to stay in budget
     int peelPasses = 0;                        // geometry passes of the peel: one per operand and layer, every tile
+    int listPeeledOperands = 0;                // operands peeled in one pass through fragment lists, every tile
     // 16x16 blocks the evaluator drew in each of its forms (EvaluatePass.h);
     // blocks whose result is constant are not drawn.
     std::size_t firstSurfaceBlocks = 0, registerBlocks = 0, productBlocks = 0, arrayBlocks = 0;
