@@ -10,6 +10,7 @@
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
 //                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
+//                [--glibc-heap]
 
 #include <algorithm>
 #include <chrono>
@@ -25,6 +26,10 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "OpenCsgRun.h"
 #include "PlainDraw.h"
@@ -90,7 +95,30 @@ struct Options {
     std::string json;
     bool openCsg = true;
     double openCsgCapMs = 2000;
+    bool steadyHeap = true;
 };
+
+// llvmpipe bins each frame's triangles into blocks it mallocs and frees
+// again. glibc returns freed memory at the top of its heap to the kernel
+// once more than a threshold is free, and adjusts that threshold to the
+// largest block the process has freed so far, so whether each frame faults
+// its binning memory in afresh depended on what the process had allocated
+// before: the knot mesh's normal pass took 36 or 58 ms of CPU from one build
+// to the next. Fixed thresholds give every renderer of the run (strata,
+// plain, OpenCSG) the same, steady heap. Returns what the header says.
+std::string steadyHeap(bool steady) {
+#ifdef __GLIBC__
+    if (steady) {
+        mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest; fixed, not adjusted
+        mallopt(M_TRIM_THRESHOLD, 256 << 20);
+        return "heap: glibc's trim threshold fixed at 256 MiB, mmap threshold at 32 MiB";
+    }
+    return "heap: glibc's adaptive thresholds";
+#else
+    (void)steady;
+    return "heap: the C library's defaults";
+#endif
+}
 
 struct Result {
     std::string scene;
@@ -320,6 +348,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     json.key("opencsg_cap_ms").value(options.openCsgCapMs);
     json.key("frames").value(options.frames);
     json.key("warmup").value(options.warmup);
+    json.key("steady_heap").value(options.steadyHeap);
     json.key("seed").value(options.seed);
     json.key("results").beginArray();
     for (const Result& r : results) {
@@ -384,7 +413,11 @@ int main(int argc, char** argv) {
     app.add_option("--opencsg-cap-ms", options.openCsgCapMs,
                    "an OpenCSG setting with a frame over this many ms is skipped for larger K")
         ->check(CLI::PositiveNumber);
+    app.add_flag("!--glibc-heap", options.steadyHeap,
+                 "leave glibc's adaptive malloc thresholds as they are (frame times on llvmpipe may then jump "
+                 "between runs)");
     CLI11_PARSE(app, argc, argv);
+    const std::string heap = steadyHeap(options.steadyHeap);
     if (!options.files.empty() && scenes->count() == 0) options.scenes.clear();
 
     try {
@@ -405,8 +438,9 @@ int main(int argc, char** argv) {
         gpu::ContextOptions contextOptions;
         contextOptions.debug = false;  // debug output costs time; errors are still checked
         gpu::Context context(contextOptions);
-        std::printf("# %s, %s; median of %d frames after %d warm-up, glFinish per frame\n",
-                    context.renderer().c_str(), context.version().c_str(), options.frames, options.warmup);
+        std::printf("# %s, %s; median of %d frames after %d warm-up, glFinish per frame; %s\n",
+                    context.renderer().c_str(), context.version().c_str(), options.frames, options.warmup,
+                    heap.c_str());
 
         OpenCsgSide openCsg;
         if (options.openCsg) {
