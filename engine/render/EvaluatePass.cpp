@@ -157,7 +157,8 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     BlockTree out;
     if (!generalOnly && code.size() == 1 && (code[0] & kOpNegate) == 0 && slots == 1) {
         // The first-surface form: the tree is the operand itself, of one
-        // layer. Its record holds that layer and the leaf; no literals.
+        // layer. Its record holds that layer and the leaf (and, set by run(),
+        // the leaf's first mark); no literals.
         const std::uint32_t operand = used[0];
         out.form = kFirstSurfaceForm;
         out.record = {static_cast<unsigned>(operandLayers[operand].first), static_cast<unsigned>(operandLeaf_[operand]),
@@ -253,6 +254,11 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
                                                          : addTree(specialised, operandLayers, literals, nodes,
                                                                    generalOnly))
                      .first;
+            // The first-surface form's mark base, so its pixels need no lookup.
+            BlockTree& tree = it->second;
+            if (tree.form == kFirstSurfaceForm && targets.leafMarks) {
+                tree.record.z = 1u + 4u * static_cast<unsigned>(targets.markSlot(static_cast<int>(tree.record.y)));
+            }
         }
         blocks[b] = it->second.record;
         if (it->second.form > 0) byForm[it->second.form].push_back(static_cast<std::uint32_t>(b));
@@ -303,6 +309,7 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
     if (!faces.empty()) shownFaces_.uploadSpan(std::span<const std::uint32_t>(faces));
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
+    if (targets.leafMarks) targets.markSlotBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, 1);
     targets.evaluateTarget.bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
     // A pixel the shader writes (does not discard) is marked for the later

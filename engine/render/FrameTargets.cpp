@@ -1,6 +1,8 @@
 #include "FrameTargets.h"
 
+#include <algorithm>
 #include <limits>
+#include <numeric>
 
 namespace strata::render {
 
@@ -46,6 +48,37 @@ void FrameTargets::clearResult() {
     normalTarget.clearColor(0, zero);
     const GLint noMark = 0;
     glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);
+}
+
+void FrameTargets::assignMarkSlots(std::span<const int> operandLeaves, std::span<const PixelRect> rects,
+                                   std::size_t leafCount) {
+    markSlots_.assign(std::max<std::size_t>(leafCount, 1), 0);
+    const std::size_t n = operandLeaves.size();
+    if (n <= static_cast<std::size_t>(kMarkSlots)) {
+        for (std::size_t k = 0; k < n; ++k) markSlots_[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k);
+    } else {
+        // Greedy colouring of the rectangles' overlap graph, largest first:
+        // the big operands (a cheese's cube) overlap the most and choose first.
+        auto area = [&](std::size_t k) {
+            return static_cast<std::size_t>(std::max(rects[k].width, 0)) *
+                   static_cast<std::size_t>(std::max(rects[k].height, 0));
+        };
+        std::vector<std::size_t> order(n);
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return area(a) > area(b); });
+        std::vector<int> slotOf(n, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t k = order[i];
+            int sharing[kMarkSlots] = {};
+            for (std::size_t j = 0; j < i; ++j) {
+                const std::size_t o = order[j];
+                if (rects[o].intersects(rects[k])) ++sharing[slotOf[o]];
+            }
+            slotOf[k] = static_cast<int>(std::min_element(sharing, sharing + kMarkSlots) - sharing);
+            markSlots_[static_cast<std::size_t>(operandLeaves[k])] = slotOf[k];
+        }
+    }
+    gpu::Buffer::uploadGrowing(markSlotBuffer_, "mark slots", markSlots_);
 }
 
 bool FrameTargets::canMarkLeaves() {

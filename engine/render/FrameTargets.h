@@ -16,15 +16,22 @@
 // costs almost as much as doing it on llvmpipe (it runs both sides of every
 // branch for its 8 or 16 lanes). Where the driver lets a fragment shader
 // write the stencil value (ARB_shader_stencil_export), the mark names the
-// leaf, the facing of its surface there and whether the leaf acts subtracted
-// (1 + (4 leaf + exit + 2 flip) mod 255: unique up to 63 leaves, see
-// forEachLeafSharingMarks; evaluate.frag computes the same), so the normal
-// pass, drawing one leaf at a time, skips the other leaves' pixels before
-// its shader runs; elsewhere every written pixel gets kWritten (and the
-// evaluator's pixels it could not finish get it too, where with leaf marks
-// they get 0).
+// leaf's mark slot, the facing of its surface there and whether the leaf
+// acts subtracted (1 + 4 slot + exit + 2 flip; evaluate.frag computes the
+// same from the slots buffer), so the normal pass, drawing one leaf at a
+// time, skips the other leaves' pixels before its shader runs. The 8-bit
+// stencil holds 63 slots: up to 63 operands each has its own, and past that
+// leaves whose screen rectangles overlap get different slots where the 63
+// allow (assignMarkSlots); elsewhere every written pixel gets kWritten (and
+// the evaluator's pixels it could not finish get it too, where with leaf
+// marks they get 0).
 
 #include <cstddef>
+#include <span>
+#include <vector>
+
+#include "ViewSetup.h"
+#include "strata/gpu/Buffer.h"
 
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
@@ -54,26 +61,26 @@ public:
     static bool canMarkLeaves();
     // This frame's choice, set by the renderer before the evaluate pass.
     bool leafMarks = false;
+    static constexpr int kMarkSlots = 63;  // 4 marks each, 1..252
+    // Gives each operand (tree leaf operandLeaves[k], screen rectangle
+    // rects[k]) a mark slot, and uploads them (the evaluator's storage
+    // buffer 1): slot k while there are at most kMarkSlots operands; past
+    // that, largest rectangle first, the slot fewest of the overlapping
+    // operands already placed have taken (the lowest of those). Leaves that
+    // are no operand get slot 0. Call before the evaluate pass.
+    void assignMarkSlots(std::span<const int> operandLeaves, std::span<const PixelRect> rects, std::size_t leafCount);
+    int markSlot(int leaf) const { return markSlots_[static_cast<std::size_t>(leaf)]; }
+    const gpu::Buffer& markSlotBuffer() const { return markSlotBuffer_; }
     // The stencil value of a pixel showing `leaf`'s front face (its back
     // face: `exit`), flipped (the leaf acts subtracted there) or not.
     int mark(int leaf, bool exit, bool flip) const {
-        return leafMarks ? 1 + (leaf * 4 + (exit ? 1 : 0) + (flip ? 2 : 0)) % 255 : kWritten;
-    }
-    // Calls f(M) for every leaf M < leafEnd other than `leaf` that has a mark
-    // equal to one of `leaf`'s: 4 M + j = 4 leaf + i (mod 255) for some i, j
-    // in 0..3, that is M = leaf + 64 d (mod 255) with |d| <= 3, since
-    // 4 * 64 = 1 (mod 255). Up to 63 leaves, there are none.
-    template <class F>
-    static void forEachLeafSharingMarks(int leaf, int leafEnd, F f) {
-        for (int d = -3; d <= 3; ++d) {
-            for (int m = ((leaf + 64 * d) % 255 + 255) % 255; m < leafEnd; m += 255) {
-                if (m != leaf) f(m);
-            }
-        }
+        return leafMarks ? 1 + markSlot(leaf) * 4 + (exit ? 1 : 0) + (flip ? 2 : 0) : kWritten;
     }
 
 private:
     int width_ = 0, height_ = 0;
+    std::vector<int> markSlots_;  // per tree leaf
+    gpu::Buffer markSlotBuffer_;
 };
 
 }  // namespace strata::render

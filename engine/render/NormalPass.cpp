@@ -20,23 +20,23 @@ constexpr GLint kBaseColor = 5;
 constexpr GLint kFlip = 6;  // TRUST_MARKS only
 
 // Per operand k: whether the stencil marks in its rectangle within `tile`
-// are its own, that is, no other operand whose marks can equal k's meets
-// that rectangle (the evaluator writes an operand's leaf only inside its
+// are its own, that is, no other operand with k's mark slot meets that
+// rectangle (the evaluator writes an operand's leaf only inside its
 // rectangle, as this pass draws it only there).
-std::vector<char> marksOwnedInRect(const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
-                                   const PixelRect& tile) {
-    const int leafEnd = operandLeaves.empty() ? 0 : *std::max_element(operandLeaves.begin(), operandLeaves.end()) + 1;
-    std::vector<int> operandOf(static_cast<std::size_t>(leafEnd), -1);
+std::vector<char> marksOwnedInRect(const FrameTargets& targets, const std::vector<int>& operandLeaves,
+                                   const std::vector<PixelRect>& rects, const PixelRect& tile) {
+    std::vector<std::vector<std::size_t>> bySlot(FrameTargets::kMarkSlots);
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        operandOf[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k);
+        bySlot[static_cast<std::size_t>(targets.markSlot(operandLeaves[k]))].push_back(k);
     }
     std::vector<char> owned(operandLeaves.size(), 1);
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        const PixelRect r = rects[k].intersection(tile);
-        FrameTargets::forEachLeafSharingMarks(operandLeaves[k], leafEnd, [&](int other) {
-            const int o = operandOf[static_cast<std::size_t>(other)];
-            if (o >= 0 && rects[static_cast<std::size_t>(o)].intersection(tile).intersects(r)) owned[k] = 0;
-        });
+    for (const std::vector<std::size_t>& sharing : bySlot) {
+        for (std::size_t i = 0; i < sharing.size(); ++i) {
+            const PixelRect r = rects[sharing[i]].intersection(tile);
+            for (std::size_t j = i + 1; j < sharing.size(); ++j) {
+                if (rects[sharing[j]].intersection(tile).intersects(r)) owned[sharing[i]] = owned[sharing[j]] = 0;
+            }
+        }
     }
     return owned;
 }
@@ -57,7 +57,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
         program->setUniform(kForward, view.forward);
     }
     const std::vector<char> ownMarks =
-        targets.leafMarks ? marksOwnedInRect(operandLeaves, rects, tile) : std::vector<char>(operandLeaves.size(), 0);
+        targets.leafMarks ? marksOwnedInRect(targets, operandLeaves, rects, tile) : std::vector<char>(operandLeaves.size(), 0);
     const gpu::Program* inUse = nullptr;
     targets.resultDepth.bindUnit(0);
     targets.resultLeaf.bindUnit(1);

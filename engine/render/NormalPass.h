@@ -14,8 +14,8 @@
 // With leaf marks (FrameTargets::mark) the stencil test lets through only the
 // pixels that show the drawn leaf with the fragment's facing and the draw's
 // flip (a leaf is drawn once per flip it shows). Where no other operand
-// whose marks can equal the leaf's meets its rectangle (always, up to 63
-// leaves: FrameTargets::forEachLeafSharingMarks), a convex leaf's fragments
+// with the leaf's mark slot meets its rectangle (always, up to 63
+// operands: FrameTargets::assignMarkSlots), a convex leaf's fragments
 // that pass are the evaluator's surfaces, so they skip the comparisons
 // (normal.frag's TRUST_MARKS).
 //

@@ -209,6 +209,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
     const std::vector<int>& operands = program.operandLeaf;
     std::vector<PixelRect> rects(operands.size());
     for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
+    if (targets.leafMarks) targets.assignMarkSlots(operands, rects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).

@@ -31,7 +31,7 @@
 // where the leaf's own membership changes against the result's (it acts as a
 // subtracted operand there). Pixels with no surface are discarded: the
 // targets were cleared to "miss", and the stencil marks only pixels written.
-// LEAF_MARKS: the mark names the leaf (FrameTargets::mark).
+// LEAF_MARKS: the mark names the leaf's mark slot (FrameTargets::mark).
 #ifdef LEAF_MARKS
 #extension GL_ARB_shader_stencil_export : require
 #endif
@@ -60,6 +60,13 @@ layout(std430, binding = 5) buffer ShownFaces {
     uint shownFaces[];
 };
 
+#ifdef LEAF_MARKS
+// Per tree leaf: its mark slot (FrameTargets::assignMarkSlots).
+layout(std430, binding = 1) readonly buffer MarkSlots {
+    int markSlots[];
+};
+#endif
+
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 
@@ -75,11 +82,11 @@ void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
     // exit + 2 flip: the bit in shownFaces, and the mark's offset
-    // (FrameTargets::mark: 1 + (4 leaf + exit + 2 flip) mod 255).
+    // (FrameTargets::mark: 1 + 4 slot + exit + 2 flip).
     int faceBit = (operandEntered ? 0 : 1) + (operandEntered != entered ? 2 : 0);
     atomicOr(shownFaces[leaf], 1u << faceBit);
 #ifdef LEAF_MARKS
-    gl_FragStencilRefARB = 1 + (leaf * 4 + faceBit) % 255;
+    gl_FragStencilRefARB = 1 + markSlots[leaf] * 4 + faceBit;
 #endif
 }
 
@@ -127,7 +134,7 @@ void main() {
     int faceBit = isExit(first) ? 1 : 0;
     if (faceBit != 0) atomicOr(shownFaces[leaf], 2u);
 #ifdef LEAF_MARKS
-    gl_FragStencilRefARB = 1 + (leaf * 4 + faceBit) % 255;
+    gl_FragStencilRefARB = int(vRecord.z) + faceBit;  // the record carries 1 + 4 slot
 #endif
 }
 

@@ -583,9 +583,10 @@ void expectSameAsUntiled(const render::Frame& tiled, const render::Frame& whole)
 }
 
 TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
-    // A slab minus 300 small spheres and a pair of shells: more leaves than
-    // the stencil's 255 leaf marks, so marks repeat (leaves 1 and 256 share
-    // one) and the normal pass must still tell them apart. With leaf marks
+    // A slab minus 300 small spheres and a pair of shells: more operands
+    // than the stencil's 63 mark slots, so slots repeat (among operands whose
+    // rectangles do not meet) and the normal pass must still tell the leaves
+    // apart. With leaf marks
     // (where the driver has them) and with one mark for all, every AOV and
     // the image must be the same to the bit.
     std::mt19937 rng(7);
@@ -606,6 +607,31 @@ TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
         EXPECT_EQ(marked.rgba, plain.rgba);
         EXPECT_GT(fromHighLeaves, 50) << "leaves past the 255th must show";
         EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
+    }
+}
+
+TEST_F(RendererGLTest, CrowdedMarkSlotsGiveTheFrameOfOneMark) {
+    // A slab minus 90 spheres crowded into one spot: every rectangle meets
+    // every other, so the 63 mark slots cannot keep them apart and some
+    // spheres share one where they overlap. The normal pass must then check
+    // those leaves' depths, and the frame must equal one mark's.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> across(-0.4, 0.4), height(0.6, 1.1);
+    scene::Tree tree;
+    std::vector<int> holes{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
+    for (int i = 0; i < 90; ++i) {
+        holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.45)));
+    }
+    tree.root = tree.addNode(NodeKind::Difference, holes);
+    render::RenderSettings oneMark;
+    oneMark.leafMarks = false;
+    for (render::Projection p : kProjections) {
+        const render::Frame marked = draw(tree, topCamera(p));
+        const render::Frame plain = renderer_->render(topCamera(p), oneMark);
+        EXPECT_EQ(pixelsDiffering(marked, plain), 0u);
+        EXPECT_EQ(marked.rgba, plain.rgba);
+        const auto fromSpheres = std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l > 63; });
+        EXPECT_GT(fromSpheres, 20) << "spheres past the 63rd must show";
     }
 }
 
