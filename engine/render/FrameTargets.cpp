@@ -38,13 +38,15 @@ void FrameTargets::ensure(int width, int height) {
     height_ = height;
 }
 
-void FrameTargets::clearResult() {
+void FrameTargets::clearResult(bool depthAndLeaf) {
     glDisable(GL_SCISSOR_TEST);
     const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
     const GLint leaf[4] = {-1, 0, 0, 0};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    evaluateTarget.clearColor(0, depth);
-    evaluateTarget.clearColorInt(1, leaf);
+    if (depthAndLeaf) {
+        evaluateTarget.clearColor(0, depth);
+        evaluateTarget.clearColorInt(1, leaf);
+    }
     normalTarget.clearColor(0, zero);
     const GLint noMark = 0;
     glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);

@@ -42,8 +42,11 @@ class FrameTargets {
 public:
     // (Re)creates the images when the size changes.
     void ensure(int width, int height);
-    // Sets every pixel to "miss": depth +inf, leaf -1, normal 0, marks 0.
-    void clearResult();
+    // Sets every pixel to "miss": normal 0, marks 0, and where `depthAndLeaf`
+    // also depth +inf and leaf -1. The passes read those two only where the
+    // evaluator marked a pixel this frame, so they need clearing only for
+    // a read-back of the AOVs or a pass that reads every pixel (translucent).
+    void clearResult(bool depthAndLeaf);
 
     int width() const { return width_; }
     int height() const { return height_; }

@@ -161,7 +161,8 @@ struct Renderer::Impl {
     Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
 
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
-    ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame);
+    // `aovs`: the depth, normal and leaf images will be read back.
+    ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
     // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
     void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, Frame& frame);
@@ -405,7 +406,8 @@ void Renderer::Impl::readBack(Frame& frame) {
     gpu::checkErrors();
 }
 
-ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame) {
+ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame,
+                                    bool aovs) {
     const auto frameStart = Clock::now();
     if (!hasScene) throw Error("renderer: render() before setScene()");
     if (settings.layers < 0) throw Error("renderer: layers must be 0 (auto) or positive");
@@ -430,7 +432,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     resetDrawState();
     targets.ensure(view.width, view.height);
-    targets.clearResult();
+    targets.clearResult(aovs || !translucentLeaves.empty());
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     if (program.kind == TreeProgram::Kind::Program) {
         peelAndEvaluate(view, settings, ShadePass::baseColors(scene, scheme), frame);
@@ -448,7 +450,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
 Frame Renderer::render(const Camera& camera, const RenderSettings& settings) {
     Frame frame;
-    impl_->drawFrame(camera, settings, frame);
+    impl_->drawFrame(camera, settings, frame, true);
     const auto start = Clock::now();
     impl_->readBack(frame);
     frame.stats.readbackMs = millisecondsSince(start);
@@ -506,7 +508,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
 FrameStats Renderer::renderInto(unsigned framebuffer, int x, int y, const Camera& camera,
                                 const RenderSettings& settings) {
     Frame frame;
-    impl_->drawFrame(camera, settings, frame);
+    impl_->drawFrame(camera, settings, frame, false);
     const auto start = Clock::now();
     glBlitNamedFramebuffer(impl_->targets.colorTarget.id(), framebuffer, 0, 0, frame.width, frame.height, x, y,
                            x + frame.width, y + frame.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

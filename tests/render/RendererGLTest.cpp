@@ -507,6 +507,52 @@ TEST_F(RendererGLTest, RenderIntoAHostFramebuffer) {
     EXPECT_EQ(pixels[0], 0);  // outside the copied rectangle: untouched
 }
 
+TEST_F(RendererGLTest, RenderIntoLeavesNoTraceOfTheFrameBefore) {
+    // renderInto() clears neither the depth nor the leaf image (nothing
+    // reads them back, and the passes read them only where the evaluator
+    // wrote this frame). A frame drawn after another scene and view, with
+    // and without leaf marks, must still equal render()'s image of it.
+    // The frame before: a plate just under the eye, nearer than anything
+    // of the scene, on every pixel.
+    scene::Tree plate;
+    plate.root = plate.addLeaf(cubeLeaf({-50, -50, kEyeHeight - 1.5}, {50, 50, kEyeHeight - 1.0}));
+    gpu::Texture target = gpu::Texture::create2D("host", GL_RGBA8, kSize, kSize);
+    gpu::Framebuffer host("host");
+    host.attachTexture(GL_COLOR_ATTACHMENT0, target);
+    host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    host.checkComplete();
+    // The third case adds a '%' cube beside the result: the translucent
+    // pass reads the depth image at every pixel it covers, most of them
+    // pixels the result misses.
+    scene::Tree highlighted = paperPair(NodeKind::Difference);
+    scene::Leaf ghost = cubeLeaf({1.5, 1.5, -1}, {2.5, 2.5, 0});
+    ghost.display = scene::Display::Background;
+    highlighted.background = {highlighted.addLeaf(ghost)};
+    for (int c = 0; c < 3; ++c) {
+        const bool marks = c != 1;
+        const scene::Tree tree = c == 2 ? highlighted : paperPair(NodeKind::Difference);
+        render::RenderSettings settings;
+        settings.leafMarks = marks;
+        const render::Frame expected = draw(tree, topCamera(), settings);
+        const render::Frame before = draw(plate, topCamera(), settings);
+        ASSERT_EQ(before.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize));
+        renderer_->setScene(tree, geometry::buildModel(tree));
+        renderer_->renderInto(host.id(), 0, 0, topCamera(), settings);
+        std::vector<std::uint8_t> pixels(static_cast<std::size_t>(kSize * kSize * 4));
+        target.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
+        std::size_t differ = 0;
+        for (int row = 0; row < kSize; ++row) {
+            for (int i = 0; i < kSize; ++i) {
+                const std::size_t h = (static_cast<std::size_t>(row) * kSize + static_cast<std::size_t>(i)) * 4;
+                const std::size_t m = at(expected, i, kSize - 1 - row) * 4;
+                for (int ch = 0; ch < 4; ++ch) differ += pixels[h + ch] != expected.rgba[m + ch] ? 1 : 0;
+            }
+        }
+        EXPECT_EQ(differ, 0u) << "case " << c;
+        EXPECT_GT(expected.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 10);
+    }
+}
+
 TEST_F(RendererGLTest, ConvexSubtrahendsNeedOneLayerEach) {
     // The same stack as three separate (convex) leaves: one layer suffices.
     scene::Tree tree;
