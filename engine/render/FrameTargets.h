@@ -32,7 +32,6 @@
 
 #include "ViewSetup.h"
 #include "strata/gpu/Buffer.h"
-
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
 
