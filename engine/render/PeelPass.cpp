@@ -51,7 +51,8 @@ PeelPass::PeelPass()
       collect_(gpu::Program::fromFiles("peel collect", {"csg/surface.vert", "csg/peel.frag"},
                                        {{"PEEL_FIRST", ""}, {"COLLECT", ""},
                                         {"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
-      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"})),
+      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"},
+                                       {{"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
       listTarget_("peel lists"),
       resolveStats_("peel resolve stats", 2 * sizeof(GLuint)) {
     if (batched_) {
@@ -131,9 +132,14 @@ PixelRect PeelPass::region(const PixelRect& rect, const PixelRect& tile, int blo
     return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
+void PeelPass::clearLayers(const PixelRect& valid, int first, int count) {
+    const float cleared[2] = {-FLT_MAX, -FLT_MAX};
+    glClearTexSubImage(layers_.id(), 0, valid.x, valid.y, first, valid.width, valid.height, count, GL_RG, GL_FLOAT,
+                       cleared);
+}
+
 void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
                                std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out) {
-    const float cleared[2] = {-FLT_MAX, -FLT_MAX};
     std::vector<DrawElementsIndirectCommand> commands;
     std::vector<std::uint32_t> drawLayers;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
@@ -141,8 +147,7 @@ void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile,
         // The layer is cleared where the evaluator reads it; the operand's
         // fragments fall inside its rectangle, so nothing else is touched.
         const PixelRect valid = region(rects[k], tile, block);
-        glClearTexSubImage(layers_.id(), 0, valid.x, valid.y, out[k].first, valid.width, valid.height, 1, GL_RG,
-                           GL_FLOAT, cleared);
+        clearLayers(valid, out[k].first, 1);
         const LeafRange& range = scene.leaf(operandLeaves[k]);
         commands.push_back({static_cast<GLuint>(range.indexCount), 1, static_cast<GLuint>(range.firstIndex), 0, 0});
         drawLayers.push_back(static_cast<std::uint32_t>(out[k].first));
@@ -192,9 +197,7 @@ int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile
         ++allocations_;
     }
     // The resolve writes only the layers a pixel has; the rest read as cleared.
-    const float cleared[2] = {-FLT_MAX, -FLT_MAX};
-    glClearTexSubImage(layers_.id(), 0, valid.x, valid.y, first, valid.width, valid.height, layerCount, GL_RG,
-                       GL_FLOAT, cleared);
+    clearLayers(valid, first, layerCount);
     resolveStats_.clearToZero();
 
     listTarget_.bindForDraw();

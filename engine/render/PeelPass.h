@@ -122,6 +122,9 @@ private:
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
     // the first `keep` layers. False when that exceeds the budget.
     bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
+    // Sets `count` layers from `first` to (-FLT_MAX, -FLT_MAX), "nothing
+    // here", inside `valid` (texture pixels).
+    void clearLayers(const PixelRect& valid, int first, int count);
     // Peels the convex operands with out[k].count == 1 set by run() in one multi-draw.
     void peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
                          std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out);

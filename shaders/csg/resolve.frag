@@ -16,6 +16,9 @@
 // count, and the caller peels the operand pass by pass instead.
 // Counts are left at 0 for the next operand: the lists' region is the
 // operand's rectangle, and this pass visits all of it.
+#if COLLECT_CAPACITY != 8
+#error "the loads below are written for lists of 8 (PeelPass::kCollectCapacity)"
+#endif
 layout(binding = 1, r32ui) uniform uimage2D uFragmentCounts;
 layout(binding = 2, r32f) uniform readonly image2DArray uFragments;
 layout(binding = 3, rg32f) uniform writeonly image2DArray uLayers;
@@ -35,7 +38,7 @@ void main() {
     uint count = imageLoad(uFragmentCounts, pixel).r;
     if (count == 0u) return;
     imageStore(uFragmentCounts, pixel, uvec4(0u));
-    if (count > 8u) {
+    if (count > uint(COLLECT_CAPACITY)) {
         atomicMax(overflowed, count);
         return;
     }
