@@ -19,6 +19,7 @@
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/render/Renderer.h"
+#include "FrameCompare.h"
 #include "SphereShells.h"
 
 using namespace strata;
@@ -76,13 +77,7 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
 // Frames equal bit for bit: AOVs, layers per leaf and, where kept, every peeled layer.
 void expectSame(const render::Frame& lists, const render::Frame& passes, const std::string& what) {
     ASSERT_EQ(lists.leaf.size(), passes.leaf.size()) << what;
-    std::size_t differ = 0;
-    for (std::size_t p = 0; p < lists.leaf.size(); ++p) {
-        differ += lists.leaf[p] != passes.leaf[p] ||
-                  std::memcmp(&lists.depth[p], &passes.depth[p], sizeof(float)) != 0 ||
-                  std::memcmp(&lists.normal[p], &passes.normal[p], sizeof(glm::vec3)) != 0;
-    }
-    EXPECT_EQ(differ, 0u) << what;
+    EXPECT_EQ(test::pixelsDiffering(lists, passes), 0u) << what;
     EXPECT_EQ(lists.stats.layersPerLeaf, passes.stats.layersPerLeaf) << what;
     ASSERT_EQ(lists.peelLayers.size(), passes.peelLayers.size()) << what;
     for (std::size_t i = 0; i < lists.peelLayers.size(); ++i) {

@@ -33,6 +33,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "strata/geometry/Model.h"
+#include "FrameCompare.h"
 #include "SphereShells.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Framebuffer.h"
@@ -107,16 +108,7 @@ std::size_t at(const render::Frame& f, int i, int j) {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(f.width) + static_cast<std::size_t>(i);
 }
 
-// Pixels whose leaf, depth or normal differ by any bit between two frames of one size.
-std::size_t pixelsDiffering(const render::Frame& a, const render::Frame& b) {
-    EXPECT_EQ(a.leaf.size(), b.leaf.size());
-    std::size_t differ = 0;
-    for (std::size_t k = 0; k < std::min(a.leaf.size(), b.leaf.size()); ++k) {
-        differ += a.leaf[k] != b.leaf[k] || std::memcmp(&a.depth[k], &b.depth[k], sizeof(float)) != 0 ||
-                  std::memcmp(&a.normal[k], &b.normal[k], sizeof(glm::vec3)) != 0;
-    }
-    return differ;
-}
+using test::pixelsDiffering;
 
 // Writes the shaded image as a PPM when STRATA_TEST_IMAGES names a folder,
 // to look at what the tests render.
@@ -146,6 +138,19 @@ protected:
         const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
         maybeSave(frame, name + "_" + std::to_string(saved_++));
         return frame;
+    }
+
+    // Draws `tree` with leaf marks (where the driver has them) and with one
+    // mark for all: every AOV and the image must be the same to the bit.
+    // Returns the one-mark frame.
+    render::Frame expectMarksChangeNothing(const scene::Tree& tree, const render::Camera& camera) {
+        const render::Frame marked = draw(tree, camera);
+        render::RenderSettings oneMark;
+        oneMark.leafMarks = false;
+        render::Frame plain = renderer_->render(camera, oneMark);
+        EXPECT_EQ(pixelsDiffering(marked, plain), 0u);
+        EXPECT_EQ(marked.rgba, plain.rgba);
+        return plain;
     }
 
     // Centre pixel: depth, leaf, normal.
@@ -642,15 +647,9 @@ TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
     for (int i = 0; i < 300; ++i) children.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.15)));
     children.push_back(tree.addLeaf(shellsLeaf({{0.5, 0.5, 1}, {0.5, 0.5, 0.3}}, 0.3)));
     tree.root = tree.addNode(NodeKind::Difference, children);
-    render::RenderSettings oneMark;
-    oneMark.leafMarks = false;
     for (render::Projection p : kProjections) {
-        const render::Frame marked = draw(tree, topCamera(p));
-        const render::Frame plain = renderer_->render(topCamera(p), oneMark);
-        ASSERT_EQ(marked.leaf.size(), plain.leaf.size());
-        EXPECT_EQ(pixelsDiffering(marked, plain), 0u);
+        const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p));
         const auto fromHighLeaves = std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l >= 255; });
-        EXPECT_EQ(marked.rgba, plain.rgba);
         EXPECT_GT(fromHighLeaves, 50) << "leaves past the 255th must show";
         EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
     }
@@ -669,13 +668,8 @@ TEST_F(RendererGLTest, CrowdedMarkSlotsGiveTheFrameOfOneMark) {
         holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.45)));
     }
     tree.root = tree.addNode(NodeKind::Difference, holes);
-    render::RenderSettings oneMark;
-    oneMark.leafMarks = false;
     for (render::Projection p : kProjections) {
-        const render::Frame marked = draw(tree, topCamera(p));
-        const render::Frame plain = renderer_->render(topCamera(p), oneMark);
-        EXPECT_EQ(pixelsDiffering(marked, plain), 0u);
-        EXPECT_EQ(marked.rgba, plain.rgba);
+        const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p));
         const auto fromSpheres = std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l > 63; });
         EXPECT_GT(fromSpheres, 20) << "spheres past the 63rd must show";
     }
@@ -702,14 +696,9 @@ TEST_F(RendererGLTest, UniqueLeafMarksGiveTheFrameOfOneMark) {
                                                           tree.addLeaf(cubeLeaf({-1, -3, 1.0}, {1, -1.5, 2}))});
     tree.root = tree.addNode(NodeKind::Union, {slab, lens});
     ASSERT_LE(tree.leaves.size(), 63u);
-    render::RenderSettings oneMark;
-    oneMark.leafMarks = false;
     for (const double eyeHeight : {kEyeHeight, 0.5}) {
         for (render::Projection p : kProjections) {
-            const render::Frame marked = draw(tree, topCamera(p, eyeHeight));
-            const render::Frame plain = renderer_->render(topCamera(p, eyeHeight), oneMark);
-            EXPECT_EQ(pixelsDiffering(marked, plain), 0u);
-            EXPECT_EQ(marked.rgba, plain.rgba);
+            const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p, eyeHeight));
             EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
             const auto holeWalls =
                 std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l > 0 && l <= 40; });
