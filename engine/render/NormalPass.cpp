@@ -15,7 +15,6 @@ constexpr GLint kViewProjection = 0;
 constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 constexpr GLint kLeaf = 3;
-constexpr GLint kFirstTriangle = 4;
 constexpr GLint kBaseColor = 5;
 constexpr GLint kFlip = 6;  // TRUST_MARKS only
 
@@ -44,9 +43,9 @@ std::vector<char> marksOwnedInRect(const FrameTargets& targets, const std::vecto
 }  // namespace
 
 NormalPass::NormalPass()
-    : checked_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"})),
+    : checked_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"}, {{"FACE_NORMAL", "1"}})),
       trusted_(gpu::Program::fromFiles("normal (trusting marks)", {"csg/surface.vert", "csg/normal.frag"},
-                                       {{"TRUST_MARKS", "1"}})) {}
+                                       {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                      const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
@@ -61,13 +60,12 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     const gpu::Program* inUse = nullptr;
     targets.resultDepth.bindUnit(0);
     targets.resultLeaf.bindUnit(1);
-    scene.faceNormals().bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     targets.normalTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    scene.vertexArray().bind();
+    scene.flatVertexArray().bind();
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         const int leaf = operandLeaves[k];
         const PixelRect r = rects[k].intersection(tile);
@@ -80,7 +78,6 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
             inUse = &program;
         }
         program.setUniform(kLeaf, leaf);
-        program.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(leaf).firstTriangle));
         program.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
         // Marks tell flips apart: a draw per flip the leaf shows. One mark for
         // all does not: one draw, and the shader reads the flip.

@@ -6,7 +6,7 @@
 // to its screen rectangle, over the pixels the evaluator wrote (stencil test on
 // FrameTargets::marks, so no other fragment runs the shader); the fragment
 // whose leaf, facing and tagged depth match the evaluator's choice writes its
-// triangle's face normal (SceneBuffers::faceNormals through gl_PrimitiveID),
+// triangle's face normal (a flat attribute of its last vertex: SceneBuffers.h),
 // negated where the leaf acts as a subtracted operand, and in w the surface's
 // base colour for the shade pass (ShadePass::baseColors). One more geometry pass
 // instead of storing ids with every peeled layer, and nothing read back.

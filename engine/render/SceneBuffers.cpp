@@ -7,6 +7,7 @@
 #include <glm/vec4.hpp>
 
 #include "Convexity.h"
+#include "strata/geometry/LastCorners.h"
 #include "strata/core/Error.h"
 
 namespace strata::render {
@@ -16,36 +17,47 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
         throw Error("renderer: the model has " + std::to_string(model.leafMeshes.size()) +
                     " leaf meshes for a tree of " + std::to_string(tree.leaves.size()) + " leaves");
     }
-    std::vector<float> positions;         // #V by 3
+    // Each triangle ends on a vertex of its own (lastCornerLayout), which
+    // carries its face normal: the provoking vertex of a flat varying.
+    std::vector<float> positions;         // by 3, the layouts' vertices
+    std::vector<float> normals;           // by 3, per layout vertex; a triangle's on its last corner
     vertices_.clear();
     firstVertex_.assign(1, 0);
-    std::vector<std::uint32_t> indices;   // #F by 3, absolute
-    std::vector<glm::vec4> normals;       // #F
+    std::vector<std::uint32_t> indices;      // #F by 3, absolute, as the mesh has them
+    std::vector<std::uint32_t> flatIndices;  // the same triangles in the layout
     leaves_.assign(model.leafMeshes.size(), {});
     leafColors_.clear();
     bounds_ = {};
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
         const geometry::Mesh& mesh = model.leafMeshes[i];
+        const geometry::LastCornerLayout layout = geometry::lastCornerLayout(mesh);
         const std::size_t firstVertex = positions.size() / 3;
-        if (firstVertex + mesh.positions.size() > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
+        if (firstVertex + layout.source.size() > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
         LeafRange& range = leaves_[i];
         range.firstIndex = indices.size();
-        range.firstTriangle = normals.size();
         for (const glm::dvec3& p : mesh.positions) {
-            positions.push_back(static_cast<float>(p.x));
-            positions.push_back(static_cast<float>(p.y));
-            positions.push_back(static_cast<float>(p.z));
             vertices_.emplace_back(p);
             range.bounds.extend(p);
         }
         firstVertex_.push_back(vertices_.size());
-        for (const auto& t : mesh.triangles) {
+        for (std::uint32_t v : layout.source) {
+            const glm::dvec3& p = mesh.positions[v];
+            positions.insert(positions.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+        }
+        normals.resize(positions.size(), 0.0f);
+        for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+            const auto& t = mesh.triangles[f];
+            // The layout starts with the mesh's vertices, so both index the same positions.
             for (std::uint32_t v : t) indices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
+            for (std::uint32_t v : layout.triangles[f]) flatIndices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
             const glm::dvec3& a = mesh.positions[t[0]];
             glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
             const double length = glm::length(n);
             n = length > 0.0 ? n / length : glm::dvec3(0.0);
-            normals.emplace_back(static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 0.0f);
+            const std::size_t last = 3 * (firstVertex + layout.triangles[f][2]);
+            normals[last] = static_cast<float>(n.x);
+            normals[last + 1] = static_cast<float>(n.y);
+            normals[last + 2] = static_cast<float>(n.z);
         }
         range.indexCount = indices.size() - range.firstIndex;
         range.convex = range.indexCount > 0 && isConvexLeaf(tree.leaves[i].primitive, mesh);
@@ -56,11 +68,18 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
     }
     positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions), 0);
     indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices), 0);
-    faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const glm::vec4>(normals), 0);
+    flatIndices_ = gpu::Buffer::fromSpan("scene indices, flat normals", std::span<const std::uint32_t>(flatIndices), 0);
+    faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const float>(normals), 0);
     vertexArray_ = gpu::VertexArray("scene");
     vertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
     vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
     vertexArray_.setElementBuffer(indices_);
+    flatVertexArray_ = gpu::VertexArray("scene with face normals");
+    flatVertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
+    flatVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    flatVertexArray_.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
+    flatVertexArray_.setAttribute(1, 1, 3, GL_FLOAT, 0);
+    flatVertexArray_.setElementBuffer(flatIndices_);
 }
 
 void SceneBuffers::drawLeaf(int leaf) const {
@@ -76,7 +95,7 @@ std::span<const glm::vec3> SceneBuffers::leafVertices(int leaf) const {
 }
 
 std::size_t SceneBuffers::bytes() const {
-    return positions_.size() + indices_.size() + faceNormals_.size();
+    return positions_.size() + indices_.size() + flatIndices_.size() + faceNormals_.size();
 }
 
 }  // namespace strata::render

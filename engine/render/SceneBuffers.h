@@ -1,7 +1,18 @@
 #pragma once
-// The scene on the GPU: every leaf's world-space triangles in one vertex and
-// one index buffer, with per-leaf ranges, plus per-triangle face normals in a
-// storage buffer. Shared by every pass that draws leaves.
+// The scene on the GPU: every leaf's world-space triangles in one vertex
+// buffer, with per-leaf ranges, and two vertex arrays over it, shared by
+// every pass that draws leaves:
+// - vertexArray(): positions (attribute 0), the triangles as the meshes
+//   have them; each mesh vertex once, so the passes that need no normal
+//   (peel, counts) shade each vertex once.
+// - flatVertexArray(): the same triangles in geometry::lastCornerLayout
+//   (each ends on a vertex of its own, copied where needed) and attribute 1,
+//   the face normal of the triangle that ends on the vertex: a flat varying
+//   takes it from there (the provoking vertex), so the normal and
+//   translucent passes need no lookup by gl_PrimitiveID. Corners keep
+//   their order, and copies their position, so a triangle is set up and
+//   rasterized exactly as in the other array.
+// A leaf's range indexes both alike.
 
 #include <cstddef>
 #include <span>
@@ -20,7 +31,6 @@ namespace strata::render {
 struct LeafRange {
     std::size_t firstIndex = 0;     // into the index buffer
     std::size_t indexCount = 0;     // 3 per triangle; 0 for an empty leaf
-    std::size_t firstTriangle = 0;  // into the face-normal buffer (and gl_PrimitiveID's origin)
     geometry::Bounds bounds;        // world space
     bool convex = false;
     bool solidShells = true;        // everyShellHasVolume (Convexity.h)
@@ -32,13 +42,11 @@ public:
     // model.leafMeshes[i]). Leaf colours are tree.leaves[i].color.
     void upload(const scene::Tree& tree, const geometry::Model& model);
 
-    // glDrawElements of leaf `leaf`'s triangles; the vertex array must be bound.
-    // gl_PrimitiveID counts from 0 at the leaf's first triangle.
+    // glDrawElements of leaf `leaf`'s triangles; either vertex array must be bound.
     void drawLeaf(int leaf) const;
 
     const gpu::VertexArray& vertexArray() const { return vertexArray_; }
-    // std430 vec4 per triangle: xyz the outward unit face normal, w 0.
-    const gpu::Buffer& faceNormals() const { return faceNormals_; }
+    const gpu::VertexArray& flatVertexArray() const { return flatVertexArray_; }
     // Per leaf: its color() in rgba, a = -1 when it has none.
     const std::vector<glm::vec4>& leafColors() const { return leafColors_; }
     const std::vector<LeafRange>& leaves() const { return leaves_; }
@@ -52,8 +60,10 @@ public:
 private:
     gpu::Buffer positions_;
     gpu::Buffer indices_;
-    gpu::Buffer faceNormals_;
+    gpu::Buffer flatIndices_;
+    gpu::Buffer faceNormals_;  // attribute 1
     gpu::VertexArray vertexArray_;
+    gpu::VertexArray flatVertexArray_;
     std::vector<LeafRange> leaves_;
     std::vector<glm::vec4> leafColors_;
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_

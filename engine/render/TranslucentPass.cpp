@@ -13,13 +13,13 @@ constexpr GLint kViewProjection = 0;
 constexpr GLint kEye = 1;
 constexpr GLint kForward = 2;
 constexpr GLint kColor = 3;
-constexpr GLint kFirstTriangle = 4;
 constexpr GLint kToLight = 5;
 
 }  // namespace
 
 TranslucentPass::TranslucentPass()
-    : program_(gpu::Program::fromFiles("translucent", {"csg/surface.vert", "csg/translucent.frag"})) {}
+    : program_(gpu::Program::fromFiles("translucent", {"csg/surface.vert", "csg/translucent.frag"},
+                                       {{"FACE_NORMAL", "1"}})) {}
 
 void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
                           const std::vector<TranslucentLeaf>& leaves) {
@@ -30,7 +30,6 @@ void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, cons
     program_.setUniform(kToLight, glm::normalize(-view.forward + 0.25f * (view.up - view.right)));
     program_.use();
     targets.resultDepth.bindUnit(0);
-    scene.faceNormals().bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_BLEND);
@@ -38,10 +37,9 @@ void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, cons
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keep the image opaque
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    scene.vertexArray().bind();
+    scene.flatVertexArray().bind();
     for (const TranslucentLeaf& t : leaves) {
         program_.setUniform(kColor, t.color);
-        program_.setUniform(kFirstTriangle, static_cast<int>(scene.leaf(t.leaf).firstTriangle));
         scene.drawLeaf(t.leaf);
     }
     glDisable(GL_CULL_FACE);

@@ -1,7 +1,8 @@
 // Normal recovery: the operands are drawn once more over the pixels the
 // evaluator wrote (vertex stage surface.vert, as the peel pass), and the
 // fragment that is the visible surface the evaluator chose (same leaf, same
-// facing, same tagged depth) writes its triangle's world-space face normal,
+// facing, same tagged depth) writes its triangle's world-space face normal
+// (a flat varying, surface.vert's FACE_NORMAL),
 // flipped where the leaf acts as a subtracted operand: the outward normal
 // of the result. Its w is the surface's base colour for the shade pass, a
 // uniform of this draw. The stencil holds the evaluator's marks
@@ -15,18 +16,13 @@ layout(early_fragment_tests) in;
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
+layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit
 layout(location = 0) out vec4 outNormal;
 
 layout(binding = 0) uniform sampler2D uResultDepth;   // tagged depth, +inf on a miss
 layout(binding = 1) uniform isampler2D uResultLeaf;   // leaf * 2 + flip, -1 on a miss
 
-// Per triangle of all leaves: xyz the outward unit face normal.
-layout(std430, binding = 2) readonly buffer FaceNormals {
-    vec4 faceNormals[];
-};
-
 layout(location = 3) uniform int uLeaf;           // the leaf being drawn
-layout(location = 4) uniform int uFirstTriangle;  // its first triangle in FaceNormals
 // The leaf's packed base colours (ShadePass::baseColors): x its own surface, y cut.
 layout(location = 5) uniform vec2 uBaseColor;
 
@@ -39,9 +35,8 @@ layout(location = 5) uniform vec2 uBaseColor;
 layout(location = 6) uniform int uFlip;
 
 void main() {
-    vec3 n = faceNormals[uFirstTriangle + gl_PrimitiveID].xyz;
     bool cut = uFlip != 0;
-    outNormal = vec4(cut ? -n : n, cut ? uBaseColor.y : uBaseColor.x);
+    outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #else
 void main() {
@@ -55,8 +50,7 @@ void main() {
     // where the peel pass's was one tile's. A few ulps of slack cover the
     // rounding that an offset viewport or another fragment shader may bring.
     if (abs(t - result) > 1.0e-6 * result) discard;
-    vec3 n = faceNormals[uFirstTriangle + gl_PrimitiveID].xyz;
     bool cut = (code & 1) != 0;
-    outNormal = vec4(cut ? -n : n, cut ? uBaseColor.y : uBaseColor.x);
+    outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #endif

@@ -2,7 +2,12 @@
 // translucent). The peel and normal passes must compute bit-identical depths
 // for one fragment, so both use this file and the depth is invariant.
 //
-// Inputs: world-space positions (float, location 0).
+// Inputs: world-space positions (float, location 0); with FACE_NORMAL (the
+// normal and translucent passes) also the face normal of the triangle that
+// ends on the vertex (location 1, SceneBuffers.h), handed on flat: GL takes
+// a flat varying from a triangle's last vertex, and every triangle ends on a
+// vertex of its own, so each fragment gets its own triangle's normal with no
+// lookup by gl_PrimitiveID.
 // Uniforms: the view-projection matrix, the eye and the unit view direction f.
 //
 // LAYERED (the peel pass's batch of convex operands, one multi-draw with one
@@ -18,6 +23,10 @@ layout(std430, binding = 6) readonly buffer DrawLayers {
 #endif
 
 layout(location = 0) in vec3 aPosition;
+#ifdef FACE_NORMAL
+layout(location = 1) in vec3 aFaceNormal;
+layout(location = 1) flat out vec3 vFaceNormal;
+#endif
 
 layout(location = 0) uniform mat4 uViewProjection;
 layout(location = 1) uniform vec3 uEye;
@@ -29,6 +38,9 @@ layout(location = 0) invariant out float vViewDepth;
 
 void main() {
     vViewDepth = dot(aPosition - uEye, uForward);
+#ifdef FACE_NORMAL
+    vFaceNormal = aFaceNormal;
+#endif
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
 #ifdef LAYERED
     gl_Layer = int(drawLayers[gl_DrawIDARB]);
