@@ -7,8 +7,8 @@
 #include <glm/vec4.hpp>
 
 #include "Convexity.h"
-#include "strata/geometry/LastCorners.h"
 #include "strata/core/Error.h"
+#include "strata/geometry/LastCorners.h"
 
 namespace strata::render {
 
@@ -42,14 +42,16 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
         firstVertex_.push_back(vertices_.size());
         for (std::uint32_t v : layout.source) {
             const glm::dvec3& p = mesh.positions[v];
-            positions.insert(positions.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+            for (double c : {p.x, p.y, p.z}) positions.push_back(static_cast<float>(c));
         }
         normals.resize(positions.size(), 0.0f);
         for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
             const auto& t = mesh.triangles[f];
             // The layout starts with the mesh's vertices, so both index the same positions.
             for (std::uint32_t v : t) indices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
-            for (std::uint32_t v : layout.triangles[f]) flatIndices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
+            for (std::uint32_t v : layout.triangles[f]) {
+                flatIndices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
+            }
             const glm::dvec3& a = mesh.positions[t[0]];
             glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
             const double length = glm::length(n);
