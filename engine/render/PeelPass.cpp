@@ -185,9 +185,12 @@ bool PeelPass::anyDeeperThan(int surfaces) {
 
 int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile, const PixelRect& valid, int first,
                       int layerCount, bool automatic) {
-    if (!fragmentCounts_.id() || fragmentCounts_.width() < tile.width || fragmentCounts_.height() < tile.height) {
-        const int width = std::max(tile.width, fragmentCounts_.id() ? fragmentCounts_.width() : 0);
-        const int height = std::max(tile.height, fragmentCounts_.id() ? fragmentCounts_.height() : 0);
+    // The lists' images are the tile's size exactly: the budget counts them so
+    // (run's reserve), and a larger pair left from an earlier frame would
+    // hold memory the budget does not know of.
+    if (!fragmentCounts_.id() || fragmentCounts_.width() != tile.width || fragmentCounts_.height() != tile.height) {
+        const int width = tile.width;
+        const int height = tile.height;
         fragments_ = gpu::Texture::create2DArray("peel fragment lists", GL_R32F, width, height, kCollectCapacity);
         fragmentCounts_ = gpu::Texture::create2D("peel fragment counts", GL_R32UI, width, height);
         const GLuint none = 0;  // from then on the resolve sets each count it read back to 0
@@ -235,6 +238,16 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     collected_ = 0;
     std::vector<char> inTile(operandLeaves.size());
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
+    // The lists' images stay from frame to frame only while some operand may
+    // be collected: otherwise their memory is outside the budget's count.
+    bool lists = false;
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        lists = lists || (inTile[k] && listed(scene.leaf(operandLeaves[k]), request, k));
+    }
+    if (!lists && fragmentCounts_.id()) {
+        fragments_ = {};
+        fragmentCounts_ = {};
+    }
     const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
     if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
 

@@ -190,3 +190,48 @@ TEST(FragmentLists, AreForOperandsOfManyTriangles) {
     settings.fragmentListTriangles = 100;
     EXPECT_EQ(renderer.render(view, settings).stats.listPeeledOperands, 2);
 }
+
+TEST(FragmentLists, TheirImagesLeaveNothingOutsideLaterBudgets) {
+    // The lists' images outlive a frame. A later frame that collects
+    // nothing must let them go, and one of a smaller size must not keep
+    // the larger pair: either would hold memory its budget does not count.
+    gpu::Context context;
+    render::Renderer renderer, fresh;
+    std::mt19937 rng(5u);
+    const scene::Tree tree = shellsTree(NodeKind::Difference, 3, rng);
+    const geometry::Model model = geometry::buildModel(tree);
+    renderer.setScene(tree, model);
+    fresh.setScene(tree, model);
+    render::Camera large = camera(0, rng);
+    large.width = 144;
+    large.height = 112;
+    render::RenderSettings lists;
+    lists.fragmentListTriangles = 0;
+    ASSERT_GT(renderer.render(large, lists).stats.listPeeledOperands, 0);
+
+    // Passes only, in a budget that holds their layers and no lists.
+    render::RenderSettings passes;
+    passes.fragmentListTriangles = -1;
+    passes.memoryBudget = fresh.render(large, passes).stats.textureBytes;
+    const render::Frame after = renderer.render(large, passes);
+    EXPECT_EQ(after.stats.listPeeledOperands, 0);
+    EXPECT_LE(after.stats.textureBytes, passes.memoryBudget);
+
+    // Lists again, then at a quarter of the size in the budget that a
+    // renderer which never drew the large frame needs.
+    renderer.render(large, lists);
+    render::Camera small = large;
+    small.width /= 2;
+    small.height /= 2;
+    render::Renderer smallOnly;
+    smallOnly.setScene(tree, model);
+    const render::Frame wanted = smallOnly.render(small, lists);
+    ASSERT_GT(wanted.stats.listPeeledOperands, 0);
+    render::RenderSettings tight = lists;
+    tight.memoryBudget = wanted.stats.textureBytes;
+    const render::Frame got = renderer.render(small, tight);
+    EXPECT_EQ(got.stats.listPeeledOperands, wanted.stats.listPeeledOperands);
+    EXPECT_EQ(got.stats.tiles, 1);
+    EXPECT_LE(got.stats.textureBytes, tight.memoryBudget);
+    EXPECT_EQ(test::pixelsDiffering(got, wanted), 0u);
+}
