@@ -128,7 +128,7 @@ struct Result {
     int operands = 0;
     double setupMs = 0;                    // geometry + setScene
     double strataMs = 0, strataMinMs = 0;  // wall clock per frame, glFinish included
-    double peelMs = 0, evaluateMs = 0, shadeMs = 0;  // FrameStats, medians
+    double peelMs = 0, evaluateMs = 0, normalMs = 0, shadeMs = 0;  // FrameStats, medians
     double plainMs = 0, plainMinMs = 0;
     std::size_t plainBytes = 0;            // the floor's vertex buffer and framebuffer
     std::size_t textureBytes = 0;
@@ -183,7 +183,7 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     host.checkComplete();
 
     const render::RenderSettings settings;
-    std::vector<double> frame, peel, evaluate, shade;
+    std::vector<double> frame, peel, evaluate, normal, shade;
     render::FrameStats last;
     for (int i = 0; i < options.warmup + options.frames; ++i) {
         const auto start = Clock::now();
@@ -194,6 +194,7 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
         frame.push_back(ms);
         peel.push_back(last.peelMs);
         evaluate.push_back(last.evaluateMs);
+        normal.push_back(last.normalMs);
         shade.push_back(last.shadeMs);
     }
     gpu::checkErrors();
@@ -201,6 +202,7 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     result.strataMinMs = frame.empty() ? 0.0 : *std::min_element(frame.begin(), frame.end());
     result.peelMs = median(peel);
     result.evaluateMs = median(evaluate);
+    result.normalMs = median(normal);
     result.shadeMs = median(shade);
     result.textureBytes = last.textureBytes;
     result.operands = last.operands;
@@ -245,8 +247,8 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
 constexpr double kMiB = 1024.0 * 1024.0;
 
 void printHeader() {
-    std::printf("%-12s %4s %9s %7s %10s %10s %7s %9s %9s %9s %8s %9s %9s %10s %-16s %7s\n", "scene", "K", "size",
-                "tris", "strata ms", "plain ms", "ratio", "peel ms", "eval ms", "shade ms", "MiB",
+    std::printf("%-12s %4s %9s %7s %10s %10s %7s %9s %9s %9s %9s %8s %9s %9s %10s %-16s %7s\n", "scene", "K",
+                "size", "tris", "strata ms", "plain ms", "ratio", "peel ms", "eval ms", "normal ms", "shade ms", "MiB",
                 "layers", "covered", "opencsg ms", "best setting", "agree%");
     std::fflush(stdout);
 }
@@ -279,9 +281,9 @@ void printRow(const Result& r) {
         std::printf("%-12s %4d %9s  error: %s\n", r.scene.c_str(), r.k, size.c_str(), r.error.c_str());
     } else {
         const std::string layers = std::to_string(r.layersTotal) + "/" + std::to_string(r.layersMax);
-        std::printf("%-12s %4d %9s %7zu %10.2f %10.2f %7.1f %9.2f %9.2f %9.2f %8.1f %9s %9zu",
+        std::printf("%-12s %4d %9s %7zu %10.2f %10.2f %7.1f %9.2f %9.2f %9.2f %9.2f %8.1f %9s %9zu",
                     r.scene.c_str(), r.k, size.c_str(), r.triangles, r.strataMs, r.plainMs,
-                    r.plainMs > 0 ? r.strataMs / r.plainMs : 0.0, r.peelMs, r.evaluateMs, r.shadeMs,
+                    r.plainMs > 0 ? r.strataMs / r.plainMs : 0.0, r.peelMs, r.evaluateMs, r.normalMs, r.shadeMs,
                     static_cast<double>(r.textureBytes) / kMiB, layers.c_str(), r.coveredPixels);
         printOpenCsg(r.openCsg);
     }
@@ -369,6 +371,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
         json.key("strata_min_ms").value(r.strataMinMs);
         json.key("peel_ms").value(r.peelMs);
         json.key("evaluate_ms").value(r.evaluateMs);
+        json.key("normal_ms").value(r.normalMs);
         json.key("shade_ms").value(r.shadeMs);
         json.key("plain_ms").value(r.plainMs);
         json.key("plain_min_ms").value(r.plainMinMs);

@@ -30,6 +30,7 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("upload").value(ms(s.uploadMs));
     json.key("peel").value(ms(f.peelMs));
     json.key("evaluate").value(ms(f.evaluateMs));
+    json.key("normal").value(ms(f.normalMs));
     json.key("shade").value(ms(f.shadeMs));
     json.key("readback").value(ms(f.readbackMs));
     json.key("frame").value(ms(f.totalMs));

@@ -296,9 +296,12 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings
         evaluate.run(targets, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats,
                      settings.keepBlockForms ? &forms : nullptr);
         if (settings.keepBlockForms) keepBlockForms(tile, forms, frame);
-        normals.run(targets, scene, view, tile, operands, rects, evaluate.shownFaces(), baseColors);
-        glFinish();
+        const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
         stats.evaluateMs += millisecondsSince(start);
+        start = Clock::now();
+        normals.run(targets, scene, view, tile, operands, rects, shown, baseColors);
+        glFinish();
+        stats.normalMs += millisecondsSince(start);
         ++tilesDone;
     }
     stats.tiles = tilesDone;

@@ -53,6 +53,8 @@ TEST(Stats, HoldsEveryFigureOfTheContract) {
     s.width = 64;
     s.height = 32;
     s.frame.peelMs = 1.25;
+    s.frame.evaluateMs = 2.5;
+    s.frame.normalMs = 0.75;
     s.frame.layersPerLeaf = {1, 3, 0};
     s.frame.operands = 2;
     s.frame.textureBytes = 4096;
@@ -68,7 +70,8 @@ TEST(Stats, HoldsEveryFigureOfTheContract) {
     EXPECT_EQ(json.back(), '}');
     EXPECT_EQ(json.find('\n'), std::string::npos);
     for (const char* part : {R"("scene": "a \"quoted\".csg")", R"("width": 64)", R"("height": 32)",
-                             R"("peel": 1.25)", R"("layers_per_operand": [1, 3, 0])", R"("layers_max": 3)",
+                             R"("peel": 1.25)", R"("evaluate": 2.5)", R"("normal": 0.75)",
+                             R"("layers_per_operand": [1, 3, 0])", R"("layers_max": 3)",
                              R"("layers_total": 4)", R"("operands": 2)", R"("texture_bytes": 4096)",
                              R"("covered_pixels": 100)", R"("tiles": 2)", R"("peel_passes": 5)",
                              R"("list_peeled_operands": 1)", R"("notes": ["tiled"])",

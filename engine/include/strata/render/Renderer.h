@@ -59,7 +59,10 @@ struct RenderSettings {
 };
 
 struct FrameStats {
-    double peelMs = 0, evaluateMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
+    // Wall clock of each pass, every tile, a glFinish (or a read-back) after each:
+    // peel, evaluate (the CSG evaluator), normal (the normal pass), shade
+    // (shading and translucent leaves), readback (render() only).
+    double peelMs = 0, evaluateMs = 0, normalMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
     std::vector<int> layersPerLeaf;            // peel passes used, per tree leaf (0 for leaves not drawn)
     std::size_t textureBytes = 0;              // layered-texture memory in use
     int textureAllocations = 0;                // layered textures (re)created during the frame
