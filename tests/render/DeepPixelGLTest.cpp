@@ -33,7 +33,9 @@ scene::Tree intersectionOfSpheres(int count) {
         sphere.fragments.fn = 32;
         leaf.primitive = sphere;
         leaf.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(offset(rng), offset(rng), offset(rng)));
-        children.push_back(tree.addLeaf(std::move(leaf)));
+        // A copy: moving it made GCC 12 warn (wrongly) of the variant's
+        // inactive Polyhedron vectors being read uninitialised.
+        children.push_back(tree.addLeaf(leaf));
     }
     tree.root = tree.addNode(scene::NodeKind::Intersection, children);
     return tree;
