@@ -77,24 +77,33 @@ bool listed(const LeafRange& leaf, const PeelRequest& request, std::size_t k) {
            leaf.indexCount / 3 >= static_cast<std::size_t>(request.listTriangles);
 }
 
+// Whether some operand with triangles in the tile is first tried through
+// fragment lists: then the lists' images are needed (and counted).
+bool anyListed(const SceneBuffers& scene, std::span<const int> operandLeaves, std::span<const char> inTile,
+               const PeelRequest& request) {
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        if (!inTile[k]) continue;
+        const LeafRange& leaf = scene.leaf(operandLeaves[k]);
+        if (leaf.indexCount > 0 && listed(leaf, request, k)) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
                              std::span<const char> inTile, const PeelRequest& request) {
     const int fixedLayers = request.fixedLayers;
     int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
-    bool lists = false;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         if (!inTile[k]) continue;
         const LeafRange& leaf = scene.leaf(operandLeaves[k]);
         if (leaf.indexCount == 0) continue;
-        const bool one = onePass(leaf, request, k);
-        layers += one ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
-        lists = lists || listed(leaf, request, k);
+        layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
     }
     // Collecting: the lists' images, and auto's room for a list's every
     // layer while it is resolved (the guess above gives each operand 2).
-    if (lists) layers += kCollectScratchLayers + (fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2);
+    if (anyListed(scene, operandLeaves, inTile, request)) layers += kCollectScratchLayers + (fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2);
     return std::max(layers, 1);
 }
 
@@ -189,14 +198,13 @@ int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile
     // (run's reserve), and a larger pair left from an earlier frame would
     // hold memory the budget does not know of.
     if (!fragmentCounts_.id() || fragmentCounts_.width() != tile.width || fragmentCounts_.height() != tile.height) {
-        const int width = tile.width;
-        const int height = tile.height;
-        fragments_ = gpu::Texture::create2DArray("peel fragment lists", GL_R32F, width, height, kCollectCapacity);
-        fragmentCounts_ = gpu::Texture::create2D("peel fragment counts", GL_R32UI, width, height);
+        fragments_ =
+            gpu::Texture::create2DArray("peel fragment lists", GL_R32F, tile.width, tile.height, kCollectCapacity);
+        fragmentCounts_ = gpu::Texture::create2D("peel fragment counts", GL_R32UI, tile.width, tile.height);
         const GLuint none = 0;  // from then on the resolve sets each count it read back to 0
         fragmentCounts_.clear(GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
-        glNamedFramebufferParameteri(listTarget_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-        glNamedFramebufferParameteri(listTarget_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+        glNamedFramebufferParameteri(listTarget_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, tile.width);
+        glNamedFramebufferParameteri(listTarget_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, tile.height);
         ++allocations_;
     }
     // The resolve writes only the layers a pixel has; the rest read as cleared.
@@ -240,11 +248,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
     // The lists' images stay from frame to frame only while some operand may
     // be collected: otherwise their memory is outside the budget's count.
-    bool lists = false;
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        lists = lists || (inTile[k] && listed(scene.leaf(operandLeaves[k]), request, k));
-    }
-    if (!lists && fragmentCounts_.id()) {
+    if (fragmentCounts_.id() && !anyListed(scene, operandLeaves, inTile, request)) {
         fragments_ = {};
         fragmentCounts_ = {};
     }
