@@ -74,6 +74,20 @@ scene::Leaf sphereLeaf(glm::dvec3 centre, double radius) {
     return leaf;
 }
 
+// The slab [-2, 2]^2 x [-1, 1] and `count` spheres of `radius`, seeded by
+// `seed`, centred within `spread` of the axis in x and y and between
+// `low` and `high` in z: the operands of a difference, slab first.
+std::vector<int> slabAndSpheres(scene::Tree& tree, unsigned seed, int count, double spread, double low, double high,
+                                double radius) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> across(-spread, spread), height(low, high);
+    std::vector<int> operands{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
+    for (int i = 0; i < count; ++i) {
+        operands.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, radius)));
+    }
+    return operands;
+}
+
 // One polyhedron leaf made of several sphere shells: a non-convex operand.
 // Adds a closed box, 2 * half wide and deep, z from -0.5 to 0.5, to `poly`
 // as one more shell.
@@ -640,11 +654,8 @@ TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
     // apart. With leaf marks
     // (where the driver has them) and with one mark for all, every AOV and
     // the image must be the same to the bit.
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> across(-1.8, 1.8), height(0.7, 1.1);
     scene::Tree tree;
-    std::vector<int> children{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
-    for (int i = 0; i < 300; ++i) children.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.15)));
+    std::vector<int> children = slabAndSpheres(tree, 7, 300, 1.8, 0.7, 1.1, 0.15);
     children.push_back(tree.addLeaf(shellsLeaf({{0.5, 0.5, 1}, {0.5, 0.5, 0.3}}, 0.3)));
     tree.root = tree.addNode(NodeKind::Difference, children);
     for (render::Projection p : kProjections) {
@@ -660,13 +671,8 @@ TEST_F(RendererGLTest, CrowdedMarkSlotsGiveTheFrameOfOneMark) {
     // every other, so the 63 mark slots cannot keep them apart and some
     // spheres share one where they overlap. The normal pass must then check
     // those leaves' depths, and the frame must equal one mark's.
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> across(-0.4, 0.4), height(0.6, 1.1);
     scene::Tree tree;
-    std::vector<int> holes{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
-    for (int i = 0; i < 90; ++i) {
-        holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.45)));
-    }
+    const std::vector<int> holes = slabAndSpheres(tree, 5, 90, 0.4, 0.6, 1.1, 0.45);
     tree.root = tree.addNode(NodeKind::Difference, holes);
     for (render::Projection p : kProjections) {
         const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p));
@@ -682,13 +688,8 @@ TEST_F(RendererGLTest, UniqueLeafMarksGiveTheFrameOfOneMark) {
     // sharing the slab's top face (a tie), a sphere cut by an intersection
     // (its own faces) and a pair of shells (non-convex: checked as before),
     // seen from above and from inside the slab (its back faces first).
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> across(-1.6, 1.6), height(0.6, 1.0);
     scene::Tree tree;
-    std::vector<int> holes{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
-    for (int i = 0; i < 40; ++i) {
-        holes.push_back(tree.addLeaf(sphereLeaf({across(rng), across(rng), height(rng)}, 0.3)));
-    }
+    std::vector<int> holes = slabAndSpheres(tree, 11, 40, 1.6, 0.6, 1.0, 0.3);
     holes.push_back(tree.addLeaf(cubeLeaf({1, 1, 0}, {3, 3, 1})));
     holes.push_back(tree.addLeaf(shellsLeaf({{-0.5, 0.5, 1}, {-0.5, 0.5, 0.3}}, 0.3)));
     const int slab = tree.addNode(NodeKind::Difference, holes);
