@@ -38,18 +38,23 @@ void FrameTargets::ensure(int width, int height) {
     height_ = height;
 }
 
-void FrameTargets::clearResult(bool depthAndLeaf) {
+void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
     glDisable(GL_SCISSOR_TEST);
-    const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
-    const GLint leaf[4] = {-1, 0, 0, 0};
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    if (depthAndLeaf) {
+    if (wholeFrame) {
+        const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
+        const GLint leaf[4] = {-1, 0, 0, 0};
         evaluateTarget.clearColor(0, depth);
         evaluateTarget.clearColorInt(1, leaf);
     }
+    const PixelRect r = wholeFrame ? PixelRect{0, 0, width_, height_} : drawn.intersection({0, 0, width_, height_});
+    if (r.empty()) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r.x, r.y, r.width, r.height);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     normalTarget.clearColor(0, zero);
     const GLint noMark = 0;
     glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 void FrameTargets::assignMarkSlots(std::span<const int> operandLeaves, std::span<const PixelRect> rects,

@@ -41,11 +41,16 @@ class FrameTargets {
 public:
     // (Re)creates the images when the size changes.
     void ensure(int width, int height);
-    // Sets every pixel to "miss": normal 0, marks 0, and where `depthAndLeaf`
-    // also depth +inf and leaf -1. The passes read those two only where the
-    // evaluator marked a pixel this frame, so they need clearing only for
-    // a read-back of the AOVs or a pass that reads every pixel (translucent).
-    void clearResult(bool depthAndLeaf);
+    // Sets pixels to "miss": marks 0 and normal 0 inside `drawn`, and where
+    // `wholeFrame` those and depth +inf and leaf -1 everywhere. The passes
+    // read the marks only where an operand can be drawn, depth and leaf only
+    // where the evaluator marked a pixel this frame, and the shade pass
+    // reads normals there and at their eight neighbours. So `drawn` need only
+    // hold every pixel the evaluator may mark and a pixel around them, and
+    // the whole frame needs clearing only for a read-back of the AOVs or a
+    // pass that reads every pixel (translucent). Clearing the RGBA32F normals
+    // of a whole 1024 x 768 frame costs llvmpipe about 3 ms of CPU.
+    void clearResult(bool wholeFrame, const PixelRect& drawn);
 
     int width() const { return width_; }
     int height() const { return height_; }

@@ -163,21 +163,24 @@ struct Renderer::Impl {
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
+    // `rects`: each operand's screen rectangle (screenRect of its vertices).
     // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
-    void peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
+    void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, Frame& frame);
     // Paints the tile's blocks' forms (EvaluatePass::run) into frame.blockForms.
     void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade and translucent passes over the G-buffer in `targets`.
-    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly);
+    // `marked`: ShadePass::run's.
+    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const std::optional<PixelRect>& marked);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame);
 };
 
-void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, bool markedOnly) {
-    shade.run(targets, view, scheme, markedOnly);
+void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme,
+                                const std::optional<PixelRect>& marked) {
+    shade.run(targets, view, scheme, marked);
     translucent.run(targets, scene, view, translucentLeaves);
     glFinish();
 }
@@ -204,12 +207,11 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     gpu::checkErrors();
 }
 
-void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const RenderSettings& settings,
-                                     const std::vector<glm::vec2>& baseColors, Frame& frame) {
+void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects,
+                                     const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
+                                     Frame& frame) {
     FrameStats& stats = frame.stats;
     const std::vector<int>& operands = program.operandLeaf;
-    std::vector<PixelRect> rects(operands.size());
-    for (std::size_t k = 0; k < operands.size(); ++k) rects[k] = screenRect(view, scene.leafVertices(operands[k]));
     if (targets.leafMarks) targets.assignMarkSlots(operands, rects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles};
     // Every ray starts outside every operand: those that only unions lead to
@@ -433,19 +435,32 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.tiles = 0;
     stats.peelPasses = 0;
 
+    // Each operand's screen rectangle: its surfaces, and so every pixel the
+    // evaluator can mark, lie inside it.
+    std::vector<PixelRect> rects;
+    PixelRect drawn;
+    if (program.kind == TreeProgram::Kind::Program) {
+        rects.resize(program.operandLeaf.size());
+        for (std::size_t k = 0; k < rects.size(); ++k) {
+            rects[k] = screenRect(view, scene.leafVertices(program.operandLeaf[k]));
+            drawn = drawn.bounding(rects[k]);
+        }
+    }
+
     resetDrawState();
     targets.ensure(view.width, view.height);
-    targets.clearResult(aovs || !translucentLeaves.empty());
+    // A pixel around `drawn` for the shade pass's Sobel filter.
+    targets.clearResult(aovs || !translucentLeaves.empty(), drawn.grown(1));
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     if (program.kind == TreeProgram::Kind::Program) {
-        peelAndEvaluate(view, settings, ShadePass::baseColors(scene, scheme), frame);
+        peelAndEvaluate(view, rects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
         stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");
     }
 
     const auto start = Clock::now();
-    shadeFrame(view, scheme, true);
+    shadeFrame(view, scheme, drawn);
     stats.shadeMs = millisecondsSince(start);
     stats.totalMs = millisecondsSince(frameStart);
     return view;
@@ -496,7 +511,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     frame.width = w;
     frame.height = h;
     const auto start = Clock::now();
-    impl.shadeFrame(view, scheme, false);
+    impl.shadeFrame(view, scheme, std::nullopt);
     frame.stats.shadeMs = millisecondsSince(start);
     impl.readColor(frame);
     frame.depth.assign(result.depth.begin(), result.depth.end());

@@ -39,7 +39,8 @@ std::vector<glm::vec2> ShadePass::baseColors(const SceneBuffers& scene, const Co
     return bases;
 }
 
-void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme, bool markedOnly) {
+void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme,
+                    const std::optional<PixelRect>& marked) {
     program_.setUniform(kBackground, scheme.background);
     program_.setUniform(kForward, view.forward);
     program_.setUniform(kRight, view.right);
@@ -51,17 +52,20 @@ void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorSch
     targets.normal.bindUnit(0);
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
-    if (markedOnly) {
+    if (marked) {
         // The background everywhere, then the shader only where the evaluator wrote.
         const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
         targets.colorTarget.clearColor(0, background);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(GL_NOTEQUAL, 0, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(marked->x, marked->y, marked->width, marked->height);
     }
     empty_.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (!marked || !marked->empty()) glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_STENCIL_TEST);
+    glDisable(GL_SCISSOR_TEST);
     gpu::checkErrors();
 }
 

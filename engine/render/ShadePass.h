@@ -8,6 +8,8 @@
 // GL state: viewport = the frame; leaves the stencil test off; expects
 // blending, depth test, culling and the scissor test off.
 
+#include <optional>
+
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -25,10 +27,12 @@ namespace strata::render {
 class ShadePass {
 public:
     ShadePass();
-    // markedOnly: clear to the background and shade only the pixels the
-    // evaluator marked (FrameTargets::marks); otherwise shade every pixel (a
-    // G-buffer that came from elsewhere has no marks).
-    void run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme, bool markedOnly);
+    // With `marked`: clear to the background and shade only the pixels the
+    // evaluator marked (FrameTargets::marks), all of which lie inside that
+    // rectangle; the marks outside it are not read. Without: shade every
+    // pixel (a G-buffer that came from elsewhere has no marks).
+    void run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme,
+             const std::optional<PixelRect>& marked);
 
     // A base colour as the G-buffer carries it (FrameTargets::normal's w):
     // 1 + its 8-bit RGB as the integer r * 65536 + g * 256 + b, exact in a

@@ -28,6 +28,18 @@ struct PixelRect {
         const int x1 = std::min(x + width, o.x + o.width), y1 = std::min(y + height, o.y + o.height);
         return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
     }
+    // The least rectangle holding both (an empty one adds nothing).
+    PixelRect bounding(const PixelRect& o) const {
+        if (o.empty()) return *this;
+        if (empty()) return o;
+        const int x0 = std::min(x, o.x), y0 = std::min(y, o.y);
+        const int x1 = std::max(x + width, o.x + o.width), y1 = std::max(y + height, o.y + o.height);
+        return {x0, y0, x1 - x0, y1 - y0};
+    }
+    // `margin` pixels more on every side (empty stays empty).
+    PixelRect grown(int margin) const {
+        return empty() ? *this : PixelRect{x - margin, y - margin, width + 2 * margin, height + 2 * margin};
+    }
 };
 
 struct ViewSetup {

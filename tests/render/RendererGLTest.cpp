@@ -529,7 +529,7 @@ TEST_F(RendererGLTest, RenderIntoAHostFramebuffer) {
 TEST_F(RendererGLTest, RenderIntoLeavesNoTraceOfTheFrameBefore) {
     // renderInto() clears neither the depth nor the leaf image (nothing
     // reads them back, and the passes read them only where the evaluator
-    // wrote this frame). A frame drawn after another scene and view, with
+    // wrote this frame), and the normals only around the operands. A frame drawn after another scene and view, with
     // and without leaf marks, must still equal render()'s image of it.
     // The frame before: a plate just under the eye, nearer than anything
     // of the scene, on every pixel.
@@ -547,9 +547,14 @@ TEST_F(RendererGLTest, RenderIntoLeavesNoTraceOfTheFrameBefore) {
     scene::Leaf ghost = cubeLeaf({1.5, 1.5, -1}, {2.5, 2.5, 0});
     ghost.display = scene::Display::Background;
     highlighted.background = {highlighted.addLeaf(ghost)};
-    for (int c = 0; c < 3; ++c) {
+    // The fourth: two cubes in opposite corners, each with its own screen
+    // rectangle, around both of which the normals must be cleared.
+    scene::Tree corners;
+    corners.root = corners.addNode(NodeKind::Union, {corners.addLeaf(cubeLeaf({-2.5, -2.5, -1}, {-0.5, -0.5, 0})),
+                                                     corners.addLeaf(cubeLeaf({0.5, 0.5, -1}, {2.5, 2.5, 0}))});
+    for (int c = 0; c < 4; ++c) {
         const bool marks = c != 1;
-        const scene::Tree tree = c == 2 ? highlighted : paperPair(NodeKind::Difference);
+        const scene::Tree tree = c == 2 ? highlighted : c == 3 ? corners : paperPair(NodeKind::Difference);
         render::RenderSettings settings;
         settings.leafMarks = marks;
         const render::Frame expected = draw(tree, topCamera(), settings);
