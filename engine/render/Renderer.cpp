@@ -20,6 +20,7 @@
 #include "strata/core/Error.h"
 #include "strata/gpu/Check.h"
 #include "strata/render/ColorScheme.h"
+#include "strata/render/IdenticalLeaves.h"
 #include "strata/render/TreeProgram.h"
 
 namespace strata::render {
@@ -198,7 +199,7 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl_->scene.upload(tree, model);
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
-    impl_->program = compileTree(tree, empty);
+    impl_->program = compileTree(tree, empty, identicalLeaves(tree, model));
     impl_->evaluate.setProgram(impl_->program, impl_->canMarkLeaves);
     impl_->unionsOnly = reachedByUnionsOnly(impl_->program, impl_->scene);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);

@@ -23,8 +23,8 @@ struct Expr {
 
 class Compiler {
 public:
-    Compiler(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty)
-        : tree_(tree), leafIsEmpty_(leafIsEmpty) {
+    Compiler(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty, const std::vector<int>& sameLeaf)
+        : tree_(tree), leafIsEmpty_(leafIsEmpty), sameLeaf_(sameLeaf) {
         exprs_.push_back(make(Expr::Type::Empty));       // kEmpty
         exprs_.push_back(make(Expr::Type::Everything));  // kEverything
     }
@@ -121,6 +121,14 @@ private:
             if (empty) return negated ? kEverything : kEmpty;
             Expr literal = make(Expr::Type::Literal);
             literal.leaf = node.leaf;
+            if (leaf < sameLeaf_.size()) {
+                const int same = sameLeaf_[leaf];
+                if (same < 0 || static_cast<std::size_t>(same) >= tree_.leaves.size()) {
+                    throw Error("CSG tree: leaf " + std::to_string(node.leaf) + " is said to equal leaf " +
+                                std::to_string(same) + ", which is out of range");
+                }
+                literal.leaf = same;
+            }
             literal.negated = negated;
             exprs_.push_back(literal);
             return static_cast<int>(exprs_.size()) - 1;
@@ -269,6 +277,7 @@ private:
 
     const scene::Tree& tree_;
     const std::vector<bool>& leafIsEmpty_;
+    const std::vector<int>& sameLeaf_;
     std::vector<Expr> exprs_;
     std::vector<int> memo_;
     std::vector<int> operandOfLeaf_;
@@ -276,8 +285,9 @@ private:
 
 }  // namespace
 
-TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty) {
-    return Compiler(tree, leafIsEmpty).compile();
+TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty,
+                        const std::vector<int>& sameLeaf) {
+    return Compiler(tree, leafIsEmpty, sameLeaf).compile();
 }
 
 std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,

@@ -215,6 +215,9 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
             leaf.primitive = scene::Cube{{2.0, 2.0, 2.0}, true};
             // Unions: a row of cubes sharing faces; the others: one cube, repeated.
             if (kind == NodeKind::Union) leaf.transform = glm::translate(glm::dmat4(1.0), {2.0 * (i % 4) - 3.0, 0, 0});
+            // A colour each, so that the repeated cubes stay operands of their
+            // own (identical leaves would share one: IdenticalLeaves.h).
+            leaf.color = glm::dvec4(i / 16.0, 0.5, 0.5, 1.0);
             children.push_back(tree.addLeaf(std::move(leaf)));
         }
         tree.root = tree.addNode(kind, children);

@@ -577,6 +577,59 @@ TEST_F(RendererGLTest, RenderIntoLeavesNoTraceOfTheFrameBefore) {
     }
 }
 
+TEST_F(RendererGLTest, IdenticalLeavesShareOneOperandAndChangeNoSurface) {
+    // A chain in the manner of strata-bench's deep scene: the slab and seeded
+    // spheres joined by unions and differences, and every third step an
+    // intersection with one big sphere, each time a leaf of its own.
+    scene::Tree tree;
+    const std::vector<int> leaves = slabAndSpheres(tree, 7, 18, 1.8, -1.2, 1.2, 0.5);
+    std::vector<int> copies;  // leaf indices
+    int node = leaves[0];
+    for (std::size_t i = 1; i < leaves.size(); ++i) {
+        node = tree.addNode(i % 2 == 1 ? NodeKind::Union : NodeKind::Difference, {node, leaves[i]});
+        if (i % 3 == 0) {
+            const int big = tree.addLeaf(sphereLeaf({0, 0, 0}, 2.4));
+            copies.push_back(tree.nodes[static_cast<std::size_t>(big)].leaf);
+            node = tree.addNode(NodeKind::Intersection, {node, big});
+        }
+    }
+    tree.root = node;
+    const geometry::Model model = geometry::buildModel(tree);
+    // The same solids, but each copy's triangles in an order of its own, so
+    // that no two leaves are identical bit for bit: the path without sharing.
+    geometry::Model apart = model;
+    for (int c : copies) {
+        auto& triangles = apart.leafMeshes[static_cast<std::size_t>(c)].triangles;
+        std::rotate(triangles.begin(), triangles.begin() + 1 + c, triangles.end());
+    }
+    for (render::Projection projection : kProjections) {
+        renderer_->setScene(tree, apart);
+        const render::Frame separate = renderer_->render(topCamera(projection), {});
+        renderer_->setScene(tree, model);
+        const render::Frame shared = renderer_->render(topCamera(projection), {});
+        EXPECT_EQ(separate.stats.operands, static_cast<int>(leaves.size() + copies.size()));
+        EXPECT_EQ(shared.stats.operands, static_cast<int>(leaves.size() + 1));
+        EXPECT_EQ(shared.stats.layersPerLeaf[static_cast<std::size_t>(copies[0])], 1);
+        for (std::size_t i = 1; i < copies.size(); ++i) EXPECT_EQ(shared.stats.layersPerLeaf[static_cast<std::size_t>(copies[i])], 0);
+        ASSERT_GT(shared.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
+        EXPECT_EQ(shared.stats.coveredPixels, separate.stats.coveredPixels);
+        // Same surfaces and image; the leaf image names the first copy for every copy.
+        std::size_t differ = 0, copiesShown = 0;
+        for (std::size_t k = 0; k < shared.leaf.size(); ++k) {
+            int leaf = separate.leaf[k] >= 0 ? separate.leaf[k] : -1;
+            if (std::find(copies.begin(), copies.end(), leaf) != copies.end()) {
+                leaf = copies[0];
+                ++copiesShown;
+            }
+            differ += shared.leaf[k] != leaf || std::memcmp(&shared.depth[k], &separate.depth[k], sizeof(float)) != 0 ||
+                      std::memcmp(&shared.normal[k], &separate.normal[k], sizeof(glm::vec3)) != 0;
+        }
+        EXPECT_EQ(differ, 0u);
+        EXPECT_GT(copiesShown, 100u) << "the big sphere must show";
+        EXPECT_EQ(shared.rgba, separate.rgba);
+    }
+}
+
 TEST_F(RendererGLTest, ConvexSubtrahendsNeedOneLayerEach) {
     // The same stack as three separate (convex) leaves: one layer suffices.
     scene::Tree tree;

@@ -361,7 +361,9 @@ TEST(TreeProgram, CountingTreesFollowTheProgramOneChangeAtATime) {
         std::uint32_t children = 0;
         for (std::size_t i = 0; i < counting.nodes.size(); ++i) {
             children += counting.nodes[i].children;
-            if (i > 0) EXPECT_LT(counting.nodes[i].parent, i);
+            if (i > 0) {
+                EXPECT_LT(counting.nodes[i].parent, i);
+            }
         }
         EXPECT_EQ(children, counting.literals.size() + counting.nodes.size() - 1);
 

@@ -63,7 +63,10 @@ struct FrameStats {
     // peel, evaluate (the CSG evaluator), normal (the normal pass), shade
     // (shading and translucent leaves), readback (render() only).
     double peelMs = 0, evaluateMs = 0, normalMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
-    std::vector<int> layersPerLeaf;            // peel passes used, per tree leaf (0 for leaves not drawn)
+    // Peel passes used, per tree leaf: 0 for leaves not drawn, among them a
+    // leaf identical to a lower one, which shares that one's layers
+    // (IdenticalLeaves.h).
+    std::vector<int> layersPerLeaf;
     std::size_t textureBytes = 0;              // layered-texture memory in use
     int textureAllocations = 0;                // layered textures (re)created during the frame
     int operands = 0;                          // leaves in the CSG product

@@ -54,10 +54,14 @@ struct TreeProgram {
 
 // Compiles `tree` from tree.root. `leafIsEmpty[i]` marks leaf i as the empty set
 // (e.g. a mesh with no triangles); an empty vector means no leaf is empty.
+// `sameLeaf[i]` (IdenticalLeaves.h; empty: every leaf is its own) is a leaf
+// with exactly leaf i's solid, whose operand leaf i's literals then use: the
+// operands are the leaves that some leaf maps to.
 // Leaves with Display::Background are always empty. Never recurses, so any
 // tree depth compiles. Throws strata::Error on a malformed tree (a child index
 // out of range, a cycle) or, for >2^31 leaves, a stack deeper than 32.
-TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty = {});
+TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty = {},
+                        const std::vector<int>& sameLeaf = {});
 
 // `program` specialised to a part of the screen where only the operands with
 // present[k] != 0 have surfaces: every other operand is outside there, so its
