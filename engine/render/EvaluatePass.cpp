@@ -30,6 +30,10 @@ constexpr GLint kBlocksX = 7;
 constexpr int kSlotLayers = 1 << 16;
 constexpr unsigned kSlotFirstLayer = 8u;
 
+// The array form's literals: their layer count below kRunShift, and above it,
+// on an operand's first literal, how many of its literals follow each other.
+constexpr int kRunShift = 16;
+
 // llvmpipe stops all loops of one shader invocation after 65535 iterations in
 // total (gallivm's loop limiter); stay inside that, and mark the pixels that
 // would not fit (see uLoopBudget in evaluate.frag).
@@ -203,12 +207,20 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
             literals.push_back(literal(l.operand, l.negated == isAnd ? 0u : 1u));
         return out;
     }
-    // The array form: the counting tree.
+    // The array form: the counting tree. An operand with several literals
+    // (identical leaves share one: IdenticalLeaves.h) is one live slot: its
+    // literals follow each other, the first carrying their number above the
+    // layer count (kRunShift), the others 0 there.
     out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(tree.literals.size()),
                   static_cast<unsigned>(nodes.size()), static_cast<unsigned>(tree.nodes.size())};
-    out.form = capacityFor(static_cast<int>(std::max(tree.literals.size(), tree.nodes.size())));
-    for (const CountingTree::Literal& l : tree.literals)
-        literals.push_back(literal(l.operand, l.parent | (l.negated ? 0x80000000u : 0u)));
+    out.form = capacityFor(static_cast<int>(std::max(used.size(), tree.nodes.size())));
+    for (std::uint32_t operand : used) {
+        const std::size_t runStart = literals.size();
+        for (const CountingTree::Literal& l : tree.literals) {
+            if (l.operand == operand) literals.push_back(literal(l.operand, l.parent | (l.negated ? 0x80000000u : 0u)));
+        }
+        literals[runStart].y |= static_cast<unsigned>(literals.size() - runStart) << kRunShift;
+    }
     for (const CountingTree::Node& n : tree.nodes)
         nodes.emplace_back(n.parent, n.isAnd ? 1u : 0u, n.children, n.trueWhenOutside);
     return out;

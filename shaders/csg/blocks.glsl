@@ -25,6 +25,8 @@ layout(std430, binding = 2) readonly buffer Blocks {
 // Per literal (slot): x the operand's first layer in uLayers, y its layers in
 // this tile, z its tree leaf, w (array form) its parent node, block-local,
 // | kNegate, or (product form) 1 where the literal wants its operand inside.
+// The array form keeps an operand's literals together, and its first literal
+// has their number in y's upper 16 bits (0 on the others).
 layout(std430, binding = 3) readonly buffer BlockOperands {
     uvec4 blockOperands[];
 };

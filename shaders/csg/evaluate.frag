@@ -262,7 +262,7 @@ uint nodeBase;
 // past it.
 float nextSurface(uvec4 literal, inout int cursor) {
     int first = int(literal.x);
-    int n = int(literal.y);
+    int n = int(literal.y & 0xffffu);
     while (cursor < 2 * n) {
         --budget;
         int j = cursor;
@@ -290,7 +290,8 @@ uint trueChildren[MAX_LIVE];  // per inner node
 
 // Live operands: slot s holds an operand that still has surfaces ahead.
 int slotCursor[MAX_LIVE];     // its position in its surface list
-uint slotEntry[MAX_LIVE];     // its literal in blockOperands
+uint slotEntry[MAX_LIVE];     // its first literal in blockOperands
+uint slotLiterals[MAX_LIVE];  // its literals there, one after the other
 bool slotInside[MAX_LIVE];
 
 // Min-heap of the slots' next surfaces (tagged depths), root at 0.
@@ -327,8 +328,10 @@ void literalChanged(uint literal, bool nowTrue) {
 void setInside(int s, bool inside) {
     if (slotInside[s] == inside) return;
     slotInside[s] = inside;
-    uint literal = blockOperands[slotEntry[s]].w;
-    literalChanged(literal, inside != ((literal & kNegate) != 0u));
+    for (uint j = 0u; j < slotLiterals[s]; ++j) {
+        uint literal = blockOperands[slotEntry[s] + j].w;
+        literalChanged(literal, inside != ((literal & kNegate) != 0u));
+    }
 }
 
 // Restores the heap order below position i after its depth grew.
@@ -361,12 +364,20 @@ void main() {
     // Each operand's first surface; a back face first means inside from the start.
     heapSize = 0;
     for (uint i = 0u; i < block.y; ++i) {
+        uvec4 literal = blockOperands[block.x + i];
+        // An operand's literals follow each other, the first holding their
+        // number (EvaluatePass.cpp: kRunShift), the others 0: one slot each.
+        // (Stepping i by that number instead lost surfaces on llvmpipe, Mesa
+        // 22.3, though every value was right: keep the loop stepping by one.)
+        uint run = literal.y >> 16;
+        if (run == 0u) continue;
         int cursor = 0;
-        float d = nextSurface(blockOperands[block.x + i], cursor);
+        float d = nextSurface(literal, cursor);
         if (d == kInfinity) continue;
         int s = heapSize++;
         slotCursor[s] = cursor;
         slotEntry[s] = block.x + i;
+        slotLiterals[s] = run;
         slotInside[s] = false;
         if (isExit(d)) setInside(s, true);
         heapDepth[s] = d;

@@ -627,6 +627,14 @@ TEST_F(RendererGLTest, IdenticalLeavesShareOneOperandAndChangeNoSurface) {
         EXPECT_EQ(differ, 0u);
         EXPECT_GT(copiesShown, 100u) << "the big sphere must show";
         EXPECT_EQ(shared.rgba, separate.rgba);
+        // The array form alone, where one slot carries the copies' literals.
+        render::RenderSettings general;
+        general.generalEvaluator = true;
+        const render::Frame sharedGeneral = renderer_->render(topCamera(projection), general);
+        EXPECT_EQ(sharedGeneral.stats.arrayBlocks, shared.stats.arrayBlocks + shared.stats.registerBlocks +
+                                                        shared.stats.productBlocks + shared.stats.firstSurfaceBlocks);
+        EXPECT_EQ(pixelsDiffering(sharedGeneral, shared), 0u);
+        EXPECT_EQ(sharedGeneral.rgba, shared.rgba);
     }
 }
 
