@@ -32,7 +32,7 @@ public:
     TreeProgram compile() {
         TreeProgram program;
         if (tree_.root < 0) return program;  // nothing at all: empty
-        const int root = normalize(tree_.root);
+        const int root = propagateLiterals(normalize(tree_.root));
         if (root == kEmpty) return program;
         if (root == kEverything) {
             program.kind = TreeProgram::Kind::Everything;
@@ -163,6 +163,126 @@ private:
         combined.children = std::move(children);
         exprs_.push_back(std::move(combined));
         return static_cast<int>(exprs_.size()) - 1;
+    }
+
+    // --- 2b: an AND's literals are true, an OR's false, inside its other children ---
+
+    // AND(x, F) = AND(x, F with x true): where x is false both are false. Likewise
+    // OR(x, F) = OR(x, F with x false). So a literal that an ancestor holds is
+    // a constant below it, and folds away there: a chain intersected with one
+    // solid at every level (identical leaves share a leaf) keeps only the
+    // outermost intersection. Rebuilds the expression without recursing;
+    // left as it is where an inner expression is shared (a rebuild per place
+    // could grow without bound).
+    int propagateLiterals(int root) {
+        if (root == kEmpty || root == kEverything || isLiteral(root) || innerExpressionShared(root)) return root;
+        std::vector<signed char> known(tree_.leaves.size(), -1);  // per leaf: -1 free, else inside (1) or not
+        std::vector<int> forced;                                     // leaves set in `known`, in order
+        struct Frame {
+            int e;
+            std::size_t next = 0;        // children of e visited
+            std::size_t forcedMark = 0;  // forced.size() on entry
+            std::vector<int> kept;       // e's rebuilt children
+            bool absorbed = false;       // a child was e's absorbing constant
+        };
+        auto value = [&](int e) {  // -1 unknown, else the literal's value
+            const Expr& x = exprs_[static_cast<std::size_t>(e)];
+            const int k = known[static_cast<std::size_t>(x.leaf)];
+            return k < 0 ? -1 : (x.negated ? 1 - k : k);
+        };
+        std::vector<Frame> stack;
+        int result = -1;
+        auto enter = [&](int e) {
+            Frame f;
+            f.e = e;
+            f.forcedMark = forced.size();
+            stack.push_back(std::move(f));
+        };
+        enter(root);
+        while (!stack.empty()) {
+            Frame& f = stack.back();
+            const Expr& x = exprs_[static_cast<std::size_t>(f.e)];
+            const bool isAnd = x.type == Expr::Type::And;
+            const int absorbing = isAnd ? kEmpty : kEverything;
+            const int neutral = isAnd ? kEverything : kEmpty;
+            auto keep = [&](int child) {
+                if (child == absorbing) {
+                    f.absorbed = true;
+                } else if (child != neutral) {
+                    const Expr& c = exprs_[static_cast<std::size_t>(child)];
+                    if (c.type == x.type) {
+                        f.kept.insert(f.kept.end(), c.children.begin(), c.children.end());
+                    } else {
+                        f.kept.push_back(child);
+                    }
+                }
+            };
+            if (result >= 0) {  // a child just rebuilt
+                keep(result);
+                result = -1;
+            }
+            if (f.next == 0 && f.kept.empty() && !f.absorbed) {
+                // First the literal children: constants where known, else they
+                // hold their value for the rest (a repeat is then a constant).
+                for (int c : x.children) {
+                    if (!isLiteral(c)) continue;
+                    const int v = value(c);
+                    if (v >= 0) {
+                        keep(v == 1 ? kEverything : kEmpty);
+                        continue;
+                    }
+                    const Expr& l = exprs_[static_cast<std::size_t>(c)];
+                    const bool holds = isAnd;  // the literal's value wherever the others matter
+                    known[static_cast<std::size_t>(l.leaf)] = static_cast<signed char>(holds != l.negated ? 1 : 0);
+                    forced.push_back(l.leaf);
+                    f.kept.push_back(c);
+                }
+            }
+            // Then the other children, under what the literals hold.
+            while (!f.absorbed && f.next < x.children.size() && isLiteral(x.children[f.next])) ++f.next;
+            if (!f.absorbed && f.next < x.children.size()) {
+                const int child = x.children[f.next++];
+                enter(child);
+                continue;
+            }
+            // Done: fold.
+            int rebuilt;
+            if (f.absorbed) {
+                rebuilt = absorbing;
+            } else if (f.kept.empty()) {
+                rebuilt = neutral;
+            } else if (f.kept.size() == 1) {
+                rebuilt = f.kept.front();
+            } else {
+                Expr e = make(x.type);
+                e.children = std::move(f.kept);
+                exprs_.push_back(std::move(e));
+                rebuilt = static_cast<int>(exprs_.size()) - 1;
+            }
+            for (std::size_t i = f.forcedMark; i < forced.size(); ++i) known[static_cast<std::size_t>(forced[i])] = -1;
+            forced.resize(f.forcedMark);
+            stack.pop_back();
+            result = rebuilt;
+        }
+        return result;
+    }
+
+    // Whether some AND/OR expression under `root` has two parents.
+    bool innerExpressionShared(int root) const {
+        std::vector<char> seen(exprs_.size(), 0);
+        std::vector<int> stack{root};
+        seen[static_cast<std::size_t>(root)] = 1;
+        while (!stack.empty()) {
+            const int e = stack.back();
+            stack.pop_back();
+            for (int c : exprs_[static_cast<std::size_t>(e)].children) {
+                if (isLiteral(c)) continue;
+                if (seen[static_cast<std::size_t>(c)]) return true;
+                seen[static_cast<std::size_t>(c)] = 1;
+                stack.push_back(c);
+            }
+        }
+        return false;
     }
 
     // Visits every expression reachable from `root` once, children before parents.

@@ -201,6 +201,81 @@ TEST(TreeProgram, MatchesTheTreeOnRandomTreesAndStates) {
     EXPECT_GT(programs, 100);  // the random trees are not all folded away
 }
 
+TEST(TreeProgram, MatchesTheTreeWhereLeavesRepeat) {
+    // Random trees whose leaves are random copies of lower ones (sameLeaf):
+    // the copies share an operand, and an AND's (OR's) literal becomes a
+    // constant inside its other children. The tree's own meaning, with every
+    // copy inside exactly where its original is, is the reference.
+    std::mt19937 rng(20261123);
+    int programs = 0, shorter = 0;
+    for (int t = 0; t < 400; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 5);
+        const std::size_t n = tree.leaves.size();
+        std::vector<int> same(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            same[i] = i > 0 && rng() % 2 == 0 ? same[rng() % i] : static_cast<int>(i);
+            // A copy is the same solid: a background leaf's copies are background too.
+            tree.leaves[i].display = tree.leaves[static_cast<std::size_t>(same[i])].display;
+        }
+        const render::TreeProgram program = render::compileTree(tree, {}, same);
+        if (program.kind != render::TreeProgram::Kind::Program) continue;
+        ++programs;
+        const render::TreeProgram unshared = render::compileTree(tree);
+        if (unshared.kind == render::TreeProgram::Kind::Program && program.code.size() < unshared.code.size()) ++shorter;
+        for (int s = 0; s < 64; ++s) {
+            std::vector<bool> inside(n);
+            for (std::size_t i = 0; i < n; ++i) inside[i] = (rng() & 1u) != 0;
+            for (std::size_t i = 0; i < n; ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+            ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
+                      direct(tree, tree.root, inside, {}))
+                << "tree " << t << ", state " << s << "\n" << render::disassemble(program);
+        }
+        for (int leaf : program.operandLeaf) EXPECT_EQ(same[static_cast<std::size_t>(leaf)], leaf);
+    }
+    EXPECT_GT(programs, 100);
+    EXPECT_GT(shorter, 50);  // the literals that ancestors hold do fold away
+}
+
+TEST(TreeProgram, AChainIntersectedWithOneSolidAtEveryLevelKeepsOneIntersection) {
+    // strata-bench's deep scene: c, then union, difference, ... with the same
+    // sphere s intersected every 8th step. Sharing s, only the outermost
+    // intersection with it is left; every other s literal folds away.
+    Tree tree;
+    int node = leaf(tree);
+    std::vector<int> same{0};
+    int sphere = -1;
+    for (int i = 1; i < 64; ++i) {
+        const int l = leaf(tree);
+        NodeKind kind = i % 4 == 2 ? NodeKind::Difference : NodeKind::Union;
+        if (i % 8 == 0) {
+            kind = NodeKind::Intersection;
+            if (sphere < 0) sphere = tree.nodes[static_cast<std::size_t>(l)].leaf;
+            same.push_back(sphere);
+        } else {
+            same.push_back(tree.nodes[static_cast<std::size_t>(l)].leaf);
+        }
+        node = tree.addNode(kind, {node, l});
+    }
+    tree.root = node;
+    const render::TreeProgram program = render::compileTree(tree, {}, same);
+    int sphereLiterals = 0;
+    for (std::uint32_t instruction : program.code) {
+        if (instruction & render::kOpFromStack) continue;
+        const int operand = static_cast<int>(instruction >> render::kOperandShift);
+        sphereLiterals += program.operandLeaf[static_cast<std::size_t>(operand)] == sphere ? 1 : 0;
+    }
+    EXPECT_EQ(sphereLiterals, 1);
+    EXPECT_EQ(program.operandCount(), 64 - 6);  // the 7 spheres are one operand
+    std::mt19937 rng(5);
+    for (int s = 0; s < 200; ++s) {
+        std::vector<bool> inside(tree.leaves.size());
+        for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() & 1u) != 0;
+        for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+        ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)), direct(tree, tree.root, inside, {}));
+    }
+}
+
 TEST(TreeProgram, BalancedTreeStackGrowsWithLogOfLeaves) {
     // A complete binary tree of 1024 leaves alternating union and intersection
     // by level cannot flatten: its stack need is exactly its height, 10.
