@@ -10,7 +10,11 @@
 //   2. Constants fold: an empty leaf (no triangles, or a '%' background leaf)
 //      is the empty set; Union() and Intersection() are empty, and so is a
 //      Difference with an empty first child; A ∩ ∅ = ∅, A ∪ ∅ = A, ¬∅ = everything.
-//      Nested ANDs (ORs) flatten, single-child nodes vanish.
+//      Nested ANDs (ORs) flatten, single-child nodes vanish. A literal that an
+//      AND (OR) holds is true (false) wherever its other children matter, so
+//      below them it is a constant and folds too (with identical leaves
+//      sharing a leaf, `sameLeaf`, a solid intersected at every level of a
+//      chain is left at the outermost level only).
 //   3. Children are ordered Sethi–Ullman style (AND and OR commute): the child
 //      that needs the deepest stack goes first, and leaf children are fused into
 //      AND_LIT/OR_LIT instructions that push nothing. A tree of L leaves then
