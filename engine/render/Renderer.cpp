@@ -155,6 +155,7 @@ struct Renderer::Impl {
     std::vector<TranslucentLeaf> translucentLeaves;
     std::vector<char> unionsOnly;  // reachedByUnionsOnly, per operand
     std::size_t leafCount = 0;
+    std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
     bool hasScene = false;
     GLint maxTextureSize = 0;
     bool canMarkLeaves = FrameTargets::canMarkLeaves();
@@ -199,7 +200,10 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl_->scene.upload(tree, model);
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
-    impl_->program = compileTree(tree, empty, identicalLeaves(tree, model));
+    const std::vector<int> same = identicalLeaves(tree, model);
+    impl_->copiedLeaves = 0;
+    for (std::size_t i = 0; i < same.size(); ++i) impl_->copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
+    impl_->program = compileTree(tree, empty, same);
     impl_->evaluate.setProgram(impl_->program, impl_->canMarkLeaves);
     impl_->unionsOnly = reachedByUnionsOnly(impl_->program, impl_->scene);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
@@ -453,6 +457,10 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // A pixel around `drawn` for the shade pass's Sobel filter.
     targets.clearResult(aovs || !translucentLeaves.empty(), drawn.grown(1));
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
+    if (copiedLeaves > 0) {
+        stats.notes.push_back(std::to_string(copiedLeaves) + (copiedLeaves == 1 ? " leaf repeats" : " leaves repeat") +
+                              " a lower one exactly and shares its peeled layers");
+    }
     if (program.kind == TreeProgram::Kind::Program) {
         peelAndEvaluate(view, rects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {

@@ -610,6 +610,12 @@ TEST_F(RendererGLTest, IdenticalLeavesShareOneOperandAndChangeNoSurface) {
         EXPECT_EQ(separate.stats.operands, static_cast<int>(leaves.size() + copies.size()));
         EXPECT_EQ(shared.stats.operands, static_cast<int>(leaves.size() + 1));
         EXPECT_EQ(shared.stats.layersPerLeaf[static_cast<std::size_t>(copies[0])], 1);
+        const auto saysRepeat = [](const render::Frame& f) {
+            return std::any_of(f.stats.notes.begin(), f.stats.notes.end(),
+                               [](const std::string& n) { return n.find("repeat") != std::string::npos; });
+        };
+        EXPECT_TRUE(saysRepeat(shared));
+        EXPECT_FALSE(saysRepeat(separate));
         for (std::size_t i = 1; i < copies.size(); ++i) EXPECT_EQ(shared.stats.layersPerLeaf[static_cast<std::size_t>(copies[i])], 0);
         ASSERT_GT(shared.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
         EXPECT_EQ(shared.stats.coveredPixels, separate.stats.coveredPixels);
