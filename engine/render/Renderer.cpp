@@ -458,8 +458,9 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     targets.clearResult(aovs || !translucentLeaves.empty(), drawn.grown(1));
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     if (copiedLeaves > 0) {
-        stats.notes.push_back(std::to_string(copiedLeaves) + (copiedLeaves == 1 ? " leaf repeats" : " leaves repeat") +
-                              " a lower one exactly and shares its peeled layers");
+        stats.notes.push_back(std::to_string(copiedLeaves) +
+                              (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
+                                                 : " leaves repeat lower ones exactly and share their peeled layers"));
     }
     if (program.kind == TreeProgram::Kind::Program) {
         peelAndEvaluate(view, rects, settings, ShadePass::baseColors(scene, scheme), frame);

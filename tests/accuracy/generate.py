@@ -598,6 +598,26 @@ for seed, levels in ((7, 9), (11, 13)):
           [orbit((0, 0, 0), 35.0, 30.0, 60.0), orbit((0, 0, 0), 215.0, -20.0, 48.0, projection="o", fov=30)],
           "a tree of depth %d mixing union, intersection and difference (seed %d)" % (t.depth(), seed))
 
+# One solid repeated: the same sphere intersected with a chain at every
+# third level (the renderer peels identical leaves once and folds the inner
+# intersections away), a copy subtracted from its original inside a union
+# (nothing), and a copy of another colour (a solid of its own).
+rnd = random.Random(9)
+bound = lambda: sphere(9.5, 32)
+chain_tree = cube((12, 12, 12))
+for level in range(1, 13):
+    piece = at(rnd.uniform(-6, 6), rnd.uniform(-6, 6), rnd.uniform(-6, 6),
+               sphere(rnd.uniform(1.5, 3.0), 16) if level % 2 else cube((3, 3, 3)))
+    chain_tree = difference(chain_tree, piece) if level % 3 == 1 else union(chain_tree, piece)
+    if level % 3 == 0:
+        chain_tree = intersection(chain_tree, bound())
+scene("repeated_solid_chain", "deep",
+      union(chain_tree,
+            at(0, 0, 13, difference(cube((4, 4, 4)), cube((4, 4, 4)))),
+            at(0, 0, -13, difference(cube((5, 5, 5)), color(PALETTE[2], cube((5, 5, 5))), sphere(2.8, 24)))),
+      [orbit((0, 0, 0), 35.0, 30.0, 70.0), orbit((0, 0, 0), 200.0, -25.0, 60.0, projection="o", fov=35)],
+      "one sphere intersected at every third level of a chain, and a cube minus its own copy")
+
 # n-ary nodes.
 rnd = random.Random(3)
 balls = [at(rnd.uniform(-8, 8), rnd.uniform(-8, 8), rnd.uniform(-8, 8),
