@@ -214,11 +214,12 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     out.record = {static_cast<unsigned>(literals.size()), static_cast<unsigned>(tree.literals.size()),
                   static_cast<unsigned>(nodes.size()), static_cast<unsigned>(tree.nodes.size())};
     out.form = capacityFor(static_cast<int>(std::max(used.size(), tree.nodes.size())));
+    std::map<std::uint32_t, std::vector<const CountingTree::Literal*>> byOperand;
+    for (const CountingTree::Literal& l : tree.literals) byOperand[l.operand].push_back(&l);
     for (std::uint32_t operand : used) {
         const std::size_t runStart = literals.size();
-        for (const CountingTree::Literal& l : tree.literals) {
-            if (l.operand == operand) literals.push_back(literal(l.operand, l.parent | (l.negated ? 0x80000000u : 0u)));
-        }
+        for (const CountingTree::Literal* l : byOperand[operand])
+            literals.push_back(literal(l->operand, l->parent | (l->negated ? 0x80000000u : 0u)));
         literals[runStart].y |= static_cast<unsigned>(literals.size() - runStart) << kRunShift;
     }
     for (const CountingTree::Node& n : tree.nodes)
