@@ -103,7 +103,9 @@ int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> ope
     }
     // Collecting: the lists' images, and auto's room for a list's every
     // layer while it is resolved (the guess above gives each operand 2).
-    if (anyListed(scene, operandLeaves, inTile, request)) layers += kCollectScratchLayers + (fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2);
+    if (anyListed(scene, operandLeaves, inTile, request)) {
+        layers += kCollectScratchLayers + (fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2);
+    }
     return std::max(layers, 1);
 }
 

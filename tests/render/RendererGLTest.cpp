@@ -616,7 +616,9 @@ TEST_F(RendererGLTest, IdenticalLeavesShareOneOperandAndChangeNoSurface) {
         };
         EXPECT_TRUE(saysRepeat(shared));
         EXPECT_FALSE(saysRepeat(separate));
-        for (std::size_t i = 1; i < copies.size(); ++i) EXPECT_EQ(shared.stats.layersPerLeaf[static_cast<std::size_t>(copies[i])], 0);
+        for (std::size_t i = 1; i < copies.size(); ++i) {
+            EXPECT_EQ(shared.stats.layersPerLeaf[static_cast<std::size_t>(copies[i])], 0);
+        }
         ASSERT_GT(shared.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
         EXPECT_EQ(shared.stats.coveredPixels, separate.stats.coveredPixels);
         // Same surfaces and image; the leaf image names the first copy for every copy.

@@ -222,7 +222,8 @@ TEST(TreeProgram, MatchesTheTreeWhereLeavesRepeat) {
         if (program.kind != render::TreeProgram::Kind::Program) continue;
         ++programs;
         const render::TreeProgram unshared = render::compileTree(tree);
-        if (unshared.kind == render::TreeProgram::Kind::Program && program.code.size() < unshared.code.size()) ++shorter;
+        const bool unsharedIsProgram = unshared.kind == render::TreeProgram::Kind::Program;
+        if (unsharedIsProgram && program.code.size() < unshared.code.size()) ++shorter;
         for (int s = 0; s < 64; ++s) {
             std::vector<bool> inside(n);
             for (std::size_t i = 0; i < n; ++i) inside[i] = (rng() & 1u) != 0;
