@@ -10,7 +10,7 @@
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
 //                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
-//                [--glibc-heap]
+//                [--glibc-heap] [--no-groups]
 
 #include <algorithm>
 #include <chrono>
@@ -96,6 +96,7 @@ struct Options {
     bool openCsg = true;
     double openCsgCapMs = 2000;
     bool steadyHeap = true;
+    bool groups = true;  // RenderSettings::groupConvexIntersections
 };
 
 // llvmpipe bins each frame's triangles into blocks it mallocs and frees
@@ -182,7 +183,8 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
     host.checkComplete();
 
-    const render::RenderSettings settings;
+    render::RenderSettings settings;
+    settings.groupConvexIntersections = options.groups;
     std::vector<double> frame, peel, evaluate, normal, shade;
     render::FrameStats last;
     for (int i = 0; i < options.warmup + options.frames; ++i) {
@@ -351,6 +353,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     json.key("frames").value(options.frames);
     json.key("warmup").value(options.warmup);
     json.key("steady_heap").value(options.steadyHeap);
+    json.key("convex_groups").value(options.groups);
     json.key("seed").value(options.seed);
     json.key("results").beginArray();
     for (const Result& r : results) {
@@ -419,6 +422,9 @@ int main(int argc, char** argv) {
     app.add_flag("!--glibc-heap", options.steadyHeap,
                  "leave glibc's adaptive malloc thresholds as they are (frame times on llvmpipe may then jump "
                  "between runs)");
+    app.add_flag("!--no-groups", options.groups,
+                 "peel every convex operand of an intersection on its own, not the intersection as one operand "
+                 "(to measure what grouping gains)");
     CLI11_PARSE(app, argc, argv);
     const std::string heap = steadyHeap(options.steadyHeap);
     if (!options.files.empty() && scenes->count() == 0) options.scenes.clear();

@@ -60,6 +60,7 @@ public:
     // Each with `marks` as its stencil.
     gpu::Framebuffer evaluateTarget;  // 0: resultDepth, 1: resultLeaf
     gpu::Framebuffer normalTarget;    // 0: normal
+    gpu::Framebuffer groupNormalTarget;  // 0: normal, 1: resultLeaf (NormalPass: groups' members)
     gpu::Framebuffer colorTarget;     // 0: color
 
     static constexpr int kWritten = 2;  // the mark without leaf marks, see above

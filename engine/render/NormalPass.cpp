@@ -17,6 +17,8 @@ constexpr GLint kForward = 2;
 constexpr GLint kLeaf = 3;
 constexpr GLint kBaseColor = 5;
 constexpr GLint kFlip = 6;  // TRUST_MARKS only
+constexpr GLint kMember = 7;  // GROUP only
+constexpr GLint kSlack = 8;   // GROUP only
 
 // Per operand k: whether the stencil marks in its rectangle within `tile`
 // are its own, that is, no other operand with k's mark slot meets that
@@ -45,12 +47,15 @@ std::vector<char> marksOwnedInRect(const FrameTargets& targets, const std::vecto
 NormalPass::NormalPass()
     : checked_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"}, {{"FACE_NORMAL", "1"}})),
       trusted_(gpu::Program::fromFiles("normal (trusting marks)", {"csg/surface.vert", "csg/normal.frag"},
-                                       {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})) {}
+                                       {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})),
+      grouped_(gpu::Program::fromFiles("normal (group members)", {"csg/surface.vert", "csg/normal.frag"},
+                                       {{"FACE_NORMAL", "1"}, {"GROUP", "1"}})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                      const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
-                     const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors) {
-    for (gpu::Program* program : {&checked_, &trusted_}) {
+                     const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
+                     const std::vector<std::vector<int>>& groups) {
+    for (gpu::Program* program : {&checked_, &trusted_, &grouped_}) {
         program->setUniform(kViewProjection, view.viewProjection);
         program->setUniform(kEye, view.eye);
         program->setUniform(kForward, view.forward);
@@ -66,19 +71,9 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     scene.flatVertexArray().bind();
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        const int leaf = operandLeaves[k];
-        const PixelRect r = rects[k].intersection(tile);
-        const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
-        if (r.empty() || shown == 0 || scene.leaf(leaf).indexCount == 0) continue;
-        glScissor(r.x, r.y, r.width, r.height);
-        gpu::Program& program = ownMarks[k] && scene.leaf(leaf).convex ? trusted_ : checked_;
-        if (&program != inUse) {
-            program.use();
-            inUse = &program;
-        }
-        program.setUniform(kLeaf, leaf);
-        program.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
+    // Draws `drawn` once per flip that operand leaf `leaf` shows, with that
+    // leaf's marks, culling the faces it does not show.
+    auto drawShown = [&](gpu::Program& program, int leaf, std::uint32_t shown, int drawn) {
         // Marks tell flips apart: a draw per flip the leaf shows. One mark for
         // all does not: one draw, and the shader reads the flip.
         for (int flip = 0; flip < (targets.leafMarks ? 2 : 1); ++flip) {
@@ -95,7 +90,57 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
             glStencilFuncSeparate(GL_FRONT, GL_EQUAL, targets.mark(leaf, false, flip != 0), 0xff);
             glStencilFuncSeparate(GL_BACK, GL_EQUAL, targets.mark(leaf, true, flip != 0), 0xff);
             if (&program == &trusted_) program.setUniform(kFlip, flip);
-            scene.drawLeaf(leaf);
+            scene.drawLeaf(drawn);
+        }
+    };
+    auto isGroup = [&](std::size_t k) { return k < groups.size() && groups[k].size() > 1; };
+    bool anyGroup = false;
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        const int leaf = operandLeaves[k];
+        const PixelRect r = rects[k].intersection(tile);
+        const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
+        if (r.empty() || shown == 0 || scene.leaf(leaf).indexCount == 0) continue;
+        if (isGroup(k)) {
+            anyGroup = true;
+            continue;
+        }
+        glScissor(r.x, r.y, r.width, r.height);
+        gpu::Program& program = ownMarks[k] && scene.leaf(leaf).convex ? trusted_ : checked_;
+        if (&program != inUse) {
+            program.use();
+            inUse = &program;
+        }
+        program.setUniform(kLeaf, leaf);
+        program.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
+        drawShown(program, leaf, shown, leaf);
+    }
+    if (anyGroup) {
+        // Groups' members write the leaf image too: they read a copy of it.
+        if (!leafCopy_.id() || leafCopy_.width() != view.width || leafCopy_.height() != view.height) {
+            leafCopy_ = gpu::Texture::create2D("result leaf copy", GL_R32I, view.width, view.height);
+        }
+        for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+            const PixelRect r = rects[k].intersection(tile);
+            if (!isGroup(k) || r.empty()) continue;
+            glCopyImageSubData(targets.resultLeaf.id(), GL_TEXTURE_2D, 0, r.x, r.y, 0, leafCopy_.id(), GL_TEXTURE_2D,
+                               0, r.x, r.y, 0, r.width, r.height, 1);
+        }
+        leafCopy_.bindUnit(1);
+        targets.groupNormalTarget.bindForDraw();
+        grouped_.use();
+        grouped_.setUniform(kSlack, static_cast<float>(1e-6 * view.farPlane));
+        for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+            const int leaf = operandLeaves[k];
+            const PixelRect r = rects[k].intersection(tile);
+            const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
+            if (!isGroup(k) || r.empty() || shown == 0) continue;
+            glScissor(r.x, r.y, r.width, r.height);
+            grouped_.setUniform(kLeaf, leaf);
+            for (auto member = groups[k].rbegin(); member != groups[k].rend(); ++member) {
+                grouped_.setUniform(kMember, *member);
+                grouped_.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(*member)]);
+                drawShown(grouped_, leaf, shown, *member);
+            }
         }
     }
     glDisable(GL_CULL_FACE);

@@ -19,6 +19,12 @@
 // that pass are the evaluator's surfaces, so they skip the comparisons
 // (normal.frag's TRUST_MARKS).
 //
+// A group of convex operands (ConvexGroups.h) is evaluated as one operand,
+// named by its lowest member leaf. Its members are drawn last, each with the
+// group's marks, into the normal and the leaf image (reading a copy of the
+// leaf image made first): the member whose fragment is the chosen surface
+// writes its normal, its own colour and its own leaf (normal.frag's GROUP).
+//
 // GL state: uses the scissor and stencil tests and turns them off before
 // returning, and face culling; expects blending and depth test off.
 
@@ -43,13 +49,19 @@ public:
     // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
     // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
     // `baseColors[leaf]` is the leaf's ShadePass::baseColors entry.
+    // `groups[k]` (TreeProgram::operandGroups; may be empty) lists the
+    // members of a group operand: each is drawn with the group's marks, and
+    // the one whose surface the pixel shows writes its leaf (see above).
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
              const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
-             const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors);
+             const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
+             const std::vector<std::vector<int>>& groups);
 
 private:
     gpu::Program checked_;  // compares leaf, facing and depth with the evaluator's
     gpu::Program trusted_;  // TRUST_MARKS: the stencil test has done that
+    gpu::Program grouped_;  // GROUP: checks as checked_, writes the member's leaf
+    gpu::Texture leafCopy_;  // the leaf image where groups are, read while it is written
 };
 
 }  // namespace strata::render

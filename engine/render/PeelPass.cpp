@@ -19,6 +19,8 @@ constexpr GLint kPreviousLayer = 3;
 // In shaders/csg/resolve.frag.
 constexpr GLint kFirstLayer = 0;
 constexpr GLint kLayerCount = 1;
+// In shaders/csg/group.frag.
+constexpr GLint kScratchLayer = 0;
 
 
 void setView(gpu::Program& program, const ViewSetup& view) {
@@ -53,6 +55,9 @@ PeelPass::PeelPass()
                                         {"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
       resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"},
                                        {{"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
+      groupBlend_(gpu::Program::fromFiles("peel group", {"csg/surface.vert", "csg/peel.frag"},
+                                          {{"PEEL_FIRST", ""}, {"GROUP", ""}})),
+      groupResolve_(gpu::Program::fromFiles("peel group resolve", {"common/fullscreen.vert", "csg/group.frag"})),
       listTarget_("peel lists"),
       resolveStats_("peel resolve stats", 2 * sizeof(GLuint)) {
     if (batched_) {
@@ -66,9 +71,14 @@ PeelPass::PeelPass()
 
 namespace {
 
-// Whether operand k takes one pass: convex, or first layer only.
+// Whether operand k is a group of convex operands.
+bool isGroup(const PeelRequest& request, std::size_t k) {
+    return k < request.groups.size() && request.groups[k].size() > 1;
+}
+
+// Whether operand k takes one pass (one layer): convex, a group, or first layer only.
 bool onePass(const LeafRange& leaf, const PeelRequest& request, std::size_t k) {
-    return leaf.convex || (k < request.firstLayerOnly.size() && request.firstLayerOnly[k]);
+    return leaf.convex || isGroup(request, k) || (k < request.firstLayerOnly.size() && request.firstLayerOnly[k]);
 }
 
 // Whether operand k is first tried through fragment lists.
@@ -95,12 +105,15 @@ int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> ope
                              std::span<const char> inTile, const PeelRequest& request) {
     const int fixedLayers = request.fixedLayers;
     int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
+    bool groups = false;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         if (!inTile[k]) continue;
+        groups = groups || isGroup(request, k);
         const LeafRange& leaf = scene.leaf(operandLeaves[k]);
         if (leaf.indexCount == 0) continue;
         layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
     }
+    if (groups && fixedLayers > 0) ++layers;  // the groups' scratch layer (auto has one)
     // Collecting: the lists' images, and auto's room for a list's every
     // layer while it is resolved (the guess above gives each operand 2).
     if (anyListed(scene, operandLeaves, inTile, request)) {
@@ -150,11 +163,12 @@ void PeelPass::clearLayers(const PixelRect& valid, int first, int count) {
 }
 
 void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
-                               std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out) {
+                               std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out,
+                               int firstLayer) {
     std::vector<DrawElementsIndirectCommand> commands;
     std::vector<std::uint32_t> drawLayers;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        if (out[k].count == 0) continue;
+        if (out[k].count == 0 || out[k].first < firstLayer) continue;
         // The layer is cleared where the evaluator reads it; the operand's
         // fragments fall inside its rectangle, so nothing else is touched.
         const PixelRect valid = region(rects[k], tile, block);
@@ -174,6 +188,48 @@ void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile,
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     passes_ += static_cast<int>(commands.size());
+}
+
+void PeelPass::peelGroup(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
+                         int layer, int scratch) {
+    glScissor(valid.x, valid.y, valid.width, valid.height);
+    clearLayers(valid, layer, 1);
+    counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, scratch);
+    counted_.bindForDraw();
+    const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
+    counted_.clearColor(0, cleared);
+    const GLint zero = 0;
+    glClearNamedFramebufferiv(counted_.id(), GL_STENCIL, 0, &zero);
+
+    // Blend: MAX is on; each back face counts its member.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_KEEP);
+    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_INCR);
+    memberCounts_.clear();
+    memberOffsets_.clear();
+    for (int member : members) {
+        const LeafRange& range = scene.leaf(member);
+        memberCounts_.push_back(static_cast<GLsizei>(range.indexCount));
+        memberOffsets_.push_back(reinterpret_cast<const void*>(range.firstIndex * sizeof(std::uint32_t)));
+    }
+    groupBlend_.use();
+    glMultiDrawElements(GL_TRIANGLES, memberCounts_.data(), GL_UNSIGNED_INT, memberOffsets_.data(),
+                        static_cast<GLsizei>(members.size()));
+    ++passes_;
+
+    // Resolve where every member was hit.
+    glTextureBarrier();
+    counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
+    glDisable(GL_BLEND);
+    glStencilFunc(GL_EQUAL, static_cast<GLint>(members.size()), 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    layers_.bindUnit(0);
+    groupResolve_.use();
+    groupResolve_.setUniform(kScratchLayer, scratch);
+    glDrawArrays(GL_TRIANGLES, 0, 3);  // the scene's vertex array stays bound, see anyDeeperThan
+    glEnable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
 }
 
 bool PeelPass::anyDeeperThan(int surfaces) {
@@ -260,6 +316,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     setView(first_, view);
     setView(next_, view);
     setView(collect_, view);
+    setView(groupBlend_, view);
     if (batched_) setView(batch_, view);
     glViewport(-tile.x, -tile.y, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
@@ -270,14 +327,26 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
 
     const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
     int used = 0;
+    // Groups first, one layer each, with one scratch layer after them that
+    // the operands after them reuse (reserve() made room for all).
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) used += inTile[k] && isGroup(request, k) ? 1 : 0;
+    const int scratch = used;
+    used = 0;
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        if (!inTile[k] || !isGroup(request, k)) continue;
+        out[k] = {used, 1};
+        peelGroup(scene, request.groups[k], region(rects[k], tile, block), used++, scratch);
+    }
     if (batched_) {
-        // Convex (and first-layer-only) operands first, one layer each
-        // (reserve() made room for all).
+        // Convex (and first-layer-only) operands next, one layer each.
+        const int batchStart = used;
         for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
             const LeafRange& range = scene.leaf(operandLeaves[k]);
-            if (inTile[k] && range.indexCount > 0 && onePass(range, request, k)) out[k] = {used++, 1};
+            if (inTile[k] && range.indexCount > 0 && out[k].count == 0 && onePass(range, request, k)) {
+                out[k] = {used++, 1};
+            }
         }
-        if (used > 0) peelConvexBatch(scene, tile, operandLeaves, rects, block, out);
+        if (used > batchStart) peelConvexBatch(scene, tile, operandLeaves, rects, block, out, batchStart);
     }
     bool fits = true;
     for (std::size_t k = 0; k < operandLeaves.size() && fits; ++k) {

@@ -28,6 +28,18 @@
 // are dropped and the operand is peeled pass by pass as above. The layers are
 // the same either way, bit for bit (tests compare them).
 //
+// A group of convex operands (ConvexGroups.h) is one operand of one layer:
+// its members are drawn at once into a scratch layer with MAX blending, a
+// front face as (depth, -FLT_MAX) and a back face as (-FLT_MAX, -depth),
+// which leaves (farthest entry, -nearest exit), while each back face
+// increments the pixel's stencil count (a ray meets each convex member's
+// back face once where it hits it: the far plane lies beyond the scene). A
+// fullscreen pass over the group's rectangle then writes the layer where
+// the count says that every member was hit: (-entry, exit) where the entry
+// lies before the exit, (-exit, exit) where no member had an entry (the ray
+// starts inside all of them), else nothing: the layer a convex operand with
+// that interval would have.
+//
 // Convex operands need one pass each and no previous layer: where the driver
 // can route a draw to a layer from the vertex stage (ARB_shader_draw_parameters
 // and ARB_shader_viewport_layer_array), they are all peeled by one multi-draw
@@ -70,6 +82,10 @@ struct PeelRequest {
     // Peel non-convex operands of at least this many triangles in one pass
     // through per-pixel fragment lists where they fit (see above); < 0: none.
     int listTriangles = 0;
+    // Per operand (empty: none): the member leaves of a group, else empty.
+    std::span<const std::vector<int>> groups;
+    // The most members a group may have: its count must fit the stencil.
+    static constexpr std::size_t kMostGroupMembers = 255;
 };
 
 class PeelPass {
@@ -122,12 +138,18 @@ private:
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
     // the first `keep` layers. False when that exceeds the budget.
     bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
+    // Peels group operand k (members `members`) into `layer` through the
+    // scratch layer `scratch`, inside `valid` (texture pixels).
+    void peelGroup(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid, int layer,
+                   int scratch);
     // Sets `count` layers from `first` to (-FLT_MAX, -FLT_MAX), "nothing
     // here", inside `valid` (texture pixels).
     void clearLayers(const PixelRect& valid, int first, int count);
-    // Peels the convex operands with out[k].count == 1 set by run() in one multi-draw.
+    // Peels the convex operands that run() gave a layer from `firstLayer` on
+    // (out[k].count == 1) in one multi-draw.
     void peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
-                         std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out);
+                         std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out,
+                         int firstLayer);
 
     gpu::Program first_;  // PEEL_FIRST: everything passes
     gpu::Program next_;   // reads the previous layer
@@ -155,6 +177,10 @@ private:
     gpu::Query deeperDrawn_;   // did deeper_ pass anywhere?
     gpu::Program collect_;  // COLLECT: appends each fragment to its pixel's list
     gpu::Program resolve_;  // fullscreen: lists to layers
+    gpu::Program groupBlend_;    // GROUP: a group's members, farthest entry and nearest exit
+    gpu::Program groupResolve_;  // fullscreen: a group's blend to its layer
+    std::vector<GLsizei> memberCounts_;      // glMultiDrawElements' arguments for a group
+    std::vector<const void*> memberOffsets_;
     gpu::Framebuffer listTarget_;  // no attachments, the tile's size: collect_ and resolve_ write images only
     gpu::Texture fragments_;       // R32F, kCollectCapacity layers: each pixel's list
     gpu::Texture fragmentCounts_;  // R32UI: fragments appended per pixel

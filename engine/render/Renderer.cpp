@@ -20,6 +20,7 @@
 #include "strata/core/Error.h"
 #include "strata/gpu/Check.h"
 #include "strata/render/ColorScheme.h"
+#include "strata/render/ConvexGroups.h"
 #include "strata/render/IdenticalLeaves.h"
 #include "strata/render/TreeProgram.h"
 
@@ -151,9 +152,16 @@ struct Renderer::Impl {
     TranslucentPass translucent;
     FrameTargets targets;
     SceneBuffers scene;
-    TreeProgram program;
+    // The tree compiled with every operand its own (`separate`) and with
+    // convex intersections grouped (ConvexGroups.h), each with its
+    // reachedByUnionsOnly; `program` is the one the evaluator holds.
+    struct Compiled {
+        TreeProgram program;
+        std::vector<char> unionsOnly;
+    };
+    Compiled separate, grouped;
+    const Compiled* compiled = nullptr;
     std::vector<TranslucentLeaf> translucentLeaves;
-    std::vector<char> unionsOnly;  // reachedByUnionsOnly, per operand
     std::size_t leafCount = 0;
     std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
     bool hasScene = false;
@@ -203,9 +211,15 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     const std::vector<int> same = identicalLeaves(tree, model);
     impl_->copiedLeaves = 0;
     for (std::size_t i = 0; i < same.size(); ++i) impl_->copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
-    impl_->program = compileTree(tree, empty, same);
-    impl_->evaluate.setProgram(impl_->program, impl_->canMarkLeaves);
-    impl_->unionsOnly = reachedByUnionsOnly(impl_->program, impl_->scene);
+    Impl& impl = *impl_;
+    impl.separate.program = compileTree(tree, empty, same);
+    impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.program, impl.scene);
+    std::vector<char> convex(impl.separate.program.operandLeaf.size());
+    for (std::size_t k = 0; k < convex.size(); ++k) convex[k] = impl.scene.leaf(impl.separate.program.operandLeaf[k]).convex;
+    impl.grouped.program = groupConvexProducts(impl.separate.program, convex, PeelRequest::kMostGroupMembers);
+    impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.program, impl.scene);
+    impl.compiled = &impl.grouped;
+    impl.evaluate.setProgram(impl.grouped.program, impl.canMarkLeaves);
     impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
     impl_->leafCount = tree.leaves.size();
     impl_->hasScene = true;
@@ -216,12 +230,16 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
                                      Frame& frame) {
     FrameStats& stats = frame.stats;
+    const TreeProgram& program = compiled->program;
     const std::vector<int>& operands = program.operandLeaf;
     if (targets.leafMarks) targets.assignMarkSlots(operands, rects, leafCount);
-    PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles};
+    PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
+                        program.operandGroups};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).
-    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) request.firstLayerOnly = unionsOnly;
+    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) {
+        request.firstLayerOnly = compiled->unionsOnly;
+    }
 
     // Tiles: the whole frame, or an even grid of quarters, of quarters of
     // those, ..., as fine as the densest tile needs for the layers its
@@ -293,8 +311,12 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
             continue;
         }
         for (std::size_t k = 0; k < operands.size(); ++k) {
-            int& used = stats.layersPerLeaf[static_cast<std::size_t>(operands[k])];
-            used = std::max(used, layers[k].count);
+            auto note = [&](int leaf) {
+                int& used = stats.layersPerLeaf[static_cast<std::size_t>(leaf)];
+                used = std::max(used, layers[k].count);
+            };
+            note(operands[k]);
+            if (k < program.operandGroups.size()) std::for_each(program.operandGroups[k].begin(), program.operandGroups[k].end(), note);
         }
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
@@ -306,7 +328,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
         stats.evaluateMs += millisecondsSince(start);
         start = Clock::now();
-        normals.run(targets, scene, view, tile, operands, rects, shown, baseColors);
+        normals.run(targets, scene, view, tile, operands, rects, shown, baseColors, program.operandGroups);
         glFinish();
         stats.normalMs += millisecondsSince(start);
         ++tilesDone;
@@ -436,6 +458,13 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         frame.blockForms.assign(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height),
                                 BlockForm::None);
     }
+    // Debug views show each operand's own layers: no groups there.
+    const Compiled& chosen = settings.groupConvexIntersections && !settings.keepPeelLayers ? grouped : separate;
+    if (compiled != &chosen) {
+        evaluate.setProgram(chosen.program, canMarkLeaves);
+        compiled = &chosen;
+    }
+    const TreeProgram& program = chosen.program;
     stats.operands = program.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;
@@ -448,6 +477,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         rects.resize(program.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
             rects[k] = screenRect(view, scene.leafVertices(program.operandLeaf[k]));
+            // A group's surfaces lie where all its members' do.
+            if (k < program.operandGroups.size()) {
+                for (int member : program.operandGroups[k])
+                    rects[k] = rects[k].intersection(screenRect(view, scene.leafVertices(member)));
+            }
             drawn = drawn.bounding(rects[k]);
         }
     }

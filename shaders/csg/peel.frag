@@ -6,6 +6,10 @@
 // (PEEL_FIRST) lets every fragment through; later passes read the previous
 // layer and keep only what lies strictly between its nearest and farthest,
 // i.e. what no earlier pass has peeled. No depth test, no culling.
+//
+// GROUP (PeelPass::peelGroup): the members of a group of convex operands, all
+// in one draw, a front face as (depth, -FLT_MAX) and a back face as
+// (-FLT_MAX, -depth): the layer ends as (farthest entry, -nearest exit).
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
@@ -44,6 +48,11 @@ void main() {
     vec2 previous = texelFetch(uLayers, ivec3(gl_FragCoord.xy, uPreviousLayer), 0).rg;
     if (t <= -previous.r || t >= previous.g) discard;
 #endif
+#ifdef GROUP
+    const float lowest = uintBitsToFloat(0xff7fffffu);  // -FLT_MAX, the cleared value
+    outDepths = gl_FrontFacing ? vec2(t, lowest) : vec2(lowest, -t);
+#else
     outDepths = vec2(-t, t);
+#endif
 #endif
 }

@@ -721,6 +721,74 @@ void expectSameAsUntiled(const render::Frame& tiled, const render::Frame& whole)
     EXPECT_EQ(differ, 0u);
 }
 
+TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
+    // A lens of a slab and six offset spheres, minus a lens of a sphere and a
+    // cube: each an intersection of convex leaves, so each one operand when
+    // grouped. Every leaf has its own colour. Grouped and separate, the
+    // frames must agree to the bit: the same surfaces, normals and leaves
+    // (the subtracted group shows its members' back faces, flipped), seen
+    // from above, from inside the model (the near plane cuts every member:
+    // rays that start inside all of them), and in tiles.
+    scene::Tree tree;
+    std::mt19937 rng(61123);
+    std::uniform_real_distribution<double> offset(-0.5, 0.5), hue(0.2, 1.0);
+    auto coloured = [&](scene::Leaf leaf) {
+        leaf.color = glm::dvec4(hue(rng), hue(rng), hue(rng), 1.0);
+        return tree.addLeaf(leaf);
+    };
+    std::vector<int> lens{coloured(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
+    for (int i = 0; i < 6; ++i) lens.push_back(coloured(sphereLeaf({offset(rng), offset(rng), offset(rng)}, 2.2)));
+    const int cut = tree.addNode(NodeKind::Intersection, {coloured(sphereLeaf({0.3, 0, 1.1}, 0.9)),
+                                                          coloured(cubeLeaf({-0.5, -0.7, -0.5}, {1.2, 0.7, 2}))});
+    tree.root = tree.addNode(NodeKind::Difference, {tree.addNode(NodeKind::Intersection, lens), cut});
+    render::RenderSettings grouped, separate, tiled;
+    separate.groupConvexIntersections = false;
+    tiled.memoryBudget = 30 * 30 * 8 * 3;
+    for (render::Projection projection : kProjections) {
+        for (double height : {kEyeHeight, 0.0}) {
+            render::Camera camera = topCamera(projection, height);
+            if (height == 0.0) camera.fovDegrees = projection == render::Projection::Perspective ? 90.0 : 60.0;
+            const render::Frame one = draw(tree, camera, grouped);
+            const render::Frame apart = renderer_->render(camera, separate);
+            EXPECT_EQ(one.stats.operands, 2);
+            EXPECT_EQ(apart.stats.operands, 9);
+            for (std::size_t leaf = 0; leaf < 9; ++leaf) EXPECT_EQ(one.stats.layersPerLeaf[leaf], 1) << leaf;
+            const bool above = height == kEyeHeight;
+            ASSERT_GT(one.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / (above ? 4 : 20));
+            EXPECT_EQ(pixelsDiffering(one, apart), 0u);
+            EXPECT_EQ(one.rgba, apart.rgba);
+            // Several members show, the subtracted ones flipped.
+            std::vector<int> shown(9, 0);
+            for (int leaf : one.leaf) {
+                if (leaf >= 0) ++shown[static_cast<std::size_t>(leaf)];
+            }
+            EXPECT_GE(std::count_if(shown.begin(), shown.end(), [](int n) { return n > 20; }), above ? 4 : 2)
+                << "projection " << static_cast<int>(projection) << ", eye at " << height;
+            // Tiles name the same leaves. (Their shifted viewports round
+            // depths near the eye differently from the whole frame's.)
+            render::RenderSettings tiledApart = tiled;
+            tiledApart.groupConvexIntersections = false;
+            const render::Frame tiles = renderer_->render(camera, tiled);
+            const render::Frame tilesApart = renderer_->render(camera, tiledApart);
+            EXPECT_GT(tiles.stats.tiles, 1);
+            ASSERT_EQ(tiles.leaf.size(), tilesApart.leaf.size());
+            std::size_t otherLeaf = 0;
+            for (std::size_t k = 0; k < tiles.leaf.size(); ++k) {
+                otherLeaf += tiles.leaf[k] != tilesApart.leaf[k];
+                if (tiles.leaf[k] >= 0) {
+                    EXPECT_NEAR(tiles.depth[k], tilesApart.depth[k], 1e-5 * tilesApart.depth[k]);
+                }
+            }
+            EXPECT_EQ(otherLeaf, 0u);
+            if (above) expectSameAsUntiled(tiles, one);
+            // Debug views show every operand's own layers.
+            render::RenderSettings layers;
+            layers.keepPeelLayers = true;
+            EXPECT_EQ(renderer_->render(camera, layers).stats.operands, 9);
+        }
+    }
+}
+
 TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
     // A slab minus 300 small spheres and a pair of shells: more operands
     // than the stencil's 63 mark slots, so slots repeat (among operands whose

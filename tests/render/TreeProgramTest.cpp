@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "strata/render/ConvexGroups.h"
 #include "strata/render/TreeProgram.h"
 
 using namespace strata;
@@ -469,4 +470,126 @@ TEST(TreeProgram, ACheeseIsOneCountingNode) {
     EXPECT_EQ(counting.nodes[0].children, 4u);
     EXPECT_EQ(counting.nodes[0].trueWhenOutside, 3u);
     EXPECT_EQ(counting.literals.size(), 4u);
+}
+
+// Operand states where a group operand is inside where all its members are.
+std::vector<bool> groupedStates(const render::TreeProgram& program, const std::vector<bool>& leafInside) {
+    std::vector<bool> states = operandStates(program, leafInside);
+    for (std::size_t k = 0; k < program.operandGroups.size(); ++k) {
+        for (int member : program.operandGroups[k]) states[k] = states[k] && leafInside[static_cast<std::size_t>(member)];
+    }
+    return states;
+}
+
+TEST(ConvexGroups, KeepTheTreesMeaningOnRandomTrees) {
+    // Random trees (some leaves repeated), random operands marked groupable,
+    // groups of at most 2 to 5: the grouped program, a group inside where
+    // all its members are, against the tree's own meaning.
+    std::mt19937 rng(20261124);
+    int grouped = 0;
+    for (int t = 0; t < 1500; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 5);
+        const std::size_t n = tree.leaves.size();
+        std::vector<int> same(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            same[i] = i > 0 && rng() % 5 == 0 ? same[rng() % i] : static_cast<int>(i);
+            tree.leaves[i].display = tree.leaves[static_cast<std::size_t>(same[i])].display;
+        }
+        const render::TreeProgram program = render::compileTree(tree, {}, same);
+        std::vector<char> groupable(program.operandLeaf.size());
+        for (char& g : groupable) g = rng() % 4 != 0 ? 1 : 0;
+        const std::size_t most = 2 + rng() % 4;
+        const render::TreeProgram groups = render::groupConvexProducts(program, groupable, most);
+        ASSERT_EQ(groups.kind, program.kind);
+        if (groups.kind != render::TreeProgram::Kind::Program) continue;
+        if (groups.operandCount() < program.operandCount()) ++grouped;
+        for (int s = 0; s < 64; ++s) {
+            std::vector<bool> inside(n);
+            for (std::size_t i = 0; i < n; ++i) inside[i] = (rng() & 1u) != 0;
+            for (std::size_t i = 0; i < n; ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+            ASSERT_EQ(render::runTreeProgram(groups, groupedStates(groups, inside)),
+                      direct(tree, tree.root, inside, {}))
+                << "tree " << t << ", state " << s << "\n" << render::disassemble(program) << "grouped:\n"
+                << render::disassemble(groups);
+        }
+        // Every operand of the first program is in exactly one operand of the
+        // second; operands stay ascending; a group is groupable leaves only.
+        std::vector<int> seen;
+        for (std::size_t k = 0; k < groups.operandLeaf.size(); ++k) {
+            if (k > 0) {
+                EXPECT_LT(groups.operandLeaf[k - 1], groups.operandLeaf[k]);
+            }
+            const bool isGroup = k < groups.operandGroups.size() && !groups.operandGroups[k].empty();
+            if (!isGroup) {
+                seen.push_back(groups.operandLeaf[k]);
+                continue;
+            }
+            const std::vector<int>& members = groups.operandGroups[k];
+            EXPECT_EQ(members.front(), groups.operandLeaf[k]);
+            EXPECT_GE(members.size(), 2u);
+            EXPECT_LE(members.size(), most);
+            for (int member : members) {
+                seen.push_back(member);
+                const auto at = std::find(program.operandLeaf.begin(), program.operandLeaf.end(), member);
+                ASSERT_NE(at, program.operandLeaf.end());
+                EXPECT_TRUE(groupable[static_cast<std::size_t>(at - program.operandLeaf.begin())]);
+            }
+        }
+        std::sort(seen.begin(), seen.end());
+        EXPECT_EQ(seen, program.operandLeaf);
+    }
+    EXPECT_GT(grouped, 50);  // some of the random trees have groups
+}
+
+TEST(ConvexGroups, AnIntersectionOfSolidsIsOneOperandInRunsOfTheMost) {
+    Tree tree;
+    std::vector<int> children;
+    for (int i = 0; i < 10; ++i) children.push_back(leaf(tree));
+    tree.root = tree.addNode(NodeKind::Intersection, children);
+    const render::TreeProgram program = render::compileTree(tree);
+    const std::vector<char> all(10, 1);
+    const render::TreeProgram one = render::groupConvexProducts(program, all, 255);
+    ASSERT_EQ(one.operandCount(), 1);
+    EXPECT_EQ(one.operandGroups[0], (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+    EXPECT_EQ(render::disassemble(one), "PUSH 0\n");
+    const render::TreeProgram runs = render::groupConvexProducts(program, all, 4);
+    ASSERT_EQ(runs.operandCount(), 3);
+    std::vector<std::size_t> sizes;
+    for (const auto& g : runs.operandGroups) sizes.push_back(g.size());
+    std::sort(sizes.begin(), sizes.end());
+    EXPECT_EQ(sizes, (std::vector<std::size_t>{2, 4, 4}));
+    // Not groupable: nothing changes.
+    const render::TreeProgram none = render::groupConvexProducts(program, std::vector<char>(10, 0), 255);
+    EXPECT_EQ(none.code, program.code);
+    EXPECT_TRUE(none.operandGroups.empty());
+}
+
+TEST(ConvexGroups, SubtractedAndRepeatedSolidsStayTheirOwn) {
+    // (A - B - C) u (D n E) u (D n F): B and C are subtracted, D is in two
+    // intersections, and E and F would be groups of one.
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree), c = leaf(tree), d = leaf(tree), e = leaf(tree), f = leaf(tree);
+    tree.root = tree.addNode(NodeKind::Union, {tree.addNode(NodeKind::Difference, {a, b, c}),
+                                               tree.addNode(NodeKind::Intersection, {d, e}),
+                                               tree.addNode(NodeKind::Intersection, {d, f})});
+    const render::TreeProgram program = render::compileTree(tree);
+    const render::TreeProgram same = render::groupConvexProducts(program, std::vector<char>(6, 1), 255);
+    EXPECT_EQ(same.code, program.code);
+    EXPECT_EQ(same.operandLeaf, program.operandLeaf);
+}
+
+TEST(ConvexGroups, ASubtractedIntersectionIsOneNegatedOperand) {
+    // A - (B n C) is A n (!B u !C): the OR's negated literals are !(B n C).
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree), c = leaf(tree);
+    tree.root = tree.addNode(NodeKind::Difference, {a, tree.addNode(NodeKind::Intersection, {b, c})});
+    const render::TreeProgram grouped =
+        render::groupConvexProducts(render::compileTree(tree), std::vector<char>(3, 1), 255);
+    ASSERT_EQ(grouped.operandLeaf, (std::vector<int>{0, 1}));
+    EXPECT_EQ(grouped.operandGroups[1], (std::vector<int>{1, 2}));
+    for (int state = 0; state < 8; ++state) {
+        const std::vector<bool> inside{(state & 1) != 0, (state & 2) != 0, (state & 4) != 0};
+        EXPECT_EQ(render::runTreeProgram(grouped, groupedStates(grouped, inside)), direct(tree, tree.root, inside, {}));
+    }
 }

@@ -56,6 +56,12 @@ struct RenderSettings {
     // 0: every non-convex operand; -1: none. The layers are the same either
     // way (tests compare them).
     int fragmentListTriangles = 4096;
+    // Peel the convex operands that one intersection joins as one operand
+    // (ConvexGroups.h): one layer holding their common interval, drawn in
+    // one pass, and one operand for the evaluator where there were many.
+    // false: each its own operand. The images are the same either way (tests
+    // compare them). Frames with keepPeelLayers never group.
+    bool groupConvexIntersections = true;
 };
 
 struct FrameStats {

@@ -51,6 +51,11 @@ struct TreeProgram {
 
     std::vector<std::uint32_t> code;  // the instructions, see above
     std::vector<int> operandLeaf;     // operand index -> tree leaf index, ascending
+    // Per operand, where groupConvexProducts (ConvexGroups.h) made it the
+    // intersection of several convex leaves: those leaves, ascending (the
+    // first is operandLeaf's). Empty for every other operand, and when no
+    // operand is a group.
+    std::vector<std::vector<int>> operandGroups;
     int stackDepth = 0;               // deepest stack the program reaches
 
     int operandCount() const { return static_cast<int>(operandLeaf.size()); }

@@ -1,0 +1,36 @@
+#pragma once
+// Intersections of convex operands, peeled as one operand.
+//
+// On any ray a convex solid is one interval (or nothing), and so is the
+// intersection of several: it runs from the farthest of their entries to
+// the nearest of their exits, where every one of them is hit. The peel pass
+// can draw all of them into one layer at once (PeelPass.h, "groups"), and
+// the evaluator then reads one operand where it read one per solid: the
+// intersection of 256 spheres becomes one layer and a one-literal tree.
+//
+// The normal pass finds which member's surface is the visible one (the one
+// whose tagged depth is the chosen surface's; on a tie, the lowest leaf, as
+// the CPU reference keeps the first operand's surface) and writes its leaf,
+// its normal and its colour. Images are unchanged by grouping (tests compare
+// both ways).
+
+#include <cstddef>
+#include <vector>
+
+#include "strata/render/TreeProgram.h"
+
+namespace strata::render {
+
+// `program` with, in every AND of its counting tree (TreeProgram.h), the
+// plain literals of the operands with groupable[k] != 0 that are each their
+// operand's only literal in the program, joined into one operand per run of
+// at most `mostMembers`: the run's first literal in code order stands for
+// all of them (it now names the group's operand) and the others leave the
+// code. So do the negated ones in every OR: !a | !b is !(a & b), and a
+// subtracted intersection, A - (B & C), is A & (!B | !C) once compiled. A group's operand is its lowest member leaf;
+// program.operandGroups[group] lists its member leaves, ascending. Operands
+// are renumbered so that operandLeaf stays ascending.
+TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<char>& groupable,
+                                std::size_t mostMembers);
+
+}  // namespace strata::render

@@ -1,0 +1,84 @@
+#include "strata/render/ConvexGroups.h"
+
+#include <algorithm>
+#include <map>
+
+namespace strata::render {
+
+TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<char>& groupable,
+                                std::size_t mostMembers) {
+    if (program.kind != TreeProgram::Kind::Program || mostMembers < 2) return program;
+    const std::vector<std::uint32_t>& code = program.code;
+    // Literal instructions in code order: countingTree's literals are the same, one for one.
+    std::vector<std::size_t> literalAt;
+    std::vector<int> uses(program.operandLeaf.size(), 0);
+    for (std::size_t i = 0; i < code.size(); ++i) {
+        if ((code[i] & 3u) != kOpPush && (code[i] & kOpFromStack)) continue;
+        literalAt.push_back(i);
+        ++uses[code[i] >> kOperandShift];
+    }
+    const CountingTree tree = countingTree(code);
+
+    // Candidates per node, in code order: an AND's plain literals, an OR's
+    // negated ones (!a | !b is !(a & b)).
+    std::map<std::uint32_t, std::vector<std::size_t>> byNode;  // node -> literal indices
+    for (std::size_t l = 0; l < tree.literals.size(); ++l) {
+        const CountingTree::Literal& literal = tree.literals[l];
+        if (literal.negated == tree.nodes[literal.parent].isAnd) continue;
+        if (literal.operand >= groupable.size() || !groupable[literal.operand] || uses[literal.operand] != 1) continue;
+        byNode[literal.parent].push_back(l);
+    }
+
+    // Each operand's new members (empty: dropped into a group); a group
+    // keeps its first literal's instruction and deletes the others, all of
+    // them AND (OR) with a literal (a node's only PUSH is its first
+    // literal), which leave the stack as it was.
+    const std::size_t n = program.operandLeaf.size();
+    std::vector<std::vector<int>> members(n);
+    for (std::size_t k = 0; k < n; ++k) members[k] = {program.operandLeaf[k]};
+    std::vector<char> deleted(code.size(), 0);
+    bool any = false;
+    for (const auto& [node, literals] : byNode) {
+        for (std::size_t start = 0; start + 1 < literals.size(); start += mostMembers) {
+            const std::size_t end = std::min(literals.size(), start + mostMembers);
+            const std::uint32_t keeper = tree.literals[literals[start]].operand;
+            for (std::size_t i = start + 1; i < end; ++i) {
+                const std::uint32_t operand = tree.literals[literals[i]].operand;
+                members[keeper].push_back(program.operandLeaf[operand]);
+                members[operand].clear();
+                deleted[literalAt[literals[i]]] = 1;
+            }
+            std::sort(members[keeper].begin(), members[keeper].end());
+            any = true;
+        }
+    }
+    if (!any) return program;
+
+    // Renumber: the operands left, by their lowest leaf.
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (!members[k].empty()) kept.push_back(k);
+    }
+    std::sort(kept.begin(), kept.end(), [&](std::size_t a, std::size_t b) { return members[a][0] < members[b][0]; });
+    std::vector<std::uint32_t> renumbered(n, 0);
+    TreeProgram out;
+    out.kind = program.kind;
+    out.stackDepth = program.stackDepth;
+    out.operandGroups.resize(kept.size());
+    for (std::size_t j = 0; j < kept.size(); ++j) {
+        renumbered[kept[j]] = static_cast<std::uint32_t>(j);
+        out.operandLeaf.push_back(members[kept[j]][0]);
+        if (members[kept[j]].size() > 1) out.operandGroups[j] = members[kept[j]];
+    }
+    for (std::size_t i = 0; i < code.size(); ++i) {
+        if (deleted[i]) continue;
+        const std::uint32_t instruction = code[i];
+        const bool literal = (instruction & 3u) == kOpPush || !(instruction & kOpFromStack);
+        out.code.push_back(literal ? (instruction & ((1u << kOperandShift) - 1u)) |
+                                         (renumbered[instruction >> kOperandShift] << kOperandShift)
+                                   : instruction);
+    }
+    return out;
+}
+
+}  // namespace strata::render
