@@ -112,7 +112,11 @@ gpu::Program& EvaluatePass::programFor(int form, bool leafMarks) {
 void EvaluatePass::setProgram(const TreeProgram& program, bool leafMarks) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
+    // Every leaf the evaluator may write: the operands' and their groups' members.
     leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
+    for (const std::vector<int>& members : program.operandGroups) {
+        if (!members.empty()) leafCount_ = std::max(leafCount_, static_cast<std::size_t>(members.back()) + 1);
+    }
     shownFaces_ = gpu::Buffer("shown faces", std::max<std::size_t>(leafCount_, 1) * sizeof(std::uint32_t), nullptr,
                               GL_DYNAMIC_STORAGE_BIT);
     // Compile now rather than mid-frame the variants that most scenes use.
@@ -227,9 +231,23 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     return out;
 }
 
+std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const std::vector<int>& operandLeaves,
+                                          const std::vector<std::vector<int>>& groups,
+                                          const std::vector<OperandLayers>& layers) {
+    std::vector<int> table(std::max<std::size_t>(leafCount, 1), -1);
+    for (std::size_t k = 0; k < groups.size() && k < operandLeaves.size(); ++k) {
+        if (groups[k].size() < 2 || layers[k].group < 0) continue;
+        table[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(table.size());
+        table.push_back(layers[k].group);
+        table.insert(table.end(), groups[k].begin(), groups[k].end());
+    }
+    return table;
+}
+
 void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                       bool generalOnly, FrameStats& stats, std::vector<BlockForm>* forms) {
+                       std::span<const int> groupTable, const gpu::Texture* groupIds, bool generalOnly,
+                       FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
     // The operands whose rectangle meets each block.
     const int blocksX = (tile.width + kBlock - 1) / kBlock;
@@ -308,18 +326,22 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     // draws them for nothing, and its mark test keeps them out of the image.
     std::vector<std::uint32_t> faces(leafCount_, 0u);
     for (const auto& [list, tree] : trees) {
-        if (tree.form == kFirstSurfaceForm) faces[tree.record.y] |= kFrontFaces;
+        // A group's surfaces are its members', which the shader reports.
+        if (tree.form == kFirstSurfaceForm && groupTable[tree.record.y] < 0) faces[tree.record.y] |= kFrontFaces;
     }
     gpu::Buffer::uploadGrowing(blocks_, "evaluate blocks", blocks);
     gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", literals);
     gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", nodes);
     gpu::Buffer::uploadGrowing(drawnBlocks_, "evaluate drawn blocks", drawn);
+    gpu::Buffer::uploadGrowing(groupTable_, "evaluate group table", std::vector<int>(groupTable.begin(), groupTable.end()));
 
     layers.bindUnit(0);
     blockNodes_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
     blocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     blockOperands_.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
     drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
+    groupTable_.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+    if (groupIds != nullptr && groupIds->id() != 0) groupIds->bindUnit(3);
     if (!faces.empty()) shownFaces_.uploadSpan(std::span<const std::uint32_t>(faces));
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     if (targets.leafMarks) targets.markSlotBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, 1);

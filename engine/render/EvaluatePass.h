@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <map>
+#include <span>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -56,9 +57,21 @@ public:
     // forms). Adds the blocks drawn in each form to `stats`, and where
     // `forms` is given sets it to each block's form (blocks of the tile
     // row by row from its lower-left corner, kBlock pixels square).
+    // `groupTable` (groupTable() below) and `groupIds` (PeelPass::groupIds,
+    // null without groups) name the member of a group that makes a surface.
     void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
-             const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects, bool generalOnly,
-             FrameStats& stats, std::vector<BlockForm>* forms = nullptr);
+             const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
+             std::span<const int> groupTable, const gpu::Texture* groupIds, bool generalOnly, FrameStats& stats,
+             std::vector<BlockForm>* forms = nullptr);
+
+    // The tile's groups of convex operands for run() (evaluate.frag:
+    // groupTable): per tree leaf (`leafCount`) -1, or for a group's operand
+    // leaf where its record starts: the group's layer of PeelPass::groupIds
+    // (`layers[k].group`), then its members (`groups[k]`,
+    // TreeProgram::operandGroups).
+    static std::vector<int> groupTable(std::size_t leafCount, const std::vector<int>& operandLeaves,
+                                       const std::vector<std::vector<int>>& groups,
+                                       const std::vector<OperandLayers>& layers);
 
     // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
     // of two, at least 16.
@@ -105,6 +118,7 @@ private:
     gpu::Buffer blockNodes_;
     gpu::Buffer drawnBlocks_;
     gpu::Buffer shownFaces_;  // per tree leaf, see shownFaces()
+    gpu::Buffer groupTable_;
     std::size_t leafCount_ = 0;
     std::vector<int> operandLeaf_;
     gpu::VertexArray empty_;

@@ -27,13 +27,6 @@ void FrameTargets::ensure(int width, int height) {
     normalTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
     normalTarget.checkComplete();
 
-    groupNormalTarget = gpu::Framebuffer("normal and leaf");
-    groupNormalTarget.attachTexture(GL_COLOR_ATTACHMENT0, normal);
-    groupNormalTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
-    groupNormalTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
-    groupNormalTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
-    groupNormalTarget.checkComplete();
-
     colorTarget = gpu::Framebuffer("colour");
     colorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
     colorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});

@@ -60,7 +60,6 @@ public:
     // Each with `marks` as its stencil.
     gpu::Framebuffer evaluateTarget;  // 0: resultDepth, 1: resultLeaf
     gpu::Framebuffer normalTarget;    // 0: normal
-    gpu::Framebuffer groupNormalTarget;  // 0: normal, 1: resultLeaf (NormalPass: groups' members)
     gpu::Framebuffer colorTarget;     // 0: color
 
     static constexpr int kWritten = 2;  // the mark without leaf marks, see above
@@ -70,12 +69,13 @@ public:
     // This frame's choice, set by the renderer before the evaluate pass.
     bool leafMarks = false;
     static constexpr int kMarkSlots = 63;  // 4 marks each, 1..252
-    // Gives each operand (tree leaf operandLeaves[k], screen rectangle
-    // rects[k]) a mark slot, and uploads them (the evaluator's storage
-    // buffer 1): slot k while there are at most kMarkSlots operands; past
-    // that, largest rectangle first, the slot fewest of the overlapping
-    // operands already placed have taken (the lowest of those). Leaves that
-    // are no operand get slot 0. Call before the evaluate pass.
+    // Gives each leaf the evaluator may write (tree leaf operandLeaves[k]:
+    // the operands, and for a group of convex operands its members; screen
+    // rectangle rects[k]) a mark slot, and uploads them (the evaluator's
+    // storage buffer 1): slot k while there are at most kMarkSlots of them;
+    // past that, largest rectangle first, the slot fewest of the overlapping
+    // ones already placed have taken (the lowest of those). Other leaves get
+    // slot 0. Call before the evaluate pass.
     void assignMarkSlots(std::span<const int> operandLeaves, std::span<const PixelRect> rects, std::size_t leafCount);
     int markSlot(int leaf) const { return markSlots_[static_cast<std::size_t>(leaf)]; }
     const gpu::Buffer& markSlotBuffer() const { return markSlotBuffer_; }

@@ -19,15 +19,15 @@
 // that pass are the evaluator's surfaces, so they skip the comparisons
 // (normal.frag's TRUST_MARKS).
 //
-// A group of convex operands (ConvexGroups.h) is evaluated as one operand,
-// named by its lowest member leaf. Its members are drawn last, each with the
-// group's marks, into the normal and the leaf image (reading a copy of the
-// leaf image made first): the member whose fragment is the chosen surface
-// writes its normal, its own colour and its own leaf (normal.frag's GROUP).
+// A group of convex operands (ConvexGroups.h) is one operand to the
+// evaluator, which writes, marks and reports shown the member that makes
+// each of its surfaces (the group's peel kept it: GroupPeel.h); here its
+// members are leaves like any other.
 //
 // GL state: uses the scissor and stencil tests and turns them off before
 // returning, and face culling; expects blending and depth test off.
 
+#include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -49,19 +49,20 @@ public:
     // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
     // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
     // `baseColors[leaf]` is the leaf's ShadePass::baseColors entry.
-    // `groups[k]` (TreeProgram::operandGroups; may be empty) lists the
-    // members of a group operand: each is drawn with the group's marks, and
-    // the one whose surface the pixel shows writes its leaf (see above).
+    // `groups[k]` (TreeProgram::operandGroups; may be empty): the members of
+    // a group operand, each drawn as a leaf of its own within the group's
+    // rectangle. `markLeaves` and `markRects`: the leaves that hold mark
+    // slots this frame and their screen rectangles, as
+    // FrameTargets::assignMarkSlots got them.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
              const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
              const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
-             const std::vector<std::vector<int>>& groups);
+             std::span<const std::vector<int>> groups, std::span<const int> markLeaves,
+             std::span<const PixelRect> markRects);
 
 private:
     gpu::Program checked_;  // compares leaf, facing and depth with the evaluator's
     gpu::Program trusted_;  // TRUST_MARKS: the stencil test has done that
-    gpu::Program grouped_;  // GROUP: checks as checked_, writes the member's leaf
-    gpu::Texture leafCopy_;  // the leaf image where groups are, read while it is written
 };
 
 }  // namespace strata::render

@@ -19,8 +19,6 @@ constexpr GLint kPreviousLayer = 3;
 // In shaders/csg/resolve.frag.
 constexpr GLint kFirstLayer = 0;
 constexpr GLint kLayerCount = 1;
-// In shaders/csg/group.frag.
-constexpr GLint kScratchLayer = 0;
 
 
 void setView(gpu::Program& program, const ViewSetup& view) {
@@ -55,9 +53,6 @@ PeelPass::PeelPass()
                                         {"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
       resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"},
                                        {{"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
-      groupBlend_(gpu::Program::fromFiles("peel group", {"csg/surface.vert", "csg/peel.frag"},
-                                          {{"PEEL_FIRST", ""}, {"GROUP", ""}})),
-      groupResolve_(gpu::Program::fromFiles("peel group resolve", {"common/fullscreen.vert", "csg/group.frag"})),
       listTarget_("peel lists"),
       resolveStats_("peel resolve stats", 2 * sizeof(GLuint)) {
     if (batched_) {
@@ -105,15 +100,16 @@ int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> ope
                              std::span<const char> inTile, const PeelRequest& request) {
     const int fixedLayers = request.fixedLayers;
     int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
-    bool groups = false;
+    int groups = 0;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         if (!inTile[k]) continue;
-        groups = groups || isGroup(request, k);
+        groups += isGroup(request, k) ? 1 : 0;
         const LeafRange& leaf = scene.leaf(operandLeaves[k]);
         if (leaf.indexCount == 0) continue;
         layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
     }
-    if (groups && fixedLayers > 0) ++layers;  // the groups' scratch layer (auto has one)
+    // Groups: their scratch images and ids, in layers' bytes.
+    if (groups > 0) layers += static_cast<int>((GroupPeel::bytesPerPixel(groups) + kBytesPerTexel - 1) / kBytesPerTexel);
     // Collecting: the lists' images, and auto's room for a list's every
     // layer while it is resolved (the guess above gives each operand 2).
     if (anyListed(scene, operandLeaves, inTile, request)) {
@@ -188,48 +184,6 @@ void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile,
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     passes_ += static_cast<int>(commands.size());
-}
-
-void PeelPass::peelGroup(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-                         int layer, int scratch) {
-    glScissor(valid.x, valid.y, valid.width, valid.height);
-    clearLayers(valid, layer, 1);
-    counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, scratch);
-    counted_.bindForDraw();
-    const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
-    counted_.clearColor(0, cleared);
-    const GLint zero = 0;
-    glClearNamedFramebufferiv(counted_.id(), GL_STENCIL, 0, &zero);
-
-    // Blend: MAX is on; each back face counts its member.
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, 0, 0xff);
-    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_KEEP);
-    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_INCR);
-    memberCounts_.clear();
-    memberOffsets_.clear();
-    for (int member : members) {
-        const LeafRange& range = scene.leaf(member);
-        memberCounts_.push_back(static_cast<GLsizei>(range.indexCount));
-        memberOffsets_.push_back(reinterpret_cast<const void*>(range.firstIndex * sizeof(std::uint32_t)));
-    }
-    groupBlend_.use();
-    glMultiDrawElements(GL_TRIANGLES, memberCounts_.data(), GL_UNSIGNED_INT, memberOffsets_.data(),
-                        static_cast<GLsizei>(members.size()));
-    ++passes_;
-
-    // Resolve where every member was hit.
-    glTextureBarrier();
-    counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
-    glDisable(GL_BLEND);
-    glStencilFunc(GL_EQUAL, static_cast<GLint>(members.size()), 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    layers_.bindUnit(0);
-    groupResolve_.use();
-    groupResolve_.setUniform(kScratchLayer, scratch);
-    glDrawArrays(GL_TRIANGLES, 0, 3);  // the scene's vertex array stays bound, see anyDeeperThan
-    glEnable(GL_BLEND);
-    glDisable(GL_STENCIL_TEST);
 }
 
 bool PeelPass::anyDeeperThan(int surfaces) {
@@ -316,7 +270,6 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     setView(first_, view);
     setView(next_, view);
     setView(collect_, view);
-    setView(groupBlend_, view);
     if (batched_) setView(batch_, view);
     glViewport(-tile.x, -tile.y, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
@@ -327,15 +280,23 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
 
     const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
     int used = 0;
-    // Groups first, one layer each, with one scratch layer after them that
-    // the operands after them reuse (reserve() made room for all).
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) used += inTile[k] && isGroup(request, k) ? 1 : 0;
-    const int scratch = used;
-    used = 0;
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        if (!inTile[k] || !isGroup(request, k)) continue;
-        out[k] = {used, 1};
-        peelGroup(scene, request.groups[k], region(rects[k], tile, block), used++, scratch);
+    // Groups first, one layer each (reserve() made room for all).
+    int groups = 0;
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) groups += inTile[k] && isGroup(request, k) ? 1 : 0;
+    if (groups == 0) group_.release();
+    if (groups > 0) {
+        glDisable(GL_BLEND);
+        group_.begin(view, tile, groups);
+        for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+            if (!inTile[k] || !isGroup(request, k)) continue;
+            const PixelRect valid = region(rects[k], tile, block);
+            clearLayers(valid, used, 1);
+            out[k] = {used, 1, used};  // a group's layer index is its index among the tile's groups
+            group_.peel(scene, request.groups[k], valid, layers_, used, used);
+            ++used;
+            passes_ += 2;
+        }
+        glEnable(GL_BLEND);
     }
     if (batched_) {
         // Convex (and first-layer-only) operands next, one layer each.

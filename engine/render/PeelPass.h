@@ -28,17 +28,10 @@
 // are dropped and the operand is peeled pass by pass as above. The layers are
 // the same either way, bit for bit (tests compare them).
 //
-// A group of convex operands (ConvexGroups.h) is one operand of one layer:
-// its members are drawn at once into a scratch layer with MAX blending, a
-// front face as (depth, -FLT_MAX) and a back face as (-FLT_MAX, -depth),
-// which leaves (farthest entry, -nearest exit), while each back face
-// increments the pixel's stencil count (a ray meets each convex member's
-// back face once where it hits it: the far plane lies beyond the scene). A
-// fullscreen pass over the group's rectangle then writes the layer where
-// the count says that every member was hit: (-entry, exit) where the entry
-// lies before the exit, (-exit, exit) where no member had an entry (the ray
-// starts inside all of them), else nothing: the layer a convex operand with
-// that interval would have.
+// A group of convex operands (ConvexGroups.h) is one operand of one layer,
+// the one a convex operand with the group's interval would have, peeled
+// first by GroupPeel (two depth-tested passes over its members and a
+// resolve), which also keeps which member makes each surface.
 //
 // Convex operands need one pass each and no previous layer: where the driver
 // can route a draw to a layer from the vertex stage (ARB_shader_draw_parameters
@@ -56,6 +49,7 @@
 #include <span>
 #include <vector>
 
+#include "GroupPeel.h"
 #include "SceneBuffers.h"
 #include "ViewSetup.h"
 #include "strata/gpu/Buffer.h"
@@ -69,6 +63,7 @@ namespace strata::render {
 struct OperandLayers {
     int first = 0;  // first layer in PeelPass::layers()
     int count = 0;  // layers peeled; 0 when the operand misses the tile
+    int group = -1;  // a group's index among the tile's groups (PeelPass::groups()); -1 for the rest
 };
 
 struct PeelRequest {
@@ -85,7 +80,7 @@ struct PeelRequest {
     // Per operand (empty: none): the member leaves of a group, else empty.
     std::span<const std::vector<int>> groups;
     // The most members a group may have: its count must fit the stencil.
-    static constexpr std::size_t kMostGroupMembers = 255;
+    static constexpr std::size_t kMostGroupMembers = GroupPeel::kMostMembers;
 };
 
 class PeelPass {
@@ -124,10 +119,13 @@ public:
     static PixelRect region(const PixelRect& rect, const PixelRect& tile, int block);
 
     const gpu::Texture& layers() const { return layers_; }
+    // The groups of the last run(): which member makes each surface
+    // (GroupPeel::ids), a layer per group (OperandLayers::group).
+    const gpu::Texture& groupIds() const { return group_.ids(); }
     // The layers and, once an operand was collected, the fragment lists.
     std::size_t textureBytes() const {
         return (layers_.id() ? layers_.byteSize() : 0) + (fragments_.id() ? fragments_.byteSize() : 0) +
-               (fragmentCounts_.id() ? fragmentCounts_.byteSize() : 0);
+               (fragmentCounts_.id() ? fragmentCounts_.byteSize() : 0) + group_.bytes();
     }
     int maxArrayLayers() const { return maxArrayLayers_; }
     int passes() const { return passes_; }  // geometry passes in the last run()
@@ -138,10 +136,6 @@ private:
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
     // the first `keep` layers. False when that exceeds the budget.
     bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
-    // Peels group operand k (members `members`) into `layer` through the
-    // scratch layer `scratch`, inside `valid` (texture pixels).
-    void peelGroup(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid, int layer,
-                   int scratch);
     // Sets `count` layers from `first` to (-FLT_MAX, -FLT_MAX), "nothing
     // here", inside `valid` (texture pixels).
     void clearLayers(const PixelRect& valid, int first, int count);
@@ -177,10 +171,7 @@ private:
     gpu::Query deeperDrawn_;   // did deeper_ pass anywhere?
     gpu::Program collect_;  // COLLECT: appends each fragment to its pixel's list
     gpu::Program resolve_;  // fullscreen: lists to layers
-    gpu::Program groupBlend_;    // GROUP: a group's members, farthest entry and nearest exit
-    gpu::Program groupResolve_;  // fullscreen: a group's blend to its layer
-    std::vector<GLsizei> memberCounts_;      // glMultiDrawElements' arguments for a group
-    std::vector<const void*> memberOffsets_;
+    GroupPeel group_;
     gpu::Framebuffer listTarget_;  // no attachments, the tile's size: collect_ and resolve_ write images only
     gpu::Texture fragments_;       // R32F, kCollectCapacity layers: each pixel's list
     gpu::Texture fragmentCounts_;  // R32UI: fragments appended per pixel

@@ -174,8 +174,11 @@ struct Renderer::Impl {
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
     // `rects`: each operand's screen rectangle (screenRect of its vertices).
+    // `markLeaves`, `markRects`: the leaves that hold mark slots (operands,
+    // and a group's members in its place) and their screen rectangles.
     // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
-    void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const RenderSettings& settings,
+    void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const std::vector<int>& markLeaves,
+                         const std::vector<PixelRect>& markRects, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, Frame& frame);
     // Paints the tile's blocks' forms (EvaluatePass::run) into frame.blockForms.
     void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
@@ -227,12 +230,13 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
 }
 
 void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects,
+                                     const std::vector<int>& markLeaves, const std::vector<PixelRect>& markRects,
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
                                      Frame& frame) {
     FrameStats& stats = frame.stats;
     const TreeProgram& program = compiled->program;
     const std::vector<int>& operands = program.operandLeaf;
-    if (targets.leafMarks) targets.assignMarkSlots(operands, rects, leafCount);
+    if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
                         program.operandGroups};
     // Every ray starts outside every operand: those that only unions lead to
@@ -322,13 +326,17 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
 
         start = Clock::now();
         std::vector<BlockForm> forms;
-        evaluate.run(targets, peel.layers(), tile, layers, rects, settings.generalEvaluator, stats,
+        const std::vector<int> groupTable =
+            EvaluatePass::groupTable(leafCount, operands, program.operandGroups, layers);
+        evaluate.run(targets, peel.layers(), tile, layers, rects, groupTable,
+                     program.operandGroups.empty() ? nullptr : &peel.groupIds(), settings.generalEvaluator, stats,
                      settings.keepBlockForms ? &forms : nullptr);
         if (settings.keepBlockForms) keepBlockForms(tile, forms, frame);
         const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
         stats.evaluateMs += millisecondsSince(start);
         start = Clock::now();
-        normals.run(targets, scene, view, tile, operands, rects, shown, baseColors, program.operandGroups);
+        normals.run(targets, scene, view, tile, operands, rects, shown, baseColors, program.operandGroups, markLeaves,
+                    markRects);
         glFinish();
         stats.normalMs += millisecondsSince(start);
         ++tilesDone;
@@ -471,16 +479,26 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     // Each operand's screen rectangle: its surfaces, and so every pixel the
     // evaluator can mark, lie inside it.
-    std::vector<PixelRect> rects;
+    // Mark slots go to the operands, a group's to each of its members.
+    std::vector<PixelRect> rects, markRects;
+    std::vector<int> markLeaves;
     PixelRect drawn;
     if (program.kind == TreeProgram::Kind::Program) {
         rects.resize(program.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
             rects[k] = screenRect(view, scene.leafVertices(program.operandLeaf[k]));
-            // A group's surfaces lie where all its members' do.
-            if (k < program.operandGroups.size()) {
-                for (int member : program.operandGroups[k])
-                    rects[k] = rects[k].intersection(screenRect(view, scene.leafVertices(member)));
+            const bool group = k < program.operandGroups.size() && !program.operandGroups[k].empty();
+            if (group) {
+                // A group's surfaces lie where all its members' do.
+                for (int member : program.operandGroups[k]) {
+                    const PixelRect own = screenRect(view, scene.leafVertices(member));
+                    rects[k] = rects[k].intersection(own);
+                    markLeaves.push_back(member);
+                    markRects.push_back(own);
+                }
+            } else {
+                markLeaves.push_back(program.operandLeaf[k]);
+                markRects.push_back(rects[k]);
             }
             drawn = drawn.bounding(rects[k]);
         }
@@ -497,7 +515,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
     if (program.kind == TreeProgram::Kind::Program) {
-        peelAndEvaluate(view, rects, settings, ShadePass::baseColors(scene, scheme), frame);
+        peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
         stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");

@@ -72,13 +72,30 @@ layout(location = 1) out int outLeaf;
 
 ivec2 pixel;
 
+// Groups of convex operands (ConvexGroups.h, GroupPeel.h): the tree has one
+// operand for a group, named by its lowest member, and the group's peel kept
+// which member makes its entry and its exit at each pixel. The leaf written,
+// marked and reported shown is that member. groupTable[leaf]: -1, or where
+// the leaf's group record starts: its layer of uGroupIds, then its members.
+layout(binding = 3) uniform usampler2DArray uGroupIds;  // tile pixels: entry | exit << 8
+layout(std430, binding = 6) readonly buffer GroupTable {
+    int groupTable[];
+};
+
+int surfaceLeaf(int leaf, bool exit) {
+    int at = groupTable[leaf];
+    if (at < 0) return leaf;
+    uint ids = texelFetch(uGroupIds, ivec3(pixel, groupTable[at]), 0).r;
+    return groupTable[at + 1 + int(exit ? ids >> 8u : ids & 0xffu)];
+}
+
 // The result changes at `group` (untagged depth): entered (now true) or left.
 // entryLeaf / exitLeaf: the tree leaf of the first operand that
 // entered / left there, -1 for none. Prefer a surface whose operand changes
 // the same way as the result: it is the result's own face.
 void writeSurface(float group, bool entered, int entryLeaf, int exitLeaf) {
     bool operandEntered = entered ? entryLeaf >= 0 : exitLeaf < 0;
-    int leaf = operandEntered ? entryLeaf : exitLeaf;
+    int leaf = surfaceLeaf(operandEntered ? entryLeaf : exitLeaf, !operandEntered);
     outDepth = uintBitsToFloat(floatBitsToUint(group) | (operandEntered ? 0u : 1u));
     outLeaf = leaf * 2 + (operandEntered != entered ? 1 : 0);
     // exit + 2 flip: the bit in shownFaces, and the mark's offset
@@ -122,19 +139,22 @@ void writeUnresolved() {
 // and the result shows nothing. This is the register form's walk for one
 // slot, step for step. Nothing to flip.
 // The renderer marks the leaf's front faces shown for every such block
-// (EvaluatePass::run), so only the rare back face needs the atomic.
+// (EvaluatePass::run), so only the rare back face needs the atomic; a
+// group's member is known here only, so it always does.
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
     float first = -layer.r;
     if (first >= kCleared || (layer.g > first && untagged(layer.g) == untagged(first))) discard;
-    int leaf = int(vRecord.y);
+    int faceBit = isExit(first) ? 1 : 0;
+    bool grouped = groupTable[int(vRecord.y)] >= 0;
+    int leaf = surfaceLeaf(int(vRecord.y), faceBit != 0);
     outDepth = first;
     outLeaf = leaf * 2;
-    int faceBit = isExit(first) ? 1 : 0;
-    if (faceBit != 0) atomicOr(shownFaces[leaf], 2u);
+    if (faceBit != 0 || grouped) atomicOr(shownFaces[leaf], 1u << faceBit);
 #ifdef LEAF_MARKS
-    gl_FragStencilRefARB = int(vRecord.z) + faceBit;  // the record carries 1 + 4 slot
+    // The record carries 1 + 4 slot, but not a group member's.
+    gl_FragStencilRefARB = (grouped ? 1 + markSlots[leaf] * 4 : int(vRecord.z)) + faceBit;
 #endif
 }
 

@@ -1,33 +1,40 @@
-// A group of convex operands' blend to its peeled layer (PeelPass::peelGroup),
+// A group of convex operands' winners to its peeled layer (GroupPeel.h),
 // fullscreen over the group's rectangle in the tile, stencil-tested: only
 // pixels where every member's back face was counted run.
 //
-// The scratch layer holds (farthest entry, -nearest exit) of the members'
-// tagged depths, -FLT_MAX where no member had that surface. The group's
-// interval on the ray runs from that entry to that exit, and is written as a
-// convex operand's layer would hold it: (-entry, exit); (-exit, exit) where no
-// member had an entry (the ray starts inside every one); nothing (the layer
-// stays cleared) where the entry does not lie before the exit. Depths are
-// compared untagged, as the evaluator does: an entry and an exit at one depth
-// leave the ray outside.
+// The scratch image holds (farthest entry, nearest exit, entry member, exit
+// member), -1 where no member had an entry. The group's interval on the ray
+// runs from that entry to that exit, and is written as a convex operand's
+// layer would hold it: (-entry, exit); (-exit, exit) where no member had an
+// entry (the ray starts inside every one); nothing (the layer stays
+// cleared) where the entry does not lie before the exit. Depths are compared
+// untagged, as the evaluator does: an entry and an exit at one depth leave
+// the ray outside. Where the group has a surface, the two members are kept
+// in the group's layer of the ids.
 #include "csg/surface.glsl"
 
 layout(early_fragment_tests) in;
 
-layout(binding = 0) uniform sampler2DArray uLayers;
-layout(location = 0) uniform int uScratchLayer;
+layout(binding = 0) uniform sampler2D uScratch;
+layout(binding = 3, r32ui) uniform writeonly uimage2DArray uIds;
+layout(location = 0) uniform int uGroup;
 
 layout(location = 0) out vec2 outDepths;
 
 void main() {
-    vec2 blend = texelFetch(uLayers, ivec3(gl_FragCoord.xy, uScratchLayer), 0).rg;
-    float entry = blend.r;
-    float exit = -blend.g;
-    if (entry < -3.0e38) {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 winners = texelFetch(uScratch, pixel, 0);
+    float entry = winners.r;
+    float exit = winners.g;
+    int exitMember = int(winners.a);
+    int entryMember = 0xff;  // GroupPeel::kNoMember
+    if (entry < 0.0) {
         outDepths = vec2(-exit, exit);
     } else if (untagged(entry) < untagged(exit)) {
         outDepths = vec2(-entry, exit);
+        entryMember = int(winners.b);
     } else {
         discard;
     }
+    imageStore(uIds, ivec3(pixel, uGroup), uvec4(uint(entryMember) | uint(exitMember) << 8u));
 }

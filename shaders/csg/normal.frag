@@ -9,9 +9,8 @@
 // (FrameTargets.h) and this pass only tests them: testing before the shader
 // runs changes no result, and spares the shader on the other leaves' pixels
 // (llvmpipe tests late, after the shader, in a shader that may discard,
-// unless told otherwise). Three variants: TRUST_MARKS (below) for convex
-// leaves whose marks are their own, the checking one, and the checking one
-// for the members of a group (GROUP), which also writes the leaf.
+// unless told otherwise). Two variants: TRUST_MARKS (below) for convex
+// leaves whose marks are their own, and the checking one.
 layout(early_fragment_tests) in;
 
 #include "csg/surface.glsl"
@@ -40,22 +39,6 @@ void main() {
     outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #else
-#ifdef GROUP
-// A member of a group of convex operands (ConvexGroups.h): the evaluator
-// wrote the group's leaf (uLeaf, its lowest member), and the member whose
-// fragment is the chosen surface writes its own leaf over it. uResultLeaf is
-// a copy of the leaf image taken before this draw (NormalPass.cpp), which is
-// also this draw's second target. Members are drawn from the highest leaf
-// down, so where two lie at one depth the lowest writes last.
-layout(location = 1) out int outLeaf;
-layout(location = 7) uniform int uMember;
-// The slack of the depth comparison: 1e-6 of the far plane's depth. A tile's
-// shifted viewport can move a depth near the eye by more than 1e-6 of it,
-// and a member that misses its own surface would leave the group's leaf and
-// no normal.
-layout(location = 8) uniform float uSlack;
-#endif
-
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int code = texelFetch(uResultLeaf, pixel, 0).r;
@@ -66,15 +49,8 @@ void main() {
     // The same vertex stage as the peel pass; its viewport is the frame's
     // where the peel pass's was one tile's. A few ulps of slack cover the
     // rounding that an offset viewport or another fragment shader may bring.
-#ifdef GROUP
-    if (abs(t - result) > uSlack) discard;
-#else
     if (abs(t - result) > 1.0e-6 * result) discard;
-#endif
     bool cut = (code & 1) != 0;
     outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
-#ifdef GROUP
-    outLeaf = uMember * 2 + (code & 1);
-#endif
 }
 #endif

@@ -7,9 +7,10 @@
 // layer and keep only what lies strictly between its nearest and farthest,
 // i.e. what no earlier pass has peeled. No depth test, no culling.
 //
-// GROUP (PeelPass::peelGroup): the members of a group of convex operands, all
-// in one draw, a front face as (depth, -FLT_MAX) and a back face as
-// (-FLT_MAX, -depth): the layer ends as (farthest entry, -nearest exit).
+// GROUP (GroupPeel.h): a member of a group of convex operands, depth-tested
+// against the others. Writes (tagged depth, tagged depth, member, member),
+// of which the pass's colour mask keeps the entry or the exit half, and as
+// its depth an order key of the tagged depth.
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
@@ -19,6 +20,21 @@ layout(location = 0) in float vViewDepth;
 // fragments overflow the list keeps counting, so the resolve can tell.
 layout(binding = 1, r32ui) uniform coherent uimage2D uFragmentCounts;
 layout(binding = 2, r32f) uniform writeonly image2DArray uFragments;
+#elif defined(GROUP)
+layout(location = 4) uniform uint uKeyBase;  // bits of a depth before every fragment's
+layout(location = 5) uniform float uMember;  // the member's index in its group
+layout(location = 0) out vec4 outGroup;
+
+// The tagged depth's bit pattern, from uKeyBase's on, as a normal float in
+// [0, 1): positive floats order like their bits, so keys order exactly like
+// tagged depths (equal only where they are), and a 32-bit float depth buffer
+// stores them as they are. The scene's depths span far less than the 2^30
+// patterns below 1.0.
+float orderKey(float tagged) {
+    uint bits = floatBitsToUint(tagged);
+    uint offset = bits > uKeyBase ? min(bits - uKeyBase, 0x3f000000u) : 0u;
+    return uintBitsToFloat(offset + 0x00800000u);
+}
 #else
 layout(location = 0) out vec2 outDepths;
 #endif
@@ -43,16 +59,14 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint slot = imageAtomicAdd(uFragmentCounts, pixel, 1u);
     if (slot < uint(COLLECT_CAPACITY)) imageStore(uFragments, ivec3(pixel, int(slot)), vec4(t));
+#elif defined(GROUP)
+    gl_FragDepth = orderKey(t);
+    outGroup = vec4(t, t, uMember, uMember);
 #else
 #ifndef PEEL_FIRST
     vec2 previous = texelFetch(uLayers, ivec3(gl_FragCoord.xy, uPreviousLayer), 0).rg;
     if (t <= -previous.r || t >= previous.g) discard;
 #endif
-#ifdef GROUP
-    const float lowest = uintBitsToFloat(0xff7fffffu);  // -FLT_MAX, the cleared value
-    outDepths = gl_FrontFacing ? vec2(t, lowest) : vec2(lowest, -t);
-#else
     outDepths = vec2(-t, t);
-#endif
 #endif
 }

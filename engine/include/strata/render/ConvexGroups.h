@@ -4,15 +4,13 @@
 // On any ray a convex solid is one interval (or nothing), and so is the
 // intersection of several: it runs from the farthest of their entries to
 // the nearest of their exits, where every one of them is hit. The peel pass
-// can draw all of them into one layer at once (PeelPass.h, "groups"), and
-// the evaluator then reads one operand where it read one per solid: the
-// intersection of 256 spheres becomes one layer and a one-literal tree.
-//
-// The normal pass finds which member's surface is the visible one (the one
-// whose tagged depth is the chosen surface's; on a tie, the lowest leaf, as
-// the CPU reference keeps the first operand's surface) and writes its leaf,
-// its normal and its colour. Images are unchanged by grouping (tests compare
-// both ways).
+// peels all of them into one layer (GroupPeel.h), keeping which member
+// makes each surface (on a tie, the lowest leaf, as the CPU reference keeps
+// the first operand's surface), and the evaluator then reads one operand
+// where it read one per solid: the intersection of 256 spheres becomes one
+// layer and a one-literal tree. Where it writes a group's surface, it
+// writes that member's leaf, so the later passes see the members as leaves.
+// Images are unchanged by grouping (tests compare both ways).
 
 #include <cstddef>
 #include <vector>

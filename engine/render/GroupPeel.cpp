@@ -1,0 +1,125 @@
+#include "GroupPeel.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "strata/gpu/Check.h"
+
+namespace strata::render {
+
+namespace {
+
+// Uniform locations in shaders/csg/surface.vert and peel.frag (GROUP).
+constexpr GLint kViewProjection = 0;
+constexpr GLint kEye = 1;
+constexpr GLint kForward = 2;
+constexpr GLint kKeyBase = 4;
+constexpr GLint kMember = 5;
+// In shaders/csg/group.frag.
+constexpr GLint kGroup = 0;
+
+}  // namespace
+
+GroupPeel::GroupPeel()
+    : draw_(gpu::Program::fromFiles("peel group", {"csg/surface.vert", "csg/peel.frag"},
+                                    {{"PEEL_FIRST", ""}, {"GROUP", ""}})),
+      resolve_(gpu::Program::fromFiles("peel group resolve", {"common/fullscreen.vert", "csg/group.frag"})),
+      target_("peel group"),
+      layerTarget_("peel group layer") {
+    target_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    layerTarget_.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+}
+
+std::size_t GroupPeel::bytes() const {
+    return (scratch_.id() ? scratch_.byteSize() : 0) + (depthStencil_.id() ? depthStencil_.byteSize() : 0) +
+           (ids_.id() ? ids_.byteSize() : 0);
+}
+
+void GroupPeel::release() {
+    if (!scratch_.id()) return;
+    // Attached, a deleted texture would live on.
+    target_.detach(GL_COLOR_ATTACHMENT0);
+    target_.detach(GL_DEPTH_STENCIL_ATTACHMENT);
+    layerTarget_.detach(GL_DEPTH_STENCIL_ATTACHMENT);
+    scratch_ = {};
+    depthStencil_ = {};
+    ids_ = {};
+}
+
+void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) {
+    if (!scratch_.id() || scratch_.width() != tile.width || scratch_.height() != tile.height) {
+        scratch_ = gpu::Texture::create2D("peel group scratch", GL_RGBA32F, tile.width, tile.height);
+        depthStencil_ = gpu::Texture::create2D("peel group depth", GL_DEPTH32F_STENCIL8, tile.width, tile.height);
+        target_.attachTexture(GL_COLOR_ATTACHMENT0, scratch_);
+        target_.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, depthStencil_);
+        layerTarget_.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, depthStencil_);
+        ids_ = {};
+    }
+    if (!ids_.id() || ids_.layers() < groups) {
+        ids_ = gpu::Texture::create2DArray("peel group ids", GL_R32UI, tile.width, tile.height, std::max(groups, 1));
+    }
+
+    draw_.setUniform(kViewProjection, view.viewProjection);
+    draw_.setUniform(kEye, view.eye);
+    draw_.setUniform(kForward, view.forward);
+    // Tagged depths from half the near plane's on map into [0, 1) in order
+    // (peel.frag: orderKey); every fragment lies beyond the near plane.
+    const float base = static_cast<float>(view.nearPlane * 0.5);
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &base, sizeof bits);
+    draw_.setUniform(kKeyBase, bits);
+}
+
+void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
+                     const gpu::Texture& layers, int layer, int group) {
+    glScissor(valid.x, valid.y, valid.width, valid.height);
+    target_.bindForDraw();
+    const float none[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+    target_.clearColor(0, none);
+    const GLint zero = 0;
+    glClearNamedFramebufferiv(target_.id(), GL_STENCIL, 0, &zero);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    draw_.use();
+    // Entries: front faces, the farthest wins; then exits: back faces, the
+    // nearest wins, and each one counts its member.
+    for (int exits = 0; exits < 2; ++exits) {
+        target_.clearDepth(exits ? 1.0f : 0.0f);
+        glDepthFunc(exits ? GL_LESS : GL_GREATER);
+        glCullFace(exits ? GL_FRONT : GL_BACK);
+        glColorMask(!exits, exits, !exits, exits);
+        if (exits) {
+            glEnable(GL_STENCIL_TEST);
+            glStencilFunc(GL_ALWAYS, 0, 0xff);
+            glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
+        }
+        for (std::size_t m = 0; m < members.size(); ++m) {
+            draw_.setUniform(kMember, static_cast<float>(m));
+            scene.drawLeaf(members[m]);
+        }
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+
+    // Where every member was hit: the layer and the ids.
+    layerTarget_.attachLayer(GL_COLOR_ATTACHMENT0, layers, layer);
+    layerTarget_.bindForDraw();
+    glStencilFunc(GL_EQUAL, static_cast<GLint>(members.size()), 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    scratch_.bindUnit(0);
+    ids_.bindImage(3, GL_WRITE_ONLY);
+    resolve_.use();
+    resolve_.setUniform(kGroup, group);
+    glDrawArrays(GL_TRIANGLES, 0, 3);  // reads no attribute: any vertex array does
+    glDisable(GL_STENCIL_TEST);
+    // The evaluator samples the layer and the ids.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    layerTarget_.detach(GL_COLOR_ATTACHMENT0);
+    gpu::checkErrors();
+}
+
+}  // namespace strata::render

@@ -1,0 +1,77 @@
+#pragma once
+// The peel of a group of convex operands (ConvexGroups.h): one layer for an
+// intersection of convex leaves, and which member makes each of its surfaces.
+//
+// On a ray through all members the group's interval runs from the farthest
+// entry to the nearest exit. Two depth-tested passes over the members find
+// both, with the member that makes them, into a scratch image the tile's
+// size (RGBA32F: entry, exit, entry member, exit member):
+//   - front faces, depth test GREATER: the farthest entry wins;
+//   - back faces, depth test LESS: the nearest exit wins, and every back
+//     face, passing or not, increments the stencil: a convex member hit by
+//     a ray has exactly one back face on it (the far plane lies beyond the
+//     scene; only front faces can be clipped, by the near plane, where the
+//     eye is inside), so the count is the number of members hit.
+// The depth each fragment writes is its tagged depth's bit pattern, shifted
+// into [0, 1) (`orderKey`): it orders fragments exactly as their tagged
+// depths do, so the winners are the depths that MAX and MIN over tagged
+// depths would give, and at equal depths the lowest member wins (members
+// are drawn in order, the tests are strict), as the CPU reference keeps the
+// first operand's surface.
+// A fullscreen pass over the group's rectangle, stencil-tested for "count =
+// members", then writes the group's layer as a convex operand with that
+// interval would hold it: (-entry, exit), or (-exit, exit) where no member
+// had an entry (the ray starts inside all of them), or nothing where the
+// entry does not lie before the exit. It stores the two winning members per
+// pixel in the group's layer of `ids()`, from which the evaluator writes the
+// member that makes the surface it chooses (evaluate.frag: surfaceLeaf).
+//
+// GL state: sets the viewport's framebuffer, depth, stencil and cull state
+// and colour masks, and leaves depth test, stencil test and culling off,
+// colour masks all on; expects blending off.
+
+#include <cstdint>
+#include <vector>
+
+#include "SceneBuffers.h"
+#include "ViewSetup.h"
+#include "strata/gpu/Framebuffer.h"
+#include "strata/gpu/Program.h"
+#include "strata/gpu/Texture.h"
+
+namespace strata::render {
+
+class GroupPeel {
+public:
+    GroupPeel();  // compiles the shaders; needs a current context
+
+    static constexpr int kMostMembers = 255;
+    static constexpr int kNoMember = 0xff;  // in ids(): no entry
+
+    // Bytes per pixel of a tile for `groups` groups: scratch, depth-stencil, ids.
+    static std::size_t bytesPerPixel(int groups) { return 16 + 8 + 4 * static_cast<std::size_t>(groups); }
+
+    // Makes room for `groups` groups in `tile`. Call before the tile's first peel().
+    void begin(const ViewSetup& view, const PixelRect& tile, int groups);
+    // Peels group `group` (0 .. groups - 1 of begin()): `members` (leaves,
+    // ascending) inside `valid` (tile pixels), into layer `layer` of `layers`.
+    void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
+              const gpu::Texture& layers, int layer, int group);
+
+    // R32UI, a layer per group, tile pixels: entry member | exit member << 8
+    // where the group has a surface (kNoMember: no entry).
+    const gpu::Texture& ids() const { return ids_; }
+    std::size_t bytes() const;
+    // Frees the images: a frame without groups keeps no memory outside the
+    // budget's count.
+    void release();
+
+private:
+    gpu::Program draw_;     // peel.frag's GROUP: a member's faces, depth = order key
+    gpu::Program resolve_;  // group.frag: scratch to the layer and the ids
+    gpu::Framebuffer target_;   // scratch + depth-stencil
+    gpu::Framebuffer layerTarget_;  // a layer of the layers + depth-stencil (for its stencil)
+    gpu::Texture scratch_, depthStencil_, ids_;
+};
+
+}  // namespace strata::render
