@@ -89,11 +89,12 @@ int EvaluatePass::capacityFor(int count) {
 }
 
 gpu::Program& EvaluatePass::programFor(int form, bool leafMarks) {
-    const int key = form * 2 + (leafMarks ? 1 : 0);
+    const int key = (form * 2 + (leafMarks ? 1 : 0)) * 2 + (groups_ ? 1 : 0);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         std::vector<gpu::ShaderDefine> defines{{"BLOCK", std::to_string(kBlock)}};
         if (leafMarks) defines.push_back({"LEAF_MARKS", "1"});
+        if (groups_) defines.push_back({"GROUPS", "1"});
         if (form == kProductForm) {
             defines.push_back({"PRODUCT_FORM", "1"});
         } else if (form == kFirstSurfaceForm) {
@@ -112,6 +113,10 @@ gpu::Program& EvaluatePass::programFor(int form, bool leafMarks) {
 void EvaluatePass::setProgram(const TreeProgram& program, bool leafMarks) {
     program_ = program;
     operandLeaf_ = program.operandLeaf;
+    // The variants that look up a group's member cost every written pixel a
+    // lookup (both sides of a branch run on llvmpipe): only where needed.
+    groups_ = std::any_of(program.operandGroups.begin(), program.operandGroups.end(),
+                          [](const std::vector<int>& members) { return !members.empty(); });
     // Every leaf the evaluator may write: the operands' and their groups' members.
     leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
     for (const std::vector<int>& members : program.operandGroups) {

@@ -111,7 +111,8 @@ private:
     // FrameTargets::mark(leaf, exit, flip) to the stencil.
     gpu::Program& programFor(int form, bool leafMarks);
 
-    std::map<int, gpu::Program> programs_;  // by form (BlockTree::form) * 2 + leaf marks
+    std::map<int, gpu::Program> programs_;  // by (form (BlockTree::form) * 2 + leaf marks) * 2 + groups_
+    bool groups_ = false;  // the program has groups of convex operands (GROUPS variants)
     TreeProgram program_;
     gpu::Buffer blocks_;
     gpu::Buffer blockOperands_;

@@ -77,10 +77,16 @@ ivec2 pixel;
 // which member makes its entry and its exit at each pixel. The leaf written,
 // marked and reported shown is that member. groupTable[leaf]: -1, or where
 // the leaf's group record starts: its layer of uGroupIds, then its members.
+// GROUPS: the program has groups (the lookup costs every written pixel).
+#ifdef GROUPS
 layout(binding = 3) uniform usampler2DArray uGroupIds;  // tile pixels: entry | exit << 8
 layout(std430, binding = 6) readonly buffer GroupTable {
     int groupTable[];
 };
+
+bool isGroup(int leaf) {
+    return groupTable[leaf] >= 0;
+}
 
 int surfaceLeaf(int leaf, bool exit) {
     int at = groupTable[leaf];
@@ -88,6 +94,15 @@ int surfaceLeaf(int leaf, bool exit) {
     uint ids = texelFetch(uGroupIds, ivec3(pixel, groupTable[at]), 0).r;
     return groupTable[at + 1 + int(exit ? ids >> 8u : ids & 0xffu)];
 }
+#else
+bool isGroup(int leaf) {
+    return false;
+}
+
+int surfaceLeaf(int leaf, bool exit) {
+    return leaf;
+}
+#endif
 
 // The result changes at `group` (untagged depth): entered (now true) or left.
 // entryLeaf / exitLeaf: the tree leaf of the first operand that
@@ -147,7 +162,7 @@ void main() {
     float first = -layer.r;
     if (first >= kCleared || (layer.g > first && untagged(layer.g) == untagged(first))) discard;
     int faceBit = isExit(first) ? 1 : 0;
-    bool grouped = groupTable[int(vRecord.y)] >= 0;
+    bool grouped = isGroup(int(vRecord.y));
     int leaf = surfaceLeaf(int(vRecord.y), faceBit != 0);
     outDepth = first;
     outLeaf = leaf * 2;
