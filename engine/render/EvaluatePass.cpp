@@ -338,7 +338,8 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", literals);
     gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", nodes);
     gpu::Buffer::uploadGrowing(drawnBlocks_, "evaluate drawn blocks", drawn);
-    gpu::Buffer::uploadGrowing(groupTable_, "evaluate group table", std::vector<int>(groupTable.begin(), groupTable.end()));
+    gpu::Buffer::uploadGrowing(groupTable_, "evaluate group table",
+                               std::vector<int>(groupTable.begin(), groupTable.end()));
 
     layers.bindUnit(0);
     blockNodes_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);

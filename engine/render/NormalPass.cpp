@@ -83,7 +83,8 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
         // A group's members are leaves of their own here: the evaluator
         // wrote the member that makes each surface (EvaluatePass.h).
         const bool group = k < groups.size() && groups[k].size() > 1;
-        const std::span<const int> leaves = group ? std::span<const int>(groups[k]) : std::span<const int>(&operandLeaves[k], 1);
+        const std::span<const int> leaves =
+            group ? std::span<const int>(groups[k]) : std::span<const int>(&operandLeaves[k], 1);
         for (const int leaf : leaves) {
             const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
             if (shown == 0 || scene.leaf(leaf).indexCount == 0) continue;

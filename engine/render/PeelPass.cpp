@@ -109,7 +109,9 @@ int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> ope
         layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
     }
     // Groups: their scratch images and ids, in layers' bytes.
-    if (groups > 0) layers += static_cast<int>((GroupPeel::bytesPerPixel(groups) + kBytesPerTexel - 1) / kBytesPerTexel);
+    if (groups > 0) {
+        layers += static_cast<int>((GroupPeel::bytesPerPixel(groups) + kBytesPerTexel - 1) / kBytesPerTexel);
+    }
     // Collecting: the lists' images, and auto's room for a list's every
     // layer while it is resolved (the guess above gives each operand 2).
     if (anyListed(scene, operandLeaves, inTile, request)) {

@@ -218,7 +218,9 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl.separate.program = compileTree(tree, empty, same);
     impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.program, impl.scene);
     std::vector<char> convex(impl.separate.program.operandLeaf.size());
-    for (std::size_t k = 0; k < convex.size(); ++k) convex[k] = impl.scene.leaf(impl.separate.program.operandLeaf[k]).convex;
+    for (std::size_t k = 0; k < convex.size(); ++k) {
+        convex[k] = impl.scene.leaf(impl.separate.program.operandLeaf[k]).convex ? 1 : 0;
+    }
     impl.grouped.program = groupConvexProducts(impl.separate.program, convex, PeelRequest::kMostGroupMembers);
     impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.program, impl.scene);
     impl.compiled = &impl.grouped;
@@ -320,7 +322,9 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
                 used = std::max(used, layers[k].count);
             };
             note(operands[k]);
-            if (k < program.operandGroups.size()) std::for_each(program.operandGroups[k].begin(), program.operandGroups[k].end(), note);
+            if (k < program.operandGroups.size()) {
+                for (int member : program.operandGroups[k]) note(member);
+            }
         }
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 

@@ -476,7 +476,9 @@ TEST(TreeProgram, ACheeseIsOneCountingNode) {
 std::vector<bool> groupedStates(const render::TreeProgram& program, const std::vector<bool>& leafInside) {
     std::vector<bool> states = operandStates(program, leafInside);
     for (std::size_t k = 0; k < program.operandGroups.size(); ++k) {
-        for (int member : program.operandGroups[k]) states[k] = states[k] && leafInside[static_cast<std::size_t>(member)];
+        for (int member : program.operandGroups[k]) {
+            states[k] = states[k] && leafInside[static_cast<std::size_t>(member)];
+        }
     }
     return states;
 }
