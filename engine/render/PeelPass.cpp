@@ -285,8 +285,9 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     // Groups first, one layer each (reserve() made room for all).
     int groups = 0;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) groups += inTile[k] && isGroup(request, k) ? 1 : 0;
-    if (groups == 0) group_.release();
-    if (groups > 0) {
+    if (groups == 0) {
+        group_.release();
+    } else {
         glDisable(GL_BLEND);
         group_.begin(view, tile, groups);
         for (std::size_t k = 0; k < operandLeaves.size(); ++k) {

@@ -63,7 +63,7 @@ namespace strata::render {
 struct OperandLayers {
     int first = 0;  // first layer in PeelPass::layers()
     int count = 0;  // layers peeled; 0 when the operand misses the tile
-    int group = -1;  // a group's index among the tile's groups (PeelPass::groups()); -1 for the rest
+    int group = -1;  // a group's index among the tile's groups, its layer of groupIds(); -1 for the rest
 };
 
 struct PeelRequest {
