@@ -236,22 +236,22 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     return out;
 }
 
-std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const std::vector<int>& operandLeaves,
-                                          const std::vector<std::vector<int>>& groups,
+std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const TreeProgram& program,
                                           const std::vector<OperandLayers>& layers) {
     std::vector<int> table(std::max<std::size_t>(leafCount, 1), -1);
-    for (std::size_t k = 0; k < groups.size() && k < operandLeaves.size(); ++k) {
-        if (groups[k].size() < 2 || layers[k].group < 0) continue;
-        table[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(table.size());
+    for (std::size_t k = 0; k < program.operandLeaf.size(); ++k) {
+        if (layers[k].group < 0) continue;  // no group, or one missing the tile
+        const std::span<const int> members = program.leavesOf(k);
+        table[static_cast<std::size_t>(program.operandLeaf[k])] = static_cast<int>(table.size());
         table.push_back(layers[k].group);
-        table.insert(table.end(), groups[k].begin(), groups[k].end());
+        table.insert(table.end(), members.begin(), members.end());
     }
     return table;
 }
 
 void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                       std::span<const int> groupTable, const gpu::Texture* groupIds, bool generalOnly,
+                       std::span<const int> groupTable, const gpu::Texture& groupIds, bool generalOnly,
                        FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
     // The operands whose rectangle meets each block.
@@ -347,7 +347,7 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     blockOperands_.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
     drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, 4);
     groupTable_.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-    if (groupIds != nullptr && groupIds->id() != 0) groupIds->bindUnit(3);
+    if (groupIds.id() != 0) groupIds.bindUnit(3);
     if (!faces.empty()) shownFaces_.uploadSpan(std::span<const std::uint32_t>(faces));
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, 5);
     if (targets.leafMarks) targets.markSlotBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, 1);

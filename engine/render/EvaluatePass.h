@@ -58,19 +58,17 @@ public:
     // `forms` is given sets it to each block's form (blocks of the tile
     // row by row from its lower-left corner, kBlock pixels square).
     // `groupTable` (groupTable() below) and `groupIds` (PeelPass::groupIds,
-    // null without groups) name the member of a group that makes a surface.
+    // no texture without groups) name the member of a group that makes a surface.
     void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
              const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-             std::span<const int> groupTable, const gpu::Texture* groupIds, bool generalOnly, FrameStats& stats,
+             std::span<const int> groupTable, const gpu::Texture& groupIds, bool generalOnly, FrameStats& stats,
              std::vector<BlockForm>* forms = nullptr);
 
     // The tile's groups of convex operands for run() (evaluate.frag:
     // groupTable): per tree leaf (`leafCount`) -1, or for a group's operand
     // leaf where its record starts: the group's layer of PeelPass::groupIds
-    // (`layers[k].group`), then its members (`groups[k]`,
-    // TreeProgram::operandGroups).
-    static std::vector<int> groupTable(std::size_t leafCount, const std::vector<int>& operandLeaves,
-                                       const std::vector<std::vector<int>>& groups,
+    // (`layers[k].group`), then its members (TreeProgram::operandGroups).
+    static std::vector<int> groupTable(std::size_t leafCount, const TreeProgram& program,
                                        const std::vector<OperandLayers>& layers);
 
     // The array form's size (MAX_LIVE) for `count` literals or nodes: a power

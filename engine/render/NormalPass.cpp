@@ -53,10 +53,9 @@ NormalPass::NormalPass()
                                        {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-                     const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
+                     const TreeProgram& tree, const std::vector<PixelRect>& rects,
                      const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
-                     std::span<const std::vector<int>> groups, std::span<const int> markLeaves,
-                     std::span<const PixelRect> markRects) {
+                     std::span<const int> markLeaves, std::span<const PixelRect> markRects) {
     for (gpu::Program* program : {&checked_, &trusted_}) {
         program->setUniform(kViewProjection, view.viewProjection);
         program->setUniform(kEye, view.eye);
@@ -76,16 +75,13 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     scene.flatVertexArray().bind();
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+    for (std::size_t k = 0; k < tree.operandLeaf.size(); ++k) {
         const PixelRect r = rects[k].intersection(tile);
         if (r.empty()) continue;
         glScissor(r.x, r.y, r.width, r.height);
         // A group's members are leaves of their own here: the evaluator
         // wrote the member that makes each surface (EvaluatePass.h).
-        const bool group = k < groups.size() && groups[k].size() > 1;
-        const std::span<const int> leaves =
-            group ? std::span<const int>(groups[k]) : std::span<const int>(&operandLeaves[k], 1);
-        for (const int leaf : leaves) {
+        for (const int leaf : tree.leavesOf(k)) {
             const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
             if (shown == 0 || scene.leaf(leaf).indexCount == 0) continue;
             gpu::Program& program = ownsMarks(leaf) && scene.leaf(leaf).convex ? trusted_ : checked_;

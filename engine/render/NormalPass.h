@@ -38,6 +38,7 @@
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
+#include "strata/render/TreeProgram.h"
 
 namespace strata::render {
 
@@ -45,20 +46,18 @@ class NormalPass {
 public:
     NormalPass();
 
-    // `operandLeaves[k]` is operand k's tree leaf and `rects[k]` its screen
+    // `tree.operandLeaf[k]` is operand k's tree leaf and `rects[k]` its screen
     // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
     // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
     // `baseColors[leaf]` is the leaf's ShadePass::baseColors entry.
-    // `groups[k]` (TreeProgram::operandGroups; may be empty): the members of
-    // a group operand, each drawn as a leaf of its own within the group's
-    // rectangle. `markLeaves` and `markRects`: the leaves that hold mark
-    // slots this frame and their screen rectangles, as
-    // FrameTargets::assignMarkSlots got them.
+    // A group operand's members (TreeProgram::leavesOf) are each drawn as a
+    // leaf of their own within the group's rectangle. `markLeaves` and
+    // `markRects`: the leaves that hold mark slots this frame and their
+    // screen rectangles, as FrameTargets::assignMarkSlots got them.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-             const std::vector<int>& operandLeaves, const std::vector<PixelRect>& rects,
+             const TreeProgram& tree, const std::vector<PixelRect>& rects,
              const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
-             std::span<const std::vector<int>> groups, std::span<const int> markLeaves,
-             std::span<const PixelRect> markRects);
+             std::span<const int> markLeaves, std::span<const PixelRect> markRects);
 
 private:
     gpu::Program checked_;  // compares leaf, facing and depth with the evaluator's

@@ -211,10 +211,10 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl_->scene.upload(tree, model);
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
-    const std::vector<int> same = identicalLeaves(tree, model);
-    impl_->copiedLeaves = 0;
-    for (std::size_t i = 0; i < same.size(); ++i) impl_->copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
     Impl& impl = *impl_;
+    const std::vector<int> same = identicalLeaves(tree, model);
+    impl.copiedLeaves = 0;
+    for (std::size_t i = 0; i < same.size(); ++i) impl.copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
     impl.separate.program = compileTree(tree, empty, same);
     impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.program, impl.scene);
     std::vector<char> convex(impl.separate.program.operandLeaf.size());
@@ -225,9 +225,9 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.program, impl.scene);
     impl.compiled = &impl.grouped;
     impl.evaluate.setProgram(impl.grouped.program, impl.canMarkLeaves);
-    impl_->translucentLeaves = translucentLeaves(tree, impl_->scene);
-    impl_->leafCount = tree.leaves.size();
-    impl_->hasScene = true;
+    impl.translucentLeaves = translucentLeaves(tree, impl.scene);
+    impl.leafCount = tree.leaves.size();
+    impl.hasScene = true;
     gpu::checkErrors();
 }
 
@@ -317,30 +317,22 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
             continue;
         }
         for (std::size_t k = 0; k < operands.size(); ++k) {
-            auto note = [&](int leaf) {
+            for (int leaf : program.leavesOf(k)) {
                 int& used = stats.layersPerLeaf[static_cast<std::size_t>(leaf)];
                 used = std::max(used, layers[k].count);
-            };
-            note(operands[k]);
-            if (k < program.operandGroups.size()) {
-                for (int member : program.operandGroups[k]) note(member);
             }
         }
         if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
 
         start = Clock::now();
         std::vector<BlockForm> forms;
-        const std::vector<int> groupTable =
-            EvaluatePass::groupTable(leafCount, operands, program.operandGroups, layers);
-        evaluate.run(targets, peel.layers(), tile, layers, rects, groupTable,
-                     program.operandGroups.empty() ? nullptr : &peel.groupIds(), settings.generalEvaluator, stats,
-                     settings.keepBlockForms ? &forms : nullptr);
+        evaluate.run(targets, peel.layers(), tile, layers, rects, EvaluatePass::groupTable(leafCount, program, layers),
+                     peel.groupIds(), settings.generalEvaluator, stats, settings.keepBlockForms ? &forms : nullptr);
         if (settings.keepBlockForms) keepBlockForms(tile, forms, frame);
         const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
         stats.evaluateMs += millisecondsSince(start);
         start = Clock::now();
-        normals.run(targets, scene, view, tile, operands, rects, shown, baseColors, program.operandGroups, markLeaves,
-                    markRects);
+        normals.run(targets, scene, view, tile, program, rects, shown, baseColors, markLeaves, markRects);
         glFinish();
         stats.normalMs += millisecondsSince(start);
         ++tilesDone;
@@ -490,19 +482,13 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     if (program.kind == TreeProgram::Kind::Program) {
         rects.resize(program.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
-            rects[k] = screenRect(view, scene.leafVertices(program.operandLeaf[k]));
-            const bool group = k < program.operandGroups.size() && !program.operandGroups[k].empty();
-            if (group) {
-                // A group's surfaces lie where all its members' do.
-                for (int member : program.operandGroups[k]) {
-                    const PixelRect own = screenRect(view, scene.leafVertices(member));
-                    rects[k] = rects[k].intersection(own);
-                    markLeaves.push_back(member);
-                    markRects.push_back(own);
-                }
-            } else {
-                markLeaves.push_back(program.operandLeaf[k]);
-                markRects.push_back(rects[k]);
+            // A group's surfaces lie where all its members' do.
+            const std::span<const int> leaves = program.leavesOf(k);
+            for (std::size_t i = 0; i < leaves.size(); ++i) {
+                const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
+                rects[k] = i == 0 ? own : rects[k].intersection(own);
+                markLeaves.push_back(leaves[i]);
+                markRects.push_back(own);
             }
             drawn = drawn.bounding(rects[k]);
         }

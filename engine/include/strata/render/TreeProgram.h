@@ -29,6 +29,7 @@
 // PUSH always takes a literal. AND/OR combine the stack top with the source.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,11 @@ struct TreeProgram {
     int stackDepth = 0;               // deepest stack the program reaches
 
     int operandCount() const { return static_cast<int>(operandLeaf.size()); }
+    // The tree leaves operand k stands for: a group's members, else its own leaf.
+    std::span<const int> leavesOf(std::size_t k) const {
+        if (k < operandGroups.size() && !operandGroups[k].empty()) return operandGroups[k];
+        return {&operandLeaf[k], 1};
+    }
 };
 
 // Compiles `tree` from tree.root. `leafIsEmpty[i]` marks leaf i as the empty set
