@@ -92,6 +92,27 @@ void forRandomPrograms(unsigned seed, int depth, F f) {
     }
 }
 
+// Makes each leaf after the first, with chance 1 in `oneIn`, a copy of a
+// random lower one (IdenticalLeaves.h's sameLeaf, returned); a copy is the
+// same solid, so a background leaf's copies are background too.
+std::vector<int> randomCopies(Tree& tree, std::mt19937& rng, unsigned oneIn) {
+    const std::size_t n = tree.leaves.size();
+    std::vector<int> same(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        same[i] = i > 0 && rng() % oneIn == 0 ? same[rng() % i] : static_cast<int>(i);
+        tree.leaves[i].display = tree.leaves[static_cast<std::size_t>(same[i])].display;
+    }
+    return same;
+}
+
+// Random leaf states, every copy inside exactly where its original is.
+std::vector<bool> randomStates(const std::vector<int>& same, std::mt19937& rng) {
+    std::vector<bool> inside(same.size());
+    for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() & 1u) != 0;
+    for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+    return inside;
+}
+
 }  // namespace
 
 TEST(TreeProgram, DifferenceBecomesIntersectionWithComplements) {
@@ -212,13 +233,7 @@ TEST(TreeProgram, MatchesTheTreeWhereLeavesRepeat) {
     for (int t = 0; t < 400; ++t) {
         Tree tree;
         tree.root = randomNode(tree, rng, 5);
-        const std::size_t n = tree.leaves.size();
-        std::vector<int> same(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            same[i] = i > 0 && rng() % 2 == 0 ? same[rng() % i] : static_cast<int>(i);
-            // A copy is the same solid: a background leaf's copies are background too.
-            tree.leaves[i].display = tree.leaves[static_cast<std::size_t>(same[i])].display;
-        }
+        const std::vector<int> same = randomCopies(tree, rng, 2);
         const render::TreeProgram program = render::compileTree(tree, {}, same);
         if (program.kind != render::TreeProgram::Kind::Program) continue;
         ++programs;
@@ -226,9 +241,7 @@ TEST(TreeProgram, MatchesTheTreeWhereLeavesRepeat) {
         const bool unsharedIsProgram = unshared.kind == render::TreeProgram::Kind::Program;
         if (unsharedIsProgram && program.code.size() < unshared.code.size()) ++shorter;
         for (int s = 0; s < 64; ++s) {
-            std::vector<bool> inside(n);
-            for (std::size_t i = 0; i < n; ++i) inside[i] = (rng() & 1u) != 0;
-            for (std::size_t i = 0; i < n; ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+            const std::vector<bool> inside = randomStates(same, rng);
             ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
                       direct(tree, tree.root, inside, {}))
                 << "tree " << t << ", state " << s << "\n" << render::disassemble(program);
@@ -271,9 +284,7 @@ TEST(TreeProgram, AChainIntersectedWithOneSolidAtEveryLevelKeepsOneIntersection)
     EXPECT_EQ(program.operandCount(), 64 - 6);  // the 7 spheres are one operand
     std::mt19937 rng(5);
     for (int s = 0; s < 200; ++s) {
-        std::vector<bool> inside(tree.leaves.size());
-        for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() & 1u) != 0;
-        for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+        const std::vector<bool> inside = randomStates(same, rng);
         ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)), direct(tree, tree.root, inside, {}));
     }
 }
@@ -492,12 +503,7 @@ TEST(ConvexGroups, KeepTheTreesMeaningOnRandomTrees) {
     for (int t = 0; t < 1500; ++t) {
         Tree tree;
         tree.root = randomNode(tree, rng, 5);
-        const std::size_t n = tree.leaves.size();
-        std::vector<int> same(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            same[i] = i > 0 && rng() % 5 == 0 ? same[rng() % i] : static_cast<int>(i);
-            tree.leaves[i].display = tree.leaves[static_cast<std::size_t>(same[i])].display;
-        }
+        const std::vector<int> same = randomCopies(tree, rng, 5);
         const render::TreeProgram program = render::compileTree(tree, {}, same);
         std::vector<char> groupable(program.operandLeaf.size());
         for (char& g : groupable) g = rng() % 4 != 0 ? 1 : 0;
@@ -507,9 +513,7 @@ TEST(ConvexGroups, KeepTheTreesMeaningOnRandomTrees) {
         if (groups.kind != render::TreeProgram::Kind::Program) continue;
         if (groups.operandCount() < program.operandCount()) ++grouped;
         for (int s = 0; s < 64; ++s) {
-            std::vector<bool> inside(n);
-            for (std::size_t i = 0; i < n; ++i) inside[i] = (rng() & 1u) != 0;
-            for (std::size_t i = 0; i < n; ++i) inside[i] = inside[static_cast<std::size_t>(same[i])];
+            const std::vector<bool> inside = randomStates(same, rng);
             ASSERT_EQ(render::runTreeProgram(groups, groupedStates(groups, inside)),
                       direct(tree, tree.root, inside, {}))
                 << "tree " << t << ", state " << s << "\n" << render::disassemble(program) << "grouped:\n"
