@@ -1,0 +1,35 @@
+// Stand-in for shaders/csg/evaluate.frag, for measuring only (benchmarks.md,
+// "Session 12"): whatever the block's form, read the layer its record names
+// and write its near surface. No walk and no tree: the cost left is the pass
+// over the blocks (one fragment per pixel of every drawn block, one texel
+// fetch, two outputs and a stencil mark). Every pixel gets the mark of slot 0
+// (a front face), so the normal pass after it draws less than it would: the
+// measured floor is lower than the real one, never higher.
+#ifdef LEAF_MARKS
+#extension GL_ARB_shader_stencil_export : require
+#endif
+#include "csg/surface.glsl"
+
+#ifndef MAX_LIVE
+#define MAX_LIVE 64
+#endif
+#ifndef BLOCK
+#define BLOCK 16
+#endif
+layout(binding = 0) uniform sampler2DArray uLayers;
+#include "csg/blocks.glsl"
+layout(location = 2) uniform ivec2 uTileOrigin;
+layout(location = 4) uniform int uLoopBudget;  // kept active: EvaluatePass sets it
+layout(location = 0) out float outDepth;
+layout(location = 1) out int outLeaf;
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x & 0xffffu), 0).rg;
+    if (layer.r <= -3.0e38 || uLoopBudget < -5) discard;
+    outDepth = -layer.r;
+    outLeaf = 0;
+#ifdef LEAF_MARKS
+    gl_FragStencilRefARB = 1;
+#endif
+}
