@@ -251,7 +251,7 @@ std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const TreeProgr
 
 void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                       std::span<const int> groupTable, const gpu::Texture& groupIds, bool generalOnly,
+                       const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly,
                        FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
     // The operands whose rectangle meets each block.
@@ -338,8 +338,7 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
     gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", literals);
     gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", nodes);
     gpu::Buffer::uploadGrowing(drawnBlocks_, "evaluate drawn blocks", drawn);
-    gpu::Buffer::uploadGrowing(groupTable_, "evaluate group table",
-                               std::vector<int>(groupTable.begin(), groupTable.end()));
+    gpu::Buffer::uploadGrowing(groupTable_, "evaluate group table", groupTable);
 
     layers.bindUnit(0);
     blockNodes_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);

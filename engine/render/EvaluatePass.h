@@ -26,7 +26,6 @@
 
 #include <cstdint>
 #include <map>
-#include <span>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -61,7 +60,7 @@ public:
     // no texture without groups) name the member of a group that makes a surface.
     void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
              const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-             std::span<const int> groupTable, const gpu::Texture& groupIds, bool generalOnly, FrameStats& stats,
+             const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly, FrameStats& stats,
              std::vector<BlockForm>* forms = nullptr);
 
     // The tile's groups of convex operands for run() (evaluate.frag:
