@@ -5,6 +5,16 @@
 
 namespace strata::render {
 
+namespace {
+
+// Whether the instruction reads an operand (a literal): every PUSH, as
+// foldCode reads them, and an AND or OR not taking its value from the stack.
+bool isLiteral(std::uint32_t instruction) {
+    return (instruction & 3u) == kOpPush || !(instruction & kOpFromStack);
+}
+
+}  // namespace
+
 TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<char>& groupable,
                                 std::size_t mostMembers) {
     if (program.kind != TreeProgram::Kind::Program || mostMembers < 2) return program;
@@ -13,7 +23,7 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
     std::vector<std::size_t> literalAt;
     std::vector<int> uses(program.operandLeaf.size(), 0);
     for (std::size_t i = 0; i < code.size(); ++i) {
-        if ((code[i] & 3u) != kOpPush && (code[i] & kOpFromStack)) continue;
+        if (!isLiteral(code[i])) continue;
         literalAt.push_back(i);
         ++uses[code[i] >> kOperandShift];
     }
@@ -73,10 +83,9 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
     for (std::size_t i = 0; i < code.size(); ++i) {
         if (deleted[i]) continue;
         const std::uint32_t instruction = code[i];
-        const bool literal = (instruction & 3u) == kOpPush || !(instruction & kOpFromStack);
-        out.code.push_back(literal ? (instruction & ((1u << kOperandShift) - 1u)) |
-                                         (renumbered[instruction >> kOperandShift] << kOperandShift)
-                                   : instruction);
+        out.code.push_back(isLiteral(instruction) ? (instruction & ((1u << kOperandShift) - 1u)) |
+                                                        (renumbered[instruction >> kOperandShift] << kOperandShift)
+                                                  : instruction);
     }
     return out;
 }
