@@ -122,6 +122,7 @@ MeshCheck checkMesh(const Mesh& mesh) {
             if (v > w && backward > 0) continue;  // counted from w's row
             const std::size_t total = forward + backward;
             if (total == 1) ++check.boundaryEdges;
+            else if (total > 2 && forward == backward) ++check.touchingEdges;
             else if (total > 2) ++check.nonManifoldEdges;
             else if (forward != 1) ++check.misorientedEdges;
         }

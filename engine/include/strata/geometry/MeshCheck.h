@@ -10,7 +10,11 @@ namespace strata::geometry {
 
 struct MeshCheck {
     std::size_t boundaryEdges = 0;     // undirected edges used by one triangle
-    std::size_t nonManifoldEdges = 0;  // undirected edges used by three or more triangles
+    std::size_t nonManifoldEdges = 0;  // undirected edges used by three or more triangles, not half each way
+    // Edges where the solid touches itself: four or more triangles, half of
+    // them running each way (two cubes sharing an edge, an extruded shape
+    // whose outlines touch at a point). A valid solid, as OpenSCAD's are.
+    std::size_t touchingEdges = 0;
     std::size_t misorientedEdges = 0;  // edges whose two triangles traverse them the same way
     bool inwardOriented = false;       // closed and consistent, but the signed volume is negative
     bool ok() const { return boundaryEdges == 0 && nonManifoldEdges == 0 && misorientedEdges == 0 && !inwardOriented; }
