@@ -9,6 +9,9 @@ packages=(
   libglm-dev libopenmesh-dev libopenimageio-dev openimageio-tools
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libembree-dev libcli11-dev
+  libpolyclipping-dev libglu1-mesa-dev   # 2D booleans and offsets (Clipper 6, as OpenSCAD); extrusion caps (GLU's tessellator)
+  libfreetype-dev libharfbuzz-dev libfontconfig-dev fonts-liberation2   # text(), OpenSCAD's default font
+  libxml2-dev libpng-dev                 # import() of SVG files; surface() of PNG images
   libgtest-dev libgmock-dev
   libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
   libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)

@@ -2,8 +2,8 @@
 
 #include <filesystem>
 #include <string>
-#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "strata/core/Error.h"
 
@@ -25,17 +25,11 @@ void markHighlight(scene::Tree& tree, int node) {
 }
 
 std::string leafLabel(const scene::Leaf& leaf) {
-    return std::visit(
-        [](const auto& p) -> std::string {
-            using T = std::decay_t<decltype(p)>;
-            if constexpr (std::is_same_v<T, scene::Cube>) return "cube";
-            if constexpr (std::is_same_v<T, scene::Sphere>) return "sphere";
-            if constexpr (std::is_same_v<T, scene::Cylinder>) return "cylinder";
-            if constexpr (std::is_same_v<T, scene::Polyhedron>) return "polyhedron";
-            if constexpr (std::is_same_v<T, scene::Import>)
-                return "import " + std::filesystem::path(p.path).filename().string();
-        },
-        leaf.primitive);
+    if (const auto* imported = std::get_if<scene::Import>(&leaf.primitive))
+        return "import " + std::filesystem::path(imported->path).filename().string();
+    if (const auto* surface = std::get_if<scene::Surface>(&leaf.primitive))
+        return "surface " + std::filesystem::path(surface->path).filename().string();
+    return scene::primitiveName(leaf.primitive);
 }
 
 }  // namespace

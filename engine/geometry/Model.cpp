@@ -9,31 +9,24 @@
 #include <glm/matrix.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/geometry/Extrude.h"
+#include "strata/geometry/Flat.h"
 #include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/MeshImport.h"
 #include "strata/geometry/Primitives.h"
+#include "strata/geometry/Surface.h"
 
 namespace strata::geometry {
 namespace {
-
-const char* primitiveName(const scene::Primitive& p) {
-    return std::visit(
-        [](const auto& v) -> const char* {
-            using T = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<T, scene::Cube>) return "cube";
-            else if constexpr (std::is_same_v<T, scene::Sphere>) return "sphere";
-            else if constexpr (std::is_same_v<T, scene::Cylinder>) return "cylinder";
-            else if constexpr (std::is_same_v<T, scene::Polyhedron>) return "polyhedron";
-            else return "import";
-        },
-        p);
-}
 
 Mesh objectMesh(const scene::Primitive& p) {
     return std::visit(
         [](const auto& v) -> Mesh {
             using T = std::decay_t<decltype(v)>;
             if constexpr (std::is_same_v<T, scene::Import>) return importMesh(v.path);
+            else if constexpr (std::is_same_v<T, scene::LinearExtrude>) return linearExtrude(v, evaluateFlat(v.shape));
+            else if constexpr (std::is_same_v<T, scene::RotateExtrude>) return rotateExtrude(v, evaluateFlat(v.shape));
+            else if constexpr (std::is_same_v<T, scene::FlatSlab>) return flatSlab(evaluateFlat(v.shape));
             else return tessellate(v);
         },
         p);
@@ -67,7 +60,7 @@ Model buildModel(const scene::Tree& tree) {
 
     for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
         const scene::Leaf& leaf = tree.leaves[i];
-        const char* name = primitiveName(leaf.primitive);
+        const char* name = scene::primitiveName(leaf.primitive);
         Mesh mesh;
         try {
             mesh = transformed(objectMesh(leaf.primitive), leaf.transform);

@@ -1,9 +1,14 @@
 #include "strata/scene/CsgParser.h"
 
 #include <cmath>
+#include <glm/common.hpp>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
+#include <sstream>
+#include <type_traits>
+#include <variant>
 #include <unordered_set>
 #include <utility>
 
@@ -21,8 +26,7 @@ constexpr int kMaxBlockNesting = 100000;
 // out with one warning per name.
 const std::unordered_set<std::string>& unsupportedNames() {
     static const std::unordered_set<std::string> names = {
-        "linear_extrude", "rotate_extrude", "hull", "minkowski", "text", "offset", "surface",
-        "projection", "square", "circle", "polygon", "resize", "roof", "fill", "import_dxf",
+        "hull", "minkowski", "projection", "resize", "roof", "fill", "import_dxf",
         "import_stl", "import_off", "dxf_linear_extrude", "dxf_rotate_extrude", "child",
         "children", "parent_module", "intersection_for", "for", "let", "each", "echo", "assert",
         "textmetrics", "fontmetrics", "virtual", "wrap",
@@ -45,7 +49,29 @@ struct Open {
     bool collapsible = false;  // group-like: a single child may replace it
     bool isBackgroundRoot = false;
     bool isRoot = false;    // opened by '!'
+    bool flat = false;      // its statements are 2D: they go to the pending flat tree
+    int flatNode = -1;      // the flat node collecting children, -1 when they are dropped
+    bool ownsFlat = false;  // closing it turns the pending flat tree into a leaf
 };
+
+// A leaf whose flat tree is being read: an extrusion, or a 2D shape outside one.
+struct PendingFlat {
+    Leaf leaf;        // its primitive's FlatTree is filled in when the block closes
+    FlatTree tree;
+};
+
+// Module names and what they are.
+bool isFlatShapeName(const std::string& name) {
+    return name == "square" || name == "circle" || name == "polygon" || name == "text";
+}
+bool isSolidName(const std::string& name) {
+    return name == "cube" || name == "sphere" || name == "cylinder" || name == "polyhedron" || name == "surface";
+}
+bool isFlatImportPath(const std::string& file) {
+    std::string ext = std::filesystem::path(file).extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext == ".dxf" || ext == ".svg";
+}
 
 class Parser {
 public:
@@ -71,6 +97,27 @@ private:
     bool isSign() const;
     bool isNumberStart() const;
     double signedNumber();
+
+    // Flat (2D) statements
+    int flatStatement(const std::string& name, const std::vector<CsgArgument>& args, Open& open, bool dropped,
+                      const SourceLocation& where);
+    int finishFlat();
+    Leaf leafAt(const Context& ctx, const SourceLocation& where) const;
+    int mergeFlatChildren(int node);
+    bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
+    FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
+    Square square(const std::vector<CsgArgument>& args);
+    Circle circle(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    Polygon polygon(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    Text text(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    FlatImport flatImport(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    Offset offset(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    LinearExtrude linearExtrude(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    RotateExtrude rotateExtrude(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    Surface surface(const std::vector<CsgArgument>& args, const SourceLocation& where);
+    std::string resolvePath(const CsgArgument& file, const char* node) const;
+    std::string string(const std::vector<CsgArgument>& args, const char* name, int position, const std::string& fallback) const;
+    double radius(const std::vector<CsgArgument>& args, double fallback) const;
 
     // Nodes
     int makeLeaf(const std::string& name, const std::vector<CsgArgument>& args, const Context& ctx,
@@ -102,6 +149,7 @@ private:
     std::vector<Open> stack_;
     std::set<std::string> warned_;
     int rootNode_ = -1;      // node of the first '!' subtree, if any
+    std::optional<PendingFlat> pending_;  // at most one: a flat tree holds no solids
     bool sawStatement_ = false;
 };
 
@@ -134,6 +182,11 @@ Tree Parser::parse() {
         // OpenSCAD exports a model with no geometry (e.g. only echo()) as a
         // blank line: an empty scene, not an error.
         tree_.warnings.push_back(Warning{tree_.source + ": warning: the scene has no statements; nothing to draw"});
+    }
+    // Flat objects side by side at the top level are one flat result, as in OpenSCAD.
+    const bool severalAtTop = tree_.nodes[static_cast<std::size_t>(top.node)].children.size() > 1;
+    if (const int merged = severalAtTop ? mergeFlatChildren(top.node) : -1; merged >= 0) {
+        tree_.nodes[static_cast<std::size_t>(top.node)].children = {merged};
     }
     tree_.root = rootNode_ >= 0 ? rootNode_ : top.node;
     const Node& topNode = tree_.nodes[static_cast<std::size_t>(top.node)];
@@ -216,6 +269,38 @@ void Parser::statement() {
     open.isBackgroundRoot = background && parent.context.display != Display::Background;
     open.isRoot = root && rootNode_ < 0 && !dropped;
 
+    if (parent.flat) {
+        const int parentFlatNode = parent.flatNode;
+        const int index = flatStatement(name, args, open, parentFlatNode < 0 || disabled || background, where);
+        if (index >= 0) pending_->tree.nodes[static_cast<std::size_t>(parentFlatNode)].children.push_back(index);
+        pushBlock(std::move(open), where);
+        if (!hasBlock) closeBlock();
+        return;
+    }
+    if (name == "linear_extrude" || name == "rotate_extrude" || name == "offset" || isFlatShape(name, args)) {
+        if (!dropped) {
+            // A leaf whose shape is read from here on: the extrusion's children,
+            // or this 2D statement itself (shown as a slab).
+            Leaf leaf = leafAt(ctx, where);
+            if (name == "linear_extrude") leaf.primitive = linearExtrude(args, where);
+            else if (name == "rotate_extrude") leaf.primitive = rotateExtrude(args, where);
+            else leaf.primitive = FlatSlab{};
+            pending_.emplace(PendingFlat{std::move(leaf), FlatTree{}});
+            open.ownsFlat = true;
+            if (std::holds_alternative<FlatSlab>(pending_->leaf.primitive)) {
+                pending_->tree.root = flatStatement(name, args, open, false, where);
+            } else {
+                open.flat = true;
+                FlatNode root;
+                root.where = where;
+                open.flatNode = pending_->tree.root = pending_->tree.add(std::move(root));
+            }
+        }
+        pushBlock(std::move(open), where);
+        if (!hasBlock) closeBlock();
+        return;
+    }
+
     int leafNode = -1;
     NodeKind kind = NodeKind::Union;
     bool known = true;
@@ -238,8 +323,7 @@ void Parser::statement() {
             }
         }
         open.collapsible = true;
-    } else if (name == "cube" || name == "sphere" || name == "cylinder" || name == "polyhedron" ||
-               name == "import") {
+    } else if (isSolidName(name) || name == "import") {
         leafLike = true;
         if (!dropped) leafNode = makeLeaf(name, args, ctx, where);
     } else if (unsupportedNames().count(name) != 0) {
@@ -291,10 +375,16 @@ void Parser::closeBlock() {
 void Parser::closeOne() {
     Open open = std::move(stack_.back());
     stack_.pop_back();
-    if (open.node >= 0) {
-        int node = open.node;
+    int node = -1;
+    if (open.ownsFlat) {
+        node = finishFlat();
+    } else if (open.node >= 0) {
+        node = open.node;
         Node& n = tree_.nodes[static_cast<std::size_t>(node)];
         if (open.collapsible && n.children.size() == 1) node = n.children.front();
+        else if (const int merged = mergeFlatChildren(node); merged >= 0) node = merged;
+    }
+    if (node >= 0) {
         if (open.isRoot) rootNode_ = node;
         else if (open.isBackgroundRoot) tree_.background.push_back(node);
         else attach(node, stack_.back());
@@ -676,12 +766,16 @@ std::optional<Import> Parser::import(const std::vector<CsgArgument>& args, const
         unsupported("import" + (ext.empty() ? std::string() : "(" + ext + ")"), where);
         return std::nullopt;
     }
+    return Import{resolvePath(*file, "import")};
+}
+
+// The file argument resolved against the .csg's folder; it must be a regular file.
+std::string Parser::resolvePath(const CsgArgument& file, const char* node) const {
+    std::filesystem::path path(file.value.string);
     if (path.is_relative() && !baseDir_.empty()) path = std::filesystem::path(baseDir_) / path;
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        lex_.failAt(file->where, "import file not found: " + path.string());
-    }
-    return Import{path.lexically_normal().string()};
+    if (!std::filesystem::is_regular_file(path, ec)) lex_.failAt(file.where, std::string(node) + " file not found: " + path.string());
+    return path.lexically_normal().string();
 }
 
 glm::dmat4 Parser::multmatrix(const std::vector<CsgArgument>& args, const SourceLocation& where) {
@@ -732,10 +826,372 @@ glm::dvec4 Parser::color(const std::vector<CsgArgument>& args, const SourceLocat
     return c;
 }
 
+// ---- Flat (2D) statements ----
+
+bool Parser::isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const {
+    if (isFlatShapeName(name)) return true;
+    if (name != "import") return false;
+    const CsgArgument* file = find(args, "file", 0);
+    return file != nullptr && file->value.type == CsgValue::Type::String && isFlatImportPath(file->value.string);
+}
+
+// Adds the statement to the pending flat tree (unless dropped) and sets up
+// its block; returns the new node, or -1. The caller links it to its parent.
+int Parser::flatStatement(const std::string& name, const std::vector<CsgArgument>& args, Open& open, bool dropped,
+                          const SourceLocation& where) {
+    open.flat = true;
+    open.flatNode = -1;
+    FlatNode node;
+    node.where = where;
+    bool container = true;
+    if (name == "group" || name == "union" || name == "render" || name == "assign" || name == "color") {
+        node.op = FlatOp::Union;
+        if (name == "color" && !dropped) color(args, where);  // checked, though a colour means nothing in 2D
+    } else if (name == "intersection") {
+        node.op = FlatOp::Intersection;
+    } else if (name == "difference") {
+        node.op = FlatOp::Difference;
+    } else if (name == "multmatrix") {
+        node.op = FlatOp::Transform;
+        if (!dropped) node.matrix = multmatrix(args, where);
+    } else if (name == "offset") {
+        node.op = FlatOp::Offset;
+        if (!dropped) node.offset = offset(args, where);
+    } else if (isFlatShape(name, args)) {
+        node.op = FlatOp::Shape;
+        container = false;
+        if (!dropped) {
+            node.shape = static_cast<int>(pending_->tree.shapes.size());
+            pending_->tree.shapes.push_back(flatShape(name, args, where));
+        }
+    } else if (isSolidName(name) || name == "import" || name == "linear_extrude" || name == "rotate_extrude") {
+        node.op = FlatOp::Empty;
+        container = false;
+        const CsgArgument* file = name == "import" ? find(args, "file", 0) : nullptr;
+        if (dropped) {
+        } else if (file != nullptr && file->value.type == CsgValue::Type::String && file->value.string.empty()) {
+            warnOnce("empty-import", where, "import has an empty file name; left out");
+        } else {
+            warnOnce("3d-in-2d", where,
+                     "'" + name + "' is a 3D object inside a 2D operation; it is ignored, as OpenSCAD ignores it");
+        }
+    } else if (unsupportedNames().count(name) != 0) {
+        node.op = FlatOp::Empty;
+        container = false;
+        if (!dropped) unsupported(name, where);
+    } else {
+        lex_.failAt(where, "unknown module '" + name + "'");
+    }
+    if (dropped) return -1;
+    const int index = pending_->tree.add(std::move(node));
+    if (container) open.flatNode = index;
+    return index;
+}
+
+// The pending flat tree becomes its leaf; returns the leaf's node.
+int Parser::finishFlat() {
+    PendingFlat pending = std::move(*pending_);
+    pending_.reset();
+    std::visit(
+        [&](auto& p) {
+            using T = std::decay_t<decltype(p)>;
+            if constexpr (std::is_same_v<T, LinearExtrude> || std::is_same_v<T, RotateExtrude> ||
+                          std::is_same_v<T, FlatSlab>) {
+                p.shape = std::move(pending.tree);
+            }
+        },
+        pending.leaf.primitive);
+    return tree_.addLeaf(std::move(pending.leaf));
+}
+
+namespace {
+
+// A transform that keeps the plane z = 0 and moves nothing out of it: a flat
+// slab under it can join a flat result without changing what it shows.
+bool keepsPlane(const glm::dmat4& m) {
+    return m[0][2] == 0.0 && m[1][2] == 0.0 && m[3][2] == 0.0 && m[2][0] == 0.0 && m[2][1] == 0.0 &&
+           m[2][3] == 0.0 && m[0][3] == 0.0 && m[1][3] == 0.0 && m[3][3] == 1.0;
+}
+
+FlatOp flatOpOf(NodeKind kind) {
+    if (kind == NodeKind::Intersection) return FlatOp::Intersection;
+    if (kind == NodeKind::Difference) return FlatOp::Difference;
+    return FlatOp::Union;
+}
+
+}  // namespace
+
+// A union, intersection or difference whose children are all flat slabs is a
+// 2D boolean in OpenSCAD: it becomes one slab of the combined flat tree (each
+// child under its own transform). Returns the new leaf's node, or -1.
+int Parser::mergeFlatChildren(int node) {
+    const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
+    if (n.kind == NodeKind::Leaf || n.children.empty()) return -1;
+    const Leaf* first = nullptr;
+    for (int c : n.children) {
+        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
+        if (child.kind != NodeKind::Leaf) return -1;
+        const Leaf& leaf = tree_.leaves[static_cast<std::size_t>(child.leaf)];
+        if (!std::holds_alternative<FlatSlab>(leaf.primitive) || !keepsPlane(leaf.transform)) return -1;
+        if (first != nullptr && (leaf.display != first->display || leaf.color != first->color)) return -1;
+        if (first == nullptr) first = &leaf;
+    }
+    FlatTree merged;
+    FlatNode root;
+    root.op = flatOpOf(n.kind);
+    root.where = n.where;
+    merged.root = merged.add(std::move(root));
+    for (int c : n.children) {
+        Leaf& leaf = tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(c)].leaf)];
+        FlatTree& sub = std::get<FlatSlab>(leaf.primitive).shape;
+        FlatNode place;
+        place.op = FlatOp::Transform;
+        place.matrix = leaf.transform;
+        place.where = leaf.where;
+        const int placed = merged.add(std::move(place));
+        merged.nodes[static_cast<std::size_t>(merged.root)].children.push_back(placed);
+        const int nodeOffset = static_cast<int>(merged.nodes.size());
+        const int shapeOffset = static_cast<int>(merged.shapes.size());
+        for (FlatNode& f : sub.nodes) {
+            for (int& k : f.children) k += nodeOffset;
+            if (f.shape >= 0) f.shape += shapeOffset;
+            merged.nodes.push_back(std::move(f));
+        }
+        for (FlatPrimitive& p : sub.shapes) merged.shapes.push_back(std::move(p));
+        if (sub.root >= 0) merged.nodes[static_cast<std::size_t>(placed)].children.push_back(sub.root + nodeOffset);
+        sub = FlatTree{};
+    }
+    Leaf leaf;
+    leaf.primitive = FlatSlab{std::move(merged)};
+    leaf.color = first->color;
+    leaf.display = first->display;
+    leaf.where = n.where;
+    return tree_.addLeaf(std::move(leaf));
+}
+
+std::string Parser::string(const std::vector<CsgArgument>& args, const char* name, int position,
+                           const std::string& fallback) const {
+    const CsgArgument* a = find(args, name, position);
+    if (a == nullptr || a->value.type == CsgValue::Type::Undef) return fallback;
+    if (a->value.type != CsgValue::Type::String) {
+        lex_.failAt(a->where, std::string(name) + " must be a string, not a " + typeName(a->value.type));
+    }
+    return a->value.string;
+}
+
+// r, or d / 2, as circle() takes them; must not be negative.
+double Parser::radius(const std::vector<CsgArgument>& args, double fallback) const {
+    const CsgArgument* r = find(args, "r", 0);
+    if (r != nullptr && r->value.type != CsgValue::Type::Undef) {
+        const double v = number(*r, "r");
+        if (v < 0) lex_.failAt(r->where, "r must not be negative");
+        return v;
+    }
+    const CsgArgument* d = find(args, "d", -1);
+    if (d != nullptr && d->value.type != CsgValue::Type::Undef) {
+        const double v = number(*d, "d") / 2.0;
+        if (v < 0) lex_.failAt(d->where, "d must not be negative");
+        return v;
+    }
+    return fallback;
+}
+
+FlatPrimitive Parser::flatShape(const std::string& name, const std::vector<CsgArgument>& args,
+                                const SourceLocation& where) {
+    if (name == "square") return square(args);
+    if (name == "circle") return circle(args, where);
+    if (name == "polygon") return polygon(args, where);
+    if (name == "text") return text(args, where);
+    return flatImport(args, where);
+}
+
+Square Parser::square(const std::vector<CsgArgument>& args) {
+    Square sq;
+    const CsgArgument* size = find(args, "size", 0);
+    if (size != nullptr && size->value.type != CsgValue::Type::Undef) {
+        if (size->value.type == CsgValue::Type::Number) {
+            sq.size = glm::dvec2(number(*size, "size"));
+        } else if (size->value.type == CsgValue::Type::Numbers && size->value.numbers.size() == 2) {
+            sq.size = {size->value.numbers[0], size->value.numbers[1]};
+            if (!std::isfinite(sq.size.x) || !std::isfinite(sq.size.y)) lex_.failAt(size->where, "size must be finite");
+        } else {
+            lex_.failAt(size->where, "size must be a number or a vector of 2 numbers");
+        }
+        if (sq.size.x < 0 || sq.size.y < 0) lex_.failAt(size->where, "size must not be negative");
+    }
+    sq.center = boolean(args, "center", 1, false);
+    return sq;
+}
+
+Circle Parser::circle(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    Circle c;
+    c.r = radius(args, 1.0);
+    c.fragments = fragments(args, where);
+    return c;
+}
+
+Polygon Parser::polygon(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    Polygon p;
+    const CsgArgument* points = find(args, "points", 0);
+    if (points == nullptr) lex_.failAt(where, "polygon has no points");
+    const CsgValue& pv = points->value;
+    if (pv.type == CsgValue::Type::Undef || (pv.type == CsgValue::Type::Numbers && pv.numbers.empty())) return p;
+    if (pv.type != CsgValue::Type::Rows) lex_.failAt(points->where, "points must be a vector of 2-vectors of numbers");
+    p.points.reserve(pv.rowCount());
+    for (std::size_t r = 0; r < pv.rowCount(); ++r) {
+        const std::size_t b = pv.rowBegin(r);
+        if (pv.rowEnds[r] - b != 2) lex_.failAt(points->where, "point " + std::to_string(r) + " does not have 2 coordinates");
+        const glm::dvec2 q(pv.numbers[b], pv.numbers[b + 1]);
+        if (!std::isfinite(q.x) || !std::isfinite(q.y)) lex_.failAt(points->where, "point " + std::to_string(r) + " is not finite");
+        p.points.push_back(q);
+    }
+    const CsgArgument* paths = find(args, "paths", 1);
+    if (paths == nullptr || paths->value.type == CsgValue::Type::Undef) return p;
+    const CsgValue& fv = paths->value;
+    if (fv.type == CsgValue::Type::Numbers && fv.numbers.empty()) return p;
+    if (fv.type != CsgValue::Type::Rows) lex_.failAt(paths->where, "paths must be a vector of vectors of point indices");
+    bool outOfRange = false;
+    for (std::size_t r = 0; r < fv.rowCount(); ++r) {
+        std::vector<int> path;
+        for (std::size_t k = fv.rowBegin(r); k < fv.rowEnds[r]; ++k) {
+            // OpenSCAD truncates an index to an unsigned integer and skips those past the points.
+            const double idx = fv.numbers[k];
+            if (idx >= 0 && idx < static_cast<double>(p.points.size())) path.push_back(static_cast<int>(idx));
+            else outOfRange = true;
+        }
+        p.paths.push_back(std::move(path));
+    }
+    if (outOfRange) warnOnce("polygon-index", paths->where, "polygon path index out of bounds; the point is skipped");
+    return p;
+}
+
+Text Parser::text(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    Text t;
+    const CsgArgument* str = find(args, "text", 0);
+    if (str != nullptr && str->value.type == CsgValue::Type::Number) {
+        std::ostringstream out;
+        out << str->value.number;
+        t.text = out.str();
+    } else {
+        t.text = string(args, "text", 0, "");
+    }
+    t.size = number(args, "size", 1, 10.0);
+    t.spacing = number(args, "spacing", -1, 1.0);
+    t.font = string(args, "font", 2, "");
+    t.direction = string(args, "direction", -1, "ltr");
+    t.language = string(args, "language", -1, "en");
+    t.script = string(args, "script", -1, "Latn");
+    t.halign = string(args, "halign", -1, "left");
+    t.valign = string(args, "valign", -1, "baseline");
+    if (t.halign == "default") t.halign = "left";        // the newer dialect's spelling of the default
+    if (t.valign == "default") t.valign = "baseline";
+    t.fragments = fragments(args, where);
+    return t;
+}
+
+FlatImport Parser::flatImport(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    FlatImport imp;
+    const CsgArgument* file = find(args, "file", 0);
+    imp.path = resolvePath(*file, "import");
+    imp.layer = string(args, "layer", -1, "");
+    const CsgArgument* origin = find(args, "origin", -1);
+    if (origin != nullptr && origin->value.type == CsgValue::Type::Numbers && origin->value.numbers.size() == 2) {
+        imp.origin = {origin->value.numbers[0], origin->value.numbers[1]};
+        if (!std::isfinite(imp.origin.x) || !std::isfinite(imp.origin.y)) lex_.failAt(origin->where, "origin must be finite");
+    }
+    imp.scale = number(args, "scale", -1, 1.0);
+    imp.center = boolean(args, "center", -1, false);
+    imp.dpi = number(args, "dpi", -1, 72.0);
+    if (!(imp.dpi > 0)) imp.dpi = 72.0;
+    imp.fragments = fragments(args, where);
+    return imp;
+}
+
+Offset Parser::offset(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    Offset o;
+    const CsgArgument* r = find(args, "r", 0);
+    const CsgArgument* delta = find(args, "delta", -1);
+    if (r != nullptr && r->value.type == CsgValue::Type::Number) {
+        o.amount = number(*r, "r");
+    } else if (delta != nullptr && delta->value.type == CsgValue::Type::Number) {
+        o.amount = number(*delta, "delta");
+        o.join = boolean(args, "chamfer", -1, false) ? Offset::Join::Square : Offset::Join::Miter;
+    }
+    o.fragments = fragments(args, where);
+    return o;
+}
+
+LinearExtrude Parser::linearExtrude(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    LinearExtrude e;
+    if (find(args, "file", -1) != nullptr) unsupported("linear_extrude(file)", where);
+    e.height = number(args, "height", 0, 100.0);
+    const CsgArgument* v = find(args, "v", -1);
+    if (v != nullptr && v->value.type == CsgValue::Type::Numbers && v->value.numbers.size() == 3 &&
+        (v->value.numbers[0] != 0.0 || v->value.numbers[1] != 0.0)) {
+        // The newer dialect's slanted extrusion: its length is `height`.
+        warnOnce("extrude-v", v->where, "linear_extrude's direction v is not supported yet; extruded straight up");
+    }
+    if (number(args, "segments", -1, 0.0) > 0) {
+        warnOnce("extrude-segments", where, "linear_extrude's segments is not supported yet; ignored");
+    }
+    if (!(e.height > 0)) e.height = 0;
+    e.center = boolean(args, "center", -1, false);
+    e.twist = number(args, "twist", -1, 0.0);
+    e.hasTwist = e.twist != 0.0;
+    const double slices = number(args, "slices", -1, 0.0);
+    e.hasSlices = slices >= 1;
+    if (e.hasSlices) {
+        if (slices > options_.maxFragments) {
+            warnOnce("slices-clamp", where, "slices = " + std::to_string(slices) + " is clamped to " +
+                                                std::to_string(static_cast<int>(options_.maxFragments)));
+        }
+        e.slices = static_cast<int>(std::min(slices, options_.maxFragments));
+    }
+    const CsgArgument* scale = find(args, "scale", -1);
+    if (scale != nullptr && scale->value.type == CsgValue::Type::Number) {
+        e.scale = glm::dvec2(number(*scale, "scale"));
+    } else if (scale != nullptr && scale->value.type == CsgValue::Type::Numbers && scale->value.numbers.size() == 2) {
+        e.scale = {scale->value.numbers[0], scale->value.numbers[1]};
+        if (!std::isfinite(e.scale.x) || !std::isfinite(e.scale.y)) lex_.failAt(scale->where, "scale must be finite");
+    } else if (scale != nullptr && scale->value.type != CsgValue::Type::Undef) {
+        lex_.failAt(scale->where, "scale must be a number or a vector of 2 numbers");
+    }
+    e.scale = glm::max(e.scale, glm::dvec2(0.0));
+    e.fragments = fragments(args, where);
+    return e;
+}
+
+RotateExtrude Parser::rotateExtrude(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    RotateExtrude e;
+    if (find(args, "file", -1) != nullptr) unsupported("rotate_extrude(file)", where);
+    e.angle = number(args, "angle", -1, 360.0);
+    if (e.angle <= -360 || e.angle > 360) e.angle = 360;
+    const CsgArgument* start = find(args, "start", -1);
+    if (start != nullptr && start->value.type != CsgValue::Type::Undef) {
+        e.start = number(*start, "start");
+        e.hasStart = true;
+    }
+    e.fragments = fragments(args, where);
+    return e;
+}
+
+Surface Parser::surface(const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    Surface surf;
+    const CsgArgument* file = find(args, "file", 0);
+    if (file == nullptr || file->value.type != CsgValue::Type::String || file->value.string.empty()) {
+        lex_.failAt(file ? file->where : where, "surface needs a file name string");
+    }
+    surf.path = resolvePath(*file, "surface");
+    surf.center = boolean(args, "center", 1, false);
+    surf.invert = boolean(args, "invert", -1, false);
+    return surf;
+}
+
 int Parser::makeLeaf(const std::string& name, const std::vector<CsgArgument>& args, const Context& ctx,
                      const SourceLocation& where) {
     Leaf leaf;
     if (name == "cube") leaf.primitive = cube(args, where);
+    else if (name == "surface") leaf.primitive = surface(args, where);
     else if (name == "sphere") leaf.primitive = sphere(args, where);
     else if (name == "cylinder") leaf.primitive = cylinder(args, where);
     else if (name == "polyhedron") {
@@ -747,11 +1203,18 @@ int Parser::makeLeaf(const std::string& name, const std::vector<CsgArgument>& ar
         if (!imported) return -1;
         leaf.primitive = std::move(*imported);
     }
+    Leaf placed = leafAt(ctx, where);
+    placed.primitive = std::move(leaf.primitive);
+    return tree_.addLeaf(std::move(placed));
+}
+
+Leaf Parser::leafAt(const Context& ctx, const SourceLocation& where) const {
+    Leaf leaf;
     leaf.transform = ctx.transform;
     if (ctx.color.r >= 0.0 || ctx.color.g >= 0.0 || ctx.color.b >= 0.0 || ctx.color.a >= 0.0) leaf.color = ctx.color;
     leaf.display = ctx.display;
     leaf.where = where;
-    return tree_.addLeaf(std::move(leaf));
+    return leaf;
 }
 
 // Keeps only nodes reachable from the root and the background roots, in

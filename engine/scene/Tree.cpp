@@ -1,6 +1,8 @@
 #include "strata/scene/Tree.h"
 
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 namespace strata::scene {
 
@@ -22,6 +24,28 @@ int Tree::addNode(NodeKind kind, std::vector<int> children) {
     return static_cast<int>(nodes.size()) - 1;
 }
 
+bool Tree::isFlat() const {
+    bool any = false;
+    std::vector<int> todo;
+    if (root >= 0) todo.push_back(root);
+    while (!todo.empty()) {
+        const Node& n = nodes[static_cast<std::size_t>(todo.back())];
+        todo.pop_back();
+        if (n.kind == NodeKind::Leaf) {
+            if (!std::holds_alternative<FlatSlab>(leaves[static_cast<std::size_t>(n.leaf)].primitive)) return false;
+            any = true;
+        } else {
+            todo.insert(todo.end(), n.children.begin(), n.children.end());
+        }
+    }
+    return any;
+}
+
+int FlatTree::add(FlatNode node) {
+    nodes.push_back(std::move(node));
+    return static_cast<int>(nodes.size()) - 1;
+}
+
 Tree meshFileTree(const std::string& path) {
     Tree tree;
     tree.source = path;
@@ -31,6 +55,23 @@ Tree meshFileTree(const std::string& path) {
     const int node = tree.addLeaf(std::move(leaf));
     tree.root = tree.addNode(NodeKind::Union, {node});
     return tree;
+}
+
+const char* primitiveName(const Primitive& primitive) {
+    return std::visit(
+        [](const auto& v) -> const char* {
+            using T = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<T, Cube>) return "cube";
+            else if constexpr (std::is_same_v<T, Sphere>) return "sphere";
+            else if constexpr (std::is_same_v<T, Cylinder>) return "cylinder";
+            else if constexpr (std::is_same_v<T, Polyhedron>) return "polyhedron";
+            else if constexpr (std::is_same_v<T, Import>) return "import";
+            else if constexpr (std::is_same_v<T, LinearExtrude>) return "linear_extrude";
+            else if constexpr (std::is_same_v<T, RotateExtrude>) return "rotate_extrude";
+            else if constexpr (std::is_same_v<T, FlatSlab>) return "2D shape";
+            else return "surface";
+        },
+        primitive);
 }
 
 const char* kindName(NodeKind kind) {

@@ -38,6 +38,56 @@ void checkFragments(const Fragments& f, const ParseOptions& options) {
     if (f.fn > options.maxFragments) broken("$fn above ParseOptions::maxFragments");
 }
 
+// The flat tree a leaf carries: children after their parents and in range,
+// shapes in range, numbers finite, sizes not negative.
+void checkFlat(const FlatTree& flat, const ParseOptions& options) {
+    const auto nodeCount = static_cast<long>(flat.nodes.size());
+    const auto shapeCount = static_cast<long>(flat.shapes.size());
+    if (flat.root < -1 || flat.root >= nodeCount) broken("flat root out of range");
+    for (long i = 0; i < nodeCount; ++i) {
+        const FlatNode& n = flat.nodes[static_cast<std::size_t>(i)];
+        for (int c : n.children) {
+            if (c <= i || c >= nodeCount) broken("flat child index not after its parent or out of range");
+        }
+        if (n.op == FlatOp::Shape && (n.shape < 0 || n.shape >= shapeCount)) broken("flat shape index out of range");
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) {
+                if (!finite(n.matrix[c][r])) broken("non-finite flat transform");
+            }
+        }
+        if (!finite(n.offset.amount)) broken("non-finite offset");
+    }
+    for (const FlatPrimitive& shape : flat.shapes) {
+        std::visit(
+            [&](const auto& p) {
+                using T = std::decay_t<decltype(p)>;
+                if constexpr (std::is_same_v<T, Square>) {
+                    if (!size(p.size.x) || !size(p.size.y)) broken("bad square size");
+                } else if constexpr (std::is_same_v<T, Circle>) {
+                    if (!size(p.r)) broken("bad circle radius");
+                    checkFragments(p.fragments, options);
+                } else if constexpr (std::is_same_v<T, Polygon>) {
+                    const auto points = static_cast<long>(p.points.size());
+                    for (const auto& q : p.points) {
+                        if (!finite(q.x) || !finite(q.y)) broken("non-finite polygon point");
+                    }
+                    for (const auto& path : p.paths) {
+                        for (int i : path) {
+                            if (i < 0 || i >= points) broken("polygon path index out of range");
+                        }
+                    }
+                } else if constexpr (std::is_same_v<T, Text>) {
+                    if (!finite(p.size) || !finite(p.spacing)) broken("non-finite text size");
+                    checkFragments(p.fragments, options);
+                } else {
+                    if (p.path.empty()) broken("2D import with an empty path");
+                    if (!finite(p.scale) || !finite(p.origin.x) || !finite(p.origin.y) || !(p.dpi > 0)) broken("bad 2D import");
+                }
+            },
+            shape);
+    }
+}
+
 // What the parser promises of every tree it returns (Tree.h, CsgParser.h, issue 2):
 // indices in range, numbers finite, sizes not negative, $fn clamped.
 void checkTree(const Tree& tree, const ParseOptions& options) {
@@ -89,8 +139,21 @@ void checkTree(const Tree& tree, const ParseOptions& options) {
                             if (i < 0 || i >= points) broken("polyhedron face index out of range");
                         }
                     }
+                } else if constexpr (std::is_same_v<T, LinearExtrude>) {
+                    if (!size(p.height) || !finite(p.twist) || !size(p.scale.x) || !size(p.scale.y)) {
+                        broken("bad linear_extrude");
+                    }
+                    if (p.hasSlices && (p.slices < 1 || p.slices > options.maxFragments)) broken("slices out of range");
+                    checkFragments(p.fragments, options);
+                    checkFlat(p.shape, options);
+                } else if constexpr (std::is_same_v<T, RotateExtrude>) {
+                    if (!(p.angle > -360.0 && p.angle <= 360.0) || !finite(p.start)) broken("bad rotate_extrude");
+                    checkFragments(p.fragments, options);
+                    checkFlat(p.shape, options);
+                } else if constexpr (std::is_same_v<T, FlatSlab>) {
+                    checkFlat(p.shape, options);
                 } else {
-                    if (p.path.empty()) broken("import with an empty path");
+                    if (p.path.empty()) broken("import or surface with an empty path");
                 }
             },
             leaf.primitive);

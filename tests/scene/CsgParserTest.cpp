@@ -198,18 +198,18 @@ TEST(CsgParser, BracelessChildStatements) {
 
 TEST(CsgParser, UnsupportedNodesWarnOncePerTypeAndAreCounted) {
     Tree t = parse(
-        "linear_extrude(height = 3, center = false, convexity = 1, scale = [1, 1], $fn = 0, $fa = 12, $fs = 2) {\n"
-        "\tsquare(size = [2, 2], center = false);\n}\n"
+        "minkowski(convexity = 1) {\n"
+        "\tcube(size = [2, 2, 2], center = false);\n\tsphere(r = 1);\n}\n"
         "render(convexity = 1) {\n\thull() {\n\t\tsphere(r = 1);\n\t}\n}\n"
-        "linear_extrude(height = 1) { circle(r = 1); }\n"
+        "minkowski() { cube(size = 1); cylinder(r = 1); }\n"
         "cube(size = 1);\n");
     ASSERT_EQ(t.leaves.size(), 1u);  // only the cube; the hull's sphere is left out
-    EXPECT_EQ(t.unsupported.at("linear_extrude"), 2);
+    EXPECT_EQ(t.unsupported.at("minkowski"), 2);
     EXPECT_EQ(t.unsupported.at("hull"), 1);
-    EXPECT_EQ(t.unsupported.count("square"), 0u);  // inside a left-out subtree: not looked at
+    EXPECT_EQ(t.unsupported.count("sphere"), 0u);  // inside a left-out subtree: not looked at
     ASSERT_EQ(t.warnings.size(), 2u);
-    EXPECT_EQ(t.warnings[0].message.rfind("t.csg:1:1: warning: 'linear_extrude'", 0), 0u) << t.warnings[0].message;
-    EXPECT_EQ(t.warnings[1].message.rfind("t.csg:5:2: warning: 'hull'", 0), 0u) << t.warnings[1].message;
+    EXPECT_EQ(t.warnings[0].message.rfind("t.csg:1:1: warning: 'minkowski'", 0), 0u) << t.warnings[0].message;
+    EXPECT_EQ(t.warnings[1].message.rfind("t.csg:6:2: warning: 'hull'", 0), 0u) << t.warnings[1].message;
 }
 
 TEST(CsgParser, AbsurdFnIsClampedWithAWarning) {
@@ -233,10 +233,14 @@ TEST(CsgParser, ImportResolvesRelativeToTheCsgFile) {
                    dir.string());
     ASSERT_EQ(t.leaves.size(), 1u);
     EXPECT_EQ(std::get<Import>(t.leaves[0].primitive).path, (dir / "sub" / "part.stl").string());
-    // 2D formats are not solids: left out with a warning.
+    // A 2D format outside an extrusion is a flat shape, shown as a slab.
+    std::ofstream(dir / "drawing.dxf") << "0\nEOF\n";
     Tree t2 = parse("import(file = \"drawing.dxf\");", dir.string());
-    EXPECT_TRUE(t2.leaves.empty());
-    EXPECT_EQ(t2.warnings.size(), 1u);
+    ASSERT_EQ(t2.leaves.size(), 1u);
+    const FlatTree& shape = std::get<FlatSlab>(t2.leaves[0].primitive).shape;
+    ASSERT_EQ(shape.shapes.size(), 1u);
+    EXPECT_EQ(std::get<FlatImport>(shape.shapes[0]).path, (dir / "drawing.dxf").string());
+    EXPECT_TRUE(t2.warnings.empty());
     std::filesystem::remove_all(dir);
 }
 

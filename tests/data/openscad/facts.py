@@ -3,7 +3,8 @@
 of each checked-in OpenSCAD export, and prints it as C++ initialisers to paste.
 
 For each NAME.csg here:
-  leaves       primitive lines (cube, sphere, cylinder, polyhedron, import) that
+  leaves       primitive lines (cube, sphere, cylinder, polyhedron, import,
+               surface, and each extrusion with the 2D subtree it holds) that
                are not inside a node strata leaves out; `background` counts those
                under a '%' modifier.
   unsupported  the outermost nodes strata leaves out, by name: how many, and the
@@ -32,7 +33,10 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SUPPORTED_OPS = {"group", "union", "difference", "intersection", "multmatrix", "color", "render"}
-PRIMITIVES = {"cube", "sphere", "cylinder", "polyhedron", "import"}
+PRIMITIVES = {"cube", "sphere", "cylinder", "polyhedron", "import", "linear_extrude", "rotate_extrude", "surface"}
+EXTRUSIONS = {"linear_extrude", "rotate_extrude"}
+# Inside an extrusion: the 2D nodes that make its shape (part of the one leaf).
+FLAT_NODES = SUPPORTED_OPS | {"square", "circle", "polygon", "text", "offset", "import"}
 MESH_EXTENSIONS = (".stl", ".off", ".obj", ".ply")
 LINE = re.compile(r"^([%#!*]?)(\t*)([a-z_][a-z_0-9]*)\((.*)\)\s*([{;])\s*$")
 
@@ -40,7 +44,7 @@ LINE = re.compile(r"^([%#!*]?)(\t*)([a-z_][a-z_0-9]*)\((.*)\)\s*([{;])\s*$")
 def analyse(path):
     """One pass over the export's lines (OpenSCAD writes one node per line)."""
     lines = open(path).read().split("\n")
-    stack = []  # per open '{': (name, cut, background)
+    stack = []  # per open '{': (name, cut, background, inside an extrusion)
     leaves = background = 0
     unsupported = {}  # name -> [count, first line]
     kept, leaves_only = [], []
@@ -48,8 +52,9 @@ def analyse(path):
         stripped = text.strip()
         cut = any(s[1] for s in stack)
         in_background = any(s[2] for s in stack)
+        in_extrusion = any(s[3] for s in stack)
         if stripped == "}":
-            name, was_cut, _ = stack.pop()
+            name, was_cut, _, _ = stack.pop()
             if not cut:  # the closing brace of a kept node (a cut node's own brace has was_cut)
                 kept.append(text)
                 leaves_only.append(text)
@@ -64,22 +69,25 @@ def analyse(path):
         modifier, _, name, args, opener = m.groups()
         is_mesh_import = name == "import" and re.search(r'file = "[^"]*(' + "|".join(
             re.escape(e) for e in MESH_EXTENSIONS) + r')"', args, re.I)
-        supported = name in SUPPORTED_OPS or (name in PRIMITIVES and (name != "import" or is_mesh_import))
+        if in_extrusion:
+            supported = name in FLAT_NODES
+        else:
+            supported = name in SUPPORTED_OPS or (name in PRIMITIVES and (name != "import" or is_mesh_import))
         this_cut = cut or not supported
         if not cut and not supported:
             entry = unsupported.setdefault(name, [0, number])
             entry[0] += 1
         if not this_cut:
-            if name in PRIMITIVES:
+            if name in PRIMITIVES and not in_extrusion:
                 leaves += 1
                 if in_background or modifier == "%":
                     background += 1
             kept.append(text)
-            if name in ("difference", "intersection"):
+            if name in ("difference", "intersection") and not in_extrusion:
                 text = text.replace(name + "(", "union(", 1)
             leaves_only.append(text)
         if opener == "{":
-            stack.append((name, this_cut, in_background or modifier == "%"))
+            stack.append((name, this_cut, in_background or modifier == "%", in_extrusion or name in EXTRUSIONS))
     if stack:
         sys.exit(f"{path}: unbalanced braces")
     return leaves, background, unsupported, "\n".join(kept), "\n".join(leaves_only)

@@ -17,15 +17,9 @@
 #include <glm/vec4.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/scene/Flat.h"
 
 namespace strata::scene {
-
-// OpenSCAD's special variables that choose the number of fragments of a circle.
-struct Fragments {
-    double fn = 0.0;   // $fn: fixed count when > 0
-    double fa = 12.0;  // $fa: minimum angle, degrees
-    double fs = 2.0;   // $fs: minimum edge length, world units
-};
 
 struct Cube {
     glm::dvec3 size{1.0, 1.0, 1.0};
@@ -57,7 +51,45 @@ struct Import {
     std::string path;
 };
 
-using Primitive = std::variant<Cube, Sphere, Cylinder, Polyhedron, Import>;
+// linear_extrude(): the union of the flat children, swept up by `height`.
+struct LinearExtrude {
+    FlatTree shape;
+    double height = 100.0;
+    bool center = false;
+    double twist = 0.0;        // degrees, over the whole height
+    bool hasTwist = false;     // twist was written (its slice rule applies)
+    int slices = 1;
+    bool hasSlices = false;    // slices was written
+    glm::dvec2 scale{1.0, 1.0};  // of the top, relative to the bottom
+    Fragments fragments;
+};
+
+// rotate_extrude(): the union of the flat children (in the half plane x >= 0
+// or x <= 0) swept about the z axis, the 2D y axis becoming z.
+struct RotateExtrude {
+    FlatTree shape;
+    double angle = 360.0;      // degrees
+    double start = 0.0;        // newer dialect: the first ring's angle from +x
+    bool hasStart = false;     // false: 2021.01's rings (360: from -x, else from +x)
+    Fragments fragments;
+};
+
+// A flat result outside any extrusion, shown as OpenSCAD's preview shows it:
+// a slab one unit thick, z in [-0.5, 0.5].
+struct FlatSlab {
+    FlatTree shape;
+};
+
+// surface(): a height map (.dat text or a PNG image) as a solid; path already
+// resolved against the .csg's folder.
+struct Surface {
+    std::string path;
+    bool center = false;
+    bool invert = false;
+};
+
+using Primitive = std::variant<Cube, Sphere, Cylinder, Polyhedron, Import, LinearExtrude, RotateExtrude, FlatSlab,
+                               Surface>;
 
 // How a leaf is drawn besides its part in the CSG result (OpenSCAD's modifiers).
 enum class Display {
@@ -96,6 +128,10 @@ struct Tree {
     std::map<std::string, int> unsupported;      // node name -> how many were left out
     std::string source;                           // the input's path as given
 
+    // True when every leaf of the CSG result is a FlatSlab (and there is one):
+    // OpenSCAD would call the model 2D.
+    bool isFlat() const;
+
     // Convenience builders, used by tests and embedders that make trees in code.
     int addLeaf(Leaf leaf);                                 // returns the node index
     int addNode(NodeKind kind, std::vector<int> children);  // returns the node index
@@ -105,6 +141,10 @@ struct Tree {
 // single Import leaf of `path`, the root a union of it. The file is read
 // later, by geometry::buildModel.
 Tree meshFileTree(const std::string& path);
+
+// The OpenSCAD name of a leaf's primitive: "cube", ..., "linear_extrude",
+// "rotate_extrude", "surface"; "2D shape" for a FlatSlab.
+const char* primitiveName(const Primitive& primitive);
 
 // Short name of a node kind: "union", "intersection", "difference", "leaf".
 const char* kindName(NodeKind kind);

@@ -1,0 +1,191 @@
+#include "strata/geometry/Flat.h"
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "DegreeTrig.h"
+#include "FlatClipper.h"
+#include "strata/core/Error.h"
+#include "strata/geometry/FlatImport.h"
+#include "strata/geometry/Primitives.h"
+#include "strata/geometry/Text.h"
+
+// Follows OpenSCAD 2021.01's src/GeometryEvaluator.cc (applyToChildren2D, the
+// visits of TransformNode and OffsetNode), src/primitives.cc (square, circle,
+// polygon) and src/Polygon2d.cc (transform).
+
+namespace strata::geometry {
+namespace {
+
+using Result = std::optional<Outlines>;  // nullopt: no geometry (OpenSCAD's nullptr or empty)
+
+constexpr double kOffsetMiterLimit = 1000000.0;  // OpenSCAD's OffsetNode::miter_limit
+
+Outlines square(const scene::Square& s) {
+    Outlines shape;
+    shape.sanitized = true;  // made counter-clockwise, used as is
+    const double x = s.size.x, y = s.size.y;
+    if (!(x > 0.0 && y > 0.0) || std::isinf(x) || std::isinf(y)) return shape;
+    glm::dvec2 a(0.0, 0.0), b(x, y);
+    if (s.center) {
+        a -= glm::dvec2(x / 2, y / 2);
+        b -= glm::dvec2(x / 2, y / 2);
+    }
+    shape.outlines.push_back(Outline{{a, {b.x, a.y}, b, {a.x, b.y}}, true});
+    return shape;
+}
+
+Outlines circle(const scene::Circle& c) {
+    Outlines shape;
+    shape.sanitized = true;
+    if (!(c.r > 0.0) || std::isinf(c.r)) return shape;
+    const int n = fragmentsFromR(c.r, c.fragments);
+    Outline o;
+    o.points.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const double phi = (360.0 * i) / n;
+        o.points[static_cast<std::size_t>(i)] = {c.r * detail::cosDegrees(phi), c.r * detail::sinDegrees(phi)};
+    }
+    shape.outlines.push_back(std::move(o));
+    return shape;
+}
+
+Outlines polygon(const scene::Polygon& p) {
+    Outlines shape;
+    if (p.paths.empty()) {
+        if (p.points.size() > 2) shape.outlines.push_back(Outline{p.points, true});
+    } else {
+        for (const auto& path : p.paths) {
+            Outline o;
+            for (int index : path) {
+                if (index >= 0 && static_cast<std::size_t>(index) < p.points.size())
+                    o.points.push_back(p.points[static_cast<std::size_t>(index)]);
+            }
+            shape.outlines.push_back(std::move(o));
+        }
+    }
+    return detail::sanitize(shape);
+}
+
+// Polygon2d::transform with the xy part of a 3D matrix; a flattening matrix
+// empties the shape, a mirroring one makes Clipper orient it again.
+Result transform(Outlines shape, const glm::dmat4& m) {
+    // OpenSCAD's mat2, rows (m00 m01 m03), (m10 m11 m13), (m30 m31 m33); glm is m[column][row].
+    const double a = m[0][0], b = m[1][0], c = m[3][0];
+    const double d = m[0][1], e = m[1][1], f = m[3][1];
+    const double g = m[0][3], h = m[1][3], k = m[3][3];
+    const double det = a * (e * k - f * h) - d * (b * k - c * h) + g * (b * f - c * e);
+    if (det == 0.0) return std::nullopt;
+    for (Outline& o : shape.outlines) {
+        for (glm::dvec2& p : o.points) {
+            const double x = p.x, y = p.y;
+            p = {(a * x + b * y) + c, (d * x + e * y) + f};
+        }
+    }
+    if (shape.sanitized && det <= 0.0) return detail::sanitize(shape);
+    return shape;
+}
+
+detail::FlatBoolean booleanOf(scene::FlatOp op) {
+    if (op == scene::FlatOp::Intersection) return detail::FlatBoolean::Intersection;
+    if (op == scene::FlatOp::Difference) return detail::FlatBoolean::Difference;
+    return detail::FlatBoolean::Union;
+}
+
+// applyToChildren2D: one child passes through untouched (or absent), several
+// go through Clipper; no children at all is no geometry.
+Result combine(std::vector<Result>& children, scene::FlatOp op) {
+    if (children.empty()) return std::nullopt;
+    if (children.size() == 1) return std::move(children.front());
+    std::vector<const Outlines*> operands;
+    operands.reserve(children.size());
+    for (const Result& r : children) operands.push_back(r && !r->empty() ? &*r : nullptr);
+    return detail::apply(operands, booleanOf(op));
+}
+
+Result offset(const Outlines& shape, const scene::Offset& o) {
+    const double n = fragmentsFromR(std::fabs(o.amount), o.fragments);
+    const double tolerance = std::fabs(o.amount) * (1 - detail::cosDegrees(180 / n));
+    const detail::FlatJoin join = o.join == scene::Offset::Join::Round   ? detail::FlatJoin::Round
+                                  : o.join == scene::Offset::Join::Miter ? detail::FlatJoin::Miter
+                                                                         : detail::FlatJoin::Square;
+    return detail::offset(shape, o.amount, join, kOffsetMiterLimit, tolerance);
+}
+
+Result nonEmpty(Result r) {
+    if (r && r->empty()) return std::nullopt;
+    return r;
+}
+
+Result evaluateNode(const scene::FlatTree& tree, const scene::FlatNode& node, std::vector<Result>& children) {
+    switch (node.op) {
+        case scene::FlatOp::Shape:
+            return nonEmpty(flatPrimitive(tree.shapes[static_cast<std::size_t>(node.shape)]));
+        case scene::FlatOp::Union:
+        case scene::FlatOp::Intersection:
+        case scene::FlatOp::Difference: return nonEmpty(combine(children, node.op));
+        case scene::FlatOp::Transform: {
+            Result joined = combine(children, scene::FlatOp::Union);
+            if (!joined) return std::nullopt;
+            return nonEmpty(transform(std::move(*joined), node.matrix));
+        }
+        case scene::FlatOp::Offset: {
+            Result joined = combine(children, scene::FlatOp::Union);
+            if (!joined) return std::nullopt;
+            return nonEmpty(offset(*joined, node.offset));
+        }
+        case scene::FlatOp::Empty: break;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+Outlines flatPrimitive(const scene::FlatPrimitive& primitive) {
+    return std::visit(
+        [](const auto& p) -> Outlines {
+            using T = std::decay_t<decltype(p)>;
+            if constexpr (std::is_same_v<T, scene::Square>) return square(p);
+            else if constexpr (std::is_same_v<T, scene::Circle>) return circle(p);
+            else if constexpr (std::is_same_v<T, scene::Polygon>) return polygon(p);
+            else if constexpr (std::is_same_v<T, scene::Text>) {
+                // The glyphs are unioned as OpenSCAD's TextNode does: each cleaned, then one union.
+                std::vector<Outlines> glyphs = textGlyphs(p);
+                std::vector<const Outlines*> operands;
+                for (const Outlines& g : glyphs) operands.push_back(&g);
+                return detail::apply(operands, detail::FlatBoolean::Union);
+            } else {
+                // As OpenSCAD's leaf nodes: cleaned by Clipper unless the reader already did (SVG).
+                Outlines imported = importFlat(p);
+                return imported.sanitized ? imported : detail::sanitize(imported);
+            }
+        },
+        primitive);
+}
+
+Outlines evaluateFlat(const scene::FlatTree& tree) {
+    if (tree.root < 0) return {};
+    // Children come after their parents: walking backwards meets them first.
+    std::vector<Result> results(tree.nodes.size());
+    for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+        const scene::FlatNode& node = tree.nodes[i];
+        try {
+            std::vector<Result> children;
+            children.reserve(node.children.size());
+            for (int c : node.children) children.push_back(std::move(results[static_cast<std::size_t>(c)]));
+            results[i] = evaluateNode(tree, node, children);
+        } catch (const Error& e) {
+            const std::string prefix = node.where.str() + ":";
+            if (node.where.file.empty() || std::string(e.what()).rfind(prefix, 0) == 0) throw;
+            throw Error(node.where, e.what());
+        }
+    }
+    Result& root = results[static_cast<std::size_t>(tree.root)];
+    return root ? std::move(*root) : Outlines{};
+}
+
+}  // namespace strata::geometry

@@ -1,0 +1,124 @@
+#include "FlatClipper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <polyclipping/clipper.hpp>
+
+#include "strata/core/Error.h"
+
+namespace strata::geometry::detail {
+namespace {
+
+// Clipper's coordinate range (hiRange in clipper.cpp): points beyond it make
+// Clipper throw, so they are refused here with a message of our own.
+constexpr double kClipperRange = 4611686018427387903.0;  // 0x3FFFFFFFFFFFFFFF
+
+ClipperLib::cInt toGrid(double v) {
+    const double scaled = v * kClipperScale;
+    if (!(std::fabs(scaled) < kClipperRange)) {
+        throw Error("a 2D coordinate (" + std::to_string(v) + ") is too large for the 1/65536 grid");
+    }
+    // The conversion truncates toward zero, as OpenSCAD's IntPoint(x * 2^16) does.
+    return static_cast<ClipperLib::cInt>(scaled);
+}
+
+ClipperLib::Path toPath(const Outline& outline, bool keepOrientation) {
+    ClipperLib::Path path;
+    path.reserve(outline.points.size());
+    for (const glm::dvec2& p : outline.points) path.emplace_back(toGrid(p.x), toGrid(p.y));
+    // Unsanitized outlines are all made to point up first, as OpenSCAD does.
+    if (!keepOrientation && !ClipperLib::Orientation(path)) std::reverse(path.begin(), path.end());
+    return path;
+}
+
+ClipperLib::Paths toPaths(const Outlines& shape) {
+    ClipperLib::Paths paths;
+    paths.reserve(shape.outlines.size());
+    for (const Outline& o : shape.outlines) paths.push_back(toPath(o, shape.sanitized));
+    return paths;
+}
+
+Outlines fromTree(const ClipperLib::PolyTree& tree) {
+    Outlines result;
+    for (const ClipperLib::PolyNode* node = tree.GetFirst(); node != nullptr; node = node->GetNext()) {
+        ClipperLib::Path cleaned;
+        ClipperLib::CleanPolygon(node->Contour, cleaned);
+        if (cleaned.size() < 3) continue;  // cleaning can leave nothing
+        Outline outline;
+        // The sign is read from the orientation, not from IsHole(): offsets get the latter wrong.
+        outline.positive = ClipperLib::Orientation(node->Contour);
+        outline.points.reserve(cleaned.size());
+        for (const ClipperLib::IntPoint& p : cleaned) {
+            outline.points.emplace_back(1.0 * static_cast<double>(p.X) / kClipperScale,
+                                        1.0 * static_cast<double>(p.Y) / kClipperScale);
+        }
+        result.outlines.push_back(std::move(outline));
+    }
+    result.sanitized = true;
+    return result;
+}
+
+ClipperLib::PolyTree sanitizeTree(const ClipperLib::Paths& paths) {
+    ClipperLib::PolyTree tree;
+    ClipperLib::Clipper clipper;
+    clipper.AddPaths(paths, ClipperLib::ptSubject, true);
+    clipper.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftEvenOdd);
+    return tree;
+}
+
+ClipperLib::Paths sanitizedPaths(const Outlines& shape) {
+    ClipperLib::Paths paths = toPaths(shape);
+    if (!shape.sanitized) ClipperLib::PolyTreeToPaths(sanitizeTree(paths), paths);
+    return paths;
+}
+
+}  // namespace
+
+Outlines sanitize(const Outlines& shape) { return fromTree(sanitizeTree(toPaths(shape))); }
+
+Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op) {
+    std::vector<ClipperLib::Paths> operands;
+    operands.reserve(children.size());
+    for (const Outlines* child : children) operands.push_back(child ? sanitizedPaths(*child) : ClipperLib::Paths{});
+
+    ClipperLib::Clipper clipper;
+    ClipperLib::PolyTree result;
+    if (op == FlatBoolean::Intersection && operands.size() >= 2) {
+        ClipperLib::Paths source = operands[0];
+        for (std::size_t i = 1; i < operands.size(); ++i) {
+            clipper.AddPaths(source, ClipperLib::ptSubject, true);
+            clipper.AddPaths(operands[i], ClipperLib::ptClip, true);
+            clipper.Execute(ClipperLib::ctIntersection, result, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+            if (i + 1 != operands.size()) {
+                ClipperLib::PolyTreeToPaths(result, source);
+                clipper.Clear();
+            }
+        }
+        return fromTree(result);
+    }
+    bool first = true;
+    for (const ClipperLib::Paths& paths : operands) {
+        clipper.AddPaths(paths, first ? ClipperLib::ptSubject : ClipperLib::ptClip, true);
+        first = false;
+    }
+    const ClipperLib::ClipType type = op == FlatBoolean::Union          ? ClipperLib::ctUnion
+                                      : op == FlatBoolean::Intersection ? ClipperLib::ctIntersection
+                                                                        : ClipperLib::ctDifference;
+    clipper.Execute(type, result, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    return fromTree(result);
+}
+
+Outlines offset(const Outlines& shape, double amount, FlatJoin join, double miterLimit, double arcTolerance) {
+    const ClipperLib::JoinType type = join == FlatJoin::Round   ? ClipperLib::jtRound
+                                      : join == FlatJoin::Miter ? ClipperLib::jtMiter
+                                                                : ClipperLib::jtSquare;
+    ClipperLib::ClipperOffset clipperOffset(miterLimit, arcTolerance * kClipperScale);
+    clipperOffset.AddPaths(toPaths(shape), type, ClipperLib::etClosedPolygon);
+    ClipperLib::PolyTree result;
+    clipperOffset.Execute(result, amount * kClipperScale);
+    return fromTree(result);
+}
+
+}  // namespace strata::geometry::detail

@@ -1,0 +1,31 @@
+#pragma once
+// OpenSCAD's use of Clipper 6 (src/clipper-utils.cc in 2021.01), step for
+// step: points scaled by 2^16 and truncated to integers, outlines cleaned
+// after each operation, results read back with their orientation as the
+// outline's sign.
+
+#include <vector>
+
+#include "strata/geometry/Outlines.h"
+
+namespace strata::geometry::detail {
+
+inline constexpr double kClipperScale = 65536.0;  // OpenSCAD's CLIPPER_SCALE, 2^16
+
+enum class FlatBoolean { Union, Intersection, Difference };
+
+// Outlines as Clipper sees them after an even-odd union: no crossings,
+// outer outlines counter-clockwise, on the grid.
+Outlines sanitize(const Outlines& shape);
+
+// The boolean of the children, in order (the first is the minuend of a
+// difference). A child may be empty. Intersections are taken pairwise, left
+// to right, as OpenSCAD does.
+Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op);
+
+enum class FlatJoin { Round, Miter, Square };
+
+// ClipperOffset(miterLimit, arcTolerance * 2^16).Execute(amount * 2^16).
+Outlines offset(const Outlines& shape, double amount, FlatJoin join, double miterLimit, double arcTolerance);
+
+}  // namespace strata::geometry::detail

@@ -1,0 +1,21 @@
+#pragma once
+// Flat subtrees evaluated as OpenSCAD 2021.01's GeometryEvaluator does, node by
+// node: primitives made as its primitives.cc makes them, booleans, offsets and
+// every union of several children through Clipper on the 1/65536 grid, a
+// single child passed through untouched, multmatrix applied to the points.
+
+#include "strata/geometry/Outlines.h"
+#include "strata/scene/Flat.h"
+
+namespace strata::geometry {
+
+// The outlines of the tree's root (empty when it makes nothing). Errors from
+// text, imports or coordinates beyond Clipper's range throw strata::Error
+// naming the node's position.
+Outlines evaluateFlat(const scene::FlatTree& tree);
+
+// The outlines of one flat primitive, before any union (square and circle come
+// out as made, unsanitized shapes go through Clipper's even-odd clean-up).
+Outlines flatPrimitive(const scene::FlatPrimitive& primitive);
+
+}  // namespace strata::geometry

@@ -1,0 +1,28 @@
+#!/bin/sh
+# Regenerates the OpenSCAD references under tests/data/flat/: for each NAME.scad
+# in the folders below, OpenSCAD's CSG export (NAME.csg, what strata reads) and
+# its mesh of the same model (NAME.off: `openscad -o NAME.off`, 3D results) or
+# outline (NAME.svg, 2D results). tests/geometry/FlatExportsTest.cpp compares
+# strata's meshes with them.
+#
+#   scripts/export-openscad-flat.sh
+#
+# Needs openscad 2021.01 (Debian 12's `openscad`).
+set -eu
+here=$(cd "$(dirname "$0")/.." && pwd)
+command -v openscad >/dev/null 2>&1 || { echo "export-openscad-flat: openscad is not installed (apt-get install openscad)" >&2; exit 1; }
+
+for dir in "$here"/tests/data/flat/extrude; do
+    for scad in "$dir"/*.scad; do
+        name=${scad%.scad}
+        openscad -o "$name.csg" "$scad" 2>/dev/null
+        if ! openscad -o "$name.off" "$scad" 2>"$name.log"; then
+            cat "$name.log" >&2
+            rm -f "$name.log"
+            echo "export-openscad-flat: openscad failed on $scad" >&2
+            exit 1
+        fi
+        rm -f "$name.log"
+        echo "wrote $name.csg $name.off"
+    done
+done

@@ -1,0 +1,1 @@
+rotate_extrude() translate([-6, 0]) circle(1.5);

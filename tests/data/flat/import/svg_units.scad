@@ -1,0 +1,1 @@
+scale(65536) import("units.svg");

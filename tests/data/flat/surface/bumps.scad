@@ -1,0 +1,1 @@
+surface(file = "bumps.dat");

@@ -1,0 +1,1 @@
+surface("crlf.dat", center = true);

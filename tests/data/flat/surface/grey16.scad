@@ -1,0 +1,1 @@
+surface("grey16.png", center = true);

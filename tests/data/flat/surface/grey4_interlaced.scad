@@ -1,0 +1,1 @@
+surface("grey4_interlaced.png");

@@ -1,0 +1,1 @@
+surface("grey_alpha.png", center = true);

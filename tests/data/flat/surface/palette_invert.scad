@@ -1,0 +1,1 @@
+surface("palette.png", invert = true);

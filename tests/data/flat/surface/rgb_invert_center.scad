@@ -1,0 +1,1 @@
+surface("rgb.png", invert = true, center = true);

@@ -1,0 +1,1 @@
+surface("square.dat", center = true);

@@ -1,0 +1,126 @@
+// Extrusions of flat shapes against OpenSCAD 2021.01's own meshes of the same
+// models (tests/data/flat/extrude: NAME.scad, its CSG export NAME.csg that
+// strata reads, and OpenSCAD's mesh NAME.off; scripts/export-openscad-flat.sh
+// makes them). OpenSCAD writes six significant digits, so points are matched
+// to that precision; the side walls' triangles (where OpenSCAD's choice of
+// diagonal shapes the surface) must be the same triangles, and the solid the
+// same volume.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "GeometryTestUtil.h"
+#include "strata/geometry/MeshCheck.h"
+#include "strata/geometry/Model.h"
+#include "strata/scene/CsgParser.h"
+
+using namespace strata;
+using namespace strata::geometry;
+
+namespace {
+
+const std::string kDir = std::string(STRATA_TEST_DIR) + "/data/flat/extrude/";
+
+// OFF as OpenSCAD writes it: "OFF V F 0", V points, F faces "n i0 i1 ...".
+Mesh readOff(const std::string& path) {
+    std::ifstream in(path);
+    std::string magic;
+    std::size_t vertices = 0, faces = 0, edges = 0;
+    in >> magic >> vertices >> faces >> edges;
+    Mesh mesh;
+    mesh.positions.resize(vertices);
+    for (auto& p : mesh.positions) in >> p.x >> p.y >> p.z;
+    for (std::size_t f = 0; f < faces; ++f) {
+        std::size_t n = 0;
+        in >> n;
+        std::vector<uint32_t> loop(n);
+        for (auto& i : loop) in >> i;
+        for (std::size_t k = 1; k + 1 < n; ++k) mesh.triangles.push_back({loop[0], loop[k], loop[k + 1]});
+    }
+    EXPECT_TRUE(in) << path;
+    return mesh;
+}
+
+// Six significant digits, as OpenSCAD prints.
+bool close(double a, double b) { return std::fabs(a - b) <= 6e-6 * std::max(1.0, std::fabs(b)); }
+bool close(const glm::dvec3& a, const glm::dvec3& b) { return close(a.x, b.x) && close(a.y, b.y) && close(a.z, b.z); }
+
+// The index of a point of `mesh` that prints as `p`, or -1.
+int match(const Mesh& mesh, const glm::dvec3& p) {
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        if (close(mesh.positions[i], p)) return static_cast<int>(i);
+    return -1;
+}
+
+double area(const Mesh& m, const std::array<uint32_t, 3>& t) {
+    return 0.5 * glm::length(glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]));
+}
+
+// A cap triangle: flat at one height (linear_extrude), or in a plane through
+// the z axis (the ends of a partial rotate_extrude). Caps may be triangulated
+// any way; walls may not.
+bool isCap(const Mesh& m, const std::array<uint32_t, 3>& t) {
+    const glm::dvec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    if (close(a.z, b.z) && close(b.z, c.z)) return true;
+    auto cross = [](const glm::dvec3& u, const glm::dvec3& v) { return u.x * v.y - u.y * v.x; };
+    const double scale = std::max({glm::length(a), glm::length(b), glm::length(c), 1.0});
+    return std::fabs(cross(a, b)) < 1e-5 * scale * scale && std::fabs(cross(b, c)) < 1e-5 * scale * scale &&
+           std::fabs(cross(a, c)) < 1e-5 * scale * scale;
+}
+
+class FlatExports : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FlatExports, MeshMatchesOpenScad) {
+    const std::string name = GetParam();
+    const scene::Tree tree = scene::parseCsgFile(kDir + name + ".csg");
+    ASSERT_TRUE(tree.warnings.empty()) << tree.warnings.front().message;
+    ASSERT_EQ(tree.leaves.size(), 1u);
+    const Model model = buildModel(tree);
+    const Mesh& ours = model.leafMeshes[0];
+    const Mesh theirs = readOff(kDir + name + ".off");
+
+    EXPECT_TRUE(checkMesh(ours).ok()) << checkMesh(ours).describe();
+    // Every point of OpenSCAD's mesh is one of ours, and the other way round.
+    for (const auto& p : theirs.positions) EXPECT_GE(match(ours, p), 0) << name << ": theirs " << p.x << " " << p.y << " " << p.z;
+    for (const auto& p : ours.positions) EXPECT_GE(match(theirs, p), 0) << name << ": ours " << p.x << " " << p.y << " " << p.z;
+
+    // Their wall triangles with area are ours (either way round).
+    std::set<std::array<uint32_t, 3>> ourTriangles;
+    for (auto t : ours.triangles) {
+        std::sort(t.begin(), t.end());
+        ourTriangles.insert(t);
+    }
+    std::size_t walls = 0;
+    for (const auto& t : theirs.triangles) {
+        if (area(theirs, t) < 1e-9 || isCap(theirs, t)) continue;
+        std::array<uint32_t, 3> mapped{};
+        for (int k = 0; k < 3; ++k) mapped[static_cast<std::size_t>(k)] = static_cast<uint32_t>(match(ours, theirs.positions[t[static_cast<std::size_t>(k)]]));
+        std::sort(mapped.begin(), mapped.end());
+        EXPECT_TRUE(ourTriangles.count(mapped)) << name << ": a wall triangle of OpenSCAD's is not ours";
+        ++walls;
+    }
+    EXPECT_GT(walls, 0u);
+    const double expected = test::signedVolume(theirs);
+    EXPECT_NEAR(test::signedVolume(ours), expected, 1e-4 * std::fabs(expected)) << name;
+}
+
+std::vector<std::string> cases() {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(kDir))
+        if (entry.path().extension() == ".scad") names.push_back(entry.path().stem().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(OpenScad, FlatExports, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+}  // namespace

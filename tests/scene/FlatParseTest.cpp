@@ -1,0 +1,196 @@
+// How the reader turns 2D statements and extrusions into leaves: the flat
+// tree each leaf carries, the extrusions' arguments as OpenSCAD 2021.01 reads
+// them, flat results outside extrusions, and what is ignored with a warning.
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <variant>
+
+#include "strata/scene/CsgParser.h"
+
+using namespace strata;
+using namespace strata::scene;
+
+namespace {
+
+Tree parse(const std::string& text) {
+    std::istringstream in(text);
+    return parseCsg(in, "t.csg", "");
+}
+
+std::string errorOf(const std::string& text) {
+    try {
+        parse(text);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+const FlatNode& node(const FlatTree& t, int i) { return t.nodes.at(static_cast<std::size_t>(i)); }
+
+}  // namespace
+
+TEST(FlatParse, LinearExtrudeIsOneLeafHoldingItsShape) {
+    const Tree t = parse(
+        "multmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\tlinear_extrude(height = 5, center = true, convexity = 1, twist = 90, slices = 8, scale = [1, 0.5], "
+        "$fn = 0, $fa = 12, $fs = 2) {\n"
+        "\t\tdifference() {\n"
+        "\t\t\tsquare(size = [10, 10], center = true);\n"
+        "\t\t\tmultmatrix([[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) circle($fn = 0, $fa = 12, $fs = 2, r = 3);\n"
+        "\t\t}\n\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_TRUE(t.warnings.empty());
+    const Leaf& leaf = t.leaves[0];
+    EXPECT_EQ(leaf.transform[3][0], 5.0);  // the extrusion's own placement stays on the leaf
+    EXPECT_EQ(leaf.where.line, 2);
+    const auto& e = std::get<LinearExtrude>(leaf.primitive);
+    EXPECT_EQ(e.height, 5.0);
+    EXPECT_TRUE(e.center);
+    EXPECT_TRUE(e.hasTwist);
+    EXPECT_EQ(e.twist, 90.0);
+    EXPECT_TRUE(e.hasSlices);
+    EXPECT_EQ(e.slices, 8);
+    EXPECT_EQ(e.scale, glm::dvec2(1.0, 0.5));
+
+    // union (the extrusion's children) > difference > square, transform > circle
+    const FlatTree& s = e.shape;
+    const FlatNode& root = node(s, s.root);
+    EXPECT_EQ(root.op, FlatOp::Union);
+    ASSERT_EQ(root.children.size(), 1u);
+    const FlatNode& diff = node(s, root.children[0]);
+    EXPECT_EQ(diff.op, FlatOp::Difference);
+    ASSERT_EQ(diff.children.size(), 2u);
+    const FlatNode& sq = node(s, diff.children[0]);
+    EXPECT_EQ(sq.op, FlatOp::Shape);
+    EXPECT_EQ(std::get<Square>(s.shapes.at(static_cast<std::size_t>(sq.shape))).size, glm::dvec2(10, 10));
+    const FlatNode& moved = node(s, diff.children[1]);
+    EXPECT_EQ(moved.op, FlatOp::Transform);
+    EXPECT_EQ(moved.matrix[3][0], 1.0);  // local to the extrusion, not composed with the outer translate
+    ASSERT_EQ(moved.children.size(), 1u);
+    EXPECT_EQ(std::get<Circle>(s.shapes.at(static_cast<std::size_t>(node(s, moved.children[0]).shape))).r, 3.0);
+    // Children come after their parents.
+    for (std::size_t i = 0; i < s.nodes.size(); ++i)
+        for (int c : s.nodes[i].children) EXPECT_GT(static_cast<std::size_t>(c), i);
+}
+
+TEST(FlatParse, ExtrusionArgumentsAsOpenScadReadsThem) {
+    // No twist written, or a zero twist: no twist rule; slices 0: no slices rule;
+    // negative height: nothing; a negative scale: 0; a scalar scale: both axes.
+    const Tree t = parse(
+        "linear_extrude(height = -2, twist = 0, slices = 0, scale = -1) square(size = 1);\n"
+        "linear_extrude(height = 3, scale = 2) square(size = 1);\n"
+        "rotate_extrude(angle = 720, convexity = 2, $fn = 7) square(size = 1);\n"
+        "rotate_extrude(angle = 90, start = 30) square(size = 1);\n");
+    ASSERT_EQ(t.leaves.size(), 4u);
+    const auto& a = std::get<LinearExtrude>(t.leaves[0].primitive);
+    EXPECT_EQ(a.height, 0.0);
+    EXPECT_FALSE(a.hasTwist);
+    EXPECT_FALSE(a.hasSlices);
+    EXPECT_EQ(a.scale, glm::dvec2(0.0, 0.0));
+    EXPECT_EQ(std::get<LinearExtrude>(t.leaves[1].primitive).scale, glm::dvec2(2.0, 2.0));
+    const auto& r = std::get<RotateExtrude>(t.leaves[2].primitive);
+    EXPECT_EQ(r.angle, 360.0);  // out of (-360, 360]
+    EXPECT_FALSE(r.hasStart);
+    EXPECT_EQ(r.fragments.fn, 7.0);
+    const auto& r2 = std::get<RotateExtrude>(t.leaves[3].primitive);
+    EXPECT_TRUE(r2.hasStart);
+    EXPECT_EQ(r2.start, 30.0);
+}
+
+TEST(FlatParse, FlatObjectsOutsideExtrusionsAreOneSlab) {
+    // A 2D boolean at the top level, and a sibling flat object: one flat
+    // result, as OpenSCAD unions them, with each part under its own placement.
+    const Tree t = parse(
+        "difference() {\n\tsquare(size = [10, 10], center = false);\n"
+        "\tmultmatrix([[1, 0, 0, 3], [0, 1, 0, 3], [0, 0, 1, 0], [0, 0, 0, 1]]) circle(r = 2);\n}\n"
+        "polygon(points = [[20, 0], [25, 0], [20, 5]], paths = undef, convexity = 1);\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_TRUE(t.isFlat());
+    const FlatTree& s = std::get<FlatSlab>(t.leaves[0].primitive).shape;
+    const FlatNode& root = node(s, s.root);
+    EXPECT_EQ(root.op, FlatOp::Union);
+    ASSERT_EQ(root.children.size(), 2u);
+    const FlatNode& placed = node(s, root.children[0]);
+    EXPECT_EQ(placed.op, FlatOp::Transform);
+    EXPECT_EQ(node(s, placed.children.at(0)).op, FlatOp::Difference);
+}
+
+TEST(FlatParse, FlatAndSolidSideBySideStayApart) {
+    const Tree t = parse("square(size = 4);\ncube(size = 2);\n");
+    ASSERT_EQ(t.leaves.size(), 2u);
+    EXPECT_FALSE(t.isFlat());
+    EXPECT_TRUE(std::holds_alternative<FlatSlab>(t.leaves[0].primitive));
+    // A flat object lifted out of its plane is drawn where it is, not merged.
+    const Tree lifted = parse("union() {\n\tsquare(size = 4);\n"
+                              "\tmultmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]) square(size = 4);\n}\n");
+    EXPECT_EQ(lifted.leaves.size(), 2u);
+}
+
+TEST(FlatParse, SolidsInsideFlatOperationsAreIgnoredWithAWarning) {
+    const Tree t = parse(
+        "linear_extrude(height = 1) {\n\tsquare(size = 1);\n\tcube(size = 3);\n"
+        "\thull() { circle(r = 1); }\n\t%circle(r = 5);\n\t*circle(r = 6);\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
+    const FlatNode& root = node(s, s.root);
+    // square, the ignored cube and hull (empty children, which OpenSCAD keeps);
+    // the background and disabled circles are not children at all.
+    ASSERT_EQ(root.children.size(), 3u);
+    EXPECT_EQ(node(s, root.children[1]).op, FlatOp::Empty);
+    EXPECT_EQ(node(s, root.children[2]).op, FlatOp::Empty);
+    ASSERT_EQ(t.warnings.size(), 2u);
+    EXPECT_NE(t.warnings[0].message.find("t.csg:3:2: warning: 'cube' is a 3D object inside a 2D operation"),
+              std::string::npos)
+        << t.warnings[0].message;
+    EXPECT_EQ(t.unsupported.at("hull"), 1);
+}
+
+TEST(FlatParse, ShapesAndTheirArguments) {
+    const Tree t = parse(
+        "linear_extrude(height = 1) {\n"
+        "\tpolygon(points = [[0, 0], [4, 0], [4, 4], [0, 4], [1, 1], [2, 1], [2, 2]], paths = [[0, 1, 2, 3], [4, 5, 9]], "
+        "convexity = 1);\n"
+        "\ttext(text = \"Hi\", size = 7, spacing = 1.2, font = \"Liberation Serif\", direction = \"ltr\", language = "
+        "\"en\", script = \"Latn\", halign = \"center\", valign = \"default\", $fn = 0, $fa = 12, $fs = 2);\n"
+        "\toffset(delta = 2, chamfer = true, $fn = 0, $fa = 12, $fs = 2) square(size = [1, 2]);\n"
+        "\toffset(r = -1, $fn = 8) circle(d = 10);\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
+    ASSERT_EQ(s.shapes.size(), 4u);
+    const auto& p = std::get<Polygon>(s.shapes[0]);
+    EXPECT_EQ(p.points.size(), 7u);
+    ASSERT_EQ(p.paths.size(), 2u);
+    EXPECT_EQ(p.paths[1].size(), 2u);  // index 9 is past the points: skipped, with a warning
+    ASSERT_EQ(t.warnings.size(), 1u);
+    const auto& text = std::get<Text>(s.shapes[1]);
+    EXPECT_EQ(text.text, "Hi");
+    EXPECT_EQ(text.size, 7.0);
+    EXPECT_EQ(text.spacing, 1.2);
+    EXPECT_EQ(text.font, "Liberation Serif");
+    EXPECT_EQ(text.halign, "center");
+    EXPECT_EQ(text.valign, "baseline");
+    const FlatNode& root = node(s, s.root);
+    const FlatNode& chamfer = node(s, root.children.at(2));
+    EXPECT_EQ(chamfer.op, FlatOp::Offset);
+    EXPECT_EQ(chamfer.offset.join, Offset::Join::Square);
+    EXPECT_EQ(chamfer.offset.amount, 2.0);
+    const FlatNode& round = node(s, root.children.at(3));
+    EXPECT_EQ(round.offset.join, Offset::Join::Round);
+    EXPECT_EQ(round.offset.amount, -1.0);
+    EXPECT_EQ(std::get<Circle>(s.shapes[3]).r, 5.0);
+}
+
+TEST(FlatParse, BadFlatArgumentsNameTheirPosition) {
+    EXPECT_EQ(errorOf("linear_extrude(height = 1) polygon(points = [[0, 0, 1]]);"),
+              "t.csg:1:45: point 0 does not have 2 coordinates");
+    EXPECT_EQ(errorOf("square(size = [1, 2, 3]);"), "t.csg:1:15: size must be a number or a vector of 2 numbers");
+    EXPECT_EQ(errorOf("circle(r = -1);"), "t.csg:1:12: r must not be negative");
+    EXPECT_EQ(errorOf("linear_extrude(height = 1) text(text = \"a\", size = \"big\");"),
+              "t.csg:1:52: size must be a number, not a string");
+    EXPECT_EQ(errorOf("linear_extrude(height = 1) squircle();"), "t.csg:1:28: unknown module 'squircle'");
+    EXPECT_EQ(errorOf("surface(file = \"missing.dat\");"), "t.csg:1:16: surface file not found: missing.dat");
+}
