@@ -62,6 +62,7 @@ int run(const apps::RenderOptions& options) {
     }
     stats.unsupported = tree.unsupported;
     stats.leaves = static_cast<int>(tree.leaves.size());
+    stats.dimensions = tree.isFlat() ? 2 : 3;
 
     t = Clock::now();
     const geometry::Model model = geometry::buildModel(tree);

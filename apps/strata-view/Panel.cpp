@@ -43,7 +43,8 @@ void Viewer::drawPanel() {
         ImGui::PopStyleColor();
     }
     if (!scene_.tree.warnings.empty() &&
-        ImGui::CollapsingHeader(("warnings (" + std::to_string(scene_.tree.warnings.size()) + ")").c_str())) {
+        ImGui::CollapsingHeader(("warnings (" + std::to_string(scene_.tree.warnings.size()) + ")").c_str(),
+                                ImGuiTreeNodeFlags_DefaultOpen)) {
         for (const Warning& w : scene_.tree.warnings) ImGui::TextWrapped("%s", w.message.c_str());
     }
 

@@ -40,6 +40,7 @@ std::string statsJson(const RunStats& s, int indent) {
 
     json.key("operands").value(f.operands);
     json.key("leaves").value(s.leaves);
+    json.key("dimensions").value(s.dimensions);
     json.key("triangles").value(static_cast<std::uint64_t>(s.triangles));
     json.key("layers_per_operand").beginArray(/*oneLine=*/true);
     for (int layers : f.layersPerLeaf) json.value(layers);

@@ -8,6 +8,7 @@
 //     "time_ms": {"parse": .., "geometry": .., "context": .., "upload": .., "peel": ..,
 //                 "evaluate": .., "shade": .., "readback": .., "frame": .., "write": .., "total": ..},
 //     "operands": 12, "leaves": 13, "triangles": 9000,
+//     "dimensions": 3,                         // 2: a flat model, shown as a slab one unit thick
 //     "layers_per_operand": [1, 3, ...],      // per tree leaf; 0 for leaves not drawn
 //     "layers_max": 3, "layers_total": 14,
 //     "texture_bytes": 12582912,
@@ -33,6 +34,7 @@ struct RunStats {
     std::string renderer;           // GL_RENDERER (or "reference")
     double parseMs = 0, geometryMs = 0, contextMs = 0, uploadMs = 0, writeMs = 0, totalMs = 0;
     int leaves = 0;                 // all tree leaves, background ones too
+    int dimensions = 3;             // 2 when every leaf of the result is flat (scene::Tree::isFlat)
     std::size_t triangles = 0;      // over all leaf meshes
     render::FrameStats frame;
     std::vector<std::string> warnings;
