@@ -187,6 +187,51 @@ def at(x, y, z, *c):
     return mm(translate(x, y, z), *c)
 
 
+# Flat (2D) shapes and the extrusions that make solids of them, as OpenSCAD
+# 2021.01 exports them.
+FRAG = "$fn = %d, $fa = 12, $fs = 2"
+
+
+def square(size, center=False):
+    return Node("square(size = [%s, %s], center = %s)" % (num(size[0]), num(size[1]), "true" if center else "false"))
+
+
+def circle(r, fn=0):
+    return Node("circle(%s, r = %s)" % (FRAG % fn, num(r)))
+
+
+def polygon(points, paths=None):
+    pts = ", ".join("[%s, %s]" % (num(p[0], 8), num(p[1], 8)) for p in points)
+    pth = "undef" if paths is None else "[" + ", ".join("[" + ", ".join(str(i) for i in p) + "]" for p in paths) + "]"
+    return Node("polygon(points = [%s], paths = %s, convexity = 1)" % (pts, pth))
+
+
+def text(string, size, halign="left", valign="baseline"):
+    return Node('text(text = "%s", size = %s, spacing = 1, font = "", direction = "ltr", language = "en", '
+                'script = "Latn", halign = "%s", valign = "%s", $fn = 0, $fa = 12, $fs = 2)'
+                % (string, num(size), halign, valign))
+
+
+def offset_r(r, *c, fn=0):
+    return Node("offset(r = %s, %s)" % (num(r), FRAG % fn), c)
+
+
+def linear_extrude(height, *c, center=False, twist=None, slices=None, scale=(1, 1), fn=0):
+    args = ["height = %s" % num(height), "center = %s" % ("true" if center else "false"), "convexity = 2"]
+    if twist is not None:
+        args.append("twist = %s" % num(twist))
+    if slices is not None:
+        args.append("slices = %d" % slices)
+    args.append("scale = [%s, %s]" % (num(scale[0]), num(scale[1])))
+    if slices is None:
+        args.append(FRAG % fn)
+    return Node("linear_extrude(%s)" % ", ".join(args), c)
+
+
+def rotate_extrude(*c, angle=360, fn=0):
+    return Node("rotate_extrude(angle = %s, convexity = 2, %s)" % (num(angle), FRAG % fn), c)
+
+
 # ----------------------------------------------------------------------------
 # meshes made here
 
@@ -799,6 +844,42 @@ scene("mirrored_sheared_torus", "transform",
                  mm(chain(translate(4.0, 4.0, 0), scale(-1, 1, 1), shear(xz=0.5)), cylinder(10.0, 1.5, fn=16))),
       [Shot((0.3, 0.1, 50.0), (0.3, 0.1, 0.0), "p"), orbit((0, 0, 0), -35.0, 35.0, 55.0, projection="o", fov=35)],
       "a slab minus a mirrored, sheared torus (through front and back) and a mirrored, sheared rod")
+
+
+# Solids made from flat shapes: extrusions (twisted, scaled, revolved) of
+# booleans, offsets and text, inside the CSG like any other leaf.
+scene("flat_twist_cut", "flat",
+      difference(color(PALETTE[0], linear_extrude(12.0, difference(square((10, 10), center=True), circle(3.0)),
+                                                  center=True, twist=90, slices=8)),
+                 at(4.0, 3.5, 4.5, sphere(3.5, 32))),
+      [orbit((0, 0, 0), 35.0, 40.0, 45.0), orbit((0, 0, 0), 35.0, 80.0, 45.0, projection="o", fov=30)],
+      "a square with a round hole extruded with a twist of 90 in 8 slices, a sphere cut from its corner")
+
+vase = [(0.0, 0.0), (6.0, 0.0), (7.5, 3.0), (5.0, 9.0), (6.5, 14.0), (5.5, 14.0), (4.0, 9.0), (6.3, 3.2),
+        (5.2, 1.0), (0.0, 1.0)]
+scene("flat_revolved", "flat",
+      union(difference(color(PALETTE[1], rotate_extrude(polygon(vase), fn=48)),
+                       at(0, -10.0, 7.0, cube((20, 20, 20)))),
+            color(PALETTE[2], at(0, 0, 3.0, rotate_extrude(mm(translate(9.0, 0, 0), circle(1.2, fn=16)),
+                                                           angle=230, fn=40)))),
+      [orbit((0, 0, 5), -60.0, 30.0, 55.0), orbit((0, 0, 5), 30.0, 60.0, 55.0, projection="o", fov=35)],
+      "a revolved vase profile cut open, and a partial torus of 230 degrees around it")
+
+scene("flat_text_block", "flat",
+      difference(color(PALETTE[3], cube((34, 22, 8))),
+                 at(0, 0, -6.0, linear_extrude(12.0, text("Sg", 14.0, halign="center", valign="center"))),
+                 at(0, 0, 4.03, linear_extrude(4.0, offset_r(1.5, square((28, 16), center=True)), center=True))),
+      [Shot((0.3, -0.2, 60.0), (0.3, -0.2, 0.0), "p", size=(128, 96)),
+       orbit((0, 0, 0), -110.0, 55.0, 70.0, projection="o", fov=35, size=(128, 96))],
+      "text cut through a block, under a pocket of rounded corners (an offset square)")
+
+ring = [(-6, -6), (6, -6), (6, 6), (-6, 6), (-2.5, -2.5), (-2.5, 2.5), (2.5, 2.5), (2.5, -2.5)]
+scene("flat_scaled_offset", "flat",
+      difference(color(PALETTE[4], linear_extrude(10.0, offset_r(1.5, polygon(ring, [[0, 1, 2, 3], [4, 5, 6, 7]]), fn=24),
+                                                  twist=-45, scale=(0.5, 1.3))),
+                 at(0, 0, 5.0, mm(rotate((1, 0, 0), 90), cylinder(30.0, 1.8, fn=24)))),
+      [orbit((0, 0, 5), 50.0, 35.0, 50.0), orbit((0, 0, 5), 50.0, -60.0, 50.0, projection="o", fov=35)],
+      "a rounded square ring (an offset polygon with a hole) extruded with twist and a scale of [0.5, 1.3], pierced")
 
 
 # ----------------------------------------------------------------------------
