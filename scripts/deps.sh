@@ -12,6 +12,7 @@ packages=(
   libpolyclipping-dev libglu1-mesa-dev   # 2D booleans and offsets (Clipper 6, as OpenSCAD); extrusion caps (GLU's tessellator)
   libfreetype-dev libharfbuzz-dev libfontconfig-dev fonts-liberation2   # text(), OpenSCAD's default font
   libxml2-dev libpng-dev                 # import() of SVG files; surface() of PNG images
+  libqhull-dev                           # hull() and minkowski(): convex hulls
   libgtest-dev libgmock-dev
   libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
   libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)

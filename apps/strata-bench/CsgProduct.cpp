@@ -11,7 +11,7 @@ bool convexPrimitive(const scene::Primitive& primitive) {
         [](const auto& p) {
             using T = std::decay_t<decltype(p)>;
             return std::is_same_v<T, scene::Cube> || std::is_same_v<T, scene::Sphere> ||
-                   std::is_same_v<T, scene::Cylinder>;
+                   std::is_same_v<T, scene::Cylinder> || std::is_same_v<T, scene::Hull>;
         },
         primitive);
 }

@@ -1,5 +1,6 @@
 #include "strata/geometry/Flat.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -116,6 +117,38 @@ Result offset(const Outlines& shape, const scene::Offset& o) {
     return detail::offset(shape, o.amount, join, kOffsetMiterLimit, tolerance);
 }
 
+// OpenSCAD's applyHull2D: the convex hull of every child's points, one
+// counter-clockwise outline, left unsanitized as OpenSCAD leaves it.
+Result hull(const std::vector<Result>& children) {
+    std::vector<glm::dvec2> points;
+    for (const Result& r : children)
+        if (r)
+            for (const Outline& o : r->outlines) points.insert(points.end(), o.points.begin(), o.points.end());
+    if (points.empty()) return std::nullopt;
+    std::sort(points.begin(), points.end(),
+              [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    auto turn = [](const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    // Andrew's monotone chain; collinear points are not corners.
+    std::vector<glm::dvec2> h(2 * points.size());
+    std::size_t k = 0;
+    for (const glm::dvec2& p : points) {
+        while (k >= 2 && turn(h[k - 2], h[k - 1], p) <= 0) --k;
+        h[k++] = p;
+    }
+    for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && turn(h[k - 2], h[k - 1], points[i]) <= 0) --k;
+        h[k++] = points[i];
+    }
+    h.resize(k > 1 ? k - 1 : k);
+    if (h.size() < 3) return std::nullopt;
+    Outlines shape;
+    shape.outlines.push_back(Outline{std::move(h), true});
+    return shape;
+}
+
 Result nonEmpty(Result r) {
     if (r && r->empty()) return std::nullopt;
     return r;
@@ -137,6 +170,13 @@ Result evaluateNode(const scene::FlatTree& tree, const scene::FlatNode& node, st
             Result joined = combine(children, scene::FlatOp::Union);
             if (!joined) return std::nullopt;
             return nonEmpty(offset(*joined, node.offset));
+        }
+        case scene::FlatOp::Hull: return hull(children);
+        case scene::FlatOp::Minkowski: {
+            if (children.empty()) return std::nullopt;
+            std::vector<const Outlines*> operands;
+            for (const Result& r : children) operands.push_back(r ? &*r : nullptr);
+            return nonEmpty(detail::minkowski(operands));
         }
         case scene::FlatOp::Empty: break;
     }

@@ -74,7 +74,67 @@ ClipperLib::Paths sanitizedPaths(const Outlines& shape) {
     return paths;
 }
 
+// The quads swept by `poly` along the closed outline `path`: the sum of their
+// edges, left for the union (OpenSCAD keeps Clipper's own union out of this
+// step, for robustness).
+void convolve(const ClipperLib::Path& poly, const ClipperLib::Path& path, ClipperLib::Paths& quads) {
+    const std::size_t polyCount = poly.size(), pathCount = path.size();
+    if (polyCount == 0 || pathCount == 0) return;
+    std::vector<ClipperLib::Path> moved(pathCount);
+    for (std::size_t i = 0; i < pathCount; ++i) {
+        moved[i].reserve(polyCount);
+        for (const ClipperLib::IntPoint& q : poly) moved[i].emplace_back(path[i].X + q.X, path[i].Y + q.Y);
+    }
+    for (std::size_t i = 0; i < pathCount; ++i) {
+        for (std::size_t j = 0; j < polyCount; ++j) {
+            ClipperLib::Path quad{moved[i][j], moved[(i + 1) % pathCount][j], moved[(i + 1) % pathCount][(j + 1) % polyCount],
+                                  moved[i][(j + 1) % polyCount]};
+            if (!ClipperLib::Orientation(quad)) ClipperLib::ReversePath(quad);
+            quads.push_back(std::move(quad));
+        }
+    }
+}
+
+// A copy of every outline of `a` moved to a point of each outer outline of `b`:
+// the sum's inside, which the swept edges alone leave open.
+void fillInsides(const ClipperLib::Paths& a, const ClipperLib::Paths& b, ClipperLib::Paths& target) {
+    for (const ClipperLib::Path& outline : b) {
+        if (outline.empty() || !ClipperLib::Orientation(outline)) continue;
+        const ClipperLib::IntPoint delta = outline[0];
+        for (const ClipperLib::Path& path : a) {
+            ClipperLib::Path moved = path;
+            for (ClipperLib::IntPoint& p : moved) {
+                p.X += delta.X;
+                p.Y += delta.Y;
+            }
+            target.push_back(std::move(moved));
+        }
+    }
+}
+
 }  // namespace
+
+Outlines minkowski(const std::vector<const Outlines*>& children) {
+    if (children.empty()) return {};
+    if (children.size() == 1) return children[0] ? *children[0] : Outlines{};
+    ClipperLib::Clipper clipper;
+    ClipperLib::Paths sum = children[0] ? toPaths(*children[0]) : ClipperLib::Paths{};
+    for (std::size_t i = 1; i < children.size(); ++i) {
+        if (!children[i]) continue;
+        const ClipperLib::Paths next = toPaths(*children[i]);
+        ClipperLib::Paths terms;
+        for (const ClipperLib::Path& b : next)
+            for (const ClipperLib::Path& a : sum) convolve(a, b, terms);
+        fillInsides(sum, next, terms);
+        fillInsides(next, sum, terms);
+        clipper.Clear();
+        clipper.AddPaths(terms, ClipperLib::ptSubject, true);
+        if (i + 1 != children.size()) clipper.Execute(ClipperLib::ctUnion, sum, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    }
+    ClipperLib::PolyTree result;
+    clipper.Execute(ClipperLib::ctUnion, result, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    return fromTree(result);
+}
 
 Outlines sanitize(const Outlines& shape) { return fromTree(sanitizeTree(toPaths(shape))); }
 

@@ -23,6 +23,11 @@ Outlines sanitize(const Outlines& shape);
 // to right, as OpenSCAD does.
 Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op);
 
+// OpenSCAD's Minkowski sum of flat shapes (ClipperUtils::applyMinkowski):
+// each outline of the running sum convolved with each outline of the next
+// shape as quads, the insides filled, all unioned. Absent children are skipped.
+Outlines minkowski(const std::vector<const Outlines*>& children);
+
 enum class FlatJoin { Round, Miter, Square };
 
 // ClipperOffset(miterLimit, arcTolerance * 2^16).Execute(amount * 2^16).

@@ -11,6 +11,7 @@
 #include "strata/core/Error.h"
 #include "strata/geometry/Extrude.h"
 #include "strata/geometry/Flat.h"
+#include "strata/geometry/Hull.h"
 #include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/MeshImport.h"
 #include "strata/geometry/Primitives.h"
@@ -27,6 +28,7 @@ Mesh objectMesh(const scene::Primitive& p) {
             else if constexpr (std::is_same_v<T, scene::LinearExtrude>) return linearExtrude(v, evaluateFlat(v.shape));
             else if constexpr (std::is_same_v<T, scene::RotateExtrude>) return rotateExtrude(v, evaluateFlat(v.shape));
             else if constexpr (std::is_same_v<T, scene::FlatSlab>) return flatSlab(evaluateFlat(v.shape));
+            else if constexpr (std::is_same_v<T, scene::Hull>) return tessellate(v);
             else return tessellate(v);
         },
         p);
@@ -50,6 +52,8 @@ void markLeaves(const scene::Tree& tree, int node, std::vector<bool>& inCsg) {
 
 }  // namespace
 
+Mesh leafMesh(const scene::Leaf& leaf) { return transformed(objectMesh(leaf.primitive), leaf.transform); }
+
 Model buildModel(const scene::Tree& tree) {
     Model model;
     model.leafMeshes.reserve(tree.leaves.size());
@@ -63,7 +67,7 @@ Model buildModel(const scene::Tree& tree) {
         const char* name = scene::primitiveName(leaf.primitive);
         Mesh mesh;
         try {
-            mesh = transformed(objectMesh(leaf.primitive), leaf.transform);
+            mesh = leafMesh(leaf);
         } catch (const Error& e) {
             // Errors from the importer or tessellator name no input position;
             // a leaf read straight from a mesh file may already be named.

@@ -11,7 +11,7 @@ namespace strata::render {
 
 bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh, double maxWork) {
     if (std::holds_alternative<scene::Cube>(primitive) || std::holds_alternative<scene::Sphere>(primitive) ||
-        std::holds_alternative<scene::Cylinder>(primitive)) {
+        std::holds_alternative<scene::Cylinder>(primitive) || std::holds_alternative<scene::Hull>(primitive)) {
         return true;
     }
     const double work = static_cast<double>(mesh.positions.size()) * static_cast<double>(mesh.triangles.size());

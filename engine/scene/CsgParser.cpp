@@ -26,7 +26,7 @@ constexpr int kMaxBlockNesting = 100000;
 // out with one warning per name.
 const std::unordered_set<std::string>& unsupportedNames() {
     static const std::unordered_set<std::string> names = {
-        "hull", "minkowski", "projection", "resize", "roof", "fill", "import_dxf",
+        "projection", "resize", "roof", "fill", "import_dxf",
         "import_stl", "import_off", "dxf_linear_extrude", "dxf_rotate_extrude", "child",
         "children", "parent_module", "intersection_for", "for", "let", "each", "echo", "assert",
         "textmetrics", "fontmetrics", "virtual", "wrap",
@@ -52,6 +52,8 @@ struct Open {
     bool flat = false;      // its statements are 2D: they go to the pending flat tree
     int flatNode = -1;      // the flat node collecting children, -1 when they are dropped
     bool ownsFlat = false;  // closing it turns the pending flat tree into a leaf
+    enum class Gather { None, Hull, Minkowski };
+    Gather gather = Gather::None;  // hull() or minkowski() of solids: its children become one or more hull leaves
 };
 
 // A leaf whose flat tree is being read: an extrusion, or a 2D shape outside one.
@@ -103,7 +105,9 @@ private:
                       const SourceLocation& where);
     int finishFlat();
     Leaf leafAt(const Context& ctx, const SourceLocation& where) const;
-    int mergeFlatChildren(int node);
+    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt);
+    int finishGather(const Open& open);
+    bool solidLeavesUnder(int node, std::vector<int>& leaves) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
     Square square(const std::vector<CsgArgument>& args);
@@ -312,6 +316,9 @@ void Parser::statement() {
         kind = NodeKind::Intersection;
     } else if (name == "difference") {
         kind = NodeKind::Difference;
+    } else if (name == "hull" || name == "minkowski") {
+        kind = NodeKind::Union;  // collects the children; closing turns them into hull leaves
+        open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
     } else if (name == "multmatrix") {
         if (!dropped) open.context.transform = ctx.transform * multmatrix(args, where);
         open.collapsible = true;
@@ -378,6 +385,8 @@ void Parser::closeOne() {
     int node = -1;
     if (open.ownsFlat) {
         node = finishFlat();
+    } else if (open.node >= 0 && open.gather != Open::Gather::None) {
+        node = finishGather(open);
     } else if (open.node >= 0) {
         node = open.node;
         Node& n = tree_.nodes[static_cast<std::size_t>(node)];
@@ -857,6 +866,10 @@ int Parser::flatStatement(const std::string& name, const std::vector<CsgArgument
     } else if (name == "offset") {
         node.op = FlatOp::Offset;
         if (!dropped) node.offset = offset(args, where);
+    } else if (name == "hull") {
+        node.op = FlatOp::Hull;
+    } else if (name == "minkowski") {
+        node.op = FlatOp::Minkowski;
     } else if (isFlatShape(name, args)) {
         node.op = FlatOp::Shape;
         container = false;
@@ -924,7 +937,7 @@ FlatOp flatOpOf(NodeKind kind) {
 // A union, intersection or difference whose children are all flat slabs is a
 // 2D boolean in OpenSCAD: it becomes one slab of the combined flat tree (each
 // child under its own transform). Returns the new leaf's node, or -1.
-int Parser::mergeFlatChildren(int node) {
+int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
     if (n.kind == NodeKind::Leaf || n.children.empty()) return -1;
     const Leaf* first = nullptr;
@@ -938,7 +951,7 @@ int Parser::mergeFlatChildren(int node) {
     }
     FlatTree merged;
     FlatNode root;
-    root.op = flatOpOf(n.kind);
+    root.op = op ? *op : flatOpOf(n.kind);
     root.where = n.where;
     merged.root = merged.add(std::move(root));
     for (int c : n.children) {
@@ -967,6 +980,118 @@ int Parser::mergeFlatChildren(int node) {
     leaf.display = first->display;
     leaf.where = n.where;
     return tree_.addLeaf(std::move(leaf));
+}
+
+// The leaves under `node` if it holds only unions (group, multmatrix, color)
+// of solid leaves; false when a difference or intersection is among them.
+bool Parser::solidLeavesUnder(int node, std::vector<int>& leaves) const {
+    std::vector<int> todo{node};
+    while (!todo.empty()) {
+        const Node& n = tree_.nodes[static_cast<std::size_t>(todo.back())];
+        todo.pop_back();
+        if (n.kind == NodeKind::Leaf) {
+            leaves.push_back(n.leaf);
+        } else if (n.kind == NodeKind::Union) {
+            todo.insert(todo.end(), n.children.rbegin(), n.children.rend());
+        } else {
+            return false;
+        }
+    }
+    return true;
+}
+
+namespace {
+
+// Leaves whose solid is convex by construction: a Minkowski sum with them is
+// the hull of vertex sums.
+bool convexByConstruction(const Primitive& p) {
+    return std::holds_alternative<Cube>(p) || std::holds_alternative<Sphere>(p) || std::holds_alternative<Cylinder>(p) ||
+           std::holds_alternative<Hull>(p);
+}
+
+constexpr std::size_t kMaxMinkowskiParts = 4096;
+
+}  // namespace
+
+// hull() and minkowski() close: their children become hull leaves (a
+// minkowski of unions of convex leaves, one hull per choice of a part from
+// each child, under a union), or one flat result when the children are flat.
+// Returns the node that replaces the statement, or -1 when strata cannot make
+// it yet (counted and warned, the subtree left out).
+int Parser::finishGather(const Open& open) {
+    const bool hull = open.gather == Open::Gather::Hull;
+    const char* name = hull ? "hull" : "minkowski";
+    const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
+    const SourceLocation where = n.where;
+    if (n.children.empty()) return -1;  // nothing to hull
+    bool allFlat = true;
+    for (int c : n.children) {
+        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
+        allFlat = allFlat && child.kind == NodeKind::Leaf &&
+                  std::holds_alternative<FlatSlab>(tree_.leaves[static_cast<std::size_t>(child.leaf)].primitive);
+    }
+    if (allFlat) return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski);
+
+    // Each child's solid leaves (a hull takes them all as one set of points).
+    std::vector<std::vector<int>> children;
+    for (int c : n.children) {
+        std::vector<int> leaves;
+        if (!solidLeavesUnder(c, leaves)) {
+            unsupported(std::string(name) + " of a difference or intersection", where);
+            return -1;
+        }
+        std::vector<int> solid;
+        for (int l : leaves) {
+            const Primitive& p = tree_.leaves[static_cast<std::size_t>(l)].primitive;
+            if (std::holds_alternative<FlatSlab>(p)) {
+                warnOnce("2d-in-3d", tree_.leaves[static_cast<std::size_t>(l)].where,
+                         std::string("a 2D object inside ") + name + " of solids is ignored, as OpenSCAD ignores it");
+                continue;
+            }
+            if (!hull && !convexByConstruction(p)) {
+                unsupported(std::string("minkowski of a ") + primitiveName(p), where);
+                return -1;
+            }
+            solid.push_back(l);
+        }
+        if (!solid.empty()) children.push_back(std::move(solid));
+    }
+    if (children.empty()) return -1;
+    auto leafCopy = [&](int l) { return tree_.leaves[static_cast<std::size_t>(l)]; };
+    auto hullLeaf = [&](Hull h) {
+        Leaf leaf = leafAt(open.context, where);
+        leaf.transform = glm::dmat4(1.0);  // the parts carry their own placement
+        leaf.primitive = std::move(h);
+        return tree_.addLeaf(std::move(leaf));
+    };
+    if (hull) {
+        Hull h;
+        for (const auto& child : children)
+            for (int l : child) h.parts.push_back(leafCopy(l));
+        return hullLeaf(std::move(h));
+    }
+    // minkowski: one hull per choice of a part from each child.
+    std::size_t combinations = 1;
+    for (const auto& child : children) {
+        combinations *= child.size();
+        if (combinations > kMaxMinkowskiParts) {
+            unsupported("minkowski of more than " + std::to_string(kMaxMinkowskiParts) + " part combinations", where);
+            return -1;
+        }
+    }
+    std::vector<int> sums;
+    std::vector<std::size_t> choice(children.size(), 0);
+    for (std::size_t k = 0; k < combinations; ++k) {
+        Hull h;
+        h.parts.push_back(leafCopy(children[0][choice[0]]));
+        for (std::size_t c = 1; c < children.size(); ++c) h.summands.push_back(leafCopy(children[c][choice[c]]));
+        sums.push_back(hullLeaf(std::move(h)));
+        for (std::size_t c = 0; c < children.size() && ++choice[c] == children[c].size(); ++c) choice[c] = 0;
+    }
+    if (sums.size() == 1) return sums.front();
+    const int u = tree_.addNode(NodeKind::Union, std::move(sums));
+    tree_.nodes[static_cast<std::size_t>(u)].where = where;
+    return u;
 }
 
 std::string Parser::string(const std::vector<CsgArgument>& args, const char* name, int position,

@@ -145,7 +145,7 @@ TEST(AccuracyCorpus, CoversEveryFamilyAndBothProjections) {
         families.insert(s.family);
         (s.camera.projection == render::Projection::Perspective ? perspective : orthographic) = true;
     }
-    for (const char* f : {"stack", "deep", "nary", "nonconvex", "through", "thin", "near", "inside", "transform", "flat"}) {
+    for (const char* f : {"stack", "deep", "nary", "nonconvex", "through", "thin", "near", "inside", "transform", "flat", "hull"}) {
         EXPECT_TRUE(families.count(f)) << "no scene of family " << f;
     }
     EXPECT_TRUE(perspective);

@@ -228,6 +228,14 @@ def linear_extrude(height, *c, center=False, twist=None, slices=None, scale=(1, 
     return Node("linear_extrude(%s)" % ", ".join(args), c)
 
 
+def hull(*c):
+    return Node("hull()", c)
+
+
+def minkowski(*c):
+    return Node("minkowski(convexity = 0)", c)
+
+
 def rotate_extrude(*c, angle=360, fn=0):
     return Node("rotate_extrude(angle = %s, convexity = 2, %s)" % (num(angle), FRAG % fn), c)
 
@@ -880,6 +888,26 @@ scene("flat_scaled_offset", "flat",
                  at(0, 0, 5.0, mm(rotate((1, 0, 0), 90), cylinder(30.0, 1.8, fn=24)))),
       [orbit((0, 0, 5), 50.0, 35.0, 50.0), orbit((0, 0, 5), 50.0, -60.0, 50.0, projection="o", fov=35)],
       "a rounded square ring (an offset polygon with a hole) extruded with twist and a scale of [0.5, 1.3], pierced")
+
+
+# hull() and minkowski() of convex solids: one convex leaf each (a minkowski
+# of a union, a union of them).
+scene("hull_die", "hull",
+      difference(color(PALETTE[5], hull(*[at(x, y, z, sphere(1.6, 24)) for x in (-4.2, 4.2) for y in (-4.2, 4.2)
+                                          for z in (-4.2, 4.2)])),
+                 *[at(dx, -5.9, dz, sphere(1.1, 20)) for dx, dz in ((-2.5, 2.5), (0, 0), (2.5, -2.5))],
+                 *[at(5.9, dy, dz, sphere(1.1, 20)) for dy, dz in ((-2.5, -2.5), (2.5, 2.5))]),
+      [orbit((0, 0, 0), -55.0, 30.0, 40.0), orbit((0, 0, 0), 20.0, -25.0, 40.0, projection="o", fov=35)],
+      "OpenSCAD's die: a hull of eight spheres minus dots on two faces")
+
+scene("minkowski_rounded", "hull",
+      union(color(PALETTE[1], minkowski(union(cube((8, 4, 3)), at(3.0, 3.0, 0.4, cube((2, 6, 3.6)))),
+                                        sphere(1.0, 16))),
+            difference(color(PALETTE[2], at(-9.0, 0, 0, minkowski(cylinder(3.0, 2.5, fn=24), mm(rotate((1, 1, 0), 30),
+                                                                                              cube((2, 2, 2)))))),
+                       at(-9.0, 0, 2.3, sphere(2.0, 24)))),
+      [orbit((-2, 1, 0), 40.0, 35.0, 45.0), orbit((-2, 1, 0), -140.0, 50.0, 45.0, projection="o", fov=35)],
+      "a Minkowski sum of a union of two boxes and a sphere (a union of two hulls), and one of a cylinder and a turned cube, bitten")
 
 
 # ----------------------------------------------------------------------------

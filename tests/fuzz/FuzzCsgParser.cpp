@@ -88,6 +88,8 @@ void checkFlat(const FlatTree& flat, const ParseOptions& options) {
     }
 }
 
+void checkLeaf(const Leaf& leaf, const ParseOptions& options);
+
 // What the parser promises of every tree it returns (Tree.h, CsgParser.h, issue 2):
 // indices in range, numbers finite, sizes not negative, $fn clamped.
 void checkTree(const Tree& tree, const ParseOptions& options) {
@@ -106,58 +108,64 @@ void checkTree(const Tree& tree, const ParseOptions& options) {
             if (c < 0 || c >= nodeCount) broken("child index out of range");
         }
     }
-    for (const Leaf& leaf : tree.leaves) {
-        for (int c = 0; c < 4; ++c) {
-            for (int r = 0; r < 4; ++r) {
-                if (!finite(leaf.transform[c][r])) broken("non-finite transform");
-            }
+    for (const Leaf& leaf : tree.leaves) checkLeaf(leaf, options);
+}
+
+void checkLeaf(const Leaf& leaf, const ParseOptions& options) {
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            if (!finite(leaf.transform[c][r])) broken("non-finite transform");
         }
-        if (leaf.color) {
-            for (int i = 0; i < 4; ++i) {
-                if (!finite((*leaf.color)[i])) broken("non-finite colour");
-            }
-        }
-        std::visit(
-            [&](const auto& p) {
-                using T = std::decay_t<decltype(p)>;
-                if constexpr (std::is_same_v<T, Cube>) {
-                    if (!size(p.size.x) || !size(p.size.y) || !size(p.size.z)) broken("bad cube size");
-                } else if constexpr (std::is_same_v<T, Sphere>) {
-                    if (!size(p.r)) broken("bad sphere radius");
-                    checkFragments(p.fragments, options);
-                } else if constexpr (std::is_same_v<T, Cylinder>) {
-                    if (!size(p.h) || !size(p.r1) || !size(p.r2)) broken("bad cylinder size");
-                    checkFragments(p.fragments, options);
-                } else if constexpr (std::is_same_v<T, Polyhedron>) {
-                    const auto points = static_cast<long>(p.points.size());
-                    for (const auto& q : p.points) {
-                        if (!finite(q.x) || !finite(q.y) || !finite(q.z)) broken("non-finite polyhedron point");
-                    }
-                    for (const auto& face : p.faces) {
-                        if (face.size() < 3) broken("polyhedron face with fewer than 3 points");
-                        for (int i : face) {
-                            if (i < 0 || i >= points) broken("polyhedron face index out of range");
-                        }
-                    }
-                } else if constexpr (std::is_same_v<T, LinearExtrude>) {
-                    if (!size(p.height) || !finite(p.twist) || !size(p.scale.x) || !size(p.scale.y)) {
-                        broken("bad linear_extrude");
-                    }
-                    if (p.hasSlices && (p.slices < 1 || p.slices > options.maxFragments)) broken("slices out of range");
-                    checkFragments(p.fragments, options);
-                    checkFlat(p.shape, options);
-                } else if constexpr (std::is_same_v<T, RotateExtrude>) {
-                    if (!(p.angle > -360.0 && p.angle <= 360.0) || !finite(p.start)) broken("bad rotate_extrude");
-                    checkFragments(p.fragments, options);
-                    checkFlat(p.shape, options);
-                } else if constexpr (std::is_same_v<T, FlatSlab>) {
-                    checkFlat(p.shape, options);
-                } else {
-                    if (p.path.empty()) broken("import or surface with an empty path");
-                }
-            },
-            leaf.primitive);
     }
+    if (leaf.color) {
+        for (int i = 0; i < 4; ++i) {
+            if (!finite((*leaf.color)[i])) broken("non-finite colour");
+        }
+    }
+    std::visit(
+        [&](const auto& p) {
+            using T = std::decay_t<decltype(p)>;
+            if constexpr (std::is_same_v<T, Cube>) {
+                if (!size(p.size.x) || !size(p.size.y) || !size(p.size.z)) broken("bad cube size");
+            } else if constexpr (std::is_same_v<T, Sphere>) {
+                if (!size(p.r)) broken("bad sphere radius");
+                checkFragments(p.fragments, options);
+            } else if constexpr (std::is_same_v<T, Cylinder>) {
+                if (!size(p.h) || !size(p.r1) || !size(p.r2)) broken("bad cylinder size");
+                checkFragments(p.fragments, options);
+            } else if constexpr (std::is_same_v<T, Polyhedron>) {
+                const auto points = static_cast<long>(p.points.size());
+                for (const auto& q : p.points) {
+                    if (!finite(q.x) || !finite(q.y) || !finite(q.z)) broken("non-finite polyhedron point");
+                }
+                for (const auto& face : p.faces) {
+                    if (face.size() < 3) broken("polyhedron face with fewer than 3 points");
+                    for (int i : face) {
+                        if (i < 0 || i >= points) broken("polyhedron face index out of range");
+                    }
+                }
+            } else if constexpr (std::is_same_v<T, LinearExtrude>) {
+                if (!size(p.height) || !finite(p.twist) || !size(p.scale.x) || !size(p.scale.y)) {
+                    broken("bad linear_extrude");
+                }
+                if (p.hasSlices && (p.slices < 1 || p.slices > options.maxFragments)) broken("slices out of range");
+                checkFragments(p.fragments, options);
+                checkFlat(p.shape, options);
+            } else if constexpr (std::is_same_v<T, RotateExtrude>) {
+                if (!(p.angle > -360.0 && p.angle <= 360.0) || !finite(p.start)) broken("bad rotate_extrude");
+                checkFragments(p.fragments, options);
+                checkFlat(p.shape, options);
+            } else if constexpr (std::is_same_v<T, FlatSlab>) {
+                checkFlat(p.shape, options);
+            } else if constexpr (std::is_same_v<T, Hull>) {
+                if (p.parts.empty()) broken("hull with no parts");
+                for (const Leaf& part : p.parts) checkLeaf(part, options);
+                for (const Leaf& summand : p.summands) checkLeaf(summand, options);
+            } else {
+                if (p.path.empty()) broken("import or surface with an empty path");
+            }
+        },
+        leaf.primitive);
 }
 
 }  // namespace

@@ -133,11 +133,11 @@ TEST(FlatParse, FlatAndSolidSideBySideStayApart) {
 TEST(FlatParse, SolidsInsideFlatOperationsAreIgnoredWithAWarning) {
     const Tree t = parse(
         "linear_extrude(height = 1) {\n\tsquare(size = 1);\n\tcube(size = 3);\n"
-        "\thull() { circle(r = 1); }\n\t%circle(r = 5);\n\t*circle(r = 6);\n}\n");
+        "\tprojection() { sphere(r = 1); }\n\t%circle(r = 5);\n\t*circle(r = 6);\n}\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
     const FlatNode& root = node(s, s.root);
-    // square, the ignored cube and hull (empty children, which OpenSCAD keeps);
+    // square, the ignored cube and projection (empty children, which OpenSCAD keeps);
     // the background and disabled circles are not children at all.
     ASSERT_EQ(root.children.size(), 3u);
     EXPECT_EQ(node(s, root.children[1]).op, FlatOp::Empty);
@@ -146,7 +146,7 @@ TEST(FlatParse, SolidsInsideFlatOperationsAreIgnoredWithAWarning) {
     EXPECT_NE(t.warnings[0].message.find("t.csg:3:2: warning: 'cube' is a 3D object inside a 2D operation"),
               std::string::npos)
         << t.warnings[0].message;
-    EXPECT_EQ(t.unsupported.at("hull"), 1);
+    EXPECT_EQ(t.unsupported.at("projection"), 1);
 }
 
 TEST(FlatParse, ShapesAndTheirArguments) {
@@ -193,4 +193,62 @@ TEST(FlatParse, BadFlatArgumentsNameTheirPosition) {
               "t.csg:1:52: size must be a number, not a string");
     EXPECT_EQ(errorOf("linear_extrude(height = 1) squircle();"), "t.csg:1:28: unknown module 'squircle'");
     EXPECT_EQ(errorOf("surface(file = \"missing.dat\");"), "t.csg:1:16: surface file not found: missing.dat");
+}
+
+TEST(FlatParse, HullOfSolidsIsOneLeafOfItsPartsInWorldSpace) {
+    const Tree t = parse(
+        "color([1, 0, 0, 1]) hull() {\n"
+        "\tmultmatrix([[1, 0, 0, 4], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(r = 1);\n"
+        "\tgroup() { cube(size = 1); color([0, 1, 0, 1]) cylinder(h = 2, r = 1); }\n"
+        "\t%cube(size = 9);\n}\n");
+    ASSERT_EQ(t.leaves.size(), 2u);  // the hull and the background cube
+    ASSERT_EQ(t.background.size(), 1u);
+    const Leaf& leaf = t.nodes[static_cast<std::size_t>(t.root)].kind == NodeKind::Leaf
+                           ? t.leaves[static_cast<std::size_t>(t.nodes[static_cast<std::size_t>(t.root)].leaf)]
+                           : t.leaves.at(0);
+    const auto& h = std::get<Hull>(leaf.primitive);
+    ASSERT_EQ(h.parts.size(), 3u);
+    EXPECT_TRUE(h.summands.empty());
+    EXPECT_EQ(h.parts[0].transform[3][0], 4.0);  // each part keeps its own placement
+    EXPECT_EQ(leaf.transform, glm::dmat4(1.0));
+    EXPECT_EQ(*leaf.color, glm::dvec4(1, 0, 0, 1));  // the colour outside the hull, not the parts'
+}
+
+TEST(FlatParse, MinkowskiOfUnionsIsAUnionOfHulls) {
+    const Tree t = parse(
+        "minkowski() {\n\tunion() { cube(size = 1); multmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], "
+        "[0, 0, 0, 1]]) cube(size = 1); }\n\tsphere(r = 0.5);\n\tcylinder(h = 1, r = 0.2);\n}\n");
+    ASSERT_EQ(t.leaves.size(), 2u);
+    const Node& root = t.nodes[static_cast<std::size_t>(t.root)];
+    EXPECT_EQ(root.kind, NodeKind::Union);
+    ASSERT_EQ(root.children.size(), 2u);
+    for (const Leaf& leaf : t.leaves) {
+        const auto& h = std::get<Hull>(leaf.primitive);
+        EXPECT_EQ(h.parts.size(), 1u);
+        ASSERT_EQ(h.summands.size(), 2u);
+        EXPECT_TRUE(std::holds_alternative<Sphere>(h.summands[0].primitive));
+        EXPECT_TRUE(std::holds_alternative<Cylinder>(h.summands[1].primitive));
+    }
+}
+
+TEST(FlatParse, HullAndMinkowskiStrataCannotMakeYetAreLeftOutWithAWarning) {
+    const Tree t = parse(
+        "hull() { difference() { cube(size = 2); sphere(r = 1); } }\n"
+        "minkowski() { polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], faces = [[0, 1, 2], "
+        "[0, 3, 1], [0, 2, 3], [1, 3, 2]]); sphere(r = 1); }\n"
+        "cube(size = 1);\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_EQ(t.unsupported.at("hull of a difference or intersection"), 1);
+    EXPECT_EQ(t.unsupported.at("minkowski of a polyhedron"), 1);
+    EXPECT_EQ(t.warnings.size(), 2u);
+}
+
+TEST(FlatParse, HullOfFlatShapesIsAFlatHull) {
+    const Tree t = parse("hull() { square(size = 2); multmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], "
+                         "[0, 0, 0, 1]]) circle(r = 1); }\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_TRUE(t.isFlat());
+    const FlatTree& s = std::get<FlatSlab>(t.leaves[0].primitive).shape;
+    EXPECT_EQ(node(s, s.root).op, FlatOp::Hull);
+    EXPECT_EQ(node(s, s.root).children.size(), 2u);
 }

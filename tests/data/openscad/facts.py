@@ -4,7 +4,7 @@ of each checked-in OpenSCAD export, and prints it as C++ initialisers to paste.
 
 For each NAME.csg here:
   leaves       primitive lines (cube, sphere, cylinder, polyhedron, import,
-               surface, and each extrusion with the 2D subtree it holds) that
+               surface, and each extrusion or hull with the subtree it holds) that
                are not inside a node strata leaves out; `background` counts those
                under a '%' modifier.
   unsupported  the outermost nodes strata leaves out, by name: how many, and the
@@ -33,10 +33,14 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SUPPORTED_OPS = {"group", "union", "difference", "intersection", "multmatrix", "color", "render"}
-PRIMITIVES = {"cube", "sphere", "cylinder", "polyhedron", "import", "linear_extrude", "rotate_extrude", "surface"}
-EXTRUSIONS = {"linear_extrude", "rotate_extrude"}
-# Inside an extrusion: the 2D nodes that make its shape (part of the one leaf).
-FLAT_NODES = SUPPORTED_OPS | {"square", "circle", "polygon", "text", "offset", "import"}
+PRIMITIVES = {"cube", "sphere", "cylinder", "polyhedron", "import", "linear_extrude", "rotate_extrude", "surface",
+              "hull", "minkowski"}
+# Nodes whose whole subtree makes one leaf: the extrusions, and hull (and a
+# minkowski of convex solids, one leaf per choice of parts; none of the
+# examples here has one).
+EXTRUSIONS = {"linear_extrude", "rotate_extrude", "hull", "minkowski"}
+# Inside them: the 2D nodes that make a shape, and solids for a hull.
+FLAT_NODES = SUPPORTED_OPS | PRIMITIVES | {"square", "circle", "polygon", "text", "offset", "import"}
 MESH_EXTENSIONS = (".stl", ".off", ".obj", ".ply")
 LINE = re.compile(r"^([%#!*]?)(\t*)([a-z_][a-z_0-9]*)\((.*)\)\s*([{;])\s*$")
 

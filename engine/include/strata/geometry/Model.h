@@ -24,4 +24,8 @@ struct Model {
 // tree.root that are not Display::Background; empty when there are none.
 Model buildModel(const scene::Tree& tree);
 
+// One leaf's solid in world space: tessellated, imported or evaluated, then
+// transformed; not yet cleaned or checked (buildModel does that).
+Mesh leafMesh(const scene::Leaf& leaf);
+
 }  // namespace strata::geometry

@@ -86,6 +86,8 @@ enum class FlatOp {
     Difference,
     Transform,     // multmatrix: the union of the children, then the matrix's xy part
     Offset,        // the union of the children, offset
+    Hull,          // the convex hull of the children's points
+    Minkowski,     // the Minkowski sum of the children, through Clipper
     Empty,         // a child that gives no 2D geometry (a 3D object, an unsupported node)
 };
 

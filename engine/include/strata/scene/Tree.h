@@ -88,8 +88,19 @@ struct Surface {
     bool invert = false;
 };
 
+struct Leaf;
+
+// hull() of solids, and minkowski() of convex ones: the convex hull of the
+// vertices of every part (in world space), each moved by a vertex of every
+// summand in turn; a Minkowski sum of convex solids is the hull of their
+// vertex sums. Parts and summands are whole leaves with their own transforms.
+struct Hull {
+    std::vector<Leaf> parts;
+    std::vector<Leaf> summands;
+};
+
 using Primitive = std::variant<Cube, Sphere, Cylinder, Polyhedron, Import, LinearExtrude, RotateExtrude, FlatSlab,
-                               Surface>;
+                               Surface, Hull>;
 
 // How a leaf is drawn besides its part in the CSG result (OpenSCAD's modifiers).
 enum class Display {
@@ -143,7 +154,8 @@ struct Tree {
 Tree meshFileTree(const std::string& path);
 
 // The OpenSCAD name of a leaf's primitive: "cube", ..., "linear_extrude",
-// "rotate_extrude", "surface"; "2D shape" for a FlatSlab.
+// "rotate_extrude", "surface", "hull" (a minkowski of convex parts is one or
+// more hulls); "2D shape" for a FlatSlab.
 const char* primitiveName(const Primitive& primitive);
 
 // Short name of a node kind: "union", "intersection", "difference", "leaf".
