@@ -67,6 +67,10 @@ int run(const apps::RenderOptions& options) {
     t = Clock::now();
     const geometry::Model model = geometry::buildModel(tree);
     stats.geometryMs = msSince(t);
+    for (const Warning& w : model.warnings) {
+        std::cerr << w.message << '\n';
+        stats.warnings.push_back(w.message);
+    }
     for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
 
     render::Camera base;

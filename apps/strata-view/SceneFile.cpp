@@ -132,6 +132,8 @@ LoadedScene loadSceneFile(const std::string& path) {
     LoadedScene scene;
     scene.tree = readTree(path);
     scene.model = geometry::buildModel(scene.tree);
+    // What the model forgave (an inside-out polyhedron) is shown with the reader's warnings.
+    scene.tree.warnings.insert(scene.tree.warnings.end(), scene.model.warnings.begin(), scene.model.warnings.end());
     return scene;
 }
 

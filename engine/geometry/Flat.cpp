@@ -8,6 +8,8 @@
 #include <variant>
 #include <vector>
 
+#include <glm/common.hpp>
+
 #include "DegreeTrig.h"
 #include "FlatClipper.h"
 #include "strata/core/Error.h"
@@ -149,6 +151,30 @@ Result hull(const std::vector<Result>& children) {
     return shape;
 }
 
+// Polygon2d::resize: each axis given a size scaled to it, an `auto` axis by
+// the larger given one's scale; a shape with no extent along a given axis
+// cannot be stretched and stays as it is.
+Result resize(Outlines shape, const scene::FlatNode& node) {
+    glm::dvec2 lo(HUGE_VAL), hi(-HUGE_VAL);
+    for (const Outline& o : shape.outlines)
+        for (const glm::dvec2& p : o.points) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+    const glm::dvec2 size = hi - lo;
+    const glm::dvec2 want = node.newsize;
+    const int largest = (want.y != 0.0 && want.y > want.x) ? 1 : 0;
+    if ((want.x > 0 && size.x == 0.0) || (want.y > 0 && size.y == 0.0)) return shape;
+    const glm::dvec2 scale(want.x > 0 ? want.x / size.x : 1, want.y > 0 ? want.y / size.y : 1);
+    const double autoscale = want[largest] > 0 ? want[largest] / size[largest] : 1;
+    const glm::dvec2 s(!node.autosize[0] || want.x > 0 ? scale.x : autoscale,
+                       !node.autosize[1] || want.y > 0 ? scale.y : autoscale);
+    glm::dmat4 m(1.0);
+    m[0][0] = s.x;
+    m[1][1] = s.y;
+    return transform(std::move(shape), m);
+}
+
 Result nonEmpty(Result r) {
     if (r && r->empty()) return std::nullopt;
     return r;
@@ -170,6 +196,11 @@ Result evaluateNode(const scene::FlatTree& tree, const scene::FlatNode& node, st
             Result joined = combine(children, scene::FlatOp::Union);
             if (!joined) return std::nullopt;
             return nonEmpty(offset(*joined, node.offset));
+        }
+        case scene::FlatOp::Resize: {
+            Result joined = combine(children, scene::FlatOp::Union);
+            if (!joined) return std::nullopt;
+            return nonEmpty(resize(std::move(*joined), node));
         }
         case scene::FlatOp::Hull: return hull(children);
         case scene::FlatOp::Minkowski: {

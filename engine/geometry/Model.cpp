@@ -50,9 +50,95 @@ void markLeaves(const scene::Tree& tree, int node, std::vector<bool>& inCsg) {
     }
 }
 
+// OpenSCAD's resize of the result that a resize() node's leaves make
+// (PolySet::resize): each axis given a size is scaled to it, `auto` axes
+// take the scale of the largest given one; then the resize's own placement.
+void applyResize(const scene::Resize& resize, std::vector<Mesh>& meshes) {
+    Bounds box;
+    for (int l : resize.leaves) box.extend(boundsOf(meshes[static_cast<std::size_t>(l)]));
+    if (box.empty()) return;
+    const glm::dvec3 size = box.max - box.min;
+    int largest = 0;
+    for (int i = 1; i < 3; ++i)
+        if (resize.newsize[i] > resize.newsize[largest]) largest = i;
+    glm::dvec3 scale(1.0);
+    for (int i = 0; i < 3; ++i) {
+        if (resize.newsize[i] > 0) {
+            // A flat result cannot be stretched across its plane: left as it is, as OpenSCAD does.
+            if (size[i] == 0.0) return;
+            scale[i] = resize.newsize[i] / size[i];
+        }
+    }
+    const double autoscale = scale[largest];
+    for (int i = 0; i < 3; ++i) {
+        if (resize.autosize[i] && !(resize.newsize[i] > 0)) scale[i] = autoscale;
+    }
+    glm::dmat4 s(1.0);
+    s[0][0] = scale.x;
+    s[1][1] = scale.y;
+    s[2][2] = scale.z;
+    for (int l : resize.leaves) {
+        Mesh& mesh = meshes[static_cast<std::size_t>(l)];
+        mesh = transformed(transformed(mesh, s), resize.outer);
+    }
+}
+
 }  // namespace
 
 Mesh leafMesh(const scene::Leaf& leaf) { return transformed(objectMesh(leaf.primitive), leaf.transform); }
+
+namespace {
+
+// A leaf's mesh in world space, with errors named by the leaf's position.
+Mesh meshOf(const scene::Leaf& leaf) {
+    try {
+        Mesh mesh = leafMesh(leaf);
+        // A flattening transform (a scale of 0) leaves no volume: the leaf
+        // takes part in the CSG as the empty solid.
+        if (glm::determinant(glm::dmat3(leaf.transform)) == 0.0) mesh = Mesh{};
+        return mesh;
+    } catch (const Error& e) {
+        // Errors from the importer or tessellator name no input position;
+        // a leaf read straight from a mesh file may already be named.
+        if (leaf.where.file.empty() || std::string(e.what()).rfind(leaf.where.str() + ":", 0) == 0) throw;
+        throw Error(leaf.where, e.what());
+    }
+}
+
+// Solids a user wrote or imported (polyhedra, mesh files) get OpenSCAD's
+// tolerance: a closed one wound inside out is turned outward.
+bool userMesh(const scene::Primitive& p) {
+    return std::holds_alternative<scene::Polyhedron>(p) || std::holds_alternative<scene::Import>(p);
+}
+
+// Cleans the leaf's mesh and checks it is a closed solid; returns what was
+// forgiven as warnings.
+void checkLeaf(const scene::Leaf& leaf, Mesh& mesh, std::vector<Warning>& warnings) {
+    const char* name = scene::primitiveName(leaf.primitive);
+    for (const auto& p : mesh.positions) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            throw Error(leaf.where, std::string(name) + " has a non-finite coordinate after its transform");
+        }
+    }
+    const std::size_t before = mesh.triangles.size();
+    dropDegenerateTriangles(mesh);
+    MeshCheck check = checkMesh(mesh);
+    if (userMesh(leaf.primitive) && mesh.triangles.size() < before) {
+        warnings.push_back(Warning{leaf.where.str() + ": warning: " + name + " has " +
+                                   std::to_string(before - mesh.triangles.size()) +
+                                   " degenerate triangles (no area); dropped"});
+    }
+    if (userMesh(leaf.primitive) && check.inwardOriented && check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
+        check.misorientedEdges == 0) {
+        for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+        warnings.push_back(Warning{leaf.where.str() + ": warning: " + name +
+                                   " is inside out (every face wound the wrong way); turned outward"});
+        check = checkMesh(mesh);
+    }
+    if (!check.ok()) throw Error(leaf.where, std::string(name) + " is not a closed solid: " + check.describe());
+}
+
+}  // namespace
 
 Model buildModel(const scene::Tree& tree) {
     Model model;
@@ -62,33 +148,13 @@ Model buildModel(const scene::Tree& tree) {
     std::vector<bool> inCsg(tree.leaves.size(), false);
     markLeaves(tree, tree.root, inCsg);
 
+    for (const scene::Leaf& leaf : tree.leaves) model.leafMeshes.push_back(meshOf(leaf));
+    for (const scene::Resize& resize : tree.resizes) applyResize(resize, model.leafMeshes);
     for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
         const scene::Leaf& leaf = tree.leaves[i];
-        const char* name = scene::primitiveName(leaf.primitive);
-        Mesh mesh;
-        try {
-            mesh = leafMesh(leaf);
-        } catch (const Error& e) {
-            // Errors from the importer or tessellator name no input position;
-            // a leaf read straight from a mesh file may already be named.
-            if (leaf.where.file.empty() || std::string(e.what()).rfind(leaf.where.str() + ":", 0) == 0) throw;
-            throw Error(leaf.where, e.what());
-        }
-        if (glm::determinant(glm::dmat3(leaf.transform)) == 0.0) {
-            // A flattening transform (a scale of 0) leaves no volume: the leaf
-            // takes part in the CSG as the empty solid.
-            mesh = Mesh{};
-        }
-        for (const auto& p : mesh.positions) {
-            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                throw Error(leaf.where, std::string(name) + " has a non-finite coordinate after its transform");
-            }
-        }
-        dropDegenerateTriangles(mesh);
-        const MeshCheck check = checkMesh(mesh);
-        if (!check.ok()) throw Error(leaf.where, std::string(name) + " is not a closed solid: " + check.describe());
+        Mesh& mesh = model.leafMeshes[i];
+        checkLeaf(leaf, mesh, model.warnings);
         if (inCsg[i] && leaf.display != scene::Display::Background) model.bounds.extend(boundsOf(mesh));
-        model.leafMeshes.push_back(std::move(mesh));
     }
     return model;
 }

@@ -26,7 +26,7 @@ constexpr int kMaxBlockNesting = 100000;
 // out with one warning per name.
 const std::unordered_set<std::string>& unsupportedNames() {
     static const std::unordered_set<std::string> names = {
-        "projection", "resize", "roof", "fill", "import_dxf",
+        "projection", "roof", "fill", "import_dxf",
         "import_stl", "import_off", "dxf_linear_extrude", "dxf_rotate_extrude", "child",
         "children", "parent_module", "intersection_for", "for", "let", "each", "echo", "assert",
         "textmetrics", "fontmetrics", "virtual", "wrap",
@@ -52,8 +52,9 @@ struct Open {
     bool flat = false;      // its statements are 2D: they go to the pending flat tree
     int flatNode = -1;      // the flat node collecting children, -1 when they are dropped
     bool ownsFlat = false;  // closing it turns the pending flat tree into a leaf
-    enum class Gather { None, Hull, Minkowski };
+    enum class Gather { None, Hull, Minkowski, Resize };
     Gather gather = Gather::None;  // hull() or minkowski() of solids: its children become one or more hull leaves
+    Resize resize;                 // resize(): its arguments and placement, filled in when it closes
 };
 
 // A leaf whose flat tree is being read: an extrusion, or a 2D shape outside one.
@@ -105,7 +106,9 @@ private:
                       const SourceLocation& where);
     int finishFlat();
     Leaf leafAt(const Context& ctx, const SourceLocation& where) const;
-    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt);
+    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0));
+    Resize resizeArguments(const std::vector<CsgArgument>& args) const;
+    int finishResize(const Open& open);
     int finishGather(const Open& open);
     bool solidLeavesUnder(int node, std::vector<int>& leaves) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
@@ -319,6 +322,15 @@ void Parser::statement() {
     } else if (name == "hull" || name == "minkowski") {
         kind = NodeKind::Union;  // collects the children; closing turns them into hull leaves
         open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
+    } else if (name == "resize") {
+        kind = NodeKind::Union;  // its leaves are placed relative to it, and scaled when the model is built
+        open.gather = Open::Gather::Resize;
+        if (!dropped) {
+            open.resize = resizeArguments(args);
+            open.resize.outer = ctx.transform;
+            open.resize.where = where;
+            open.context.transform = glm::dmat4(1.0);
+        }
     } else if (name == "multmatrix") {
         if (!dropped) open.context.transform = ctx.transform * multmatrix(args, where);
         open.collapsible = true;
@@ -866,6 +878,13 @@ int Parser::flatStatement(const std::string& name, const std::vector<CsgArgument
     } else if (name == "offset") {
         node.op = FlatOp::Offset;
         if (!dropped) node.offset = offset(args, where);
+    } else if (name == "resize") {
+        node.op = FlatOp::Resize;
+        if (!dropped) {
+            const Resize r = resizeArguments(args);
+            node.newsize = {r.newsize.x, r.newsize.y};
+            node.autosize = {r.autosize[0], r.autosize[1]};
+        }
     } else if (name == "hull") {
         node.op = FlatOp::Hull;
     } else if (name == "minkowski") {
@@ -937,7 +956,7 @@ FlatOp flatOpOf(NodeKind kind) {
 // A union, intersection or difference whose children are all flat slabs is a
 // 2D boolean in OpenSCAD: it becomes one slab of the combined flat tree (each
 // child under its own transform). Returns the new leaf's node, or -1.
-int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op) {
+int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dmat4& placement) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
     if (n.kind == NodeKind::Leaf || n.children.empty()) return -1;
     const Leaf* first = nullptr;
@@ -976,6 +995,7 @@ int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op) {
     }
     Leaf leaf;
     leaf.primitive = FlatSlab{std::move(merged)};
+    leaf.transform = placement;
     leaf.color = first->color;
     leaf.display = first->display;
     leaf.where = n.where;
@@ -1013,12 +1033,78 @@ constexpr std::size_t kMaxMinkowskiParts = 4096;
 
 }  // namespace
 
+// resize(newsize = [x, y, z], auto = [0, 0, 0] | true): a size of 0 keeps an axis.
+Resize Parser::resizeArguments(const std::vector<CsgArgument>& args) const {
+    Resize r;
+    const CsgArgument* size = find(args, "newsize", 0);
+    if (size != nullptr && size->value.type == CsgValue::Type::Numbers) {
+        const std::vector<double>& v = size->value.numbers;
+        if (v.size() > 3) lex_.failAt(size->where, "newsize must be a vector of up to 3 numbers");
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!std::isfinite(v[i])) lex_.failAt(size->where, "newsize must be finite");
+            r.newsize[static_cast<int>(i)] = v[i];
+        }
+    } else if (size != nullptr && size->value.type == CsgValue::Type::Number) {
+        r.newsize = glm::dvec3(number(*size, "newsize"));
+    } else if (size != nullptr && size->value.type != CsgValue::Type::Undef) {
+        lex_.failAt(size->where, "newsize must be a vector of numbers");
+    }
+    const CsgArgument* autosize = find(args, "auto", 1);
+    if (autosize != nullptr) {
+        const CsgValue& v = autosize->value;
+        if (v.type == CsgValue::Type::Bool) {
+            r.autosize = {v.boolean, v.boolean, v.boolean};
+        } else if (v.type == CsgValue::Type::Numbers) {
+            for (std::size_t i = 0; i < v.numbers.size() && i < 3; ++i) r.autosize[i] = v.numbers[i] != 0.0;
+        } else if (v.type == CsgValue::Type::List) {
+            for (std::size_t i = 0; i < v.items.size() && i < 3; ++i) {
+                const CsgValue& item = v.items[i];
+                r.autosize[i] = item.type == CsgValue::Type::Bool ? item.boolean
+                                : item.type == CsgValue::Type::Number ? item.number != 0.0
+                                                                      : false;
+            }
+        }
+    }
+    return r;
+}
+
+// resize() closes: its leaves (placed relative to it) become a resize group
+// that buildModel scales once their meshes are known; flat children become
+// one flat result, resized as OpenSCAD resizes a Polygon2d.
+int Parser::finishResize(const Open& open) {
+    const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
+    if (n.children.empty()) return -1;
+    bool allFlat = true;
+    for (int c : n.children) {
+        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
+        allFlat = allFlat && child.kind == NodeKind::Leaf &&
+                  std::holds_alternative<FlatSlab>(tree_.leaves[static_cast<std::size_t>(child.leaf)].primitive);
+    }
+    if (allFlat) {
+        const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer);
+        if (merged < 0) return -1;
+        FlatTree& shape = std::get<FlatSlab>(tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(merged)].leaf)].primitive).shape;
+        FlatNode& root = shape.nodes[static_cast<std::size_t>(shape.root)];
+        root.newsize = {open.resize.newsize.x, open.resize.newsize.y};
+        root.autosize = {open.resize.autosize[0], open.resize.autosize[1]};
+        return merged;
+    }
+    Resize resize = open.resize;
+    if (!solidLeavesUnder(open.node, resize.leaves)) {
+        unsupported("resize of a difference or intersection", resize.where);
+        return -1;
+    }
+    tree_.resizes.push_back(std::move(resize));
+    return n.children.size() == 1 ? n.children.front() : open.node;
+}
+
 // hull() and minkowski() close: their children become hull leaves (a
 // minkowski of unions of convex leaves, one hull per choice of a part from
 // each child, under a union), or one flat result when the children are flat.
 // Returns the node that replaces the statement, or -1 when strata cannot make
 // it yet (counted and warned, the subtree left out).
 int Parser::finishGather(const Open& open) {
+    if (open.gather == Open::Gather::Resize) return finishResize(open);
     const bool hull = open.gather == Open::Gather::Hull;
     const char* name = hull ? "hull" : "minkowski";
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
@@ -1381,6 +1467,18 @@ void Parser::compact() {
         }
         node.leaf = mapped;
     }
+    std::vector<Resize> resizes;
+    for (Resize& r : tree_.resizes) {
+        std::vector<int> kept;
+        for (int l : r.leaves) {
+            const int mapped = leafRemap[static_cast<std::size_t>(l)];
+            if (mapped >= 0) kept.push_back(mapped);
+        }
+        if (kept.empty()) continue;
+        r.leaves = std::move(kept);
+        resizes.push_back(std::move(r));
+    }
+    tree_.resizes = std::move(resizes);
     tree_.root = tree_.root >= 0 ? remap[static_cast<std::size_t>(tree_.root)] : -1;
     for (int& b : tree_.background) b = remap[static_cast<std::size_t>(b)];
     tree_.nodes = std::move(kept);

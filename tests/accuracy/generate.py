@@ -228,6 +228,11 @@ def linear_extrude(height, *c, center=False, twist=None, slices=None, scale=(1, 
     return Node("linear_extrude(%s)" % ", ".join(args), c)
 
 
+def resize(size, *c, auto=(0, 0, 0)):
+    return Node("resize(newsize = [%s], auto = [%s], convexity = 0)" % (",".join(num(v) for v in size),
+                                                                         ",".join(str(int(a)) for a in auto)), c)
+
+
 def hull(*c):
     return Node("hull()", c)
 
@@ -908,6 +913,14 @@ scene("minkowski_rounded", "hull",
                        at(-9.0, 0, 2.3, sphere(2.0, 24)))),
       [orbit((-2, 1, 0), 40.0, 35.0, 45.0), orbit((-2, 1, 0), -140.0, 50.0, 45.0, projection="o", fov=35)],
       "a Minkowski sum of a union of two boxes and a sphere (a union of two hulls), and one of a cylinder and a turned cube, bitten")
+
+
+scene("resized", "hull",
+      difference(color(PALETTE[3], resize((18.0, 11.0, 7.0), sphere(5.0, 32))),
+                 at(0, 0, 2.0, resize((14.0, 0, 0), union(cube((4, 4, 6)), at(4.0, 0, 0, cylinder(6.0, 2.0, fn=24))),
+                                      auto=(1, 1, 0)))),
+      [orbit((0, 0, 0), 30.0, 40.0, 45.0), orbit((0, 0, 0), 120.0, 70.0, 45.0, projection="o", fov=35)],
+      "a sphere resized to an ellipsoid, minus a resized union of a box and a cylinder (resize with auto axes)")
 
 
 # ----------------------------------------------------------------------------

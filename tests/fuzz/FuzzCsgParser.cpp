@@ -109,6 +109,15 @@ void checkTree(const Tree& tree, const ParseOptions& options) {
         }
     }
     for (const Leaf& leaf : tree.leaves) checkLeaf(leaf, options);
+    for (const Resize& r : tree.resizes) {
+        if (r.leaves.empty()) broken("resize with no leaves");
+        for (int l : r.leaves) {
+            if (l < 0 || l >= leafCount) broken("resize leaf out of range");
+        }
+        for (int i = 0; i < 3; ++i) {
+            if (!finite(r.newsize[i])) broken("non-finite resize");
+        }
+    }
 }
 
 void checkLeaf(const Leaf& leaf, const ParseOptions& options) {

@@ -119,13 +119,27 @@ TEST(BuildModel, OpenPolyhedronThrowsWithItsPosition) {
     EXPECT_EQ(errorOf(tree), "scene.csg:7:5: polyhedron is not a closed solid: not closed: 3 boundary edges");
 }
 
-TEST(BuildModel, InsideOutPolyhedronThrows) {
+TEST(BuildModel, InsideOutPolyhedronIsTurnedOutwardWithAWarning) {
     scene::Polyhedron p;
     p.points = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
     p.faces = {{2, 1, 0}, {1, 3, 0}, {3, 2, 0}, {2, 3, 1}};  // counter-clockwise: wrong for OpenSCAD
     scene::Tree tree;
     tree.root = tree.addLeaf(leaf(p, glm::dmat4(1.0), 3));
-    EXPECT_EQ(errorOf(tree), "scene.csg:3:5: polyhedron is not a closed solid: inward oriented (negative volume)");
+    const Model model = buildModel(tree);
+    EXPECT_NEAR(test::signedVolume(model.leafMeshes[0]), 8.0 / 6.0, 1e-12);  // the tetrahedron, outward
+    ASSERT_EQ(model.warnings.size(), 1u);
+    EXPECT_EQ(model.warnings[0].message,
+              "scene.csg:3:5: warning: polyhedron is inside out (every face wound the wrong way); turned outward");
+}
+
+TEST(BuildModel, AnInconsistentlyWoundPolyhedronStaysAnError) {
+    // Turning every face is forgiven; faces wound both ways are not a solid, as in OpenSCAD.
+    scene::Polyhedron p;
+    p.points = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+    p.faces = {{2, 1, 0}, {1, 3, 0}, {3, 2, 0}, {2, 1, 3}};  // one face turned the other way
+    scene::Tree tree;
+    tree.root = tree.addLeaf(leaf(p, glm::dmat4(1.0), 3));
+    EXPECT_EQ(errorOf(tree), "scene.csg:3:5: polyhedron is not a closed solid: inconsistently oriented: 3 edges");
 }
 
 TEST(BuildModel, BadIndexAndMissingImportNameTheLeaf) {

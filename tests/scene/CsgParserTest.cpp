@@ -198,17 +198,17 @@ TEST(CsgParser, BracelessChildStatements) {
 
 TEST(CsgParser, UnsupportedNodesWarnOncePerTypeAndAreCounted) {
     Tree t = parse(
-        "resize(newsize = [2, 2, 2], auto = [0, 0, 0], convexity = 1) {\n"
+        "roof(method = \"straight\", convexity = 1) {\n"
         "\tcube(size = [2, 2, 2], center = false);\n\tsphere(r = 1);\n}\n"
         "render(convexity = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tsphere(r = 1);\n\t}\n}\n"
-        "resize(newsize = [1, 1, 1]) { cube(size = 1); cylinder(r = 1); }\n"
+        "roof() { cube(size = 1); cylinder(r = 1); }\n"
         "cube(size = 1);\n");
     ASSERT_EQ(t.leaves.size(), 1u);  // only the cube; the projection's sphere is left out
-    EXPECT_EQ(t.unsupported.at("resize"), 2);
+    EXPECT_EQ(t.unsupported.at("roof"), 2);
     EXPECT_EQ(t.unsupported.at("projection"), 1);
     EXPECT_EQ(t.unsupported.count("sphere"), 0u);  // inside a left-out subtree: not looked at
     ASSERT_EQ(t.warnings.size(), 2u);
-    EXPECT_EQ(t.warnings[0].message.rfind("t.csg:1:1: warning: 'resize'", 0), 0u) << t.warnings[0].message;
+    EXPECT_EQ(t.warnings[0].message.rfind("t.csg:1:1: warning: 'roof'", 0), 0u) << t.warnings[0].message;
     EXPECT_EQ(t.warnings[1].message.rfind("t.csg:6:2: warning: 'projection'", 0), 0u) << t.warnings[1].message;
 }
 

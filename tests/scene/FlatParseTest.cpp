@@ -8,6 +8,8 @@
 #include <string>
 #include <variant>
 
+#include "strata/geometry/Mesh.h"
+#include "strata/geometry/Model.h"
 #include "strata/scene/CsgParser.h"
 
 using namespace strata;
@@ -251,4 +253,33 @@ TEST(FlatParse, HullOfFlatShapesIsAFlatHull) {
     const FlatTree& s = std::get<FlatSlab>(t.leaves[0].primitive).shape;
     EXPECT_EQ(node(s, s.root).op, FlatOp::Hull);
     EXPECT_EQ(node(s, s.root).children.size(), 2u);
+}
+
+TEST(FlatParse, ResizeScalesTheBoxOfItsLeavesTogether) {
+    // Two cubes side by side, resized to 10 along x with the other axes auto:
+    // the box [0, 6] x [0, 2] x [0, 2] scales by 10/6 on every axis, then the
+    // outer translate places it.
+    const Tree t = parse(
+        "multmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\tresize(newsize = [10,0,0], auto = [1,1,1], convexity = 0) {\n"
+        "\t\tcube(size = 2);\n"
+        "\t\tmultmatrix([[1, 0, 0, 4], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = 2);\n"
+        "\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 2u);
+    ASSERT_EQ(t.resizes.size(), 1u);
+    EXPECT_EQ(t.resizes[0].leaves.size(), 2u);
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_NEAR(model.bounds.min.x, 5.0, 1e-12);
+    EXPECT_NEAR(model.bounds.max.x, 15.0, 1e-12);
+    EXPECT_NEAR(model.bounds.max.y, 2.0 * 10.0 / 6.0, 1e-12);
+    EXPECT_NEAR(model.bounds.max.z, 2.0 * 10.0 / 6.0, 1e-12);
+    // The gap between the cubes scales with them.
+    EXPECT_NEAR(geometry::boundsOf(model.leafMeshes[1]).min.x, 5.0 + 4.0 * 10.0 / 6.0, 1e-12);
+}
+
+TEST(FlatParse, ResizeOfADifferenceIsLeftOutWithAWarning) {
+    const Tree t = parse("resize(newsize = [4,4,4]) difference() { cube(size = 2); sphere(r = 1); }\ncube(size = 1);\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_TRUE(t.resizes.empty());
+    EXPECT_EQ(t.unsupported.at("resize of a difference or intersection"), 1);
 }

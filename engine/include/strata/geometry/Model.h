@@ -12,10 +12,14 @@ namespace strata::geometry {
 struct Model {
     std::vector<Mesh> leafMeshes;  // leafMeshes[i] is tree.leaves[i] in world space; may be empty
     Bounds bounds;                 // of the non-background leaves
+    std::vector<Warning> warnings;  // what was forgiven: inside-out or degenerate user meshes
 };
 
-// Tessellates or imports each leaf, applies its transform, drops zero-area
-// triangles and checks the result. A leaf that is not closed and consistently
+// Tessellates or imports each leaf, applies its transform (and the
+// resize() groups it is in), drops zero-area triangles and checks the
+// result. A polyhedron or imported mesh that is closed but wound inside out
+// is turned outward, and its degenerate triangles dropped, each with a
+// warning in Model::warnings (OpenSCAD renders such meshes). A leaf that is not closed and consistently
 // oriented throws strata::Error naming the leaf's file:line and what is wrong,
 // e.g. "a.csg:7:5: polyhedron is not a closed solid: not closed: 3 boundary
 // edges"; import and tessellation errors are prefixed with the leaf's position

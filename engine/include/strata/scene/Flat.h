@@ -9,6 +9,7 @@
 // statements begin), so evaluating from the last node to the first meets
 // every child before its parent, with no recursion.
 
+#include <array>
 #include <string>
 #include <variant>
 #include <vector>
@@ -88,6 +89,7 @@ enum class FlatOp {
     Offset,        // the union of the children, offset
     Hull,          // the convex hull of the children's points
     Minkowski,     // the Minkowski sum of the children, through Clipper
+    Resize,        // the union of the children, scaled to FlatNode::resize
     Empty,         // a child that gives no 2D geometry (a 3D object, an unsupported node)
 };
 
@@ -96,6 +98,8 @@ struct FlatNode {
     int shape = -1;                // FlatOp::Shape: index into FlatTree::shapes
     glm::dmat4 matrix{1.0};        // FlatOp::Transform, as written (3D, applied to column vectors)
     Offset offset;                 // FlatOp::Offset
+    glm::dvec2 newsize{0.0};       // FlatOp::Resize: 0 keeps an axis
+    std::array<bool, 2> autosize{false, false};
     std::vector<int> children;     // indices into FlatTree::nodes, in input order
     SourceLocation where;
 };

@@ -111,10 +111,23 @@ enum class Display {
 
 struct Leaf {
     Primitive primitive;
-    glm::dmat4 transform{1.0};          // object to world, applied to column vectors
+    glm::dmat4 transform{1.0};          // object to world (to its resize()'s frame, inside one), column vectors
     std::optional<glm::dvec4> color;    // RGBA in [0,1]; outermost color() wins
     Display display = Display::Normal;
     SourceLocation where;               // the primitive's line in the input
+};
+
+// resize(): the leaves under it are scaled together so that the box of the
+// result takes `newsize` (0 keeps an axis; `autosize` axes follow the largest
+// given one), then placed by `outer`. Their transforms are relative to the
+// resize; geometry::buildModel applies these in order (an inner resize is
+// listed before the one around it).
+struct Resize {
+    glm::dvec3 newsize{0.0};
+    std::array<bool, 3> autosize{false, false, false};
+    glm::dmat4 outer{1.0};     // the resize's own object-to-world (or to an enclosing resize)
+    std::vector<int> leaves;   // indices into Tree::leaves
+    SourceLocation where;
 };
 
 enum class NodeKind { Leaf, Union, Intersection, Difference };
@@ -134,6 +147,7 @@ struct Tree {
     std::vector<Leaf> leaves;
     int root = -1;                    // -1: nothing at all
     std::vector<int> background;      // roots of '%' subtrees
+    std::vector<Resize> resizes;      // innermost first
 
     std::vector<Warning> warnings;                // already formatted, one per line
     std::map<std::string, int> unsupported;      // node name -> how many were left out
