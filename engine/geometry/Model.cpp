@@ -1,5 +1,6 @@
 #include "strata/geometry/Model.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -111,9 +112,31 @@ bool userMesh(const scene::Primitive& p) {
     return std::holds_alternative<scene::Polyhedron>(p) || std::holds_alternative<scene::Import>(p);
 }
 
-// Cleans the leaf's mesh and checks it is a closed solid; returns what was
-// forgiven as warnings.
-void checkLeaf(const scene::Leaf& leaf, Mesh& mesh, std::vector<Warning>& warnings) {
+// What was forgiven, one warning per kind at its first leaf, with a count.
+class Forgiven {
+public:
+    void add(int kind, const scene::Leaf& leaf, const std::string& what) {
+        Entry& e = entries_[kind];
+        if (e.count++ == 0) e.message = leaf.where.str() + ": warning: " + what;
+    }
+    void writeTo(std::vector<Warning>& warnings) const {
+        for (const Entry& e : entries_) {
+            if (e.count == 0) continue;
+            warnings.push_back(Warning{e.message + (e.count > 1 ? " (" + std::to_string(e.count) + " meshes in all)" : "")});
+        }
+    }
+    static constexpr int kInsideOut = 0, kDegenerate = 1;
+
+private:
+    struct Entry {
+        std::size_t count = 0;
+        std::string message;
+    };
+    std::array<Entry, 2> entries_;
+};
+
+// Cleans the leaf's mesh and checks it is a closed solid; notes what was forgiven.
+void checkLeaf(const scene::Leaf& leaf, Mesh& mesh, Forgiven& forgiven) {
     const char* name = scene::primitiveName(leaf.primitive);
     for (const auto& p : mesh.positions) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
@@ -124,15 +147,14 @@ void checkLeaf(const scene::Leaf& leaf, Mesh& mesh, std::vector<Warning>& warnin
     dropDegenerateTriangles(mesh);
     MeshCheck check = checkMesh(mesh);
     if (userMesh(leaf.primitive) && mesh.triangles.size() < before) {
-        warnings.push_back(Warning{leaf.where.str() + ": warning: " + name + " has " +
-                                   std::to_string(before - mesh.triangles.size()) +
-                                   " degenerate triangles (no area); dropped"});
+        forgiven.add(Forgiven::kDegenerate, leaf,
+                     std::string(name) + " has degenerate triangles (no area); dropped");
     }
     if (userMesh(leaf.primitive) && check.inwardOriented && check.boundaryEdges == 0 && check.nonManifoldEdges == 0 &&
         check.misorientedEdges == 0) {
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
-        warnings.push_back(Warning{leaf.where.str() + ": warning: " + name +
-                                   " is inside out (every face wound the wrong way); turned outward"});
+        forgiven.add(Forgiven::kInsideOut, leaf,
+                     std::string(name) + " is inside out (every face wound the wrong way); turned outward");
         check = checkMesh(mesh);
     }
     if (!check.ok()) throw Error(leaf.where, std::string(name) + " is not a closed solid: " + check.describe());
@@ -150,12 +172,14 @@ Model buildModel(const scene::Tree& tree) {
 
     for (const scene::Leaf& leaf : tree.leaves) model.leafMeshes.push_back(meshOf(leaf));
     for (const scene::Resize& resize : tree.resizes) applyResize(resize, model.leafMeshes);
+    Forgiven forgiven;
     for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
         const scene::Leaf& leaf = tree.leaves[i];
         Mesh& mesh = model.leafMeshes[i];
-        checkLeaf(leaf, mesh, model.warnings);
+        checkLeaf(leaf, mesh, forgiven);
         if (inCsg[i] && leaf.display != scene::Display::Background) model.bounds.extend(boundsOf(mesh));
     }
+    forgiven.writeTo(model.warnings);
     return model;
 }
 
