@@ -12,7 +12,7 @@ set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 command -v openscad >/dev/null 2>&1 || { echo "export-openscad-flat: openscad is not installed (apt-get install openscad)" >&2; exit 1; }
 
-for dir in "$here"/tests/data/flat/extrude "$here"/tests/data/flat/hull "$here"/tests/data/flat/resize; do
+for dir in "$here"/tests/data/flat/extrude "$here"/tests/data/flat/hull "$here"/tests/data/flat/resize "$here"/tests/data/flat/projection; do
     for scad in "$dir"/*.scad; do
         name=${scad%.scad}
         openscad -o "$name.csg" "$scad" 2>/dev/null

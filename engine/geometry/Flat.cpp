@@ -15,6 +15,7 @@
 #include "strata/core/Error.h"
 #include "strata/geometry/FlatImport.h"
 #include "strata/geometry/Primitives.h"
+#include "strata/geometry/Projection.h"
 #include "strata/geometry/Text.h"
 
 // Follows OpenSCAD 2021.01's src/GeometryEvaluator.cc (applyToChildren2D, the
@@ -229,6 +230,8 @@ Outlines flatPrimitive(const scene::FlatPrimitive& primitive) {
                 std::vector<const Outlines*> operands;
                 for (const Outlines& g : glyphs) operands.push_back(&g);
                 return detail::apply(operands, detail::FlatBoolean::Union);
+            } else if constexpr (std::is_same_v<T, scene::Projection>) {
+                return project(p);
             } else {
                 // As OpenSCAD's leaf nodes: cleaned by Clipper unless the reader already did (SVG).
                 Outlines imported = importFlat(p);

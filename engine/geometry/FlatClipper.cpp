@@ -136,6 +136,30 @@ Outlines minkowski(const std::vector<const Outlines*>& children) {
     return fromTree(result);
 }
 
+Outlines shadow(const std::vector<std::vector<std::array<glm::dvec2, 3>>>& children) {
+    ClipperLib::Clipper sum;
+    for (const auto& triangles : children) {
+        ClipperLib::Paths paths;
+        paths.reserve(triangles.size());
+        for (const auto& t : triangles) {
+            ClipperLib::Path path{{toGrid(t[0].x), toGrid(t[0].y)}, {toGrid(t[1].x), toGrid(t[1].y)},
+                                  {toGrid(t[2].x), toGrid(t[2].y)}};
+            if (!ClipperLib::Orientation(path)) std::reverse(path.begin(), path.end());
+            paths.push_back(std::move(path));
+        }
+        // NonZero, so that triangles sharing edges leave no holes between them.
+        ClipperLib::Clipper child;
+        child.AddPaths(paths, ClipperLib::ptSubject, true);
+        ClipperLib::Paths joined;
+        child.Execute(ClipperLib::ctUnion, joined, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        sum.AddPaths(joined, ClipperLib::ptSubject, true);
+    }
+    ClipperLib::PolyTree result;
+    sum.StrictlySimple(true);
+    sum.Execute(ClipperLib::ctUnion, result, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    return fromTree(result);
+}
+
 Outlines sanitize(const Outlines& shape) { return fromTree(sanitizeTree(toPaths(shape))); }
 
 Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op) {

@@ -4,7 +4,10 @@
 // after each operation, results read back with their orientation as the
 // outline's sign.
 
+#include <array>
 #include <vector>
+
+#include <glm/vec2.hpp>
 
 #include "strata/geometry/Outlines.h"
 
@@ -27,6 +30,11 @@ Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op);
 // each outline of the running sum convolved with each outline of the next
 // shape as quads, the insides filled, all unioned. Absent children are skipped.
 Outlines minkowski(const std::vector<const Outlines*>& children);
+
+// OpenSCAD's projection(cut = false): each child's triangles (xy of each,
+// turned counter-clockwise) unioned non-zero, then all children unioned with
+// Clipper's strictly simple output.
+Outlines shadow(const std::vector<std::vector<std::array<glm::dvec2, 3>>>& children);
 
 enum class FlatJoin { Round, Miter, Square };
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <type_traits>
 #include <variant>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -26,7 +27,7 @@ constexpr int kMaxBlockNesting = 100000;
 // out with one warning per name.
 const std::unordered_set<std::string>& unsupportedNames() {
     static const std::unordered_set<std::string> names = {
-        "projection", "roof", "fill", "import_dxf",
+        "roof", "fill", "import_dxf",
         "import_stl", "import_off", "dxf_linear_extrude", "dxf_rotate_extrude", "child",
         "children", "parent_module", "intersection_for", "for", "let", "each", "echo", "assert",
         "textmetrics", "fontmetrics", "virtual", "wrap",
@@ -52,9 +53,12 @@ struct Open {
     bool flat = false;      // its statements are 2D: they go to the pending flat tree
     int flatNode = -1;      // the flat node collecting children, -1 when they are dropped
     bool ownsFlat = false;  // closing it turns the pending flat tree into a leaf
-    enum class Gather { None, Hull, Minkowski, Resize };
+    enum class Gather { None, Hull, Minkowski, Resize, Projection };
     Gather gather = Gather::None;  // hull() or minkowski() of solids: its children become one or more hull leaves
     Resize resize;                 // resize(): its arguments and placement, filled in when it closes
+    bool cut = false;              // projection(cut = ...)
+    int flatParent = -1;           // projection() in a flat tree: the flat node its shape joins
+    Context outside;               // projection() among solids: where its slab goes
 };
 
 // A leaf whose flat tree is being read: an extrusion, or a 2D shape outside one.
@@ -109,6 +113,8 @@ private:
     int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0));
     Resize resizeArguments(const std::vector<CsgArgument>& args) const;
     int finishResize(const Open& open);
+    int finishProjection(const Open& open);
+    std::shared_ptr<Tree> extractSolid(int root);
     int finishGather(const Open& open);
     bool solidLeavesUnder(int node, std::vector<int>& leaves) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
@@ -156,7 +162,10 @@ private:
     std::vector<Open> stack_;
     std::set<std::string> warned_;
     int rootNode_ = -1;      // node of the first '!' subtree, if any
-    std::optional<PendingFlat> pending_;  // at most one: a flat tree holds no solids
+    // Flat trees being read, innermost last: a projection() inside an
+    // extrusion reads solids again, which may hold extrusions of their own.
+    std::vector<PendingFlat> pending_;
+    PendingFlat& pending() { return pending_.back(); }
     bool sawStatement_ = false;
 };
 
@@ -276,10 +285,27 @@ void Parser::statement() {
     open.isBackgroundRoot = background && parent.context.display != Display::Background;
     open.isRoot = root && rootNode_ < 0 && !dropped;
 
+    if (name == "projection") {
+        // Solids again below it, whatever the context: read as a tree of their own.
+        const bool off = parent.flat ? (parent.flatNode < 0 || disabled || background) : dropped;
+        open.gather = Open::Gather::Projection;
+        open.cut = boolean(args, "cut", 0, false);
+        open.flat = false;
+        open.flatParent = parent.flat ? parent.flatNode : -1;
+        open.outside = ctx;
+        open.context = Context{};
+        if (!off) {
+            open.node = tree_.addNode(NodeKind::Union, {});
+            tree_.nodes[static_cast<std::size_t>(open.node)].where = where;
+        }
+        pushBlock(std::move(open), where);
+        if (!hasBlock) closeBlock();
+        return;
+    }
     if (parent.flat) {
         const int parentFlatNode = parent.flatNode;
         const int index = flatStatement(name, args, open, parentFlatNode < 0 || disabled || background, where);
-        if (index >= 0) pending_->tree.nodes[static_cast<std::size_t>(parentFlatNode)].children.push_back(index);
+        if (index >= 0) pending().tree.nodes[static_cast<std::size_t>(parentFlatNode)].children.push_back(index);
         pushBlock(std::move(open), where);
         if (!hasBlock) closeBlock();
         return;
@@ -292,15 +318,15 @@ void Parser::statement() {
             if (name == "linear_extrude") leaf.primitive = linearExtrude(args, where);
             else if (name == "rotate_extrude") leaf.primitive = rotateExtrude(args, where);
             else leaf.primitive = FlatSlab{};
-            pending_.emplace(PendingFlat{std::move(leaf), FlatTree{}});
+            pending_.push_back(PendingFlat{std::move(leaf), FlatTree{}});
             open.ownsFlat = true;
-            if (std::holds_alternative<FlatSlab>(pending_->leaf.primitive)) {
-                pending_->tree.root = flatStatement(name, args, open, false, where);
+            if (std::holds_alternative<FlatSlab>(pending().leaf.primitive)) {
+                pending().tree.root = flatStatement(name, args, open, false, where);
             } else {
                 open.flat = true;
                 FlatNode root;
                 root.where = where;
-                open.flatNode = pending_->tree.root = pending_->tree.add(std::move(root));
+                open.flatNode = pending().tree.root = pending().tree.add(std::move(root));
             }
         }
         pushBlock(std::move(open), where);
@@ -893,8 +919,8 @@ int Parser::flatStatement(const std::string& name, const std::vector<CsgArgument
         node.op = FlatOp::Shape;
         container = false;
         if (!dropped) {
-            node.shape = static_cast<int>(pending_->tree.shapes.size());
-            pending_->tree.shapes.push_back(flatShape(name, args, where));
+            node.shape = static_cast<int>(pending().tree.shapes.size());
+            pending().tree.shapes.push_back(flatShape(name, args, where));
         }
     } else if (isSolidName(name) || name == "import" || name == "linear_extrude" || name == "rotate_extrude") {
         node.op = FlatOp::Empty;
@@ -915,15 +941,15 @@ int Parser::flatStatement(const std::string& name, const std::vector<CsgArgument
         lex_.failAt(where, "unknown module '" + name + "'");
     }
     if (dropped) return -1;
-    const int index = pending_->tree.add(std::move(node));
+    const int index = pending().tree.add(std::move(node));
     if (container) open.flatNode = index;
     return index;
 }
 
 // The pending flat tree becomes its leaf; returns the leaf's node.
 int Parser::finishFlat() {
-    PendingFlat pending = std::move(*pending_);
-    pending_.reset();
+    PendingFlat pending = std::move(pending_.back());
+    pending_.pop_back();
     std::visit(
         [&](auto& p) {
             using T = std::decay_t<decltype(p)>;
@@ -1098,6 +1124,82 @@ int Parser::finishResize(const Open& open) {
     return n.children.size() == 1 ? n.children.front() : open.node;
 }
 
+// The subtree under `root`, moved into a tree of its own (nodes parent
+// first, its leaves and the resize groups wholly inside it); what stays
+// behind is unreachable and dropped by compact().
+std::shared_ptr<Tree> Parser::extractSolid(int root) {
+    auto solid = std::make_shared<Tree>();
+    solid->source = tree_.source;
+    std::unordered_map<int, int> nodeMap, leafMap;
+    std::vector<int> order{root}, todo{root};
+    nodeMap[root] = 0;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        for (int c : tree_.nodes[static_cast<std::size_t>(order[i])].children) {
+            if (nodeMap.emplace(c, static_cast<int>(order.size())).second) order.push_back(c);
+        }
+    }
+    for (int n : order) {
+        Node node = tree_.nodes[static_cast<std::size_t>(n)];
+        for (int& c : node.children) c = nodeMap.at(c);
+        if (node.kind == NodeKind::Leaf) {
+            auto [it, added] = leafMap.emplace(node.leaf, static_cast<int>(solid->leaves.size()));
+            if (added) solid->leaves.push_back(std::move(tree_.leaves[static_cast<std::size_t>(node.leaf)]));
+            node.leaf = it->second;
+        }
+        solid->nodes.push_back(std::move(node));
+    }
+    for (const Resize& r : tree_.resizes) {
+        Resize inside = r;
+        bool all = true;
+        for (int& l : inside.leaves) {
+            const auto it = leafMap.find(l);
+            if (it == leafMap.end()) {
+                all = false;
+                break;
+            }
+            l = it->second;
+        }
+        if (all) solid->resizes.push_back(std::move(inside));
+    }
+    solid->root = 0;
+    return solid;
+}
+
+// projection() closes: its solids become a Projection shape, joined to the
+// flat tree it stands in, or shown as a slab of its own among solids.
+int Parser::finishProjection(const Open& open) {
+    const SourceLocation where = tree_.nodes[static_cast<std::size_t>(open.node)].where;
+    if (!open.cut) {
+        // The shadow of a difference or intersection needs the exact result.
+        std::vector<int> leaves;
+        if (!solidLeavesUnder(open.node, leaves)) {
+            unsupported("projection(cut = false) of a difference or intersection", where);
+            return -1;
+        }
+    }
+    Projection projection;
+    projection.cut = open.cut;
+    projection.solid = extractSolid(open.node);
+    FlatNode shape;
+    shape.op = FlatOp::Shape;
+    shape.where = where;
+    if (open.flatParent >= 0) {
+        FlatTree& flat = pending().tree;
+        shape.shape = static_cast<int>(flat.shapes.size());
+        flat.shapes.push_back(std::move(projection));
+        const int index = flat.add(std::move(shape));
+        flat.nodes[static_cast<std::size_t>(open.flatParent)].children.push_back(index);
+        return -1;
+    }
+    FlatTree flat;
+    shape.shape = 0;
+    flat.shapes.push_back(std::move(projection));
+    flat.root = flat.add(std::move(shape));
+    Leaf leaf = leafAt(open.outside, where);
+    leaf.primitive = FlatSlab{std::move(flat)};
+    return tree_.addLeaf(std::move(leaf));
+}
+
 // hull() and minkowski() close: their children become hull leaves (a
 // minkowski of unions of convex leaves, one hull per choice of a part from
 // each child, under a union), or one flat result when the children are flat.
@@ -1105,6 +1207,7 @@ int Parser::finishResize(const Open& open) {
 // it yet (counted and warned, the subtree left out).
 int Parser::finishGather(const Open& open) {
     if (open.gather == Open::Gather::Resize) return finishResize(open);
+    if (open.gather == Open::Gather::Projection) return finishProjection(open);
     const bool hull = open.gather == Open::Gather::Hull;
     const char* name = hull ? "hull" : "minkowski";
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];

@@ -233,6 +233,10 @@ def resize(size, *c, auto=(0, 0, 0)):
                                                                          ",".join(str(int(a)) for a in auto)), c)
 
 
+def projection(cut, *c):
+    return Node("projection(cut = %s, convexity = 0)" % ("true" if cut else "false"), c)
+
+
 def hull(*c):
     return Node("hull()", c)
 
@@ -921,6 +925,17 @@ scene("resized", "hull",
                                       auto=(1, 1, 0)))),
       [orbit((0, 0, 0), 30.0, 40.0, 45.0), orbit((0, 0, 0), 120.0, 70.0, 45.0, projection="o", fov=35)],
       "a sphere resized to an ellipsoid, minus a resized union of a box and a cylinder (resize with auto axes)")
+
+
+scene("flat_projected", "flat",
+      union(difference(color(PALETTE[0], cube((20, 14, 4))),
+                       at(0, 0, -1.0, linear_extrude(8.0, projection(True, difference(sphere(6.0, 32),
+                                                                                        cylinder(20.0, 2.0, fn=24))),
+                                                     center=True))),
+            color(PALETTE[1], at(0, 12.0, -2.0, linear_extrude(3.0, projection(False, mm(rotate((1, 0.5, 0), 50),
+                                                                                          cube((8, 3, 2)))))))),
+      [orbit((0, 4, 0), -60.0, 45.0, 55.0), orbit((0, 4, 0), 20.0, 75.0, 55.0, projection="o", fov=35)],
+      "a slab holed by the section of a bored sphere (projection cut), and the extruded shadow of a turned box")
 
 
 # ----------------------------------------------------------------------------

@@ -38,6 +38,9 @@ void checkFragments(const Fragments& f, const ParseOptions& options) {
     if (f.fn > options.maxFragments) broken("$fn above ParseOptions::maxFragments");
 }
 
+void checkLeaf(const Leaf& leaf, const ParseOptions& options);
+void checkTree(const Tree& tree, const ParseOptions& options);
+
 // The flat tree a leaf carries: children after their parents and in range,
 // shapes in range, numbers finite, sizes not negative.
 void checkFlat(const FlatTree& flat, const ParseOptions& options) {
@@ -79,6 +82,9 @@ void checkFlat(const FlatTree& flat, const ParseOptions& options) {
                 } else if constexpr (std::is_same_v<T, Text>) {
                     if (!finite(p.size) || !finite(p.spacing)) broken("non-finite text size");
                     checkFragments(p.fragments, options);
+                } else if constexpr (std::is_same_v<T, Projection>) {
+                    if (!p.solid) broken("projection with no solid");
+                    checkTree(*p.solid, options);
                 } else {
                     if (p.path.empty()) broken("2D import with an empty path");
                     if (!finite(p.scale) || !finite(p.origin.x) || !finite(p.origin.y) || !(p.dpi > 0)) broken("bad 2D import");
@@ -88,7 +94,6 @@ void checkFlat(const FlatTree& flat, const ParseOptions& options) {
     }
 }
 
-void checkLeaf(const Leaf& leaf, const ParseOptions& options);
 
 // What the parser promises of every tree it returns (Tree.h, CsgParser.h, issue 2):
 // indices in range, numbers finite, sizes not negative, $fn clamped.

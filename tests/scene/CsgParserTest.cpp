@@ -200,16 +200,16 @@ TEST(CsgParser, UnsupportedNodesWarnOncePerTypeAndAreCounted) {
     Tree t = parse(
         "roof(method = \"straight\", convexity = 1) {\n"
         "\tcube(size = [2, 2, 2], center = false);\n\tsphere(r = 1);\n}\n"
-        "render(convexity = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tsphere(r = 1);\n\t}\n}\n"
+        "render(convexity = 1) {\n\tfill() {\n\t\tcircle(r = 1);\n\t}\n}\n"
         "roof() { cube(size = 1); cylinder(r = 1); }\n"
         "cube(size = 1);\n");
-    ASSERT_EQ(t.leaves.size(), 1u);  // only the cube; the projection's sphere is left out
+    ASSERT_EQ(t.leaves.size(), 1u);  // only the cube; the fill's circle is left out
     EXPECT_EQ(t.unsupported.at("roof"), 2);
-    EXPECT_EQ(t.unsupported.at("projection"), 1);
-    EXPECT_EQ(t.unsupported.count("sphere"), 0u);  // inside a left-out subtree: not looked at
+    EXPECT_EQ(t.unsupported.at("fill"), 1);
+    EXPECT_EQ(t.unsupported.count("circle"), 0u);  // inside a left-out subtree: not looked at
     ASSERT_EQ(t.warnings.size(), 2u);
     EXPECT_EQ(t.warnings[0].message.rfind("t.csg:1:1: warning: 'roof'", 0), 0u) << t.warnings[0].message;
-    EXPECT_EQ(t.warnings[1].message.rfind("t.csg:6:2: warning: 'projection'", 0), 0u) << t.warnings[1].message;
+    EXPECT_EQ(t.warnings[1].message.rfind("t.csg:6:2: warning: 'fill'", 0), 0u) << t.warnings[1].message;
 }
 
 TEST(CsgParser, AbsurdFnIsClampedWithAWarning) {

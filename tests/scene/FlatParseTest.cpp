@@ -135,11 +135,11 @@ TEST(FlatParse, FlatAndSolidSideBySideStayApart) {
 TEST(FlatParse, SolidsInsideFlatOperationsAreIgnoredWithAWarning) {
     const Tree t = parse(
         "linear_extrude(height = 1) {\n\tsquare(size = 1);\n\tcube(size = 3);\n"
-        "\tprojection() { sphere(r = 1); }\n\t%circle(r = 5);\n\t*circle(r = 6);\n}\n");
+        "\troof() { circle(r = 1); }\n\t%circle(r = 5);\n\t*circle(r = 6);\n}\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
     const FlatNode& root = node(s, s.root);
-    // square, the ignored cube and projection (empty children, which OpenSCAD keeps);
+    // square, the ignored cube and the roof strata cannot make yet (empty children, which OpenSCAD keeps);
     // the background and disabled circles are not children at all.
     ASSERT_EQ(root.children.size(), 3u);
     EXPECT_EQ(node(s, root.children[1]).op, FlatOp::Empty);
@@ -148,7 +148,7 @@ TEST(FlatParse, SolidsInsideFlatOperationsAreIgnoredWithAWarning) {
     EXPECT_NE(t.warnings[0].message.find("t.csg:3:2: warning: 'cube' is a 3D object inside a 2D operation"),
               std::string::npos)
         << t.warnings[0].message;
-    EXPECT_EQ(t.unsupported.at("projection"), 1);
+    EXPECT_EQ(t.unsupported.at("roof"), 1);
 }
 
 TEST(FlatParse, ShapesAndTheirArguments) {
@@ -282,4 +282,33 @@ TEST(FlatParse, ResizeOfADifferenceIsLeftOutWithAWarning) {
     ASSERT_EQ(t.leaves.size(), 1u);
     EXPECT_TRUE(t.resizes.empty());
     EXPECT_EQ(t.unsupported.at("resize of a difference or intersection"), 1);
+}
+
+TEST(FlatParse, ProjectionReadsSolidsIntoATreeOfTheirOwn) {
+    // In an extrusion: a cut of a difference (a section is the difference of
+    // the sections), with an extrusion inside the solid subtree.
+    const Tree t = parse(
+        "linear_extrude(height = 1) {\n\tprojection(cut = true, convexity = 0) {\n"
+        "\t\tdifference() { sphere(r = 5); linear_extrude(height = 20, center = true) circle(r = 1); }\n"
+        "\t}\n}\n"
+        "projection(cut = false) { multmatrix([[1, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = 2); }\n");
+    ASSERT_EQ(t.leaves.size(), 2u);
+    const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
+    ASSERT_EQ(s.shapes.size(), 1u);
+    const auto& cut = std::get<Projection>(s.shapes[0]);
+    EXPECT_TRUE(cut.cut);
+    ASSERT_TRUE(cut.solid);
+    EXPECT_EQ(cut.solid->leaves.size(), 2u);  // the sphere and the extruded circle
+    EXPECT_EQ(cut.solid->nodes[static_cast<std::size_t>(cut.solid->root)].kind, NodeKind::Union);
+    // Among solids, a projection is a flat slab.
+    const FlatTree& slab = std::get<FlatSlab>(t.leaves[1].primitive).shape;
+    const auto& shadow = std::get<Projection>(slab.shapes.at(0));
+    EXPECT_FALSE(shadow.cut);
+    EXPECT_EQ(shadow.solid->leaves.at(0).transform[3][0], 9.0);  // placed inside the projection's frame
+}
+
+TEST(FlatParse, AShadowOfADifferenceIsLeftOutWithAWarning) {
+    const Tree t = parse("projection() difference() { cube(size = 2); sphere(r = 1); }\ncube(size = 1);\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_EQ(t.unsupported.at("projection(cut = false) of a difference or intersection"), 1);
 }

@@ -10,6 +10,7 @@
 // every child before its parent, with no recursion.
 
 #include <array>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -69,7 +70,17 @@ struct FlatImport {
     Fragments fragments;
 };
 
-using FlatPrimitive = std::variant<Square, Circle, Polygon, Text, FlatImport>;
+struct Tree;
+
+// projection(): a solid subtree, read into a tree of its own (in the
+// projection's frame), seen from above (cut = false: its shadow on z = 0) or
+// cut by the plane z = 0 (cut = true).
+struct Projection {
+    bool cut = false;
+    std::shared_ptr<const Tree> solid;
+};
+
+using FlatPrimitive = std::variant<Square, Circle, Polygon, Text, FlatImport, Projection>;
 
 // offset(r = ...) rounds the corners; offset(delta = ...) keeps them sharp
 // (miter joins) or, with chamfer = true, cuts them square.

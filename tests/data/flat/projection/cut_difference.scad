@@ -1,0 +1,1 @@
+linear_extrude(height = 1) projection(cut = true) difference() { sphere(6); cylinder(h = 20, r = 2, center = true); translate([0, 0, -1]) rotate([0, 90, 0]) cylinder(h = 20, r = 1.5, center = true); }

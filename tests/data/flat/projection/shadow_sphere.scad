@@ -1,0 +1,1 @@
+linear_extrude(height = 1) projection() sphere(5);
