@@ -145,8 +145,8 @@ int linearExtrudeSlices(const scene::LinearExtrude& e, const Outlines& shape) {
         for (const Outline& o : shape.outlines)
             for (const glm::dvec2& v : o.points) maxR2 = std::fmax(maxR2, v.x * v.x + v.y * v.y);
         if ((e.scale.x == 1.0 && e.scale.y == 1.0) || e.scale.x != e.scale.y)
-            return helixSlices(maxR2, e.height, e.twist, e.fragments);
-        return conicalHelixSlices(maxR2, e.height, e.twist, e.scale.x, e.fragments);
+            return helixSlices(maxR2, e.height * e.direction.z, e.twist, e.fragments);
+        return conicalHelixSlices(maxR2, e.height * e.direction.z, e.twist, e.scale.x, e.fragments);
     }
     if (e.scale.x != e.scale.y) {
         double maxDelta2 = 0.0;
@@ -155,7 +155,7 @@ int linearExtrudeSlices(const scene::LinearExtrude& e, const Outlines& shape) {
                 const glm::dvec2 d = v - v * e.scale;
                 maxDelta2 = std::fmax(maxDelta2, d.x * d.x + d.y * d.y);
             }
-        return diagonalSlices(maxDelta2, e.height, e.fragments);
+        return diagonalSlices(maxDelta2, e.height * e.direction.z, e.fragments);
     }
     return 1;
 }
@@ -164,8 +164,11 @@ Mesh linearExtrude(const scene::LinearExtrude& e, const Outlines& shape) {
     Mesh mesh;
     const std::size_t perRing = pointCount(shape);
     if (!(e.height > 0.0) || perRing == 0) return mesh;
-    const double h1 = e.center ? -e.height / 2.0 : 0.0;
-    const double h2 = e.center ? +e.height / 2.0 : e.height;
+    // The top is moved by height * direction (straight up in 2021.01); the
+    // newer dialect writes vectors, h1 and h2, and rings at h1 + (h2 - h1) j/n.
+    const glm::dvec3 full = e.height * e.direction;
+    const glm::dvec3 h1 = e.center ? -full / 2.0 : glm::dvec3(0.0);
+    const glm::dvec3 h2 = e.center ? full - full / 2.0 : full;
     const int slicesInt = linearExtrudeSlices(e, shape);
     const auto slices = static_cast<std::size_t>(slicesInt);
     checkSize("linear_extrude", slices + 1, perRing);
@@ -173,23 +176,26 @@ Mesh linearExtrude(const scene::LinearExtrude& e, const Outlines& shape) {
 
     // Rings j = 0..slices: the shape scaled and turned as slice j's map does it.
     std::vector<glm::dvec2> scales(slices + 1);
-    std::vector<double> heights(slices + 1);
+    std::vector<glm::dvec3> heights(slices + 1);
     std::vector<double> twists(slices + 1);
     mesh.positions.reserve((slices + 1) * perRing);
+    std::vector<glm::dvec2> turned;  // each ring's points before the rise: what the diagonal choice sees
+    turned.reserve((slices + 1) * perRing);
     for (std::size_t j = 0; j <= slices; ++j) {
         const double jd = static_cast<double>(j);
         twists[j] = e.twist * jd / n;
-        heights[j] = h1 + (h2 - h1) * jd / n;
+        heights[j] = h1 + (h2 - h1) * jd / n;  // per axis, as glm computes it
         scales[j] = {1 - (1 - e.scale.x) * jd / n, 1 - (1 - e.scale.y) * jd / n};
         const SliceMap map(scales[j], twists[j]);
         for (const Outline& o : shape.outlines)
             for (const glm::dvec2& p : o.points) {
                 const glm::dvec2 q = map(p);
-                mesh.positions.emplace_back(q.x, q.y, heights[j]);
+                turned.push_back(q);
+                mesh.positions.emplace_back(q.x + heights[j].x, q.y + heights[j].y, heights[j].z);
             }
     }
     auto at = [&](std::size_t ring, std::size_t k) { return static_cast<uint32_t>(ring * perRing + k); };
-    auto xy = [&](uint32_t v) { return glm::dvec2(mesh.positions[v].x, mesh.positions[v].y); };
+    auto xy = [&](uint32_t v) { return turned[v]; };
 
     // Side walls, slice by slice, with OpenSCAD's diagonal choice (add_slice).
     for (std::size_t j = 0; j < slices; ++j) {
@@ -220,13 +226,18 @@ Mesh linearExtrude(const scene::LinearExtrude& e, const Outlines& shape) {
     }
 
     // Caps: the bottom facing down; the top (left out when a scale is 0) facing up.
-    addCap(mesh, shape, at(0, 0), true, [&](const glm::dvec2& p) { return glm::dvec3(p, heights[0]); });
+    auto lift = [&](std::size_t ring) {
+        return [&, ring](const glm::dvec2& p) {
+            return glm::dvec3(p.x + heights[ring].x, p.y + heights[ring].y, heights[ring].z);
+        };
+    };
+    addCap(mesh, shape, at(0, 0), true, lift(0));
     if (e.scale.x > 0 && e.scale.y > 0) {
         Outlines top = shape;
         std::size_t k = 0;
         for (Outline& o : top.outlines)
             for (glm::dvec2& p : o.points) p = xy(at(slices, k++));
-        addCap(mesh, top, at(slices, 0), false, [&](const glm::dvec2& p) { return glm::dvec3(p, heights[slices]); });
+        addCap(mesh, top, at(slices, 0), false, lift(slices));
     }
     orientOutward(mesh);
     return mesh;

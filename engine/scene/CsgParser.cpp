@@ -1440,15 +1440,20 @@ LinearExtrude Parser::linearExtrude(const std::vector<CsgArgument>& args, const 
     if (find(args, "file", -1) != nullptr) unsupported("linear_extrude(file)", where);
     e.height = number(args, "height", 0, 100.0);
     const CsgArgument* v = find(args, "v", -1);
-    if (v != nullptr && v->value.type == CsgValue::Type::Numbers && v->value.numbers.size() == 3 &&
-        (v->value.numbers[0] != 0.0 || v->value.numbers[1] != 0.0)) {
-        // The newer dialect's slanted extrusion: its length is `height`.
-        warnOnce("extrude-v", v->where, "linear_extrude's direction v is not supported yet; extruded straight up");
+    if (v != nullptr && v->value.type != CsgValue::Type::Undef) {
+        // The newer dialect's slanted extrusion: `height` is its length along v.
+        if (v->value.type != CsgValue::Type::Numbers || v->value.numbers.size() != 3) {
+            lex_.failAt(v->where, "v must be a vector of 3 numbers");
+        }
+        const glm::dvec3 d(v->value.numbers[0], v->value.numbers[1], v->value.numbers[2]);
+        const double length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        if (!std::isfinite(length)) lex_.failAt(v->where, "v must be finite");
+        if (length > 0) e.direction = d / length;
     }
     if (number(args, "segments", -1, 0.0) > 0) {
         warnOnce("extrude-segments", where, "linear_extrude's segments is not supported yet; ignored");
     }
-    if (!(e.height > 0)) e.height = 0;
+    if (!(e.height > 0) || !(e.direction.z > 0)) e.height = 0;  // nothing upward: OpenSCAD makes nothing
     e.center = boolean(args, "center", -1, false);
     e.twist = number(args, "twist", -1, 0.0);
     e.hasTwist = e.twist != 0.0;

@@ -8,6 +8,8 @@
 #include <string>
 #include <variant>
 
+#include <glm/geometric.hpp>
+
 #include "strata/geometry/Mesh.h"
 #include "strata/geometry/Model.h"
 #include "strata/scene/CsgParser.h"
@@ -311,4 +313,25 @@ TEST(FlatParse, AShadowOfADifferenceIsLeftOutWithAWarning) {
     const Tree t = parse("projection() difference() { cube(size = 2); sphere(r = 1); }\ncube(size = 1);\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     EXPECT_EQ(t.unsupported.at("projection(cut = false) of a difference or intersection"), 1);
+}
+
+TEST(FlatParse, TheNewerDialectsSlantedExtrusionMovesTheTopAlongV) {
+    // height is the length along v: the top of a 4 x 4 square lies 8 up and
+    // 6 across, and the prism keeps the square's area at every height.
+    const Tree t = parse("linear_extrude(height = 10, v = [ 0.6, 0, 0.8], center = true, $fn = 0, $fa = 12, $fs = 2) "
+                         "square(size = [4, 4], center = true);\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    const auto& e = std::get<LinearExtrude>(t.leaves[0].primitive);
+    EXPECT_NEAR(e.direction.x, 0.6, 1e-15);
+    EXPECT_NEAR(e.direction.z, 0.8, 1e-15);
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_NEAR(model.bounds.min.z, -4.0, 1e-12);
+    EXPECT_NEAR(model.bounds.max.z, 4.0, 1e-12);
+    EXPECT_NEAR(model.bounds.min.x, -2.0 - 3.0, 1e-12);
+    EXPECT_NEAR(model.bounds.max.x, 2.0 + 3.0, 1e-12);
+    double volume6 = 0.0;
+    const geometry::Mesh& m = model.leafMeshes[0];
+    for (const auto& tri : m.triangles)
+        volume6 += glm::dot(m.positions[tri[0]], glm::cross(m.positions[tri[1]], m.positions[tri[2]]));
+    EXPECT_NEAR(volume6 / 6.0, 16.0 * 8.0, 1e-9);
 }

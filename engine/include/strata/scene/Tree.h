@@ -54,7 +54,8 @@ struct Import {
 // linear_extrude(): the union of the flat children, swept up by `height`.
 struct LinearExtrude {
     FlatTree shape;
-    double height = 100.0;
+    double height = 100.0;     // the length of the extrusion
+    glm::dvec3 direction{0.0, 0.0, 1.0};  // unit vector (newer dialect's v): the top is moved by height * direction
     bool center = false;
     double twist = 0.0;        // degrees, over the whole height
     bool hasTwist = false;     // twist was written (its slice rule applies)
