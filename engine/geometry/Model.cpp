@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/geometry/Exact.h"
 #include "strata/geometry/Extrude.h"
 #include "strata/geometry/Flat.h"
 #include "strata/geometry/Hull.h"
@@ -30,6 +31,10 @@ Mesh objectMesh(const scene::Primitive& p) {
             else if constexpr (std::is_same_v<T, scene::RotateExtrude>) return rotateExtrude(v, evaluateFlat(v.shape));
             else if constexpr (std::is_same_v<T, scene::FlatSlab>) return flatSlab(evaluateFlat(v.shape));
             else if constexpr (std::is_same_v<T, scene::Hull>) return tessellate(v);
+            else if constexpr (std::is_same_v<T, scene::Exact>) {
+                const Model solid = buildModel(*v.solid);
+                return exactResult(*v.solid, v.solid->root, solid.leafMeshes);
+            }
             else return tessellate(v);
         },
         p);

@@ -115,6 +115,7 @@ private:
     int finishResize(const Open& open);
     int finishProjection(const Open& open);
     std::shared_ptr<Tree> extractSolid(int root);
+    void exactify(int root);
     int finishGather(const Open& open);
     bool solidLeavesUnder(int node, std::vector<int>& leaves) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
@@ -1116,12 +1117,11 @@ int Parser::finishResize(const Open& open) {
         return merged;
     }
     Resize resize = open.resize;
-    if (!solidLeavesUnder(open.node, resize.leaves)) {
-        unsupported("resize of a difference or intersection", resize.where);
-        return -1;
-    }
+    exactify(open.node);  // the box of a difference or intersection is its exact result's
+    solidLeavesUnder(open.node, resize.leaves);
     tree_.resizes.push_back(std::move(resize));
-    return n.children.size() == 1 ? n.children.front() : open.node;
+    const std::vector<int>& children = tree_.nodes[static_cast<std::size_t>(open.node)].children;
+    return children.size() == 1 ? children.front() : open.node;
 }
 
 // The subtree under `root`, moved into a tree of its own (nodes parent
@@ -1165,18 +1165,44 @@ std::shared_ptr<Tree> Parser::extractSolid(int root) {
     return solid;
 }
 
+// Every difference or intersection reached from `root` through unions
+// becomes one Exact leaf holding its subtree, so that the leaves under
+// `root` make its result (for the nodes that need that result's geometry).
+void Parser::exactify(int root) {
+    std::vector<int> todo{root};
+    while (!todo.empty()) {
+        const int at = todo.back();
+        todo.pop_back();
+        if (tree_.nodes[static_cast<std::size_t>(at)].kind != NodeKind::Union) continue;
+        for (std::size_t i = 0; i < tree_.nodes[static_cast<std::size_t>(at)].children.size(); ++i) {
+            const int c = tree_.nodes[static_cast<std::size_t>(at)].children[i];
+            const NodeKind kind = tree_.nodes[static_cast<std::size_t>(c)].kind;
+            if (kind == NodeKind::Union) {
+                todo.push_back(c);
+            } else if (kind == NodeKind::Difference || kind == NodeKind::Intersection) {
+                const SourceLocation where = tree_.nodes[static_cast<std::size_t>(c)].where;
+                Leaf leaf;
+                leaf.where = where;
+                Exact exact{extractSolid(c)};
+                // The result shows as its first solid does.
+                if (!exact.solid->leaves.empty()) {
+                    leaf.color = exact.solid->leaves.front().color;
+                    leaf.display = exact.solid->leaves.front().display;
+                }
+                leaf.primitive = std::move(exact);
+                const int node = tree_.addLeaf(std::move(leaf));
+                tree_.nodes[static_cast<std::size_t>(at)].children[i] = node;
+            }
+        }
+    }
+}
+
 // projection() closes: its solids become a Projection shape, joined to the
 // flat tree it stands in, or shown as a slab of its own among solids.
 int Parser::finishProjection(const Open& open) {
     const SourceLocation where = tree_.nodes[static_cast<std::size_t>(open.node)].where;
-    if (!open.cut) {
-        // The shadow of a difference or intersection needs the exact result.
-        std::vector<int> leaves;
-        if (!solidLeavesUnder(open.node, leaves)) {
-            unsupported("projection(cut = false) of a difference or intersection", where);
-            return -1;
-        }
-    }
+    // The shadow of a difference or intersection needs its exact result.
+    if (!open.cut) exactify(open.node);
     Projection projection;
     projection.cut = open.cut;
     projection.solid = extractSolid(open.node);
@@ -1221,14 +1247,13 @@ int Parser::finishGather(const Open& open) {
     }
     if (allFlat) return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski);
 
-    // Each child's solid leaves (a hull takes them all as one set of points).
+    // Each child's solid leaves (a hull takes them all as one set of points);
+    // a difference or intersection among them is evaluated exactly.
+    exactify(open.node);
     std::vector<std::vector<int>> children;
-    for (int c : n.children) {
+    for (int c : tree_.nodes[static_cast<std::size_t>(open.node)].children) {
         std::vector<int> leaves;
-        if (!solidLeavesUnder(c, leaves)) {
-            unsupported(std::string(name) + " of a difference or intersection", where);
-            return -1;
-        }
+        solidLeavesUnder(c, leaves);
         std::vector<int> solid;
         for (int l : leaves) {
             const Primitive& p = tree_.leaves[static_cast<std::size_t>(l)].primitive;

@@ -70,6 +70,7 @@ const char* primitiveName(const Primitive& primitive) {
             else if constexpr (std::is_same_v<T, RotateExtrude>) return "rotate_extrude";
             else if constexpr (std::is_same_v<T, FlatSlab>) return "2D shape";
             else if constexpr (std::is_same_v<T, Hull>) return "hull";
+            else if constexpr (std::is_same_v<T, Exact>) return "CSG result";
             else return "surface";
         },
         primitive);

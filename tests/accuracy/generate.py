@@ -938,6 +938,15 @@ scene("flat_projected", "flat",
       "a slab holed by the section of a bored sphere (projection cut), and the extruded shadow of a turned box")
 
 
+scene("exact_results", "hull",
+      union(color(PALETTE[4], hull(difference(sphere(5.0, 32), at(0, 0, 4.0, cube((12, 12, 8)))),
+                                   at(7.0, 0, -2.0, cube((2, 2, 2))))),
+            color(PALETTE[0], at(0, 11.0, 0, resize((8.0, 0, 0), intersection(sphere(4.0, 24), at(2.0, 0, 0, cube((6, 6, 6)))),
+                                                    auto=(1, 1, 1))))),
+      [orbit((1, 5, 0), 35.0, 40.0, 50.0), orbit((1, 5, 0), -120.0, -35.0, 50.0, projection="o", fov=35)],
+      "a hull of a sphere cut flat and a cube, and a resized intersection: exact results of a difference and an intersection")
+
+
 # ----------------------------------------------------------------------------
 
 def main():

@@ -171,6 +171,9 @@ void checkLeaf(const Leaf& leaf, const ParseOptions& options) {
                 checkFlat(p.shape, options);
             } else if constexpr (std::is_same_v<T, FlatSlab>) {
                 checkFlat(p.shape, options);
+            } else if constexpr (std::is_same_v<T, Exact>) {
+                if (!p.solid) broken("exact leaf with no solid");
+                checkTree(*p.solid, options);
             } else if constexpr (std::is_same_v<T, Hull>) {
                 if (p.parts.empty()) broken("hull with no parts");
                 for (const Leaf& part : p.parts) checkLeaf(part, options);

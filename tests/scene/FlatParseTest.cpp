@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <variant>
@@ -235,16 +236,22 @@ TEST(FlatParse, MinkowskiOfUnionsIsAUnionOfHulls) {
     }
 }
 
-TEST(FlatParse, HullAndMinkowskiStrataCannotMakeYetAreLeftOutWithAWarning) {
+TEST(FlatParse, HullOfADifferenceHullsItsExactResult) {
+    // A cube with its top half cut away: the hull is the remaining 2 x 2 x 1 box.
     const Tree t = parse(
-        "hull() { difference() { cube(size = 2); sphere(r = 1); } }\n"
+        "hull() { difference() { cube(size = 2); multmatrix([[1, 0, 0, -1], [0, 1, 0, -1], [0, 0, 1, 1], "
+        "[0, 0, 0, 1]]) cube(size = 4); } }\n"
         "minkowski() { polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], faces = [[0, 1, 2], "
-        "[0, 3, 1], [0, 2, 3], [1, 3, 2]]); sphere(r = 1); }\n"
-        "cube(size = 1);\n");
+        "[0, 3, 1], [0, 2, 3], [1, 3, 2]]); sphere(r = 1); }\n");
     ASSERT_EQ(t.leaves.size(), 1u);
-    EXPECT_EQ(t.unsupported.at("hull of a difference or intersection"), 1);
+    const auto& h = std::get<Hull>(t.leaves[0].primitive);
+    ASSERT_EQ(h.parts.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<Exact>(h.parts[0].primitive));
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_NEAR(model.bounds.max.z, 1.0, 1e-12);
+    EXPECT_NEAR(model.bounds.max.x, 2.0, 1e-12);
+    // A minkowski of a solid that is not convex by construction still needs a decomposition.
     EXPECT_EQ(t.unsupported.at("minkowski of a polyhedron"), 1);
-    EXPECT_EQ(t.warnings.size(), 2u);
 }
 
 TEST(FlatParse, HullOfFlatShapesIsAFlatHull) {
@@ -279,11 +286,19 @@ TEST(FlatParse, ResizeScalesTheBoxOfItsLeavesTogether) {
     EXPECT_NEAR(geometry::boundsOf(model.leafMeshes[1]).min.x, 5.0 + 4.0 * 10.0 / 6.0, 1e-12);
 }
 
-TEST(FlatParse, ResizeOfADifferenceIsLeftOutWithAWarning) {
-    const Tree t = parse("resize(newsize = [4,4,4]) difference() { cube(size = 2); sphere(r = 1); }\ncube(size = 1);\n");
+TEST(FlatParse, ResizeOfADifferenceTakesTheBoxOfItsExactResult) {
+    // A 4 x 2 x 2 block less everything beyond x = 2: the result is a 2-cube,
+    // so a resize to 6 along x (auto elsewhere) scales by 3, not 1.5.
+    const Tree t = parse("resize(newsize = [6,0,0], auto = [1,1,1]) difference() { cube(size = [4, 2, 2]); "
+                         "multmatrix([[1, 0, 0, 2], [0, 1, 0, -1], [0, 0, 1, -1], [0, 0, 0, 1]]) cube(size = [3, 4, 4]); }\n");
     ASSERT_EQ(t.leaves.size(), 1u);
-    EXPECT_TRUE(t.resizes.empty());
-    EXPECT_EQ(t.unsupported.at("resize of a difference or intersection"), 1);
+    EXPECT_TRUE(std::holds_alternative<Exact>(t.leaves[0].primitive));
+    ASSERT_EQ(t.resizes.size(), 1u);
+    const geometry::Model model = geometry::buildModel(t);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(model.bounds.min[i], 0.0, 1e-12) << i;
+        EXPECT_NEAR(model.bounds.max[i], 6.0, 1e-12) << i;
+    }
 }
 
 TEST(FlatParse, ProjectionReadsSolidsIntoATreeOfTheirOwn) {
@@ -309,10 +324,24 @@ TEST(FlatParse, ProjectionReadsSolidsIntoATreeOfTheirOwn) {
     EXPECT_EQ(shadow.solid->leaves.at(0).transform[3][0], 9.0);  // placed inside the projection's frame
 }
 
-TEST(FlatParse, AShadowOfADifferenceIsLeftOutWithAWarning) {
-    const Tree t = parse("projection() difference() { cube(size = 2); sphere(r = 1); }\ncube(size = 1);\n");
+TEST(FlatParse, TheShadowOfADifferenceIsItsExactResults) {
+    // A 2 x 2 block bored through by a pentagon (a cylinder of r 0.5 has 5
+    // fragments): its shadow is the square less the pentagon.
+    const Tree t = parse("linear_extrude(height = 1) projection() difference() { cube(size = 2, center = true); "
+                         "cylinder(h = 4, r = 0.5, center = true); }\n");
     ASSERT_EQ(t.leaves.size(), 1u);
-    EXPECT_EQ(t.unsupported.at("projection(cut = false) of a difference or intersection"), 1);
+    EXPECT_TRUE(t.unsupported.empty());
+    const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
+    const auto& shadow = std::get<Projection>(s.shapes.at(0));
+    ASSERT_EQ(shadow.solid->leaves.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<Exact>(shadow.solid->leaves[0].primitive));
+    const geometry::Model model = geometry::buildModel(t);
+    double volume6 = 0.0;
+    const geometry::Mesh& m = model.leafMeshes[0];
+    for (const auto& tri : m.triangles)
+        volume6 += glm::dot(m.positions[tri[0]], glm::cross(m.positions[tri[1]], m.positions[tri[2]]));
+    const double pentagon = 0.5 * 5 * 0.25 * std::sin(2 * 3.14159265358979323846 / 5);
+    EXPECT_NEAR(volume6 / 6.0, 4.0 - pentagon, 1e-4);  // Clipper's grid: within a few 2^-16
 }
 
 TEST(FlatParse, TheNewerDialectsSlantedExtrusionMovesTheTopAlongV) {

@@ -100,8 +100,15 @@ struct Hull {
     std::vector<Leaf> summands;
 };
 
+// A difference or intersection whose geometry a node needs (a hull, resize or
+// shadow of it): its subtree, read into a tree of its own, evaluated exactly
+// into one mesh (geometry::exactResult).
+struct Exact {
+    std::shared_ptr<const Tree> solid;
+};
+
 using Primitive = std::variant<Cube, Sphere, Cylinder, Polyhedron, Import, LinearExtrude, RotateExtrude, FlatSlab,
-                               Surface, Hull>;
+                               Surface, Hull, Exact>;
 
 // How a leaf is drawn besides its part in the CSG result (OpenSCAD's modifiers).
 enum class Display {
@@ -170,7 +177,7 @@ Tree meshFileTree(const std::string& path);
 
 // The OpenSCAD name of a leaf's primitive: "cube", ..., "linear_extrude",
 // "rotate_extrude", "surface", "hull" (a minkowski of convex parts is one or
-// more hulls); "2D shape" for a FlatSlab.
+// more hulls); "2D shape" for a FlatSlab; "CSG result" for an Exact.
 const char* primitiveName(const Primitive& primitive);
 
 // Short name of a node kind: "union", "intersection", "difference", "leaf".
