@@ -1,6 +1,13 @@
 #include "strata/geometry/Exact.h"
 
+#include <bit>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <optional>
 #include <string>
+#include <unordered_map>
+#include <utility>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -50,15 +57,95 @@ Mesh toMesh(Solid& s) {
     return mesh;
 }
 
+// The subtree's content: its operations in order and its leaves' meshes, bit
+// for bit (FNV-1a over 64-bit words).
+std::uint64_t contentKey(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    auto mix = [&h](std::uint64_t v) { h = (h ^ v) * 0x100000001b3ull; };
+    std::vector<int> todo{node};
+    while (!todo.empty()) {
+        const scene::Node& n = tree.nodes[static_cast<std::size_t>(todo.back())];
+        todo.pop_back();
+        mix(static_cast<std::uint64_t>(n.kind) + 0x9e37ull * n.children.size());
+        if (n.kind == scene::NodeKind::Leaf) {
+            const Mesh& m = leafMeshes[static_cast<std::size_t>(n.leaf)];
+            mix(m.positions.size());
+            for (const glm::dvec3& p : m.positions) {
+                mix(std::bit_cast<std::uint64_t>(p.x));
+                mix(std::bit_cast<std::uint64_t>(p.y));
+                mix(std::bit_cast<std::uint64_t>(p.z));
+            }
+            for (const auto& t : m.triangles) mix((std::uint64_t(t[0]) << 42) ^ (std::uint64_t(t[1]) << 21) ^ t[2]);
+        }
+        todo.insert(todo.end(), n.children.rbegin(), n.children.rend());
+    }
+    return h;
+}
+
+// Results by content, oldest dropped first past the budget.
+class ResultCache {
+public:
+    std::optional<Mesh> find(std::uint64_t key) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const auto it = entries_.find(key);
+        if (it == entries_.end()) return std::nullopt;
+        ++hits_;
+        return it->second;
+    }
+    void add(std::uint64_t key, const Mesh& mesh) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const std::size_t bytes = mesh.positions.size() * sizeof(glm::dvec3) + mesh.triangles.size() * 12;
+        if (bytes > kBudget || !entries_.emplace(key, mesh).second) return;
+        order_.push_back({key, bytes});
+        bytes_ += bytes;
+        while (bytes_ > kBudget && !order_.empty()) {
+            entries_.erase(order_.front().first);
+            bytes_ -= order_.front().second;
+            order_.pop_front();
+        }
+    }
+    std::size_t hits() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return hits_;
+    }
+
+private:
+    static constexpr std::size_t kBudget = std::size_t(256) << 20;
+    std::mutex mutex_;
+    std::unordered_map<std::uint64_t, Mesh> entries_;
+    std::deque<std::pair<std::uint64_t, std::size_t>> order_;
+    std::size_t bytes_ = 0;
+    std::size_t hits_ = 0;
+};
+
+ResultCache& cache() {
+    static ResultCache instance;
+    return instance;
+}
+
+Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes);
+
 }  // namespace
 
+std::size_t exactCacheHits() { return cache().hits(); }
+
 Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
+    const std::uint64_t key = contentKey(tree, node, leafMeshes);
+    if (std::optional<Mesh> known = cache().find(key)) return std::move(*known);
+    Mesh result = evaluate(tree, node, leafMeshes);
+    cache().add(key, result);
+    return result;
+}
+
+namespace {
+
+Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
     const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
     if (n.kind == scene::NodeKind::Leaf) return leafMeshes[static_cast<std::size_t>(n.leaf)];
     bool first = true;
     Solid result;
     for (int c : n.children) {
-        const Mesh child = exactResult(tree, c, leafMeshes);
+        const Mesh child = evaluate(tree, c, leafMeshes);
         Solid operand = toSolid(child, tree.nodes[static_cast<std::size_t>(c)].where);
         if (first) {
             result = std::move(operand);
@@ -80,4 +167,5 @@ Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& lea
     return toMesh(result);
 }
 
+}  // namespace
 }  // namespace strata::geometry

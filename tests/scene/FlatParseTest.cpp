@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "strata/geometry/Exact.h"
 #include "strata/geometry/Mesh.h"
 #include "strata/geometry/Model.h"
 #include "strata/scene/CsgParser.h"
@@ -363,4 +364,18 @@ TEST(FlatParse, TheNewerDialectsSlantedExtrusionMovesTheTopAlongV) {
     for (const auto& tri : m.triangles)
         volume6 += glm::dot(m.positions[tri[0]], glm::cross(m.positions[tri[1]], m.positions[tri[2]]));
     EXPECT_NEAR(volume6 / 6.0, 16.0 * 8.0, 1e-9);
+}
+
+TEST(FlatParse, AnExactResultIsNotEvaluatedAgainWhenAnEditLeavesItAlone) {
+    const std::string shared =
+        "hull() { difference() { sphere(r = 3); multmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 2], [0, 0, 0, 1]]) "
+        "cube(size = 6, center = true); } }\n";
+    const Tree before = parse(shared + "cube(size = 1);\n");
+    const Tree after = parse(shared + "multmatrix([[1, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cylinder(h = 3);\n");
+    const geometry::Model first = geometry::buildModel(before);
+    const std::size_t hits = geometry::exactCacheHits();
+    const geometry::Model second = geometry::buildModel(after);
+    EXPECT_EQ(geometry::exactCacheHits(), hits + 1);
+    EXPECT_EQ(first.leafMeshes[0].positions, second.leafMeshes[0].positions);
+    EXPECT_EQ(first.leafMeshes[0].triangles, second.leafMeshes[0].triangles);
 }

@@ -15,6 +15,12 @@ namespace strata::geometry {
 // The result of tree.nodes[node] from the leaves' checked world-space meshes
 // (Model::leafMeshes of the same tree). Throws strata::Error naming the node
 // when CGAL cannot take a mesh (one that touches itself, or intersects itself).
+// Results are kept by their content (the subtree's operations and its leaves'
+// meshes, bit for bit), up to about 256 MiB in all, so a reload whose edit
+// leaves the subtree alone does not evaluate it again. Thread-safe.
 Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes);
+
+// How many exactResult calls the cache has answered in this process.
+std::size_t exactCacheHits();
 
 }  // namespace strata::geometry
