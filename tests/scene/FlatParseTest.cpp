@@ -37,6 +37,13 @@ std::string errorOf(const std::string& text) {
 
 const FlatNode& node(const FlatTree& t, int i) { return t.nodes.at(static_cast<std::size_t>(i)); }
 
+// Signed volume by the divergence theorem, computed here from the triangles.
+double volume(const geometry::Mesh& m) {
+    double v6 = 0.0;
+    for (const auto& t : m.triangles) v6 += glm::dot(m.positions[t[0]], glm::cross(m.positions[t[1]], m.positions[t[2]]));
+    return v6 / 6.0;
+}
+
 }  // namespace
 
 TEST(FlatParse, LinearExtrudeIsOneLeafHoldingItsShape) {
@@ -337,12 +344,8 @@ TEST(FlatParse, TheShadowOfADifferenceIsItsExactResults) {
     ASSERT_EQ(shadow.solid->leaves.size(), 1u);
     EXPECT_TRUE(std::holds_alternative<Exact>(shadow.solid->leaves[0].primitive));
     const geometry::Model model = geometry::buildModel(t);
-    double volume6 = 0.0;
-    const geometry::Mesh& m = model.leafMeshes[0];
-    for (const auto& tri : m.triangles)
-        volume6 += glm::dot(m.positions[tri[0]], glm::cross(m.positions[tri[1]], m.positions[tri[2]]));
     const double pentagon = 0.5 * 5 * 0.25 * std::sin(2 * 3.14159265358979323846 / 5);
-    EXPECT_NEAR(volume6 / 6.0, 4.0 - pentagon, 1e-4);  // Clipper's grid: within a few 2^-16
+    EXPECT_NEAR(volume(model.leafMeshes[0]), 4.0 - pentagon, 1e-4);  // Clipper's grid: within a few 2^-16
 }
 
 TEST(FlatParse, TheNewerDialectsSlantedExtrusionMovesTheTopAlongV) {
@@ -359,11 +362,7 @@ TEST(FlatParse, TheNewerDialectsSlantedExtrusionMovesTheTopAlongV) {
     EXPECT_NEAR(model.bounds.max.z, 4.0, 1e-12);
     EXPECT_NEAR(model.bounds.min.x, -2.0 - 3.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.x, 2.0 + 3.0, 1e-12);
-    double volume6 = 0.0;
-    const geometry::Mesh& m = model.leafMeshes[0];
-    for (const auto& tri : m.triangles)
-        volume6 += glm::dot(m.positions[tri[0]], glm::cross(m.positions[tri[1]], m.positions[tri[2]]));
-    EXPECT_NEAR(volume6 / 6.0, 16.0 * 8.0, 1e-9);
+    EXPECT_NEAR(volume(model.leafMeshes[0]), 16.0 * 8.0, 1e-9);
 }
 
 TEST(FlatParse, AnExactResultIsNotEvaluatedAgainWhenAnEditLeavesItAlone) {
