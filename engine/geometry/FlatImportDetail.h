@@ -10,10 +10,6 @@
 
 namespace strata::geometry::detail {
 
-// The whole file, refused (strata::Error) when missing, not a regular file or
-// larger than 256 MiB.
-std::string readImportFile(const std::string& path);
-
 // DXF as OpenSCAD 2021.01's DxfData reads it: the unsanitized outlines.
 Outlines importDxf(const scene::FlatImport& import, const std::string& text);
 

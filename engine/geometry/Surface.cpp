@@ -6,8 +6,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -15,6 +13,7 @@
 
 #include <locale.h>
 
+#include "InputFile.h"
 #include "LexicalCast.h"
 #include "strata/core/Error.h"
 
@@ -44,28 +43,10 @@
 namespace strata::geometry {
 namespace {
 
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(256) << 20;  // 256 MiB
 constexpr std::size_t kMaxVertices = std::size_t(1) << 24;           // as the primitives
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
     throw Error("surface: cannot read '" + path + "': " + why);
-}
-
-std::vector<unsigned char> readFile(const std::string& path) {
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (ec || !std::filesystem::exists(status)) fail(path, "no such file");
-    if (!std::filesystem::is_regular_file(status)) fail(path, "not a regular file");
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) fail(path, ec.message());
-    if (size > kMaxFileBytes) fail(path, "larger than 256 MiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open it");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
-        fail(path, "read error");
-    }
-    return bytes;
 }
 
 // The heights, row-major: lines x columns, missing entries 0.
@@ -99,8 +80,8 @@ std::string_view trim(std::string_view s) {
     return s;
 }
 
-HeightMap readDat(const std::string& path, const std::vector<unsigned char>& bytes) {
-    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+HeightMap readDat(const std::string& path, const std::string& bytes) {
+    const std::string_view text(bytes);
     std::size_t pos = 0;
     bool eof = false;
     // std::getline on the file: eof is set when a read reaches the end of the data.
@@ -255,9 +236,9 @@ bool decodePngRows(png_structp png, png_infop info, PngDecode* d) {
     return true;
 }
 
-HeightMap readPng(const std::string& path, const std::vector<unsigned char>& bytes, bool invert) {
+HeightMap readPng(const std::string& path, const std::string& bytes, bool invert) {
     PngDecode d;
-    PngSource src{bytes.data(), bytes.size(), 0};
+    PngSource src{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), 0};
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &d, pngError, pngWarning);
     if (!png) fail(path, "out of memory");
     png_infop info = png_create_info_struct(png);
@@ -404,7 +385,7 @@ private:
     Mesh mesh_;
 };
 
-bool isPng(const std::vector<unsigned char>& bytes) {
+bool isPng(const std::string& bytes) {
     static const unsigned char kSignature[8] = {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a};
     return bytes.size() >= 8 && std::memcmp(bytes.data(), kSignature, 8) == 0;
 }
@@ -412,7 +393,7 @@ bool isPng(const std::vector<unsigned char>& bytes) {
 }  // namespace
 
 Mesh tessellate(const scene::Surface& surface) {
-    const std::vector<unsigned char> bytes = readFile(surface.path);
+    const std::string bytes = detail::readInputFile(surface.path, "surface");
     const HeightMap map = isPng(bytes) ? readPng(surface.path, bytes, surface.invert) : readDat(surface.path, bytes);
     if (map.lines < 2 || map.columns < 2) return {};
     return SurfaceBuilder(map, surface.center).build();
