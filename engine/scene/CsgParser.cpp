@@ -131,7 +131,8 @@ private:
     Surface surface(const std::vector<CsgArgument>& args, const SourceLocation& where);
     std::string resolvePath(const CsgArgument& file, const char* node) const;
     std::string string(const std::vector<CsgArgument>& args, const char* name, int position, const std::string& fallback) const;
-    double radius(const std::vector<CsgArgument>& args, double fallback) const;
+    double radius(const std::vector<CsgArgument>& args, const char* rname, const char* dname, double fallback,
+                  int position) const;
 
     // Nodes
     int makeLeaf(const std::string& name, const std::vector<CsgArgument>& args, const Context& ctx,
@@ -710,44 +711,21 @@ Cube Parser::cube(const std::vector<CsgArgument>& args, const SourceLocation& wh
 
 Sphere Parser::sphere(const std::vector<CsgArgument>& args, const SourceLocation& where) {
     Sphere s;
-    const CsgArgument* r = find(args, "r", 0);
-    const CsgArgument* d = find(args, "d", -1);
-    if (r != nullptr && r->value.type != CsgValue::Type::Undef) {
-        s.r = number(*r, "r");
-        if (s.r < 0) lex_.failAt(r->where, "r must not be negative");
-    } else if (d != nullptr && d->value.type != CsgValue::Type::Undef) {
-        s.r = number(*d, "d") / 2.0;
-        if (s.r < 0) lex_.failAt(d->where, "d must not be negative");
-    }
+    s.r = radius(args, "r", "d", s.r, 0);
     s.fragments = fragments(args, where);
     return s;
 }
 
 Cylinder Parser::cylinder(const std::vector<CsgArgument>& args, const SourceLocation& where) {
     Cylinder c;
-    auto radius = [&](const char* rname, const char* dname, double fallback, int position) {
-        const CsgArgument* r = find(args, rname, position);
-        if (r != nullptr && r->value.type != CsgValue::Type::Undef) {
-            double v = number(*r, rname);
-            if (v < 0) lex_.failAt(r->where, std::string(rname) + " must not be negative");
-            return v;
-        }
-        const CsgArgument* d = find(args, dname, -1);
-        if (d != nullptr && d->value.type != CsgValue::Type::Undef) {
-            double v = number(*d, dname) / 2.0;
-            if (v < 0) lex_.failAt(d->where, std::string(dname) + " must not be negative");
-            return v;
-        }
-        return fallback;
-    };
     const CsgArgument* h = find(args, "h", 0);
     if (h != nullptr && h->value.type != CsgValue::Type::Undef) {
         c.h = number(*h, "h");
         if (c.h < 0) lex_.failAt(h->where, "h must not be negative");
     }
-    double r = radius("r", "d", 1.0, 1);
-    c.r1 = radius("r1", "d1", r, 2);
-    c.r2 = radius("r2", "d2", r, 3);
+    double r = radius(args, "r", "d", 1.0, 1);
+    c.r1 = radius(args, "r1", "d1", r, 2);
+    c.r2 = radius(args, "r2", "d2", r, 3);
     c.center = boolean(args, "center", 4, false);
     c.fragments = fragments(args, where);
     return c;
@@ -1318,18 +1296,20 @@ std::string Parser::string(const std::vector<CsgArgument>& args, const char* nam
     return a->value.string;
 }
 
-// r, or d / 2, as circle() takes them; must not be negative.
-double Parser::radius(const std::vector<CsgArgument>& args, double fallback) const {
-    const CsgArgument* r = find(args, "r", 0);
+// A radius given as `rname` (or positional), else as the diameter `dname`
+// halved, else `fallback`; neither may be negative (sphere, cylinder, circle).
+double Parser::radius(const std::vector<CsgArgument>& args, const char* rname, const char* dname, double fallback,
+                      int position) const {
+    const CsgArgument* r = find(args, rname, position);
     if (r != nullptr && r->value.type != CsgValue::Type::Undef) {
-        const double v = number(*r, "r");
-        if (v < 0) lex_.failAt(r->where, "r must not be negative");
+        const double v = number(*r, rname);
+        if (v < 0) lex_.failAt(r->where, std::string(rname) + " must not be negative");
         return v;
     }
-    const CsgArgument* d = find(args, "d", -1);
+    const CsgArgument* d = find(args, dname, -1);
     if (d != nullptr && d->value.type != CsgValue::Type::Undef) {
-        const double v = number(*d, "d") / 2.0;
-        if (v < 0) lex_.failAt(d->where, "d must not be negative");
+        const double v = number(*d, dname) / 2.0;
+        if (v < 0) lex_.failAt(d->where, std::string(dname) + " must not be negative");
         return v;
     }
     return fallback;
@@ -1364,7 +1344,7 @@ Square Parser::square(const std::vector<CsgArgument>& args) {
 
 Circle Parser::circle(const std::vector<CsgArgument>& args, const SourceLocation& where) {
     Circle c;
-    c.r = radius(args, 1.0);
+    c.r = radius(args, "r", "d", 1.0, 0);
     c.fragments = fragments(args, where);
     return c;
 }
