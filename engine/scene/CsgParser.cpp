@@ -118,6 +118,7 @@ private:
     void exactify(int root);
     int finishGather(const Open& open);
     bool solidLeavesUnder(int node, std::vector<int>& leaves) const;
+    bool flatChildren(int node) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
     Square square(const std::vector<CsgArgument>& args);
@@ -963,15 +964,11 @@ FlatOp flatOpOf(NodeKind kind) {
 // child under its own transform). Returns the new leaf's node, or -1.
 int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dmat4& placement) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
-    if (n.kind == NodeKind::Leaf || n.children.empty()) return -1;
-    const Leaf* first = nullptr;
+    if (n.kind == NodeKind::Leaf || n.children.empty() || !flatChildren(node)) return -1;
+    const Leaf* first = &tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(n.children[0])].leaf)];
     for (int c : n.children) {
-        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
-        if (child.kind != NodeKind::Leaf) return -1;
-        const Leaf& leaf = tree_.leaves[static_cast<std::size_t>(child.leaf)];
-        if (!std::holds_alternative<FlatSlab>(leaf.primitive) || !keepsPlane(leaf.transform)) return -1;
-        if (first != nullptr && (leaf.display != first->display || leaf.color != first->color)) return -1;
-        if (first == nullptr) first = &leaf;
+        const Leaf& leaf = tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(c)].leaf)];
+        if (!keepsPlane(leaf.transform) || leaf.display != first->display || leaf.color != first->color) return -1;
     }
     FlatTree merged;
     FlatNode root;
@@ -1005,6 +1002,18 @@ int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dma
     leaf.display = first->display;
     leaf.where = n.where;
     return tree_.addLeaf(std::move(leaf));
+}
+
+// Whether every child of `node` is a flat slab leaf: a 2D operation in OpenSCAD.
+bool Parser::flatChildren(int node) const {
+    for (int c : tree_.nodes[static_cast<std::size_t>(node)].children) {
+        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
+        if (child.kind != NodeKind::Leaf ||
+            !std::holds_alternative<FlatSlab>(tree_.leaves[static_cast<std::size_t>(child.leaf)].primitive)) {
+            return false;
+        }
+    }
+    return true;
 }
 
 // The leaves under `node` if it holds only unions (group, multmatrix, color)
@@ -1079,13 +1088,7 @@ Resize Parser::resizeArguments(const std::vector<CsgArgument>& args) const {
 int Parser::finishResize(const Open& open) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
     if (n.children.empty()) return -1;
-    bool allFlat = true;
-    for (int c : n.children) {
-        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
-        allFlat = allFlat && child.kind == NodeKind::Leaf &&
-                  std::holds_alternative<FlatSlab>(tree_.leaves[static_cast<std::size_t>(child.leaf)].primitive);
-    }
-    if (allFlat) {
+    if (flatChildren(open.node)) {
         const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer);
         if (merged < 0) return -1;
         FlatTree& shape = std::get<FlatSlab>(tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(merged)].leaf)].primitive).shape;
@@ -1217,13 +1220,7 @@ int Parser::finishGather(const Open& open) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
     const SourceLocation where = n.where;
     if (n.children.empty()) return -1;  // nothing to hull
-    bool allFlat = true;
-    for (int c : n.children) {
-        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
-        allFlat = allFlat && child.kind == NodeKind::Leaf &&
-                  std::holds_alternative<FlatSlab>(tree_.leaves[static_cast<std::size_t>(child.leaf)].primitive);
-    }
-    if (allFlat) return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski);
+    if (flatChildren(open.node)) return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski);
 
     // Each child's solid leaves (a hull takes them all as one set of points);
     // a difference or intersection among them is evaluated exactly.
