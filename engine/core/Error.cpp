@@ -14,4 +14,9 @@ std::string SourceLocation::str() const {
 Error::Error(const SourceLocation& where, const std::string& message)
     : std::runtime_error(where.str() + ": " + message) {}
 
+void rethrowAt(const SourceLocation& where, const Error& e) {
+    if (where.file.empty() || std::string(e.what()).rfind(where.str() + ":", 0) == 0) throw e;
+    throw Error(where, e.what());
+}
+
 }  // namespace strata

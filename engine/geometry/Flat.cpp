@@ -182,27 +182,22 @@ Result nonEmpty(Result r) {
 }
 
 Result evaluateNode(const scene::FlatTree& tree, const scene::FlatNode& node, std::vector<Result>& children) {
+    // transform, offset and resize act on the union of their children.
+    auto onUnion = [&children](auto&& apply) -> Result {
+        Result joined = combine(children, scene::FlatOp::Union);
+        if (!joined) return std::nullopt;
+        return nonEmpty(apply(std::move(*joined)));
+    };
     switch (node.op) {
         case scene::FlatOp::Shape:
             return nonEmpty(flatPrimitive(tree.shapes[static_cast<std::size_t>(node.shape)]));
         case scene::FlatOp::Union:
         case scene::FlatOp::Intersection:
         case scene::FlatOp::Difference: return nonEmpty(combine(children, node.op));
-        case scene::FlatOp::Transform: {
-            Result joined = combine(children, scene::FlatOp::Union);
-            if (!joined) return std::nullopt;
-            return nonEmpty(transform(std::move(*joined), node.matrix));
-        }
-        case scene::FlatOp::Offset: {
-            Result joined = combine(children, scene::FlatOp::Union);
-            if (!joined) return std::nullopt;
-            return nonEmpty(offset(*joined, node.offset));
-        }
-        case scene::FlatOp::Resize: {
-            Result joined = combine(children, scene::FlatOp::Union);
-            if (!joined) return std::nullopt;
-            return nonEmpty(resize(std::move(*joined), node));
-        }
+        case scene::FlatOp::Transform:
+            return onUnion([&](Outlines shape) { return transform(std::move(shape), node.matrix); });
+        case scene::FlatOp::Offset: return onUnion([&](Outlines shape) { return offset(shape, node.offset); });
+        case scene::FlatOp::Resize: return onUnion([&](Outlines shape) { return resize(std::move(shape), node); });
         case scene::FlatOp::Hull: return hull(children);
         case scene::FlatOp::Minkowski: {
             if (children.empty()) return std::nullopt;
@@ -253,9 +248,7 @@ Outlines evaluateFlat(const scene::FlatTree& tree) {
             for (int c : node.children) children.push_back(std::move(results[static_cast<std::size_t>(c)]));
             results[i] = evaluateNode(tree, node, children);
         } catch (const Error& e) {
-            const std::string prefix = node.where.str() + ":";
-            if (node.where.file.empty() || std::string(e.what()).rfind(prefix, 0) == 0) throw;
-            throw Error(node.where, e.what());
+            rethrowAt(node.where, e);
         }
     }
     Result& root = results[static_cast<std::size_t>(tree.root)];

@@ -106,8 +106,7 @@ Mesh meshOf(const scene::Leaf& leaf) {
     } catch (const Error& e) {
         // Errors from the importer or tessellator name no input position;
         // a leaf read straight from a mesh file may already be named.
-        if (leaf.where.file.empty() || std::string(e.what()).rfind(leaf.where.str() + ":", 0) == 0) throw;
-        throw Error(leaf.where, e.what());
+        rethrowAt(leaf.where, e);
     }
 }
 

@@ -28,6 +28,11 @@ public:
     Error(const SourceLocation& where, const std::string& message);
 };
 
+// Rethrows `e` naming `where` in front of its message, unless it already
+// starts with `where` or `where` names no file (a nested node's error is
+// named once, by the innermost node that knows its position).
+[[noreturn]] void rethrowAt(const SourceLocation& where, const Error& e);
+
 // A non-fatal diagnostic, already formatted as "file:line:col: warning: ...".
 struct Warning {
     std::string message;
