@@ -40,22 +40,6 @@ Mesh objectMesh(const scene::Primitive& p) {
         p);
 }
 
-// Marks the leaves reachable from `node`.
-void markLeaves(const scene::Tree& tree, int node, std::vector<bool>& inCsg) {
-    std::vector<int> stack{node};
-    while (!stack.empty()) {
-        const int n = stack.back();
-        stack.pop_back();
-        if (n < 0 || static_cast<std::size_t>(n) >= tree.nodes.size()) continue;
-        const auto& nd = tree.nodes[static_cast<std::size_t>(n)];
-        if (nd.kind == scene::NodeKind::Leaf) {
-            if (nd.leaf >= 0 && static_cast<std::size_t>(nd.leaf) < inCsg.size()) inCsg[static_cast<std::size_t>(nd.leaf)] = true;
-        } else {
-            stack.insert(stack.end(), nd.children.begin(), nd.children.end());
-        }
-    }
-}
-
 // OpenSCAD's resize of the result that a resize() node's leaves make
 // (PolySet::resize): each axis given a size is scaled to it, `auto` axes
 // take the scale of the largest given one; then the resize's own placement.
@@ -172,7 +156,7 @@ Model buildModel(const scene::Tree& tree) {
     // Bounds cover the leaves in the CSG result: reachable from the root and
     // not '%' background.
     std::vector<bool> inCsg(tree.leaves.size(), false);
-    markLeaves(tree, tree.root, inCsg);
+    for (int l : tree.leavesUnder(tree.root)) inCsg[static_cast<std::size_t>(l)] = true;
 
     for (const scene::Leaf& leaf : tree.leaves) model.leafMeshes.push_back(meshOf(leaf));
     for (const scene::Resize& resize : tree.resizes) applyResize(resize, model.leafMeshes);

@@ -21,24 +21,11 @@
 namespace strata::geometry {
 namespace {
 
-// The leaves under a node, for the shadow of one child.
-void leavesUnder(const scene::Tree& tree, int node, std::vector<int>& out) {
-    std::vector<int> todo{node};
-    while (!todo.empty()) {
-        const scene::Node& n = tree.nodes[static_cast<std::size_t>(todo.back())];
-        todo.pop_back();
-        if (n.kind == scene::NodeKind::Leaf) out.push_back(n.leaf);
-        else todo.insert(todo.end(), n.children.begin(), n.children.end());
-    }
-}
-
 Outlines shadowOf(const scene::Tree& tree, const Model& model) {
     std::vector<std::vector<std::array<glm::dvec2, 3>>> children;
     for (int child : tree.nodes[static_cast<std::size_t>(tree.root)].children) {
-        std::vector<int> leaves;
-        leavesUnder(tree, child, leaves);
         std::vector<std::array<glm::dvec2, 3>> triangles;
-        for (int l : leaves) {
+        for (int l : tree.leavesUnder(child)) {
             const Mesh& mesh = model.leafMeshes[static_cast<std::size_t>(l)];
             for (const auto& t : mesh.triangles) {
                 triangles.push_back({glm::dvec2(mesh.positions[t[0]]), glm::dvec2(mesh.positions[t[1]]),

@@ -117,7 +117,6 @@ private:
     std::shared_ptr<Tree> extractSolid(int root);
     void exactify(int root);
     int finishGather(const Open& open);
-    bool solidLeavesUnder(int node, std::vector<int>& leaves) const;
     bool flatChildren(int node) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -1016,24 +1015,6 @@ bool Parser::flatChildren(int node) const {
     return true;
 }
 
-// The leaves under `node` if it holds only unions (group, multmatrix, color)
-// of solid leaves; false when a difference or intersection is among them.
-bool Parser::solidLeavesUnder(int node, std::vector<int>& leaves) const {
-    std::vector<int> todo{node};
-    while (!todo.empty()) {
-        const Node& n = tree_.nodes[static_cast<std::size_t>(todo.back())];
-        todo.pop_back();
-        if (n.kind == NodeKind::Leaf) {
-            leaves.push_back(n.leaf);
-        } else if (n.kind == NodeKind::Union) {
-            todo.insert(todo.end(), n.children.rbegin(), n.children.rend());
-        } else {
-            return false;
-        }
-    }
-    return true;
-}
-
 namespace {
 
 // Leaves whose solid is convex by construction: a Minkowski sum with them is
@@ -1099,7 +1080,7 @@ int Parser::finishResize(const Open& open) {
     }
     Resize resize = open.resize;
     exactify(open.node);  // the box of a difference or intersection is its exact result's
-    solidLeavesUnder(open.node, resize.leaves);
+    resize.leaves = tree_.leavesUnder(open.node);
     tree_.resizes.push_back(std::move(resize));
     const std::vector<int>& children = tree_.nodes[static_cast<std::size_t>(open.node)].children;
     return children.size() == 1 ? children.front() : open.node;
@@ -1227,10 +1208,8 @@ int Parser::finishGather(const Open& open) {
     exactify(open.node);
     std::vector<std::vector<int>> children;
     for (int c : tree_.nodes[static_cast<std::size_t>(open.node)].children) {
-        std::vector<int> leaves;
-        solidLeavesUnder(c, leaves);
         std::vector<int> solid;
-        for (int l : leaves) {
+        for (int l : tree_.leavesUnder(c)) {
             const Primitive& p = tree_.leaves[static_cast<std::size_t>(l)].primitive;
             if (std::holds_alternative<FlatSlab>(p)) {
                 warnOnce("2d-in-3d", tree_.leaves[static_cast<std::size_t>(l)].where,

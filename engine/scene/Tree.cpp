@@ -41,6 +41,23 @@ bool Tree::isFlat() const {
     return any;
 }
 
+std::vector<int> Tree::leavesUnder(int node) const {
+    std::vector<int> found;
+    std::vector<int> todo{node};
+    while (!todo.empty()) {
+        const int n = todo.back();
+        todo.pop_back();
+        if (n < 0 || static_cast<std::size_t>(n) >= nodes.size()) continue;
+        const Node& nd = nodes[static_cast<std::size_t>(n)];
+        if (nd.kind != NodeKind::Leaf) {
+            todo.insert(todo.end(), nd.children.rbegin(), nd.children.rend());
+        } else if (nd.leaf >= 0 && static_cast<std::size_t>(nd.leaf) < leaves.size()) {
+            found.push_back(nd.leaf);
+        }
+    }
+    return found;
+}
+
 int FlatTree::add(FlatNode node) {
     nodes.push_back(std::move(node));
     return static_cast<int>(nodes.size()) - 1;

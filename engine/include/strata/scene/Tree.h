@@ -161,6 +161,11 @@ struct Tree {
     std::map<std::string, int> unsupported;      // node name -> how many were left out
     std::string source;                           // the input's path as given
 
+    // The leaves reachable from `node` (indices into `leaves`, in depth-first
+    // order; a leaf reached twice is listed twice). Out-of-range indices, as
+    // a tree built in code may hold, are passed over.
+    std::vector<int> leavesUnder(int node) const;
+
     // True when every leaf of the CSG result is a FlatSlab (and there is one):
     // OpenSCAD would call the model 2D.
     bool isFlat() const;
