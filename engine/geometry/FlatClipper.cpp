@@ -114,6 +114,8 @@ void fillInsides(const ClipperLib::Paths& a, const ClipperLib::Paths& b, Clipper
 
 }  // namespace
 
+std::pair<std::int64_t, std::int64_t> gridPoint(const glm::dvec2& p) { return {toGrid(p.x), toGrid(p.y)}; }
+
 Outlines minkowski(const std::vector<const Outlines*>& children) {
     if (children.empty()) return {};
     if (children.size() == 1) return children[0] ? *children[0] : Outlines{};

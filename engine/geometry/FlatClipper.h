@@ -5,6 +5,8 @@
 // outline's sign.
 
 #include <array>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -14,6 +16,10 @@
 namespace strata::geometry::detail {
 
 inline constexpr double kClipperScale = 65536.0;  // OpenSCAD's CLIPPER_SCALE, 2^16
+
+// The grid cell of a point as Clipper sees it: truncated toward zero, as
+// OpenSCAD's IntPoint(x * 2^16) does. Throws strata::Error past Clipper's range.
+std::pair<std::int64_t, std::int64_t> gridPoint(const glm::dvec2& p);
 
 enum class FlatBoolean { Union, Intersection, Difference };
 

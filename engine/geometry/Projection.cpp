@@ -113,11 +113,6 @@ Outlines section(const Mesh& mesh) {
     return result;
 }
 
-// Clipper's grid cell of a point (OpenSCAD's truncating IntPoint(x * 2^16)).
-std::pair<std::int64_t, std::int64_t> gridKey(const glm::dvec2& p) {
-    return {static_cast<std::int64_t>(p.x * detail::kClipperScale), static_cast<std::int64_t>(p.y * detail::kClipperScale)};
-}
-
 Outlines cutOf(const scene::Tree& tree, const Model& model) {
     // OpenSCAD cuts its exact result, so the section's corners are the
     // crossings themselves; Clipper's booleans between the leaves' sections
@@ -127,7 +122,7 @@ Outlines cutOf(const scene::Tree& tree, const Model& model) {
     auto restore = [&](Outlines o) {
         for (Outline& outline : o.outlines)
             for (glm::dvec2& p : outline.points) {
-                const auto it = exact.find(gridKey(p));
+                const auto it = exact.find(detail::gridPoint(p));
                 if (it != exact.end()) p = it->second;
             }
         return o;
@@ -139,7 +134,7 @@ Outlines cutOf(const scene::Tree& tree, const Model& model) {
         if (n.kind == scene::NodeKind::Leaf) {
             const Outlines cut = section(model.leafMeshes[static_cast<std::size_t>(n.leaf)]);
             for (const Outline& o : cut.outlines)
-                for (const glm::dvec2& p : o.points) exact.emplace(gridKey(p), p);
+                for (const glm::dvec2& p : o.points) exact.emplace(detail::gridPoint(p), p);
             results[i] = detail::apply({&cut}, detail::FlatBoolean::Union);
             continue;
         }

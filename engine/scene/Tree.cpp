@@ -1,5 +1,6 @@
 #include "strata/scene/Tree.h"
 
+#include <algorithm>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -25,20 +26,10 @@ int Tree::addNode(NodeKind kind, std::vector<int> children) {
 }
 
 bool Tree::isFlat() const {
-    bool any = false;
-    std::vector<int> todo;
-    if (root >= 0) todo.push_back(root);
-    while (!todo.empty()) {
-        const Node& n = nodes[static_cast<std::size_t>(todo.back())];
-        todo.pop_back();
-        if (n.kind == NodeKind::Leaf) {
-            if (!std::holds_alternative<FlatSlab>(leaves[static_cast<std::size_t>(n.leaf)].primitive)) return false;
-            any = true;
-        } else {
-            todo.insert(todo.end(), n.children.begin(), n.children.end());
-        }
-    }
-    return any;
+    const std::vector<int> result = leavesUnder(root);
+    return !result.empty() && std::all_of(result.begin(), result.end(), [this](int l) {
+        return std::holds_alternative<FlatSlab>(leaves[static_cast<std::size_t>(l)].primitive);
+    });
 }
 
 std::vector<int> Tree::leavesUnder(int node) const {
