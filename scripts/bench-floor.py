@@ -5,10 +5,11 @@
 
 DIR holds strata-bench --json files named engine-<anything>-run<N>.json and
 stand-in-<anything>-run<N>.json (the same command, the second run with
-STRATA_SHADER_DIR pointing at stand-in shaders; see benchmarks.md, "Session
-12"). Prints one Markdown row per scene, K and size: strata/OpenCSG of each
-engine run, strata/OpenCSG and strata/plain of each stand-in run, and the
-range of OpenCSG/plain over all of them. Every ratio is taken within one run
+STRATA_SHADER_DIR=tests/bench/lower-bound/stand-in-shaders; see
+benchmarks.md, "The pipeline's lower bound on llvmpipe"). Prints one
+Markdown row per scene, K and size: strata/OpenCSG of each engine run,
+strata/OpenCSG and strata/plain of each stand-in run, and the range of
+OpenCSG/plain over all of them. Every ratio is taken within one run
 (one process, one row), never across runs: the host's load moves between
 runs by more than the ratios do.
 """

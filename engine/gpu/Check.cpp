@@ -9,7 +9,8 @@ namespace strata::gpu {
 
 SourceLocation sourcePosition(const std::source_location& where) {
     std::string file = where.file_name();
-    // Messages name files relative to the project root, as STYLE.md's examples do.
+    // Messages name files relative to the project root, not by the absolute
+    // path of the checkout they were built from.
     const std::string root = STRATA_SOURCE_DIR;
     if (file.compare(0, root.size(), root) == 0) file.erase(0, root.size());
     return SourceLocation{file, static_cast<int>(where.line()), 0};

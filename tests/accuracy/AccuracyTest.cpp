@@ -1,4 +1,4 @@
-// The accuracy suite (issue 4): every scene and camera of the corpus rendered
+// The accuracy suite: every scene and camera of the corpus rendered
 // by the GPU path and by the CPU reference, compared per pixel (Compare.h).
 //
 //   AccuracyGLTest.MatchesTheReference/<shot>

@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy comparison of issue 4: the GPU frame against the CPU reference,
+// The accuracy comparison: the GPU frame against the CPU reference,
 // pixel by pixel, for one scene and camera.
 //
 // Per pixel (both images W*H, row 0 at the top, index j*W + i):
@@ -69,7 +69,7 @@ struct CompareOptions {
     double maxEdgeDisagreement = 0.01;    // of all pixels
 };
 
-// The issue's bounds for a scene: depth tolerance 1e-4 of the bounding-box diagonal.
+// The accuracy suite's bounds for a scene: depth tolerance 1e-4 of the bounding-box diagonal.
 CompareOptions optionsForScene(double boundsDiagonal);
 
 enum class Verdict : std::uint8_t { Agree, Coverage, Depth, Normal, Leaf };

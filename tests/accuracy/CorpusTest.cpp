@@ -1,4 +1,4 @@
-// The accuracy corpus keeps its promises (issue 4): at least 30 scenes, every
+// The accuracy corpus keeps its promises: at least 30 scenes, every
 // family there, and the properties that make each scene hard for image-space
 // CSG measured on the scenes themselves, not taken from generate.py's word:
 // tree depth, n-ary fan-out, mirrored and sheared leaves, the depth complexity

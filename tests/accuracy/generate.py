@@ -7,7 +7,7 @@ The output is checked in; run this again only to change the corpus. It is
 deterministic (fixed seeds, fixed number formatting), so a re-run without
 edits changes nothing.
 
-Every scene is built to break image-space CSG (issue 4): stacked subtractions
+Every scene is built to break image-space CSG: stacked subtractions
 along the view ray, deep trees, n-ary nodes of 50+ operands, non-convex
 operands (tori, imported meshes of depth complexity >= 6, several shells in one
 leaf), subtrahends through the front and the back, thin walls, near-coincident

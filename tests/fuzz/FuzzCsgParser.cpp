@@ -95,7 +95,7 @@ void checkFlat(const FlatTree& flat, const ParseOptions& options) {
 }
 
 
-// What the parser promises of every tree it returns (Tree.h, CsgParser.h, issue 2):
+// What the parser promises of every tree it returns (Tree.h, CsgParser.h):
 // indices in range, numbers finite, sizes not negative, $fn clamped.
 void checkTree(const Tree& tree, const ParseOptions& options) {
     const auto nodeCount = static_cast<long>(tree.nodes.size());

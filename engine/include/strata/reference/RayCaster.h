@@ -1,6 +1,6 @@
 #pragma once
 // The CPU reference: ray casting of the CSG tree on Embree 3, the accuracy
-// oracle that the GPU path is compared with pixel by pixel (issue 4).
+// oracle that the GPU path is compared with pixel by pixel.
 //
 // For each primary ray of the contract's camera it finds every crossing of
 // the ray with every leaf (IntervalCsg.h turns them into interval lists and

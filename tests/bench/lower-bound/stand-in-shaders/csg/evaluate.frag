@@ -1,10 +1,11 @@
 // Stand-in for shaders/csg/evaluate.frag, for measuring only (benchmarks.md,
-// "Session 12"): whatever the block's form, read the layer its record names
-// and write its near surface. No walk and no tree: the cost left is the pass
-// over the blocks (one fragment per pixel of every drawn block, one texel
-// fetch, two outputs and a stencil mark). Every pixel gets the mark of slot 0
-// (a front face), so the normal pass after it draws less than it would: the
-// measured floor is lower than the real one, never higher.
+// "The pipeline's lower bound on llvmpipe"): whatever the block's form, read
+// the layer its record names and write its near surface. No walk and no
+// tree: the cost left is the pass over the blocks (one fragment per pixel of
+// every drawn block, one texel fetch, two outputs and a stencil mark). Every
+// pixel gets the mark of slot 0 (a front face), so the normal pass after it
+// draws less than it would: the measured floor is lower than the real one,
+// never higher.
 #ifdef LEAF_MARKS
 #extension GL_ARB_shader_stencil_export : require
 #endif

@@ -1,8 +1,9 @@
 // Stand-in for shaders/csg/shade.frag, for measuring only (benchmarks.md,
-// "Session 12"): every marked pixel gets one constant colour. No normal is
-// read, no light, no outline: what is left is the pass itself (the colour
-// clear, the stencil test, one fragment per marked pixel). The declarations
-// are the real shader's, so ShadePass sets its uniforms as usual.
+// "The pipeline's lower bound on llvmpipe"): every marked pixel gets one
+// constant colour. No normal is read, no light, no outline: what is left is
+// the pass itself (the colour clear, the stencil test, one fragment per
+// marked pixel). The declarations are the real shader's, so ShadePass sets
+// its uniforms as usual.
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
 
