@@ -14,6 +14,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
+#include "ExactCache.h"
 #include "strata/core/Error.h"
 
 namespace strata::geometry {
@@ -58,28 +59,18 @@ Mesh toMesh(Solid& s) {
 }
 
 // The subtree's content: its operations in order and its leaves' meshes, bit
-// for bit (FNV-1a over 64-bit words).
+// for bit.
 std::uint64_t contentKey(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    auto mix = [&h](std::uint64_t v) { h = (h ^ v) * 0x100000001b3ull; };
+    detail::ContentKey key;
     std::vector<int> todo{node};
     while (!todo.empty()) {
         const scene::Node& n = tree.nodes[static_cast<std::size_t>(todo.back())];
         todo.pop_back();
-        mix(static_cast<std::uint64_t>(n.kind) + 0x9e37ull * n.children.size());
-        if (n.kind == scene::NodeKind::Leaf) {
-            const Mesh& m = leafMeshes[static_cast<std::size_t>(n.leaf)];
-            mix(m.positions.size());
-            for (const glm::dvec3& p : m.positions) {
-                mix(std::bit_cast<std::uint64_t>(p.x));
-                mix(std::bit_cast<std::uint64_t>(p.y));
-                mix(std::bit_cast<std::uint64_t>(p.z));
-            }
-            for (const auto& t : m.triangles) mix((std::uint64_t(t[0]) << 42) ^ (std::uint64_t(t[1]) << 21) ^ t[2]);
-        }
+        key.mix(static_cast<std::uint64_t>(n.kind) + 0x9e37ull * n.children.size());
+        if (n.kind == scene::NodeKind::Leaf) key.mix(leafMeshes[static_cast<std::size_t>(n.leaf)]);
         todo.insert(todo.end(), n.children.rbegin(), n.children.rend());
     }
-    return h;
+    return key.value();
 }
 
 // Results by content, oldest dropped first past the budget.
@@ -127,6 +118,23 @@ Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMe
 
 }  // namespace
 
+namespace detail {
+
+void ContentKey::mix(const Mesh& m) {
+    mix(m.positions.size());
+    for (const glm::dvec3& p : m.positions) {
+        mix(std::bit_cast<std::uint64_t>(p.x));
+        mix(std::bit_cast<std::uint64_t>(p.y));
+        mix(std::bit_cast<std::uint64_t>(p.z));
+    }
+    for (const auto& t : m.triangles) mix((std::uint64_t(t[0]) << 42) ^ (std::uint64_t(t[1]) << 21) ^ t[2]);
+}
+
+std::optional<Mesh> cachedResult(std::uint64_t key) { return cache().find(key); }
+void keepResult(std::uint64_t key, const Mesh& mesh) { cache().add(key, mesh); }
+
+}  // namespace detail
+
 std::size_t exactCacheHits() { return cache().hits(); }
 
 Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
@@ -135,6 +143,34 @@ Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& lea
     Mesh result = evaluate(tree, node, leafMeshes);
     cache().add(key, result);
     return result;
+}
+
+Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
+    if (solids.empty()) return Mesh{};
+    // Pairwise, in rounds, so that each solid takes part in about log2(n)
+    // corefinements rather than one ever-growing result taking all n.
+    std::vector<Solid> round;
+    round.reserve(solids.size());
+    for (const Mesh& m : solids) round.push_back(toSolid(m, where));
+    solids.clear();
+    while (round.size() > 1) {
+        std::vector<Solid> next;
+        next.reserve((round.size() + 1) / 2);
+        for (std::size_t i = 0; i + 1 < round.size(); i += 2) {
+            Solid out;
+            bool ok = false;
+            try {
+                ok = PMP::corefine_and_compute_union(round[i], round[i + 1], out);
+            } catch (const std::exception& e) {
+                throw Error(where, std::string("the exact union failed: ") + e.what());
+            }
+            if (!ok) throw Error(where, "the exact union failed: its parts meet only along an edge or at a corner");
+            next.push_back(std::move(out));
+        }
+        if (round.size() % 2 == 1) next.push_back(std::move(round.back()));
+        round = std::move(next);
+    }
+    return toMesh(round.front());
 }
 
 namespace {

@@ -16,6 +16,7 @@
 #include "strata/geometry/Hull.h"
 #include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/MeshImport.h"
+#include "strata/geometry/Minkowski.h"
 #include "strata/geometry/Primitives.h"
 #include "strata/geometry/Surface.h"
 
@@ -35,6 +36,7 @@ Mesh objectMesh(const scene::Primitive& p) {
                 const Model solid = buildModel(*v.solid);
                 return exactResult(*v.solid, v.solid->root, solid.leafMeshes);
             }
+            else if constexpr (std::is_same_v<T, scene::MinkowskiSum>) return minkowskiSum(v);
             else return tessellate(v);
         },
         p);

@@ -1207,6 +1207,8 @@ int Parser::finishGather(const Open& open) {
     // a difference or intersection among them is evaluated exactly.
     exactify(open.node);
     std::vector<std::vector<int>> children;
+    std::vector<int> solidChildren;  // the children with a solid in them
+    bool convex = true;              // every solid leaf convex by construction
     for (int c : tree_.nodes[static_cast<std::size_t>(open.node)].children) {
         std::vector<int> solid;
         for (int l : tree_.leavesUnder(c)) {
@@ -1216,15 +1218,24 @@ int Parser::finishGather(const Open& open) {
                          std::string("a 2D object inside ") + name + " of solids is ignored, as OpenSCAD ignores it");
                 continue;
             }
-            if (!hull && !convexByConstruction(p)) {
-                unsupported(std::string("minkowski of a ") + primitiveName(p), where);
-                return -1;
-            }
+            convex = convex && convexByConstruction(p);
             solid.push_back(l);
         }
-        if (!solid.empty()) children.push_back(std::move(solid));
+        if (!solid.empty()) {
+            children.push_back(std::move(solid));
+            solidChildren.push_back(c);
+        }
     }
     if (children.empty()) return -1;
+    if (!hull && !convex) {
+        // Other solids are split into convex parts once their meshes are known.
+        MinkowskiSum sum;
+        for (int c : solidChildren) sum.operands.push_back(extractSolid(c));
+        Leaf leaf = leafAt(open.context, where);
+        leaf.transform = glm::dmat4(1.0);  // the operands carry their own placement
+        leaf.primitive = std::move(sum);
+        return tree_.addLeaf(std::move(leaf));
+    }
     auto leafCopy = [&](int l) { return tree_.leaves[static_cast<std::size_t>(l)]; };
     auto hullLeaf = [&](Hull h) {
         Leaf leaf = leafAt(open.context, where);

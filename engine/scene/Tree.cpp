@@ -79,6 +79,7 @@ const char* primitiveName(const Primitive& primitive) {
             else if constexpr (std::is_same_v<T, FlatSlab>) return "2D shape";
             else if constexpr (std::is_same_v<T, Hull>) return "hull";
             else if constexpr (std::is_same_v<T, Exact>) return "CSG result";
+            else if constexpr (std::is_same_v<T, MinkowskiSum>) return "minkowski";
             else return "surface";
         },
         primitive);

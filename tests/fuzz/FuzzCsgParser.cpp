@@ -174,6 +174,12 @@ void checkLeaf(const Leaf& leaf, const ParseOptions& options) {
             } else if constexpr (std::is_same_v<T, Exact>) {
                 if (!p.solid) broken("exact leaf with no solid");
                 checkTree(*p.solid, options);
+            } else if constexpr (std::is_same_v<T, MinkowskiSum>) {
+                if (p.operands.empty()) broken("minkowski with no operands");
+                for (const auto& operand : p.operands) {
+                    if (!operand) broken("minkowski operand with no tree");
+                    checkTree(*operand, options);
+                }
             } else if constexpr (std::is_same_v<T, Hull>) {
                 if (p.parts.empty()) broken("hull with no parts");
                 for (const Leaf& part : p.parts) checkLeaf(part, options);

@@ -11,8 +11,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "../geometry/GeometryTestUtil.h"
 #include "strata/geometry/Exact.h"
 #include "strata/geometry/Mesh.h"
+#include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/Model.h"
 #include "strata/scene/CsgParser.h"
 
@@ -248,9 +250,7 @@ TEST(FlatParse, HullOfADifferenceHullsItsExactResult) {
     // A cube with its top half cut away: the hull is the remaining 2 x 2 x 1 box.
     const Tree t = parse(
         "hull() { difference() { cube(size = 2); multmatrix([[1, 0, 0, -1], [0, 1, 0, -1], [0, 0, 1, 1], "
-        "[0, 0, 0, 1]]) cube(size = 4); } }\n"
-        "minkowski() { polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], faces = [[0, 1, 2], "
-        "[0, 3, 1], [0, 2, 3], [1, 3, 2]]); sphere(r = 1); }\n");
+        "[0, 0, 0, 1]]) cube(size = 4); } }\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     const auto& h = std::get<Hull>(t.leaves[0].primitive);
     ASSERT_EQ(h.parts.size(), 1u);
@@ -258,8 +258,60 @@ TEST(FlatParse, HullOfADifferenceHullsItsExactResult) {
     const geometry::Model model = geometry::buildModel(t);
     EXPECT_NEAR(model.bounds.max.z, 1.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.x, 2.0, 1e-12);
-    // A minkowski of a solid that is not convex by construction still needs a decomposition.
-    EXPECT_EQ(t.unsupported.at("minkowski of a polyhedron"), 1);
+}
+
+// An L-shaped prism, the union of [0,6]x[0,2] and [0,2]x[0,5] raised to
+// height 3, plus a centred 1 x 0.5 x 0.25 box: the L grows by half the box
+// on every side, so its section is (6+1)(2+0.5) + (2+1)(5+0.5) - (2+1)(2+0.5)
+// = 26.5 and the sum's volume 26.5 x 3.25.
+constexpr double kSumOfLAndBox = 26.5 * 3.25;
+const char* const kBox = "cube(size = [1, 0.5, 0.25], center = true);";
+
+TEST(FlatParse, MinkowskiOfADifferenceSumsItsConvexParts) {
+    const Tree t = parse(std::string("minkowski() { difference() { cube(size = [6, 5, 3]); "
+                                     "multmatrix([[1, 0, 0, 2], [0, 1, 0, 2], [0, 0, 1, -1], [0, 0, 0, 1]]) "
+                                     "cube(size = [10, 10, 5]); } ") +
+                         kBox + " }\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_TRUE(t.unsupported.empty());
+    const auto& sum = std::get<MinkowskiSum>(t.leaves[0].primitive);
+    ASSERT_EQ(sum.operands.size(), 2u);
+    EXPECT_TRUE(std::holds_alternative<Exact>(sum.operands[0]->leaves[0].primitive));
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_NEAR(geometry::test::signedVolume(model.leafMeshes[0]), kSumOfLAndBox, 1e-9);
+    EXPECT_NEAR(model.bounds.min.x, -0.5, 1e-12);
+    EXPECT_NEAR(model.bounds.max.y, 5.25, 1e-12);
+    EXPECT_NEAR(model.bounds.max.z, 3.125, 1e-12);
+}
+
+TEST(FlatParse, MinkowskiOfAPolyhedronSumsItsConvexParts) {
+    // The same L, written as a polyhedron (its bottom and top as one face each).
+    const Tree t = parse(std::string(
+                             "minkowski() { polyhedron(points = [[0, 0, 0], [6, 0, 0], [6, 2, 0], [2, 2, 0], [2, 5, 0], "
+                             "[0, 5, 0], [0, 0, 3], [6, 0, 3], [6, 2, 3], [2, 2, 3], [2, 5, 3], [0, 5, 3]], "
+                             "faces = [[5, 4, 3, 2, 1, 0], [6, 7, 8, 9, 10, 11], [0, 1, 7, 6], [1, 2, 8, 7], "
+                             "[2, 3, 9, 8], [3, 4, 10, 9], [4, 5, 11, 10], [5, 0, 6, 11]]); ") +
+                         kBox + " }\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    ASSERT_TRUE(std::holds_alternative<MinkowskiSum>(t.leaves[0].primitive));
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_TRUE(geometry::checkMesh(model.leafMeshes[0]).ok());
+    EXPECT_NEAR(geometry::test::signedVolume(model.leafMeshes[0]), kSumOfLAndBox, 1e-9);
+    // The same sum again is answered by the cache.
+    const std::size_t hits = geometry::exactCacheHits();
+    const geometry::Model again = geometry::buildModel(t);
+    EXPECT_EQ(geometry::exactCacheHits(), hits + 1);
+    EXPECT_EQ(again.leafMeshes[0].triangles.size(), model.leafMeshes[0].triangles.size());
+}
+
+TEST(FlatParse, MinkowskiOfConvexSolidsStaysAUnionOfHulls) {
+    // Cubes, spheres, cylinders and hulls are convex by construction: no CPU boolean.
+    const Tree t = parse(std::string("minkowski() { union() { cube(size = 1); "
+                                     "multmatrix([[1, 0, 0, 3], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) "
+                                     "sphere(r = 1); } ") +
+                         kBox + " }\n");
+    ASSERT_EQ(t.leaves.size(), 2u);
+    for (const Leaf& leaf : t.leaves) EXPECT_TRUE(std::holds_alternative<Hull>(leaf.primitive));
 }
 
 TEST(FlatParse, HullOfFlatShapesIsAFlatHull) {

@@ -20,7 +20,13 @@ namespace strata::geometry {
 // leaves the subtree alone does not evaluate it again. Thread-safe.
 Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes);
 
-// How many exactResult calls the cache has answered in this process.
+// The union of closed solids (the convex pieces of a minkowski sum), exactly;
+// not cached (its callers cache what they make of it). Throws strata::Error
+// naming `where` when CGAL cannot take a solid or the union is not a manifold.
+Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where);
+
+// How many results the cache has answered in this process (exactResult and
+// minkowski sums).
 std::size_t exactCacheHits();
 
 }  // namespace strata::geometry

@@ -107,8 +107,17 @@ struct Exact {
     std::shared_ptr<const Tree> solid;
 };
 
+// minkowski() of solids that are not all convex by construction: each
+// operand is a child's subtree (a union of leaves, any difference or
+// intersection in it already an Exact leaf), read into a tree of its own;
+// geometry::minkowskiSum splits each into convex parts and joins the parts'
+// sums exactly, as OpenSCAD does.
+struct MinkowskiSum {
+    std::vector<std::shared_ptr<const Tree>> operands;
+};
+
 using Primitive = std::variant<Cube, Sphere, Cylinder, Polyhedron, Import, LinearExtrude, RotateExtrude, FlatSlab,
-                               Surface, Hull, Exact>;
+                               Surface, Hull, Exact, MinkowskiSum>;
 
 // How a leaf is drawn besides its part in the CSG result (OpenSCAD's modifiers).
 enum class Display {
@@ -182,7 +191,8 @@ Tree meshFileTree(const std::string& path);
 
 // The OpenSCAD name of a leaf's primitive: "cube", ..., "linear_extrude",
 // "rotate_extrude", "surface", "hull" (a minkowski of convex parts is one or
-// more hulls); "2D shape" for a FlatSlab; "CSG result" for an Exact.
+// more hulls; of other solids, a "minkowski"); "2D shape" for a FlatSlab;
+// "CSG result" for an Exact.
 const char* primitiveName(const Primitive& primitive);
 
 // Short name of a node kind: "union", "intersection", "difference", "leaf".

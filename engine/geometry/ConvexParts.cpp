@@ -1,0 +1,138 @@
+#include "ConvexParts.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_decomposition_3.h>
+#include <glm/geometric.hpp>
+
+namespace strata::geometry::detail {
+namespace {
+
+using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+using Nef = CGAL::Nef_polyhedron_3<Exact>;
+using Solid = CGAL::Surface_mesh<Exact::Point_3>;
+
+// Two faces meeting at less than 0.1 degrees count as flat: the limit
+// OpenSCAD sets for calling a mesh convex (the quads of its spheres are flat
+// only up to rounding).
+const double kFlatFold = std::cos(0.1 * 3.14159265358979323846 / 180.0);
+
+std::uint64_t edgeKey(uint32_t a, uint32_t b) { return (std::uint64_t(a) << 32) | b; }
+
+// Union-find over triangles, for the count of connected surfaces.
+int findRoot(std::vector<int>& parent, int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+        parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+        i = parent[static_cast<std::size_t>(i)];
+    }
+    return i;
+}
+
+// The corners of a volume's outer shell.
+class ShellCorners {
+public:
+    explicit ShellCorners(std::vector<glm::dvec3>& out) : out_(out) {}
+    void visit(Nef::Vertex_const_handle v) {
+        const Exact::Point_3& p = v->point();
+        out_.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    }
+    void visit(Nef::Halfedge_const_handle) {}
+    void visit(Nef::Halffacet_const_handle) {}
+    void visit(Nef::SHalfedge_const_handle) {}
+    void visit(Nef::SHalfloop_const_handle) {}
+    void visit(Nef::SFace_const_handle) {}
+
+private:
+    std::vector<glm::dvec3>& out_;
+};
+
+}  // namespace
+
+bool isConvex(const Mesh& closed) {
+    if (closed.triangles.empty()) return false;
+    // Each directed edge's triangle; a directed edge met twice is not manifold.
+    std::unordered_map<std::uint64_t, uint32_t> owner;
+    owner.reserve(closed.triangles.size() * 3);
+    for (uint32_t t = 0; t < closed.triangles.size(); ++t) {
+        const auto& tri = closed.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+            if (!owner.emplace(edgeKey(tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]), t).second) {
+                return false;
+            }
+        }
+    }
+    auto normal = [&](const std::array<uint32_t, 3>& t) {
+        const glm::dvec3 n = glm::cross(closed.positions[t[1]] - closed.positions[t[0]],
+                                        closed.positions[t[2]] - closed.positions[t[0]]);
+        const double length = glm::length(n);
+        return length > 0.0 ? n / length : n;
+    };
+    std::vector<int> parent(closed.triangles.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (uint32_t t = 0; t < closed.triangles.size(); ++t) {
+        const auto& tri = closed.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = tri[static_cast<std::size_t>(k)], b = tri[static_cast<std::size_t>((k + 1) % 3)];
+            const auto across = owner.find(edgeKey(b, a));
+            if (across == owner.end()) return false;  // not closed
+            const auto& other = closed.triangles[across->second];
+            uint32_t d = other[0];
+            for (uint32_t v : other)
+                if (v != a && v != b) d = v;
+            // A fold is reflex when the neighbour's far corner lies outside
+            // this triangle's plane (outward: counter-clockwise seen from
+            // outside); folds flatter than 0.1 degrees pass, as in OpenSCAD.
+            const glm::dvec3 n = normal(tri);
+            if (glm::dot(closed.positions[d] - closed.positions[tri[0]], n) > 0.0 &&
+                glm::dot(n, normal(other)) < kFlatFold) {
+                return false;
+            }
+            const int ra = findRoot(parent, static_cast<int>(t)), rb = findRoot(parent, static_cast<int>(across->second));
+            if (ra != rb) parent[static_cast<std::size_t>(ra)] = rb;
+        }
+    }
+    const int root = findRoot(parent, 0);
+    for (std::size_t t = 1; t < parent.size(); ++t)
+        if (findRoot(parent, static_cast<int>(t)) != root) return false;
+    return true;
+}
+
+std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const SourceLocation& where) {
+    if (isConvex(closed)) return {closed.positions};
+    Solid solid;
+    std::vector<Solid::Vertex_index> vertices;
+    vertices.reserve(closed.positions.size());
+    for (const glm::dvec3& p : closed.positions) vertices.push_back(solid.add_vertex(Exact::Point_3(p.x, p.y, p.z)));
+    for (const auto& t : closed.triangles) {
+        if (solid.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Solid::null_face()) {
+            throw Error(where, "minkowski cannot split this solid into convex parts: it touches itself along an edge or a corner");
+        }
+    }
+    std::vector<std::vector<glm::dvec3>> parts;
+    try {
+        Nef nef(solid);
+        CGAL::convex_decomposition_3(nef);
+        // The first volume is the unbounded outside; the marked ones are the parts.
+        auto volume = nef.volumes_begin();
+        for (++volume; volume != nef.volumes_end(); ++volume) {
+            if (!volume->mark()) continue;
+            std::vector<glm::dvec3> corners;
+            ShellCorners visitor(corners);
+            nef.visit_shell_objects(Nef::SFace_const_handle(volume->shells_begin()), visitor);
+            parts.push_back(std::move(corners));
+        }
+    } catch (const std::exception& e) {
+        throw Error(where, std::string("minkowski cannot split this solid into convex parts: ") + e.what());
+    }
+    return parts;
+}
+
+}  // namespace strata::geometry::detail

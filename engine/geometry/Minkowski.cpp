@@ -1,0 +1,86 @@
+#include "strata/geometry/Minkowski.h"
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "ConvexParts.h"
+#include "ExactCache.h"
+#include "strata/core/Error.h"
+#include "strata/geometry/Exact.h"
+#include "strata/geometry/Hull.h"
+#include "strata/geometry/Model.h"
+
+namespace strata::geometry {
+namespace {
+
+constexpr std::size_t kMaxHulls = 4096;
+
+using Part = std::vector<glm::dvec3>;
+
+// An operand's solid leaves in world space: 2D objects among them take no
+// part (the parser has warned of them), nor do empty ones.
+std::vector<const Mesh*> solidMeshes(const scene::Tree& operand, const Model& model) {
+    std::vector<const Mesh*> meshes;
+    for (int l : operand.leavesUnder(operand.root)) {
+        if (std::holds_alternative<scene::FlatSlab>(operand.leaves[static_cast<std::size_t>(l)].primitive)) continue;
+        const Mesh& mesh = model.leafMeshes[static_cast<std::size_t>(l)];
+        if (!mesh.triangles.empty()) meshes.push_back(&mesh);
+    }
+    return meshes;
+}
+
+}  // namespace
+
+Mesh minkowskiSum(const scene::MinkowskiSum& sum) {
+    // An operand is the union of its leaves, and a sum distributes over a
+    // union: its parts are its leaves' parts.
+    std::vector<Model> models;
+    std::vector<std::vector<const Mesh*>> operands;
+    detail::ContentKey key;
+    key.mix(0x6d696e6b6f77736bull);  // "minkowsk": apart from exactResult's keys
+    for (const auto& operand : sum.operands) {
+        models.push_back(buildModel(*operand));
+        operands.push_back(solidMeshes(*operand, models.back()));
+        if (operands.back().empty()) return Mesh{};  // a sum with nothing is nothing
+        key.mix(operands.back().size());
+        for (const Mesh* m : operands.back()) key.mix(*m);
+    }
+    if (std::optional<Mesh> known = detail::cachedResult(key.value())) return std::move(*known);
+
+    std::vector<std::vector<Part>> parts(operands.size());
+    std::size_t hulls = 1;
+    for (std::size_t i = 0; i < operands.size(); ++i) {
+        for (const Mesh* m : operands[i]) {
+            for (Part& p : detail::convexParts(*m, SourceLocation{})) parts[i].push_back(std::move(p));
+        }
+        hulls *= parts[i].size();
+        if (parts[i].empty()) return Mesh{};
+        if (hulls > kMaxHulls) {
+            throw Error("minkowski: the convex parts of its operands make more than " + std::to_string(kMaxHulls) +
+                        " sums");
+        }
+    }
+    // One hull per choice of a part from each operand.
+    std::vector<Mesh> pieces;
+    std::vector<std::size_t> choice(parts.size(), 0);
+    for (std::size_t k = 0; k < hulls; ++k) {
+        Part points = parts[0][choice[0]];
+        for (std::size_t i = 1; i < parts.size(); ++i) {
+            const Part& other = parts[i][choice[i]];
+            Part sums;
+            sums.reserve(points.size() * other.size());
+            for (const glm::dvec3& p : points)
+                for (const glm::dvec3& q : other) sums.push_back(p + q);
+            points = std::move(sums);
+        }
+        Mesh piece = convexHull(points);
+        if (!piece.triangles.empty()) pieces.push_back(std::move(piece));
+        for (std::size_t i = 0; i < parts.size() && ++choice[i] == parts[i].size(); ++i) choice[i] = 0;
+    }
+    Mesh result = pieces.size() == 1 ? std::move(pieces.front()) : exactUnion(std::move(pieces), SourceLocation{});
+    detail::keepResult(key.value(), result);
+    return result;
+}
+
+}  // namespace strata::geometry

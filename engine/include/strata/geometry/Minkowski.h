@@ -1,0 +1,18 @@
+#pragma once
+// minkowski() of solids that are not all convex, as OpenSCAD 2021.01 computes
+// it: each operand split into convex parts (CGAL's convex decomposition where
+// it is not convex), the hull of every choice of one part per operand moved
+// by each other's corners, and the union of those hulls, exactly.
+
+#include "strata/geometry/Mesh.h"
+#include "strata/scene/Tree.h"
+
+namespace strata::geometry {
+
+// The closed, outward sum in world space; empty when an operand is empty.
+// Results share the exact results' cache (by the operands' meshes). Throws
+// strata::Error when an operand's mesh cannot be split, or when the sum
+// would take more than 4096 hulls.
+Mesh minkowskiSum(const scene::MinkowskiSum& sum);
+
+}  // namespace strata::geometry
