@@ -12,7 +12,9 @@
 
 #include "Options.h"
 #include "SceneLoad.h"
+#include "StderrProgress.h"
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
@@ -65,7 +67,12 @@ int run(const apps::RenderOptions& options) {
     stats.dimensions = tree.isFlat() ? 2 : 3;
 
     t = Clock::now();
-    const geometry::Model model = geometry::buildModel(tree);
+    apps::StderrProgress progress("strata-render");
+    geometry::Model model;
+    {
+        const ProgressScope scope(&progress);
+        model = geometry::buildModel(tree);
+    }
     stats.geometryMs = msSince(t);
     for (const Warning& w : model.warnings) {
         std::cerr << w.message << '\n';

@@ -110,7 +110,13 @@ void Viewer::onKey(int key, int action, int mods) {
     case GLFW_KEY_Q:
         if (ctrl) quit_ = true;
         return;
-    case GLFW_KEY_ESCAPE: quit_ = true; return;
+    case GLFW_KEY_ESCAPE:
+        // A running load is stopped first; Esc again quits.
+        if (loader_.busy())
+            loader_.cancel();
+        else
+            quit_ = true;
+        return;
     default: return;
     }
     viewDirty_ = true;  // a preset

@@ -9,18 +9,37 @@ namespace strata::view {
 
 Loader::Loader(std::function<void()> wake) : wake_(std::move(wake)) {}
 
+void LoadProgress::update(const char* what, std::size_t done, std::size_t total) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    what_ = what;
+    done_ = done;
+    total_ = total;
+}
+
+std::string LoadProgress::text() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (what_.empty() || total_ == 0) return what_;
+    return what_ + ": " + std::to_string(done_) + " of " + std::to_string(total_);
+}
+
 Loader::~Loader() {
+    if (progress_) progress_->cancel();
     if (running_.valid()) running_.wait();
 }
 
 void Loader::start(const std::string& path) {
     started_ = std::chrono::steady_clock::now();
-    running_ = std::async(std::launch::async, [path, wake = wake_] {
+    progress_ = std::make_shared<LoadProgress>();
+    running_ = std::async(std::launch::async, [path, wake = wake_, progress = progress_] {
         LoadResult result;
         result.path = path;
         const auto start = std::chrono::steady_clock::now();
         try {
+            const ProgressScope scope(progress.get());
             result.scene = loadSceneFile(path);
+        } catch (const Cancelled&) {
+            result.cancelled = true;
+            result.error = path + ": loading cancelled";
         } catch (const Error& e) {
             result.error = e.what();
         } catch (const std::exception& e) {
@@ -53,6 +72,13 @@ std::optional<LoadResult> Loader::poll() {
 }
 
 bool Loader::busy() const { return running_.valid(); }
+
+std::string Loader::progressText() const { return busy() && progress_ ? progress_->text() : std::string(); }
+
+void Loader::cancel() {
+    waiting_.reset();
+    if (busy() && progress_) progress_->cancel();
+}
 
 double Loader::runningSeconds() const {
     return busy() ? std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count() : 0.0;

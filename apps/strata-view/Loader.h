@@ -4,13 +4,17 @@
 // meanwhile. The GL upload (Renderer::setScene) stays on the GL thread: the
 // caller polls for the result there.
 
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <future>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
 #include "SceneFile.h"
+#include "strata/core/Progress.h"
 
 namespace strata::view {
 
@@ -18,7 +22,25 @@ struct LoadResult {
     std::string path;
     std::optional<LoadedScene> scene;  // empty on failure
     std::string error;                 // the one-line message on failure
+    bool cancelled = false;            // stopped by Loader::cancel (no error in the file)
     double milliseconds = 0;
+};
+
+// What a running load reports (strata/core/Progress.h), read by the GL
+// thread while the worker writes it.
+class LoadProgress : public Progress {
+public:
+    void update(const char* what, std::size_t done, std::size_t total) override;
+    bool cancelled() const override { return cancel_.load(); }
+    void cancel() { cancel_ = true; }
+    // "exact difference: 3 of 12", or empty before the first report.
+    std::string text() const;
+
+private:
+    mutable std::mutex mutex_;
+    std::string what_;
+    std::size_t done_ = 0, total_ = 0;
+    std::atomic<bool> cancel_{false};
 };
 
 class Loader {
@@ -26,7 +48,7 @@ public:
     // `wake` is called on the worker thread when a load has finished (to wake
     // an event loop that waits for input); it must be thread-safe.
     explicit Loader(std::function<void()> wake);
-    ~Loader();  // waits for a running load: it cannot be interrupted halfway
+    ~Loader();  // cancels a running load and waits for it to stop at its next step
     Loader(const Loader&) = delete;
     Loader& operator=(const Loader&) = delete;
 
@@ -37,12 +59,18 @@ public:
     bool busy() const;
     // How long the running load has taken so far.
     double runningSeconds() const;
+    // Where the running load is ("exact difference: 3 of 12"), or empty.
+    std::string progressText() const;
+    // Asks the running load to stop at its next step (the last good model
+    // stays); a waiting request is dropped.
+    void cancel();
 
 private:
     void start(const std::string& path);
 
     std::function<void()> wake_;
     std::future<LoadResult> running_;
+    std::shared_ptr<LoadProgress> progress_;
     std::optional<std::string> waiting_;
     std::chrono::steady_clock::time_point started_;
 };

@@ -30,7 +30,14 @@ void Viewer::drawPanel() {
         return;
     }
     ImGui::TextWrapped("%s", path_.c_str());
-    if (loader_.busy()) ImGui::Text("loading... %.1f s", loader_.runningSeconds());
+    if (loader_.busy()) {
+        ImGui::Text("loading... %.1f s", loader_.runningSeconds());
+        const std::string step = loader_.progressText();
+        if (!step.empty()) ImGui::TextWrapped("%s", step.c_str());
+        if (ImGui::SmallButton("cancel")) loader_.cancel();
+        ImGui::SameLine();
+        ImGui::TextDisabled("(or Esc)");
+    }
     if (!loadError_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
         ImGui::TextWrapped("%s", loadError_.c_str());

@@ -112,6 +112,11 @@ void Viewer::pollReload() {
 
 void Viewer::applyLoad(LoadResult result) {
     ++loadsFinished_;
+    if (result.cancelled) {
+        // Not an error in the file: the last good model stays, as does any error it had.
+        std::cerr << result.error << '\n';
+        return;
+    }
     if (!result.scene) {
         // The last good model stays on screen; the panel shows why the new one did not load.
         loadError_ = result.error;

@@ -16,6 +16,7 @@
 
 #include "ExactCache.h"
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 
 namespace strata::geometry {
 namespace {
@@ -114,7 +115,26 @@ ResultCache& cache() {
     return instance;
 }
 
-Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes);
+// Booleans done and to do in one exact evaluation, for progress reports.
+struct Steps {
+    std::size_t done = 0;
+    std::size_t total = 0;
+};
+
+Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps);
+
+// How many booleans the subtree takes: one per child after the first.
+std::size_t booleansUnder(const scene::Tree& tree, int node) {
+    std::size_t count = 0;
+    std::vector<int> todo{node};
+    while (!todo.empty()) {
+        const scene::Node& n = tree.nodes[static_cast<std::size_t>(todo.back())];
+        todo.pop_back();
+        if (n.children.size() > 1) count += n.children.size() - 1;
+        todo.insert(todo.end(), n.children.begin(), n.children.end());
+    }
+    return count;
+}
 
 }  // namespace
 
@@ -140,7 +160,8 @@ std::size_t exactCacheHits() { return cache().hits(); }
 Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
     const std::uint64_t key = contentKey(tree, node, leafMeshes);
     if (std::optional<Mesh> known = cache().find(key)) return std::move(*known);
-    Mesh result = evaluate(tree, node, leafMeshes);
+    Steps steps{0, booleansUnder(tree, node)};
+    Mesh result = evaluate(tree, node, leafMeshes, steps);
     cache().add(key, result);
     return result;
 }
@@ -153,10 +174,13 @@ Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
     round.reserve(solids.size());
     for (const Mesh& m : solids) round.push_back(toSolid(m, where));
     solids.clear();
+    std::size_t done = 0;
+    const std::size_t total = round.size() - 1;
     while (round.size() > 1) {
         std::vector<Solid> next;
         next.reserve((round.size() + 1) / 2);
         for (std::size_t i = 0; i + 1 < round.size(); i += 2) {
+            reportProgress("exact union", done++, total);
             Solid out;
             bool ok = false;
             try {
@@ -175,19 +199,21 @@ Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
 
 namespace {
 
-Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
+Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps) {
     const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
     if (n.kind == scene::NodeKind::Leaf) return leafMeshes[static_cast<std::size_t>(n.leaf)];
     bool first = true;
     Solid result;
+    const std::string what = std::string("exact ") + scene::kindName(n.kind);
     for (int c : n.children) {
-        const Mesh child = evaluate(tree, c, leafMeshes);
+        const Mesh child = evaluate(tree, c, leafMeshes, steps);
         Solid operand = toSolid(child, tree.nodes[static_cast<std::size_t>(c)].where);
         if (first) {
             result = std::move(operand);
             first = false;
             continue;
         }
+        reportProgress(what.c_str(), steps.done++, steps.total);
         Solid out;
         bool ok = false;
         try {

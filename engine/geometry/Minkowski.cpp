@@ -7,6 +7,7 @@
 #include "ConvexParts.h"
 #include "ExactCache.h"
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 #include "strata/geometry/Exact.h"
 #include "strata/geometry/Hull.h"
 #include "strata/geometry/Model.h"
@@ -50,8 +51,11 @@ Mesh minkowskiSum(const scene::MinkowskiSum& sum) {
 
     std::vector<std::vector<Part>> parts(operands.size());
     std::size_t hulls = 1;
+    std::size_t meshes = 0, split = 0;
+    for (const auto& operand : operands) meshes += operand.size();
     for (std::size_t i = 0; i < operands.size(); ++i) {
         for (const Mesh* m : operands[i]) {
+            reportProgress("minkowski: convex parts", split++, meshes);
             for (Part& p : detail::convexParts(*m, SourceLocation{})) parts[i].push_back(std::move(p));
         }
         hulls *= parts[i].size();
@@ -65,6 +69,7 @@ Mesh minkowskiSum(const scene::MinkowskiSum& sum) {
     std::vector<Mesh> pieces;
     std::vector<std::size_t> choice(parts.size(), 0);
     for (std::size_t k = 0; k < hulls; ++k) {
+        reportProgress("minkowski: hulls", k, hulls);
         Part points = parts[0][choice[0]];
         for (std::size_t i = 1; i < parts.size(); ++i) {
             const Part& other = parts[i][choice[i]];

@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 #include "strata/geometry/Exact.h"
 #include "strata/geometry/Extrude.h"
 #include "strata/geometry/Flat.h"
@@ -160,7 +161,10 @@ Model buildModel(const scene::Tree& tree) {
     std::vector<bool> inCsg(tree.leaves.size(), false);
     for (int l : tree.leavesUnder(tree.root)) inCsg[static_cast<std::size_t>(l)] = true;
 
-    for (const scene::Leaf& leaf : tree.leaves) model.leafMeshes.push_back(meshOf(leaf));
+    for (const scene::Leaf& leaf : tree.leaves) {
+        reportProgress("meshing leaves", model.leafMeshes.size(), tree.leaves.size());
+        model.leafMeshes.push_back(meshOf(leaf));
+    }
     for (const scene::Resize& resize : tree.resizes) applyResize(resize, model.leafMeshes);
     Forgiven forgiven;
     for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
