@@ -919,6 +919,21 @@ scene("minkowski_rounded", "hull",
       "a Minkowski sum of a union of two boxes and a sphere (a union of two hulls), and one of a cylinder and a turned cube, bitten")
 
 
+# minkowski() of non-convex solids: split into convex parts, summed and joined
+# exactly on the CPU into one leaf.
+STAR = [((5.0 if i % 2 == 0 else 2.2) * math.cos(math.radians(36 * i)),
+         (5.0 if i % 2 == 0 else 2.2) * math.sin(math.radians(36 * i))) for i in range(10)]
+
+scene("minkowski_nonconvex", "hull",
+      union(difference(color(PALETTE[3], minkowski(linear_extrude(2.0, polygon(STAR)), sphere(0.8, 12))),
+                       at(0, 0, 1.0, cylinder(6.0, 1.2, fn=24))),
+            color(PALETTE[0], at(-4.0, 9.0, -1.0,
+                                 minkowski(difference(cube((8, 6, 3)), at(2.5, 2.0, -1.0, cube((8, 8, 5)))),
+                                           mm(rotate((0, 0, 1), 30), cube((1.5, 1.5, 1.5))))))),
+      [orbit((0, 3, 0), 35.0, 45.0, 50.0), orbit((0, 3, 0), -110.0, -30.0, 50.0, projection="o", fov=35)],
+      "a star extrusion plus a sphere, bored, and an L-shaped difference plus a turned cube: Minkowski sums of non-convex solids")
+
+
 scene("resized", "hull",
       difference(color(PALETTE[3], resize((18.0, 11.0, 7.0), sphere(5.0, 32))),
                  at(0, 0, 2.0, resize((14.0, 0, 0), union(cube((4, 4, 6)), at(4.0, 0, 0, cylinder(6.0, 2.0, fn=24))),
