@@ -145,6 +145,7 @@ int run(const apps::RenderOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    io::removeTemporariesOnSignals();
     const apps::ParseResult parsed = apps::parseOptions(argc, argv);
     if (parsed.exitNow) {
         (parsed.exitCode == 0 ? std::cout : std::cerr) << parsed.message << (parsed.message.ends_with('\n') ? "" : "\n");

@@ -11,9 +11,11 @@
 #include "Script.h"
 #include "Viewer.h"
 #include "strata/core/Error.h"
+#include "strata/io/ImageWriter.h"
 
 int main(int argc, char** argv) {
     using namespace strata;
+    io::removeTemporariesOnSignals();
     const view::ParsedOptions parsed = view::parseOptions(argc, argv);
     if (parsed.exitNow) {
         (parsed.exitCode == 0 ? std::cout : std::cerr)

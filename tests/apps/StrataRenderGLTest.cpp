@@ -258,3 +258,36 @@ TEST(StrataRenderGL, EveryBundledExampleRendersAndIsFramedByTheDefaultView) {
     }
     EXPECT_GE(rendered, 5);
 }
+
+// A full disk: a file-size limit (ulimit -f) fails the writes as ENOSPC
+// would (with EFBIG): one line naming the output, status 1, no file left.
+TEST(StrataRenderGL, AFullDiskIsOneLineAndLeavesNoFile) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", "sphere($fn = 64, r = 5);\n");
+    // 4 blocks (2 KiB in dash's 512-byte blocks): less than a 256 x 256 PNG of a sphere.
+    const ProcessResult r = runProcess(
+        {"/bin/sh", "-c", "ulimit -f 4 && exec \"$0\" \"$1\" -o \"$2\" --imgsize 256,256", kExe, scene, dir / "out.png"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind((dir / "out.png") + ": cannot write PNG (File too large)", 0), 0u) << r.err;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"cube.csg"});
+}
+
+// SIGTERM at any moment of a run (loading, rendering, writing) leaves
+// either no output or the whole output, and never a temporary.
+TEST(StrataRenderGL, ATerminatedRunLeavesNoTemporary) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", "sphere($fn = 64, r = 5);\n");
+    for (const char* delay : {"0.05", "0.2", "0.35", "0.5", "0.8"}) {
+        const ProcessResult r = runProcess({"/bin/sh", "-c",
+                                            "\"$0\" \"$1\" -o \"$2\" --depth \"$3\" --imgsize 512,512 & "
+                                            "sleep $4; kill -TERM $! 2>/dev/null; wait $!; exit 0",
+                                            kExe, scene, dir / "out.png", dir / "z.exr", delay});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        for (const std::string& name : dir.files()) {
+            EXPECT_TRUE(name == "cube.csg" || name == "out.png" || name == "z.exr") << "left behind: " << name;
+        }
+        std::filesystem::remove(dir / "out.png");
+        std::filesystem::remove(dir / "z.exr");
+    }
+}

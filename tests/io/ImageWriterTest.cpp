@@ -1,10 +1,15 @@
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -156,8 +161,9 @@ TEST_F(ImageWriterTest, UncommittedStagedFilesLeaveNothing) {
     {
         auto png = io::stagePng(path("a.png"), 2, 2, rgba);
         auto z = io::stageDepthExr(path("z.exr"), 2, 2, depth);
-        EXPECT_EQ(filesInDir().size(), 2u);  // two temporaries exist...
-        EXPECT_FALSE(fs::exists(path("a.png")));  // ...but no target yet
+        // Both are written, as files without a name in the folder: no target
+        // yet, and nothing that a kill could leave behind.
+        EXPECT_TRUE(filesInDir().empty());
         // A later output fails: the earlier ones must vanish with it.
         EXPECT_THROW(io::stagePng(path("nope/b.png"), 2, 2, rgba), Error);
     }
@@ -176,4 +182,78 @@ TEST_F(ImageWriterTest, CommitReplacesAnOldFileOnlyAtTheEnd) {
     const ReadBack r = readBack(path("a.png"), OIIO::TypeDesc::UINT8);
     EXPECT_EQ(r.bytes, rgba);
     EXPECT_EQ(filesInDir(), std::vector<std::string>{"a.png"});
+}
+
+TEST_F(ImageWriterTest, AFullDiskIsAnErrorAndLeavesNothing) {
+    // A file-size limit fails the write as a full disk does (EFBIG instead of
+    // ENOSPC); run in a child, whose limit the test process does not share.
+    std::vector<std::uint8_t> rgba(64 * 64 * 4);
+    std::uint32_t x = 2463534242u;  // xorshift: noise that no PNG filter compresses
+    for (std::uint8_t& byte : rgba) {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        byte = static_cast<std::uint8_t>(x >> 24);
+    }
+    const std::string target = path("big.png");
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);
+        const struct rlimit limit {1024, 1024};
+        ::setrlimit(RLIMIT_FSIZE, &limit);
+        int code = 1;
+        try {
+            io::writePng(target, 64, 64, rgba);
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            code = message.rfind(target + ": cannot write PNG (File too large)", 0) == 0 ? 0 : 2;
+        }
+        std::_Exit(code);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: another message";
+    EXPECT_TRUE(filesInDir().empty());
+}
+
+TEST_F(ImageWriterTest, LongNamesWorkAndBadTargetsAreRefused) {
+    const std::vector<std::uint8_t> rgba(4, 7);
+    // The longest name a file system takes (255 bytes) is written like any other.
+    const std::string longName = std::string(251, 'n') + ".png";
+    io::writePng(path(longName), 1, 1, rgba);
+    EXPECT_EQ(filesInDir(), std::vector<std::string>{longName});
+    fs::remove(path(longName));
+
+    std::string nul = path("a.png");
+    nul.insert(nul.size() - 4, 1, '\0');
+    EXPECT_THROW(io::writePng(nul, 1, 1, rgba), Error);
+    ASSERT_EQ(::mkfifo(path("fifo.png").c_str(), 0600), 0);
+    try {
+        io::writePng(path("fifo.png"), 1, 1, rgba);
+        ADD_FAILURE() << "wrote over a FIFO";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), path("fifo.png") + ": cannot write PNG (it is not a regular file)");
+    }
+    EXPECT_EQ(filesInDir(), std::vector<std::string>{"fifo.png"});
+}
+
+TEST_F(ImageWriterTest, TemporariesOfKilledProcessesAreRemoved) {
+    // What a process killed between naming and renaming its file leaves; a
+    // pid past the kernel's limit is never alive.
+    std::ifstream limitFile("/proc/sys/kernel/pid_max");
+    long pidMax = 4194304;
+    limitFile >> pidMax;
+    const std::string stale = ".strata-" + std::to_string(pidMax + 1) + "-0.tmp";
+    const std::string live = ".strata-" + std::to_string(::getppid()) + "-0.tmp";
+    std::ofstream(path(stale)) << "x";
+    std::ofstream(path(live)) << "x";
+    std::ofstream(path(".strata-notes.tmp")) << "x";
+    io::writePng(path("a.png"), 1, 1, std::vector<std::uint8_t>(4, 1));
+    std::vector<std::string> names = filesInDir();
+    std::sort(names.begin(), names.end());
+    std::vector<std::string> expected{".strata-notes.tmp", live, "a.png"};
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(names, expected);
 }

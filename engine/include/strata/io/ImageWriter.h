@@ -3,47 +3,64 @@
 // of docs/contract.md. Every image is W*H pixels, row 0 at the TOP (as in
 // the files), pixel (i, j) at index j*W + i.
 //
-// No half-written files: each image goes to a temporary file in the target's
-// folder and is renamed into place. Stage every output first, then commit them
-// all, so a failure on the last output leaves none of the others behind:
+// No half-written files: each image is encoded in memory and written, every
+// write checked (a full disk is an error, not a truncated file), into an
+// unnamed file in the target's folder (O_TMPFILE; where the file system has
+// none, a hidden ".strata-PID-N.tmp"), which commit() names and renames into
+// place. Stage every output first, then commit them all, so a failure on the
+// last output leaves none of the others behind:
 //
 //   std::vector<io::StagedFile> staged;
 //   staged.push_back(io::stagePng("out.png", w, h, rgba));
-//   staged.push_back(io::stageDepthExr("z.exr", w, h, depth));  // may throw: out.png's temporary goes
+//   staged.push_back(io::stageDepthExr("z.exr", w, h, depth));  // may throw: out.png's file goes
 //   for (auto& s : staged) s.commit();
 
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 namespace strata::io {
 
-// A written temporary file waiting to be renamed onto its target path.
-// Move-only. Destroying it uncommitted removes the temporary.
+// A written file waiting to be renamed onto its target path. Move-only.
+// Destroying it uncommitted removes it.
 class StagedFile {
 public:
     StagedFile() = default;
-    StagedFile(std::string temporary, std::string target) noexcept;
     StagedFile(StagedFile&& other) noexcept;
     StagedFile& operator=(StagedFile&& other) noexcept;
     StagedFile(const StagedFile&) = delete;
     StagedFile& operator=(const StagedFile&) = delete;
     ~StagedFile();
 
-    // Renames the temporary onto the target (replacing an old file of that
+    // Writes `bytes` (the file's whole content) for `target`, in `folder`, the
+    // target's folder. Throws strata::Error("<target>: cannot write <what> (...)").
+    static StagedFile write(const std::string& folder, const std::string& target, const std::string& what,
+                            const std::vector<unsigned char>& bytes);
+
+    // Renames the file onto the target (replacing an old file of that
     // name). Throws strata::Error("<target>: cannot write (...)") on failure.
     void commit();
 
     const std::string& target() const noexcept { return target_; }
-    const std::string& temporary() const noexcept { return temporary_; }
 
 private:
     void discard() noexcept;
-    std::string temporary_;
     std::string target_;
+    std::string folder_;
+    std::string named_;  // the file's temporary name while it has one
+    int fd_ = -1;
+    int slot_ = -1;      // its place in the list a signal handler removes
 };
+
+// For programs: SIGINT, SIGTERM, SIGHUP and SIGQUIT remove any named
+// temporary of a write in progress, then end the process as the signal
+// would have. (Unnamed files need no help; SIGKILL cannot be caught, and the
+// next write into that folder removes what it left.) SIGXFSZ is ignored, so
+// a write past the file-size limit fails with an error like a full disk.
+void removeTemporariesOnSignals();
 
 // 8-bit RGBA PNG, straight (unassociated) alpha, written as given.
 // rgba: W*H*4 bytes. Throws strata::Error("<path>: cannot write PNG (<why>)").
