@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "strata/core/Error.h"
+#include "strata/core/InputFile.h"
 #include "strata/scene/CsgParser.h"
 
 namespace strata::apps {
@@ -18,14 +19,8 @@ std::string lowerExtension(const std::string& path) {
 bool isMeshExtension(const std::string& ext) { return ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply"; }
 
 void checkReadable(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(SourceLocation{path, 0, 0}, "no such file");
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
-    if (std::FILE* f = std::fopen(path.c_str(), "rb"))
-        std::fclose(f);
-    else
-        throw Error(SourceLocation{path, 0, 0}, "cannot open file");
+    const std::string why = unreadableReason(path);
+    if (!why.empty()) throw Error(SourceLocation{path, 0, 0}, "cannot read (" + why + ")");
 }
 
 scene::Tree loadSceneFile(const std::string& path) {

@@ -1,5 +1,7 @@
 #include "Options.h"
 
+#include <filesystem>
+
 #include <CLI/CLI.hpp>
 
 #include <cctype>
@@ -126,6 +128,15 @@ void checkOutputName(const std::string& option, const std::string& path, std::st
         throw UsageError{option + ": expected a " + std::string(extension) + " file name, got '" + path + "'"};
 }
 
+// Whether two output names lead to one file (after "." , ".." and links).
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    const std::filesystem::path x = std::filesystem::weakly_canonical(a, ec);
+    if (ec) return a == b;
+    const std::filesystem::path y = std::filesystem::weakly_canonical(b, ec);
+    return ec ? a == b : x == y;
+}
+
 }  // namespace
 
 ParseResult parseOptions(int argc, char** argv) {
@@ -163,6 +174,10 @@ ParseResult parseOptions(int argc, char** argv) {
         if (app.count("-o")) checkOutputName("-o", o.png, ".png");
         if (app.count("--depth")) checkOutputName("--depth", o.depth, ".exr");
         if (app.count("--normal")) checkOutputName("--normal", o.normal, ".exr");
+        // Two outputs into one file: the second would silently replace the first.
+        if (!o.depth.empty() && sameFile(o.depth, o.normal)) {
+            throw UsageError{"--depth and --normal name the same file '" + o.depth + "'"};
+        }
         if (app.count("--colorscheme")) o.colorScheme = checkedColorScheme(o.colorScheme);
     });
     return result;

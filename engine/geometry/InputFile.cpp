@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "strata/core/Error.h"
+#include "strata/core/InputFile.h"
 
 namespace strata::geometry::detail {
 
@@ -15,9 +16,7 @@ std::string readInputFile(const std::string& path, const char* node) {
         throw Error(std::string(node) + ": cannot read '" + path + "': " + why);
     };
     std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (ec || !std::filesystem::exists(status)) fail("no such file");
-    if (!std::filesystem::is_regular_file(status)) fail("not a regular file");
+    if (const std::string why = unreadableReason(path); !why.empty()) fail(why);
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (ec) fail(ec.message());
     if (size > kMaxBytes) fail("larger than 256 MiB");

@@ -17,6 +17,7 @@
 
 #include "PolygonTriangulation.h"
 #include "strata/core/Error.h"
+#include "strata/core/InputFile.h"
 #include "strata/geometry/MeshCheck.h"
 
 namespace strata::geometry {
@@ -147,8 +148,7 @@ Mesh importMesh(const std::string& path) {
         throw fail("unsupported format '" + ext + "' (expected .stl, .off, .obj or .ply)");
     }
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw fail("no such file");
-    if (std::filesystem::is_directory(path, ec)) throw fail("is a directory");
+    if (const std::string why = unreadableReason(path); !why.empty()) throw fail(why);
     if (!std::ifstream(path, std::ios::binary)) throw fail("cannot open file");
     const auto size = std::filesystem::file_size(path, ec);
     if (size == 0) throw fail("empty file");

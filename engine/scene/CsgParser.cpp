@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "CsgLexer.h"
+#include "strata/core/InputFile.h"
 #include "CsgValue.h"
 
 namespace strata::scene {
@@ -799,8 +800,9 @@ std::optional<Import> Parser::import(const std::vector<CsgArgument>& args, const
 std::string Parser::resolvePath(const CsgArgument& file, const char* node) const {
     std::filesystem::path path(file.value.string);
     if (path.is_relative() && !baseDir_.empty()) path = std::filesystem::path(baseDir_) / path;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) lex_.failAt(file.where, std::string(node) + " file not found: " + path.string());
+    const std::string why = unreadableReason(path.string());
+    if (why == "no such file") lex_.failAt(file.where, std::string(node) + " file not found: " + path.string());
+    if (!why.empty()) lex_.failAt(file.where, std::string(node) + " cannot read '" + path.string() + "': " + why);
     return path.lexically_normal().string();
 }
 
@@ -1593,8 +1595,8 @@ Tree parseCsg(std::istream& in, const std::string& name, const std::string& base
 }
 
 Tree parseCsgFile(const std::string& path, const ParseOptions& options) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error(SourceLocation{path, 0, 0}, "is a directory, not a scene file");
+    const std::string why = unreadableReason(path);
+    if (!why.empty()) throw Error(SourceLocation{path, 0, 0}, "cannot read (" + why + ")");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(SourceLocation{path, 0, 0}, "cannot open file");
     std::string baseDir = std::filesystem::path(path).parent_path().string();

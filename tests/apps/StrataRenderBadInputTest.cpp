@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <filesystem>
+
 #include <string>
 #include <vector>
 
@@ -163,4 +167,36 @@ TEST(StrataRender, MissingEglIsOneLineAndWritesNothing) {
     expectFailure(dir, {scene}, "EGL: no OpenGL 4.5 core context available (",
                   {{"__EGL_VENDOR_LIBRARY_FILENAMES", dir / "no-such-vendor.json"},
                    {"__EGL_VENDOR_LIBRARY_DIRS", dir / "no-such-folder"}});
+}
+
+TEST(StrataRender, FifosDevicesAndFoldersAreRefusedWithoutBlocking) {
+    TempDir dir;
+    // A FIFO would block a reader that opens it; a device would feed one forever.
+    ASSERT_EQ(::mkfifo((dir / "pipe.csg").c_str(), 0600), 0);
+    expectFailure(dir, {dir / "pipe.csg"}, (dir / "pipe.csg") + ": cannot read (it is a FIFO)");
+    std::filesystem::create_symlink("/dev/zero", dir / "zero.stl");
+    expectFailure(dir, {dir / "zero.stl"}, (dir / "zero.stl") + ": cannot read (it is a device)");
+    // The same inside a scene: an import of a device, a FIFO or a folder.
+    const std::string scene = dir.write(
+        "imports.csg", "import(file = \"zero.stl\");\nimport(file = \"pipe.csg.stl\");\nimport(file = \"sub.stl\");\n");
+    expectFailure(dir, {scene}, scene + ":1:15: import cannot read '" + (dir / "zero.stl") + "': it is a device");
+    ASSERT_EQ(::mkfifo((dir / "pipe.csg.stl").c_str(), 0600), 0);
+    dir.write("imports2.csg", "import(file = \"pipe.csg.stl\");\n");
+    expectFailure(dir, {dir / "imports2.csg"},
+                  (dir / "imports2.csg") + ":1:15: import cannot read '" + (dir / "pipe.csg.stl") + "': it is a FIFO");
+    std::filesystem::create_directories(dir / "sub.stl");
+    dir.write("imports3.csg", "import(file = \"sub.stl\");\n");
+    expectFailure(dir, {dir / "imports3.csg"},
+                  (dir / "imports3.csg") + ":1:15: import cannot read '" + (dir / "sub.stl") + "': it is a folder");
+    std::filesystem::create_directories(dir / "folder.csg");
+    expectFailure(dir, {dir / "folder.csg"}, (dir / "folder.csg") + ": cannot read (it is a folder)");
+}
+
+TEST(StrataRender, TwoOutputsIntoOneFileIsAUsageError) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "--depth", dir / "s.exr", "--normal", dir / "s.exr"},
+                  "strata-render: --depth and --normal name the same file");
+    expectFailure(dir, {scene, "--depth", dir / "s.exr", "--normal", dir / "./s.exr"},
+                  "strata-render: --depth and --normal name the same file");
 }
