@@ -103,8 +103,9 @@ void parseProjection(const std::string& text, RenderOptions& options) {
 
 void parseFov(const std::string& text, RenderOptions& options) {
     double fov = 0;
-    if (!parseReal(text, fov) || fov <= 0.0 || fov >= 180.0)
-        throw UsageError{"--fov: expected degrees between 0 and 180 (exclusive), got '" + text + "'"};
+    // Past these the fitted camera's distance leaves floating point.
+    if (!parseReal(text, fov) || fov < 0.01 || fov > 179.0)
+        throw UsageError{"--fov: expected degrees from 0.01 to 179, got '" + text + "'"};
     options.fovDegrees = fov;
 }
 

@@ -58,10 +58,9 @@ int run(const apps::RenderOptions& options) {
     auto t = Clock::now();
     const scene::Tree tree = apps::loadSceneFile(options.scene);
     stats.parseMs = msSince(t);
-    for (const Warning& w : tree.warnings) {
-        std::cerr << w.message << '\n';
-        stats.warnings.push_back(w.message);
-    }
+    // Warnings are printed once everything is written: a run that fails
+    // says one line, its error.
+    for (const Warning& w : tree.warnings) stats.warnings.push_back(w.message);
     stats.unsupported = tree.unsupported;
     stats.leaves = static_cast<int>(tree.leaves.size());
     stats.dimensions = tree.isFlat() ? 2 : 3;
@@ -74,10 +73,7 @@ int run(const apps::RenderOptions& options) {
         model = geometry::buildModel(tree);
     }
     stats.geometryMs = msSince(t);
-    for (const Warning& w : model.warnings) {
-        std::cerr << w.message << '\n';
-        stats.warnings.push_back(w.message);
-    }
+    for (const Warning& w : model.warnings) stats.warnings.push_back(w.message);
     for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
 
     render::Camera base;
@@ -138,6 +134,7 @@ int run(const apps::RenderOptions& options) {
     stats.writeMs = msSince(t);
     stats.totalMs = msSince(start);
 
+    for (const std::string& w : stats.warnings) std::cerr << w << '\n';
     if (options.stats) std::cout << io::statsJson(stats) << std::endl;
     return 0;
 }

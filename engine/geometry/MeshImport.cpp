@@ -6,6 +6,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -134,6 +135,37 @@ std::vector<unsigned long long> declaredCounts(const std::string& head, const st
     return counts;
 }
 
+// The line of the first word of `text` that spells a non-finite number
+// ("nan", "inf", "-inf", "infinity", any case), or 0. A reader would take
+// such a coordinate, or stop at it and report a short file. Lines that carry
+// names or comments (OBJ's o, g, usemtl, mtllib; STL's solid; PLY's comment;
+// '#') are not looked at.
+std::size_t lineOfNonFiniteWord(const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    for (std::size_t number = 1; std::getline(in, line); ++number) {
+        std::istringstream words(line);
+        std::string word;
+        if (!(words >> word) || word[0] == '#' || word == "comment" || word == "obj_info" || word == "solid" ||
+            word == "endsolid" || word == "o" || word == "g" || word == "usemtl" || word == "mtllib") {
+            continue;
+        }
+        do {
+            for (char& ch : word) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+            if (word[0] == '-' || word[0] == '+') word.erase(0, 1);
+            if (word == "nan" || word == "inf" || word == "infinity") return number;
+        } while (words >> word);
+    }
+    return 0;
+}
+
+// Whether the start of a file reads as text (a binary STL or PLY does not).
+bool looksLikeText(const std::string& head) {
+    for (unsigned char c : head.substr(0, 512))
+        if (c == 0 || (c < 32 && !std::isspace(c))) return false;
+    return true;
+}
+
 std::string readAll(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -152,8 +184,14 @@ Mesh importMesh(const std::string& path) {
     if (!std::ifstream(path, std::ios::binary)) throw fail("cannot open file");
     const auto size = std::filesystem::file_size(path, ec);
     if (size == 0) throw fail("empty file");
-    for (unsigned long long n : declaredCounts(readHead(path, 1 << 16), ext)) {
+    const std::string head = readHead(path, 1 << 16);
+    for (unsigned long long n : declaredCounts(head, ext)) {
         if (n > size) throw fail("header declares " + std::to_string(n) + " elements, more than the file can hold");
+    }
+    if (looksLikeText(head)) {
+        if (const std::size_t line = lineOfNonFiniteWord(readAll(path)); line > 0) {
+            throw Error(path + ":" + std::to_string(line) + ": cannot read mesh: a coordinate is not a finite number");
+        }
     }
 
     PolyMesh om;
@@ -184,6 +222,9 @@ Mesh importMesh(const std::string& path) {
     mesh.positions.reserve(om.n_vertices());
     for (const auto& vh : om.vertices()) {
         const auto& p = om.point(vh);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+            throw fail("a vertex has a coordinate that is not a finite number");
+        }
         mesh.positions.emplace_back(p[0], p[1], p[2]);
     }
     // Faces OpenMesh could not attach (complex edges) it adds again on copies

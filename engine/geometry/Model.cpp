@@ -1,7 +1,9 @@
 #include "strata/geometry/Model.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -126,12 +128,28 @@ private:
     std::array<Entry, 2> entries_;
 };
 
+// The largest coordinate a solid may have in world space: far beyond any
+// model (a kilometre in micrometres is 1e9), and small enough that the
+// camera's distances and the GPU's single-precision depths stay finite.
+constexpr double kMaxCoordinate = 1e12;
+
+std::string shortNumber(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return text;
+}
+
 // Cleans the leaf's mesh and checks it is a closed solid; notes what was forgiven.
 void checkLeaf(const scene::Leaf& leaf, Mesh& mesh, Forgiven& forgiven) {
     const char* name = scene::primitiveName(leaf.primitive);
     for (const auto& p : mesh.positions) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
             throw Error(leaf.where, std::string(name) + " has a non-finite coordinate after its transform");
+        }
+        const double largest = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+        if (largest > kMaxCoordinate) {
+            throw Error(leaf.where, std::string(name) + " reaches " + shortNumber(largest) +
+                                        " after its transform; strata takes coordinates up to 1e12");
         }
     }
     const std::size_t before = mesh.triangles.size();

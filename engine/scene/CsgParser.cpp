@@ -544,8 +544,11 @@ bool Parser::isSign() const {
     return lex_.token() == Token::Punct && (lex_.punct() == '-' || lex_.punct() == '+');
 }
 
+// A number, a sign, or the words inf and nan (which OpenSCAD writes for
+// non-finite numbers): what a flat vector of numbers holds.
 bool Parser::isNumberStart() const {
-    return lex_.token() == Token::Number || isSign();
+    return lex_.token() == Token::Number || isSign() ||
+           (lex_.token() == Token::Identifier && (lex_.text() == "inf" || lex_.text() == "nan"));
 }
 
 // A number with any run of signs before it, folded in a loop so that a
@@ -798,6 +801,11 @@ std::optional<Import> Parser::import(const std::vector<CsgArgument>& args, const
 
 // The file argument resolved against the .csg's folder; it must be a regular file.
 std::string Parser::resolvePath(const CsgArgument& file, const char* node) const {
+    if (file.value.string.find('\0') != std::string::npos) {
+        std::string shown;
+        for (char c : file.value.string) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
+        lex_.failAt(file.where, std::string(node) + " file name holds a NUL byte: '" + shown + "'");
+    }
     std::filesystem::path path(file.value.string);
     if (path.is_relative() && !baseDir_.empty()) path = std::filesystem::path(baseDir_) / path;
     const std::string why = unreadableReason(path.string());

@@ -101,6 +101,7 @@ TEST(StrataRender, BadProjectionFovAndLayersAreOneLine) {
     expectFailure(dir, {scene, "--fov", "0"}, "strata-render: --fov: ");
     expectFailure(dir, {scene, "--fov=180"}, "strata-render: --fov: ");
     expectFailure(dir, {scene, "--fov", "wide"}, "strata-render: --fov: ");
+    expectFailure(dir, {scene, "--fov", "1e-300"}, "strata-render: --fov: expected degrees from 0.01 to 179");
     expectFailure(dir, {scene, "--layers", "0"}, "strata-render: --layers: ");
     expectFailure(dir, {scene, "--layers=-2"}, "strata-render: --layers: ");
     expectFailure(dir, {scene, "--layers", "some"}, "strata-render: --layers: ");
@@ -199,4 +200,28 @@ TEST(StrataRender, TwoOutputsIntoOneFileIsAUsageError) {
                   "strata-render: --depth and --normal name the same file");
     expectFailure(dir, {scene, "--depth", dir / "s.exr", "--normal", dir / "./s.exr"},
                   "strata-render: --depth and --normal name the same file");
+}
+
+TEST(StrataRender, HugeAndNonFiniteNumbersNameTheirNode) {
+    TempDir dir;
+    // Past strata's largest coordinate: named by the node, not by the camera it would break.
+    const std::string big = dir.write("big.csg", "cube(size = 1e308);\n");
+    expectFailure(dir, {big}, big + ":1:1: cube reaches 1e+308 after its transform; strata takes coordinates up to 1e12");
+    const std::string far = dir.write("far.csg", "multmatrix([[1, 0, 0, 1e308], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(1);\n");
+    expectFailure(dir, {far}, far + ":1:74: cube reaches 1e+308 after its transform");
+    // OpenSCAD writes inf and nan as words: a matrix holding one is a matrix with a bad number.
+    const std::string inf = dir.write("inf.csg", "multmatrix([[1, 0, 0, inf], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(1);\n");
+    expectFailure(dir, {inf}, inf + ":1:12: multmatrix has a number that is not finite");
+    // A NUL byte in an import's name is named, not a cut-off name.
+    const std::string nul = dir.write("nul.csg", std::string("import(file = \"a\0b.stl\");\n", 26));
+    expectFailure(dir, {nul}, nul + ":1:15: import file name holds a NUL byte: 'a\\0b.stl'");
+}
+
+TEST(StrataRender, AFailureAfterWarningsIsStillOneLine) {
+    TempDir dir;
+    // An unsupported node (a warning from the parser) and an open
+    // polyhedron (an error in the geometry after it).
+    const std::string scene = dir.write(
+        "both.csg", "roof() square(1);\npolyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n");
+    expectFailure(dir, {scene}, scene + ":2:1: polyhedron is not a closed solid");
 }

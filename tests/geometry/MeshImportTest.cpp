@@ -175,3 +175,22 @@ TEST(ImportMesh, BadFilesThrow) {
         }
     }
 }
+
+TEST(ImportMesh, NonFiniteCoordinatesNameTheirLine) {
+    TempDir dir;
+    const std::string tetrahedron = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    { std::ofstream(dir.file("nan.off")) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 nan\n0 0 1\n" << tetrahedron; }
+    { std::ofstream(dir.file("inf.obj")) << "# made by hand\no inf\nv 0 0 0\nv 1 0 0\nv 0 -INF 0\nv 0 0 1\nf 1 3 2\n"; }
+    // Names that merely spell the word are names, not numbers.
+    { std::ofstream(dir.file("named.obj")) << "# inf\no inf\ng nan\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"; }
+    for (const auto& [name, line] : {std::pair<const char*, int>{"nan.off", 5}, {"inf.obj", 5}}) {
+        try {
+            importMesh(dir.file(name));
+            ADD_FAILURE() << name << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      dir.file(name) + ":" + std::to_string(line) + ": cannot read mesh: a coordinate is not a finite number");
+        }
+    }
+    EXPECT_EQ(importMesh(dir.file("named.obj")).positions.size(), 4u);
+}
