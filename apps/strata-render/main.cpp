@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -152,6 +153,8 @@ int main(int argc, char** argv) {
         return run(parsed.options);
     } catch (const Error& e) {
         std::cerr << e.what() << '\n';
+    } catch (const std::bad_alloc&) {
+        std::cerr << parsed.options.scene << ": out of memory (the scene needs more memory than the process may use)\n";
     } catch (const std::exception& e) {
         // Not ours (std::bad_alloc, a library's exception): still one line, still no output.
         std::cerr << "strata-render: " << e.what() << '\n';

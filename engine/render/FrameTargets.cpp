@@ -57,12 +57,26 @@ void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
     glDisable(GL_SCISSOR_TEST);
 }
 
+namespace {
+
+// The greedy colouring below compares each operand with every one placed
+// before it: quadratic, so kept to scenes where that is cheap.
+constexpr std::size_t kMaxGreedyOperands = 4096;
+
+}  // namespace
+
 void FrameTargets::assignMarkSlots(std::span<const int> operandLeaves, std::span<const PixelRect> rects,
                                    std::size_t leafCount) {
     markSlots_.assign(std::max<std::size_t>(leafCount, 1), 0);
     const std::size_t n = operandLeaves.size();
     if (n <= static_cast<std::size_t>(kMarkSlots)) {
         for (std::size_t k = 0; k < n; ++k) markSlots_[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k);
+    } else if (n > kMaxGreedyOperands) {
+        // Past a few thousand operands most slots are shared within any
+        // rectangle anyway (the normal pass then checks every mark): deal
+        // them out in turn, in linear time, rather than colouring.
+        for (std::size_t k = 0; k < n; ++k)
+            markSlots_[static_cast<std::size_t>(operandLeaves[k])] = static_cast<int>(k % kMarkSlots);
     } else {
         // Greedy colouring of the rectangles' overlap graph, largest first:
         // the big operands (a cheese's cube) overlap the most and choose first.

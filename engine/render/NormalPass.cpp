@@ -22,7 +22,12 @@ constexpr GLint kFlip = 6;  // TRUST_MARKS only
 // are its own, that is, no other leaf holding its mark slot this frame
 // (`markLeaves`, screen rectangles `markRects`) meets that rectangle (the
 // evaluator writes a leaf only inside its rectangle, as this pass draws it
-// only there). 0 for leaves that hold no slot.
+// only there). 0 for leaves that hold no slot. A slot shared by more than
+// kMaxPairwise leaves is not looked into (its leaves count as not owning
+// their marks, which is always safe: they take the checked shader), so the
+// test stays linear in the leaves however many there are.
+constexpr std::size_t kMaxPairwise = 128;
+
 std::vector<char> marksOwnedInRect(const FrameTargets& targets, std::span<const int> markLeaves,
                                    std::span<const PixelRect> markRects, const PixelRect& tile) {
     std::vector<std::vector<std::size_t>> bySlot(FrameTargets::kMarkSlots);
@@ -33,6 +38,10 @@ std::vector<char> marksOwnedInRect(const FrameTargets& targets, std::span<const 
     }
     std::vector<char> owned(markLeaves.size(), 1);
     for (const std::vector<std::size_t>& sharing : bySlot) {
+        if (sharing.size() > kMaxPairwise) {
+            for (std::size_t k : sharing) owned[k] = 0;
+            continue;
+        }
         for (std::size_t i = 0; i < sharing.size(); ++i) {
             const PixelRect r = markRects[sharing[i]].intersection(tile);
             for (std::size_t j = i + 1; j < sharing.size(); ++j) {

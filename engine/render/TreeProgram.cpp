@@ -32,7 +32,7 @@ public:
     TreeProgram compile() {
         TreeProgram program;
         if (tree_.root < 0) return program;  // nothing at all: empty
-        const int root = propagateLiterals(normalize(tree_.root));
+        const int root = propagateLiterals(flattenSameType(normalize(tree_.root)));
         if (root == kEmpty) return program;
         if (root == kEverything) {
             program.kind = TreeProgram::Kind::Everything;
@@ -150,12 +150,7 @@ private:
             const int child = memo(node.children[i], childNegated);
             if (child == absorbing) return absorbing;
             if (child == neutral) continue;
-            const Expr& c = exprs_[static_cast<std::size_t>(child)];
-            if (c.type == type) {
-                children.insert(children.end(), c.children.begin(), c.children.end());
-            } else {
-                children.push_back(child);
-            }
+            children.push_back(child);  // an AND in an AND is spliced later, once (flattenSameType)
         }
         if (children.empty()) return neutral;
         if (children.size() == 1) return children.front();
@@ -163,6 +158,53 @@ private:
         combined.children = std::move(children);
         exprs_.push_back(std::move(combined));
         return static_cast<int>(exprs_.size()) - 1;
+    }
+
+    // AND(AND(a, b), c) = AND(a, b, c), and likewise for OR: each AND/OR that
+    // starts a run of its own type (the root, or under the other type, or
+    // with two parents) takes the children of the whole run, in order, in one
+    // walk. A chain of n nested differences is then one AND of n + 1
+    // children, made in O(n), not one list per level.
+    int flattenSameType(int root) {
+        if (root == kEmpty || root == kEverything || isLiteral(root)) return root;
+        std::vector<int> parents(exprs_.size(), 0);
+        postorder(root, [&](int e) {
+            for (int c : exprs_[static_cast<std::size_t>(e)].children) ++parents[static_cast<std::size_t>(c)];
+        });
+        std::vector<char> done(exprs_.size(), 0);
+        std::vector<int> starts{root};
+        std::vector<int> members;
+        while (!starts.empty()) {
+            const int start = starts.back();
+            starts.pop_back();
+            if (done[static_cast<std::size_t>(start)] || isLiteral(start)) continue;
+            done[static_cast<std::size_t>(start)] = 1;
+            const Expr::Type type = exprs_[static_cast<std::size_t>(start)].type;
+            std::vector<int> flat;
+            members.clear();
+            std::vector<std::pair<int, std::size_t>> walk{{start, 0}};
+            while (!walk.empty()) {
+                const auto [e, next] = walk.back();
+                const std::vector<int>& children = exprs_[static_cast<std::size_t>(e)].children;
+                if (next == children.size()) {
+                    walk.pop_back();
+                    continue;
+                }
+                walk.back().second = next + 1;
+                const int c = children[next];
+                const Expr& child = exprs_[static_cast<std::size_t>(c)];
+                if (child.type == type && parents[static_cast<std::size_t>(c)] == 1) {
+                    members.push_back(c);  // part of the run: its children join `flat`
+                    walk.push_back({c, 0});
+                } else {
+                    flat.push_back(c);
+                    starts.push_back(c);
+                }
+            }
+            for (int m : members) std::vector<int>().swap(exprs_[static_cast<std::size_t>(m)].children);
+            if (!members.empty()) exprs_[static_cast<std::size_t>(start)].children = std::move(flat);
+        }
+        return root;
     }
 
     // --- 2b: an AND's literals are true, an OR's false, inside its other children ---

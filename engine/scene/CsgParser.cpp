@@ -22,7 +22,7 @@ namespace strata::scene {
 namespace {
 
 constexpr int kMaxVectorNesting = 64;
-constexpr int kMaxBlockNesting = 100000;
+constexpr int kMaxBlockNesting = 1000000;
 
 // OpenSCAD modules strata knows but does not render yet: their subtree is left
 // out with one warning per name.
@@ -409,7 +409,7 @@ void Parser::statement() {
 }
 
 void Parser::pushBlock(Open open, const SourceLocation& where) {
-    if (stack_.size() >= static_cast<std::size_t>(kMaxBlockNesting)) lex_.failAt(where, "nesting too deep");
+    if (stack_.size() >= static_cast<std::size_t>(kMaxBlockNesting)) lex_.failAt(where, "nesting too deep (more than " + std::to_string(kMaxBlockNesting) + " blocks)");
     stack_.push_back(std::move(open));
 }
 

@@ -332,6 +332,20 @@ TEST(TreeProgram, VeryDeepChainsCompileWithoutRecursionAndOneStackEntry) {
     EXPECT_EQ(program.code.size(), 200001u);
 }
 
+TEST(TreeProgram, DeepChainsOfOneKindFlattenInLinearMemory) {
+    // difference(difference(... difference(a, b1) ..., b199999), b200000):
+    // one AND of 200001 literals. Flattening level by level would hold a
+    // list per level, 2e10 entries in all.
+    Tree tree;
+    int node = leaf(tree);
+    for (int i = 0; i < 200000; ++i) node = tree.addNode(NodeKind::Difference, {node, leaf(tree)});
+    tree.root = node;
+    const auto program = render::compileTree(tree);
+    EXPECT_EQ(program.stackDepth, 1);
+    EXPECT_EQ(program.code.size(), 200001u);
+    EXPECT_EQ(program.operandLeaf.size(), 200001u);
+}
+
 TEST(TreeProgram, SharedSubtreesAreEvaluatedWherePlaced) {
     // The same node used twice, once subtracted: (a ∪ b) - (a ∩ b) = a xor b.
     Tree tree;
