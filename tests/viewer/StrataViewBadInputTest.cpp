@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -28,13 +31,18 @@ TEST(StrataViewBadInput, SceneErrorsAreStrataRendersOneLiners) {
     TempDir dir;
     const std::string bad = dir.write("bad.csg", "cube(size = [1, 1, 1]);\nsphere(r = );\n");
     const std::string open = dir.write("open.csg", "polyhedron(points = [[0,0,0],[1,0,0],[0,1,0]], faces = [[0,1,2]]);\n");
-    for (const std::string& scene : {bad, open, dir / "missing.csg", dir / "scene.txt"}) {
+    // A FIFO would block the reader, a device feed it forever: refused before opening.
+    EXPECT_EQ(::mkfifo((dir / "pipe.csg").c_str(), 0600), 0);
+    EXPECT_EQ(::mkfifo((dir / "pipe.scad").c_str(), 0600), 0);
+    std::filesystem::create_symlink("/dev/urandom", dir / "noise.stl");
+    for (const std::string& scene :
+         {bad, open, dir / "missing.csg", dir / "scene.txt", dir / "pipe.csg", dir / "pipe.scad", dir / "noise.stl"}) {
         const ProcessResult view = runProcess({kView, scene}, kNoDisplay);
         const ProcessResult render = runProcess({kRender, scene});
         EXPECT_NE(view.exitCode, 0) << scene;
         EXPECT_EQ(lineCount(view.err), 1) << view.err;
         EXPECT_TRUE(view.err.starts_with(scene + ":")) << view.err;
-        if (!scene.ends_with(".txt")) {
+        if (!scene.ends_with(".txt") && !scene.ends_with(".scad")) {
             EXPECT_EQ(view.err, render.err);  // strata-view also opens .scad, so that message differs
         }
     }
