@@ -15,6 +15,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include "ExactCache.h"
+#include "NefPolyhedra.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
 
@@ -22,8 +23,27 @@ namespace strata::geometry {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using Solid = CGAL::Surface_mesh<Kernel::Point_3>;
+using Solid = detail::ExactSolid;
+using detail::Boolean;
 namespace PMP = CGAL::Polygon_mesh_processing;
+
+// a OP b. Corefinement first (fast); where it fails on a degenerate
+// configuration (CGAL's checks are on: a failed one throws) or cannot build
+// the result, Nef polyhedra, which take every configuration.
+Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
+    const Solid a0 = a, b0 = b;  // corefinement rewrites its operands
+    Solid out;
+    try {
+        bool ok = false;
+        if (op == Boolean::Difference) ok = PMP::corefine_and_compute_difference(a, b, out);
+        else if (op == Boolean::Intersection) ok = PMP::corefine_and_compute_intersection(a, b, out);
+        else ok = PMP::corefine_and_compute_union(a, b, out);
+        if (ok) return out;
+    } catch (const std::exception&) {
+        // Fall through to the slower, robust way.
+    }
+    return detail::nefBoolean(a0, b0, op, where);
+}
 
 Solid toSolid(const Mesh& mesh, const SourceLocation& where) {
     Solid s;
@@ -121,7 +141,7 @@ struct Steps {
     std::size_t total = 0;
 };
 
-Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps);
+Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps);
 
 // How many booleans the subtree takes: one per child after the first.
 std::size_t booleansUnder(const scene::Tree& tree, int node) {
@@ -161,7 +181,8 @@ Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& lea
     const std::uint64_t key = contentKey(tree, node, leafMeshes);
     if (std::optional<Mesh> known = cache().find(key)) return std::move(*known);
     Steps steps{0, booleansUnder(tree, node)};
-    Mesh result = evaluate(tree, node, leafMeshes, steps);
+    Solid solid = detail::simplified(evaluate(tree, node, leafMeshes, steps), tree.nodes[static_cast<std::size_t>(node)].where);
+    Mesh result = toMesh(solid);
     cache().add(key, result);
     return result;
 }
@@ -181,15 +202,7 @@ Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
         next.reserve((round.size() + 1) / 2);
         for (std::size_t i = 0; i + 1 < round.size(); i += 2) {
             reportProgress("exact union", done++, total);
-            Solid out;
-            bool ok = false;
-            try {
-                ok = PMP::corefine_and_compute_union(round[i], round[i + 1], out);
-            } catch (const std::exception& e) {
-                throw Error(where, std::string("the exact union failed: ") + e.what());
-            }
-            if (!ok) throw Error(where, "the exact union failed: its parts meet only along an edge or at a corner");
-            next.push_back(std::move(out));
+            next.push_back(combine(std::move(round[i]), std::move(round[i + 1]), Boolean::Union, where));
         }
         if (round.size() % 2 == 1) next.push_back(std::move(round.back()));
         round = std::move(next);
@@ -199,34 +212,28 @@ Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
 
 namespace {
 
-Mesh evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps) {
+// The subtree's result, exact throughout: points are rounded to doubles only
+// once, at the end (toMesh).
+Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps) {
     const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
-    if (n.kind == scene::NodeKind::Leaf) return leafMeshes[static_cast<std::size_t>(n.leaf)];
-    bool first = true;
-    Solid result;
+    if (n.kind == scene::NodeKind::Leaf) return toSolid(leafMeshes[static_cast<std::size_t>(n.leaf)], n.where);
+    const Boolean op = n.kind == scene::NodeKind::Difference     ? Boolean::Difference
+                       : n.kind == scene::NodeKind::Intersection ? Boolean::Intersection
+                                                                 : Boolean::Union;
     const std::string what = std::string("exact ") + scene::kindName(n.kind);
+    Solid result;
+    bool first = true;
     for (int c : n.children) {
-        const Mesh child = evaluate(tree, c, leafMeshes, steps);
-        Solid operand = toSolid(child, tree.nodes[static_cast<std::size_t>(c)].where);
+        Solid operand = evaluate(tree, c, leafMeshes, steps);
         if (first) {
             result = std::move(operand);
             first = false;
             continue;
         }
         reportProgress(what.c_str(), steps.done++, steps.total);
-        Solid out;
-        bool ok = false;
-        try {
-            if (n.kind == scene::NodeKind::Difference) ok = PMP::corefine_and_compute_difference(result, operand, out);
-            else if (n.kind == scene::NodeKind::Intersection) ok = PMP::corefine_and_compute_intersection(result, operand, out);
-            else ok = PMP::corefine_and_compute_union(result, operand, out);
-        } catch (const std::exception& e) {
-            throw Error(n.where, std::string("the exact evaluation failed: ") + e.what());
-        }
-        if (!ok) throw Error(n.where, "the exact evaluation failed: a solid intersects itself or is not closed");
-        result = std::move(out);
+        result = combine(std::move(result), std::move(operand), op, n.where);
     }
-    return toMesh(result);
+    return result;
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 #include <variant>
 #include <vector>
 
-#include "ConvexParts.h"
+#include "NefPolyhedra.h"
 #include "ExactCache.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"

@@ -1,4 +1,4 @@
-#include "ConvexParts.h"
+#include "NefPolyhedra.h"
 
 #include <array>
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/convex_decomposition_3.h>
 #include <glm/geometric.hpp>
 
@@ -133,6 +134,38 @@ std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const Sourc
         throw Error(where, std::string("minkowski cannot split this solid into convex parts: ") + e.what());
     }
     return parts;
+}
+
+ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
+    try {
+        const Nef nef(solid);
+        ExactSolid out;
+        CGAL::convert_nef_polyhedron_to_polygon_mesh(nef, out, /*triangulate_all_faces=*/true);
+        return out;
+    } catch (const std::exception& e) {
+        std::string why = e.what();
+        for (char& c : why)
+            if (c == '\n') c = ' ';
+        throw Error(where, "the exact evaluation failed: " + why);
+    }
+}
+
+ExactSolid nefBoolean(const ExactSolid& a, const ExactSolid& b, Boolean op, const SourceLocation& where) {
+    try {
+        Nef left(a);
+        const Nef right(b);
+        if (op == Boolean::Union) left += right;
+        else if (op == Boolean::Intersection) left *= right;
+        else left -= right;
+        ExactSolid out;
+        CGAL::convert_nef_polyhedron_to_polygon_mesh(left, out, /*triangulate_all_faces=*/true);
+        return out;
+    } catch (const std::exception& e) {
+        std::string why = e.what();
+        for (char& c : why)
+            if (c == '\n') c = ' ';
+        throw Error(where, "the exact evaluation failed: " + why);
+    }
 }
 
 }  // namespace strata::geometry::detail

@@ -1,0 +1,44 @@
+#pragma once
+// What strata does with CGAL's Nef polyhedra (the exact representation
+// OpenSCAD 2021.01 evaluates with): a closed solid split into convex parts,
+// for Minkowski sums; and a boolean of two solids where corefinement, the
+// faster way, fails on a degenerate configuration. Kept in one file, as Nef
+// polyhedra are heavy to compile.
+
+#include <vector>
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <glm/vec3.hpp>
+
+#include "strata/core/Error.h"
+#include "strata/geometry/Mesh.h"
+
+namespace strata::geometry::detail {
+
+// Whether a closed, outward, edge-manifold mesh bounds a convex solid, as
+// OpenSCAD judges it: one connected surface with no reflex edge, where faces
+// that meet at less than 0.1 degrees count as flat (a sphere's quads are flat
+// only up to rounding). A mesh with an edge shared by more than two triangles
+// is not convex.
+bool isConvex(const Mesh& closed);
+
+// The corners of each convex part of `closed`: one part, its own corners,
+// when it is convex. Throws strata::Error naming `where` when CGAL cannot
+// take the mesh.
+std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const SourceLocation& where);
+
+// Closed solids with exact points, as the exact evaluation keeps them.
+using ExactSolid = CGAL::Surface_mesh<CGAL::Epeck::Point_3>;
+enum class Boolean { Union, Intersection, Difference };
+
+// a OP b through Nef polyhedra, triangulated. Throws strata::Error naming
+// `where` when CGAL cannot take a solid.
+// The same solid with each run of coplanar triangles joined into one face
+// and retriangulated, and the points no edge needs gone, through a Nef
+// polyhedron: the fewest faces, as OpenSCAD's results have.
+ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where);
+
+ExactSolid nefBoolean(const ExactSolid& a, const ExactSolid& b, Boolean op, const SourceLocation& where);
+
+}  // namespace strata::geometry::detail
