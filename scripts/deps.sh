@@ -13,7 +13,8 @@ packages=(
   libfreetype-dev libharfbuzz-dev libfontconfig-dev fonts-liberation2   # text(), OpenSCAD's default font
   libxml2-dev libpng-dev                 # import() of SVG files; surface() of PNG images
   libqhull-dev                           # hull() and minkowski(): convex hulls
-  libcgal-dev                            # exact results of differences and intersections inside hull/resize/projection
+  libcgal-dev                            # exact results of differences and intersections inside hull/resize/projection/minkowski, and --export-exact
+  lib3mf-dev                             # --export to 3MF
   libgtest-dev libgmock-dev
   libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
   libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)

@@ -12,6 +12,8 @@
 #include <string_view>
 
 #include "CommandLine.h"
+#include "strata/core/Error.h"
+#include "strata/io/MeshWriter.h"
 
 namespace strata::apps {
 namespace {
@@ -129,6 +131,27 @@ void checkOutputName(const std::string& option, const std::string& path, std::st
         throw UsageError{option + ": expected a " + std::string(extension) + " file name, got '" + path + "'"};
 }
 
+bool sameFile(const std::string& a, const std::string& b);
+
+// --export FILE: a mesh format by its extension, and for now the exact path.
+void checkExport(const RenderOptions& o) {
+    if (o.exportPath.empty()) throw UsageError{"--export: expected a file name"};
+    try {
+        io::meshFormatOf(o.exportPath);
+    } catch (const Error&) {
+        throw UsageError{"--export: expected a .stl, .off, .obj or .3mf file name, got '" + o.exportPath + "'"};
+    }
+    if (!o.exportExact) {
+        throw UsageError{"--export: only the exact export exists so far; add --export-exact (CGAL's result, "
+                         "as OpenSCAD's render)"};
+    }
+    for (const std::string* other : {&o.png, &o.depth, &o.normal}) {
+        if (!other->empty() && sameFile(*other, o.exportPath)) {
+            throw UsageError{"--export and another output name the same file '" + o.exportPath + "'"};
+        }
+    }
+}
+
 // Whether two output names lead to one file (after "." , ".." and links).
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code ec;
@@ -165,6 +188,12 @@ ParseResult parseOptions(int argc, char** argv) {
                  "find the surfaces with the CPU reference ray caster (Embree) instead of the GPU passes, "
                  "to compare the two on your own scenes (same outputs, same shading)");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
+    app.add_option("--export", o.exportPath,
+                   "write the CSG result as a mesh (binary STL, OFF, OBJ or 3MF, by the extension); "
+                   "without -o, --depth or --normal nothing is rendered")
+        ->type_name("FILE");
+    app.add_flag("--export-exact", o.exportExact,
+                 "export the exact result, evaluated by CGAL as OpenSCAD's render does (needed with --export)");
 
     static_cast<CliOutcome&>(result) = parseCommandLine(app, argc, argv, "strata-render", [&] {
         if (!imgsize.empty() || app.count("--imgsize")) parseImageSize(imgsize, o);
@@ -179,6 +208,8 @@ ParseResult parseOptions(int argc, char** argv) {
         if (!o.depth.empty() && sameFile(o.depth, o.normal)) {
             throw UsageError{"--depth and --normal name the same file '" + o.depth + "'"};
         }
+        if (app.count("--export")) checkExport(o);
+        if (o.exportExact && o.exportPath.empty()) throw UsageError{"--export-exact: give --export FILE too"};
         if (app.count("--colorscheme")) o.colorScheme = checkedColorScheme(o.colorScheme);
     });
     return result;

@@ -24,6 +24,8 @@ struct RenderOptions {
     bool stats = false;
     bool reference = false;                 // --reference: the CPU ray caster instead of the GPU passes
     std::string colorScheme = "Cornfield";
+    std::string exportPath;                 // --export FILE.stl|.off|.obj|.3mf; empty: none
+    bool exportExact = false;               // --export-exact: CGAL's exact result of the tree
 };
 
 // What parsing decided: run with the options, or stop (CliOutcome).

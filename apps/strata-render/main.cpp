@@ -16,9 +16,11 @@
 #include "StderrProgress.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
+#include "strata/geometry/Exact.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/io/MeshWriter.h"
 #include "strata/io/Stats.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Camera.h"
@@ -43,6 +45,24 @@ void checkOutputFolder(const std::string& path) {
     std::error_code ec;
     if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
         throw Error(SourceLocation{path, 0, 0}, "cannot write (no folder '" + parent.string() + "')");
+}
+
+// --export-exact: the whole tree's result through CGAL, as one mesh.
+io::StagedFile exportExact(const apps::RenderOptions& options, const scene::Tree& tree, const geometry::Model& model,
+                           apps::StderrProgress& progress) {
+    if (tree.isFlat()) {
+        throw Error(SourceLocation{options.scene, 0, 0},
+                    "a 2D model has no solid to export (OpenSCAD exports it as DXF or SVG)");
+    }
+    geometry::Mesh result;
+    if (tree.root >= 0) {
+        const ProgressScope scope(&progress);
+        result = geometry::exactResult(tree, tree.root, model.leafMeshes);
+    }
+    if (result.triangles.empty()) {
+        throw Error(SourceLocation{options.scene, 0, 0}, "the CSG result is empty: nothing to export");
+    }
+    return io::stageMesh(options.exportPath, result);
 }
 
 int run(const apps::RenderOptions& options) {
@@ -76,6 +96,22 @@ int run(const apps::RenderOptions& options) {
     stats.geometryMs = msSince(t);
     for (const Warning& w : model.warnings) stats.warnings.push_back(w.message);
     for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
+
+    // The exported mesh is staged first, committed with the images.
+    std::vector<io::StagedFile> staged;
+    if (!options.exportPath.empty()) {
+        checkOutputFolder(options.exportPath);
+        t = Clock::now();
+        staged.push_back(exportExact(options, tree, model, progress));
+        stats.exportMs = msSince(t);
+        if (options.png.empty() && options.depth.empty() && options.normal.empty()) {
+            staged.front().commit();
+            stats.totalMs = msSince(start);
+            for (const std::string& w : stats.warnings) std::cerr << w << '\n';
+            if (options.stats) std::cout << io::statsJson(stats) << std::endl;
+            return 0;
+        }
+    }
 
     render::Camera base;
     base.width = options.width;
@@ -125,7 +161,6 @@ int run(const apps::RenderOptions& options) {
 
     // Stage every output, then commit them all: a failure anywhere writes none.
     t = Clock::now();
-    std::vector<io::StagedFile> staged;
     if (!options.png.empty()) staged.push_back(io::stagePng(options.png, frame.width, frame.height, frame.rgba));
     if (!options.depth.empty())
         staged.push_back(io::stageDepthExr(options.depth, frame.width, frame.height, frame.depth));

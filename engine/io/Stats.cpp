@@ -35,6 +35,7 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("readback").value(ms(f.readbackMs));
     json.key("frame").value(ms(f.totalMs));
     json.key("write").value(ms(s.writeMs));
+    if (s.exportMs >= 0) json.key("export").value(ms(s.exportMs));
     json.key("total").value(ms(s.totalMs));
     json.endObject();
 

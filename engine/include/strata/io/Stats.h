@@ -6,7 +6,8 @@
 //     "scene": "examples/cheese.csg", "width": 512, "height": 512,
 //     "renderer": "llvmpipe (LLVM 15.0.6, 256 bits)",
 //     "time_ms": {"parse": .., "geometry": .., "context": .., "upload": .., "peel": ..,
-//                 "evaluate": .., "shade": .., "readback": .., "frame": .., "write": .., "total": ..},
+//                 "evaluate": .., "shade": .., "readback": .., "frame": .., "write": ..,
+//                 "export": .. (with --export only), "total": ..},
 //     "operands": 12, "leaves": 13, "triangles": 9000,
 //     "dimensions": 3,                         // 2: a flat model, shown as a slab one unit thick
 //     "layers_per_operand": [1, 3, ...],      // per tree leaf; 0 for leaves not drawn
@@ -33,6 +34,7 @@ struct RunStats {
     int width = 0, height = 0;
     std::string renderer;           // GL_RENDERER (or "reference")
     double parseMs = 0, geometryMs = 0, contextMs = 0, uploadMs = 0, writeMs = 0, totalMs = 0;
+    double exportMs = -1;  // --export: evaluating and encoding the mesh; < 0: no export (not printed)
     int leaves = 0;                 // all tree leaves, background ones too
     int dimensions = 3;             // 2 when every leaf of the result is flat (scene::Tree::isFlat)
     std::size_t triangles = 0;      // over all leaf meshes
