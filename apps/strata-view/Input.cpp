@@ -103,6 +103,9 @@ void Viewer::onKey(int key, int action, int mods) {
     case GLFW_KEY_H: showPanel_ = !showPanel_; return;
     case GLFW_KEY_C: copyCamera(); return;
     case GLFW_KEY_F5: loader_.request(path_); return;
+    case GLFW_KEY_E:
+        if (ctrl) startExport(exportPath_.empty() ? defaultExportPath() : exportPath_);
+        return;
     case GLFW_KEY_S:
         if (ctrl) saveNumberedScreenshot();
         return;

@@ -3,6 +3,7 @@
 #include "Viewer.h"
 
 #define GLFW_INCLUDE_NONE
+#include <cstdio>
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -71,6 +72,21 @@ void Viewer::drawPanel() {
         if (ImGui::Checkbox("orthographic", &ortho)) toggleProjection();
         ImGui::SameLine();
         if (ImGui::Button("reset")) resetView();
+    }
+
+    if (ImGui::CollapsingHeader("export")) {
+        if (exportPath_.empty()) exportPath_ = defaultExportPath();
+        char buffer[1024];
+        std::snprintf(buffer, sizeof buffer, "%s", exportPath_.c_str());
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::InputText("##export", buffer, sizeof buffer)) exportPath_ = buffer;
+        if (exporter_.busy()) {
+            ImGui::TextWrapped("exporting... %s", exporter_.progressText().c_str());
+            if (ImGui::SmallButton("cancel export")) exporter_.cancel();
+        } else if (ImGui::Button("export exact result (Ctrl+E)")) {
+            startExport(exportPath_);
+        }
+        ImGui::TextDisabled(".stl, .off, .obj or .3mf; evaluated by CGAL as OpenSCAD's render");
     }
 
     if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -1,5 +1,7 @@
 #include "Script.h"
 
+#include "strata/io/MeshWriter.h"
+
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -24,7 +26,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 24> kSyntax{{
+constexpr std::array<Syntax, 25> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -44,6 +46,7 @@ constexpr std::array<Syntax, 24> kSyntax{{
     {"panel", CommandKind::Panel, 1, 1},
     {"screenshot", CommandKind::Screenshot, 1, 1},
     {"screenshot-window", CommandKind::ScreenshotWindow, 1, 1},
+    {"export", CommandKind::Export, 1, 1},
     {"copy", CommandKind::Copy, 2, 2},
     {"wait-reload", CommandKind::WaitReload, 0, 0},
     {"print", CommandKind::Print, 1, 1},
@@ -181,6 +184,13 @@ void checkArguments(Command& c, std::string_view name) {
     case CommandKind::Screenshot:
     case CommandKind::ScreenshotWindow:
         if (!c.words[0].ends_with(".png")) throw fail("expected a .png file name, got '" + c.words[0] + "'", 0);
+        break;
+    case CommandKind::Export:
+        try {
+            io::meshFormatOf(c.words[0]);
+        } catch (const Error&) {
+            throw fail("expected a .stl, .off, .obj or .3mf file name, got '" + c.words[0] + "'", 0);
+        }
         break;
     default: break;
     }

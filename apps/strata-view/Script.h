@@ -32,6 +32,7 @@ enum class CommandKind {
     Panel,            // panel on|off
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
+    Export,           // export PATH         (the exact result as a mesh; waits until written)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
     Print,            // print camera|error|stats|tree

@@ -127,6 +127,22 @@ bool Viewer::runCommand(const Command& c) {
                 windowShotFrames_ = kWindowShotFrames;
             }
             return false;
+        case CommandKind::Export:
+            // Started once, then waited for; its error is the script's error.
+            if (!waitingSince_) {
+                lastExport_.reset();
+                startExport(path(0));
+                waitingSince_ = Clock::now();
+            }
+            if (lastExport_ && !exporter_.busy()) {
+                waitingSince_.reset();
+                const std::string error = lastExport_->error;
+                lastExport_.reset();
+                if (!error.empty()) throw Error(error);
+                return true;
+            }
+            glfwWaitEventsTimeout(0.02);
+            return false;
         case CommandKind::Copy: replaceFile(path(0), path(1)); return true;
         case CommandKind::Print: {
             const std::string& what = c.words[0];

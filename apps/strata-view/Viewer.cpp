@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include "strata/core/Error.h"
+#include "strata/io/MeshWriter.h"
 #include "strata/gpu/Gl.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/render/ColorScheme.h"
@@ -86,12 +88,14 @@ int Viewer::run(const std::vector<Command>& script) {
 
 void Viewer::step(bool waitForEvents) {
     if (waitForEvents)
-        glfwWaitEventsTimeout(loader_.busy() ? 0.1 : std::chrono::duration<double>(kReloadPoll).count());
+        glfwWaitEventsTimeout(loader_.busy() || exporter_.busy() ? 0.1
+                                                                  : std::chrono::duration<double>(kReloadPoll).count());
     else
         glfwPollEvents();
     if (window_.shouldClose()) quit_ = true;
     pollReload();
     if (std::optional<LoadResult> result = loader_.poll()) applyLoad(std::move(*result));
+    pollExport();
     if (sceneDirty_) uploadScene();
     const int w = fixedSize_ ? fixedSize_->first : window_.framebufferWidth();
     const int h = fixedSize_ ? fixedSize_->second : window_.framebufferHeight();
@@ -289,6 +293,41 @@ std::string Viewer::cameraLine() const { return cameraArgument(camera()); }
 void Viewer::copyCamera() {
     glfwSetClipboardString(window_.window(), cameraLine().c_str());
     message_ = "copied the --camera= argument";
+}
+
+// Beside the scene: model.csg -> model.stl.
+std::string Viewer::defaultExportPath() const {
+    std::filesystem::path p(path_);
+    p.replace_extension(".stl");
+    return p.string();
+}
+
+void Viewer::startExport(const std::string& path) {
+    if (exporter_.busy()) {
+        message_ = "an export is running";
+        return;
+    }
+    try {
+        io::meshFormatOf(path);
+    } catch (const Error& e) {
+        message_ = e.what();
+        return;
+    }
+    exporter_.start(scene_, path);
+    message_ = "exporting " + path + "...";
+}
+
+void Viewer::pollExport() {
+    std::optional<ExportResult> done = exporter_.poll();
+    if (!done) return;
+    if (done->error.empty()) {
+        message_ = "exported " + done->path + " (" + std::to_string(done->triangles) + " triangles, " +
+                   std::to_string(static_cast<long long>(done->milliseconds)) + " ms)";
+    } else {
+        message_ = done->error;
+        std::cerr << done->error << '\n';
+    }
+    lastExport_ = std::move(done);
 }
 
 }  // namespace strata::view

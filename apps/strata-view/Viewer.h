@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "FileWatch.h"
+#include "Exporter.h"
 #include "Loader.h"
 #include "Orbit.h"
 #include "Script.h"
@@ -83,6 +84,9 @@ private:
     void saveScreenshot(const std::string& path);
     void saveNumberedScreenshot();
     void copyCamera();
+    void startExport(const std::string& path);
+    void pollExport();
+    std::string defaultExportPath() const;
     std::string cameraLine() const;
     void viewChanged() { viewDirty_ = true; }
 
@@ -108,6 +112,9 @@ private:
     render::Renderer renderer_;
     ViewTarget target_;
     Loader loader_;
+    Exporter exporter_;
+    std::string exportPath_;         // the panel's export file name
+    std::optional<ExportResult> lastExport_;  // the last finished export, for a waiting script
     FileWatch watch_;
     std::chrono::steady_clock::time_point lastPoll_;
 

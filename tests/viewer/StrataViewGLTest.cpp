@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -276,6 +277,25 @@ TEST_F(StrataView, ScriptErrorsAtRunTimeNameTheCommand) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_TRUE(r.err.starts_with(dir / "script.txt:2:1: no node 999")) << r.err;
+}
+
+TEST_F(StrataView, ExportWritesWhatStrataRenderExports) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene, "size 64 64\nexport view.off\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const ProcessResult cli = runProcess({kRender, scene, "--export", dir / "render.off", "--export-exact"});
+    ASSERT_EQ(cli.exitCode, 0) << cli.err;
+    auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    const std::string viewed = bytes(dir / "view.off");
+    EXPECT_GT(viewed.size(), 100u);
+    EXPECT_EQ(viewed, bytes(dir / "render.off"));  // the same exact result, written the same way
+    // A bad name is the script's error, naming the command.
+    const ProcessResult bad = view(scene, "size 64 64\nexport nowhere/x.stl\n");
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_TRUE(bad.err.find("nowhere/x.stl: cannot write") != std::string::npos) << bad.err;
 }
 
 TEST_F(StrataView, OpensScadThroughOpenscad) {

@@ -1,0 +1,48 @@
+#pragma once
+// Exports the shown model's exact result (CGAL, as strata-render
+// --export-exact does) on a worker thread: it can take seconds, and the
+// window must keep answering, show where the work is and let it be
+// cancelled. One export at a time.
+
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "Loader.h"
+#include "SceneFile.h"
+
+namespace strata::view {
+
+struct ExportResult {
+    std::string path;
+    std::string error;       // the one-line message; empty on success
+    bool cancelled = false;
+    std::size_t triangles = 0;
+    double milliseconds = 0;
+};
+
+class Exporter {
+public:
+    ~Exporter();  // cancels a running export and waits for it to stop at its next step
+
+    // Starts exporting `scene` (copied) into `path` (.stl, .off, .obj or
+    // .3mf); false, with nothing started, while another export runs.
+    bool start(const LoadedScene& scene, const std::string& path);
+    // The finished export, if one finished since the last call.
+    std::optional<ExportResult> poll();
+    bool busy() const { return running_.valid(); }
+    std::string progressText() const;
+    void cancel();
+
+private:
+    std::future<ExportResult> running_;
+    std::shared_ptr<LoadProgress> progress_;
+};
+
+// The result of `scene` written to `path`: what Exporter runs, and what a
+// caller with its own thread can run. Reports steps to this thread's
+// Progress sink; throws strata::Error, or Cancelled.
+std::size_t exportExact(const LoadedScene& scene, const std::string& path);
+
+}  // namespace strata::view
