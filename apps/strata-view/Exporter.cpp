@@ -1,11 +1,9 @@
 #include "Exporter.h"
 
 #include <chrono>
-#include <exception>
 #include <utility>
 
 #include "strata/core/Error.h"
-#include "strata/core/Progress.h"
 #include "strata/geometry/Exact.h"
 #include "strata/io/MeshWriter.h"
 
@@ -32,20 +30,11 @@ bool Exporter::start(const LoadedScene& scene, const std::string& path) {
     running_ = std::async(std::launch::async, [scene, path, progress = progress_] {
         ExportResult result;
         result.path = path;
-        const auto start = std::chrono::steady_clock::now();
-        try {
-            const ProgressScope scope(progress.get());
-            result.triangles = exportExact(scene, path);
-        } catch (const Cancelled&) {
-            result.cancelled = true;
-            result.error = path + ": export cancelled";
-        } catch (const Error& e) {
-            result.error = e.what();
-        } catch (const std::exception& e) {
-            result.error = path + ": " + e.what();
-        }
-        result.milliseconds =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const WorkOutcome outcome =
+            runReporting(*progress, path, "export cancelled", [&] { result.triangles = exportExact(scene, path); });
+        result.error = outcome.error;
+        result.cancelled = outcome.cancelled;
+        result.milliseconds = outcome.milliseconds;
         return result;
     });
     return true;

@@ -22,6 +22,26 @@ std::string LoadProgress::text() const {
     return what_ + ": " + std::to_string(done_) + " of " + std::to_string(total_);
 }
 
+WorkOutcome runReporting(LoadProgress& progress, const std::string& path, const char* cancelledMessage,
+                         const std::function<void()>& work) {
+    WorkOutcome outcome;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+        const ProgressScope scope(&progress);
+        work();
+    } catch (const Cancelled&) {
+        outcome.cancelled = true;
+        outcome.error = path + ": " + cancelledMessage;
+    } catch (const Error& e) {
+        outcome.error = e.what();
+    } catch (const std::exception& e) {
+        // Not ours (std::bad_alloc, a library's exception): still one line.
+        outcome.error = path + ": " + e.what();
+    }
+    outcome.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return outcome;
+}
+
 Loader::~Loader() {
     if (progress_) progress_->cancel();
     if (running_.valid()) running_.wait();
@@ -33,21 +53,11 @@ void Loader::start(const std::string& path) {
     running_ = std::async(std::launch::async, [path, wake = wake_, progress = progress_] {
         LoadResult result;
         result.path = path;
-        const auto start = std::chrono::steady_clock::now();
-        try {
-            const ProgressScope scope(progress.get());
-            result.scene = loadSceneFile(path);
-        } catch (const Cancelled&) {
-            result.cancelled = true;
-            result.error = path + ": loading cancelled";
-        } catch (const Error& e) {
-            result.error = e.what();
-        } catch (const std::exception& e) {
-            // Not ours (std::bad_alloc, a library's exception): still one line.
-            result.error = path + ": " + e.what();
-        }
-        result.milliseconds =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const WorkOutcome outcome =
+            runReporting(*progress, path, "loading cancelled", [&] { result.scene = loadSceneFile(path); });
+        result.error = outcome.error;
+        result.cancelled = outcome.cancelled;
+        result.milliseconds = outcome.milliseconds;
         if (wake) wake();
         return result;
     });

@@ -43,6 +43,20 @@ private:
     std::atomic<bool> cancel_{false};
 };
 
+// How background work ended: its one-line error ("" on success), whether it
+// stopped because it was asked to, and how long it took.
+struct WorkOutcome {
+    std::string error;
+    bool cancelled = false;
+    double milliseconds = 0;
+};
+
+// Runs `work` on the calling thread with `progress` as its sink, turning
+// every way it can end into a WorkOutcome; `path` names the file in messages
+// that do not already, `cancelledMessage` follows it when it was cancelled.
+WorkOutcome runReporting(LoadProgress& progress, const std::string& path, const char* cancelledMessage,
+                         const std::function<void()>& work);
+
 class Loader {
 public:
     // `wake` is called on the worker thread when a load has finished (to wake

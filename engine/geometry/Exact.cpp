@@ -46,16 +46,7 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
 }
 
 Solid toSolid(const Mesh& mesh, const SourceLocation& where) {
-    Solid s;
-    std::vector<Solid::Vertex_index> vertices;
-    vertices.reserve(mesh.positions.size());
-    for (const glm::dvec3& p : mesh.positions) vertices.push_back(s.add_vertex(Kernel::Point_3(p.x, p.y, p.z)));
-    for (const auto& t : mesh.triangles) {
-        if (s.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Solid::null_face()) {
-            throw Error(where, "an exact evaluation cannot take this solid: it touches itself along an edge or a corner");
-        }
-    }
-    return s;
+    return detail::toExactSolid(mesh, where, "an exact evaluation");
 }
 
 Mesh toMesh(Solid& s) {

@@ -55,6 +55,14 @@ private:
     std::vector<glm::dvec3>& out_;
 };
 
+// CGAL's exception (a failed check spans several lines) as one line naming `where`.
+[[noreturn]] void failed(const SourceLocation& where, const char* what, const std::exception& e) {
+    std::string why = e.what();
+    for (char& c : why)
+        if (c == '\n') c = ' ';
+    throw Error(where, what + why);
+}
+
 }  // namespace
 
 bool isConvex(const Mesh& closed) {
@@ -108,15 +116,7 @@ bool isConvex(const Mesh& closed) {
 
 std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const SourceLocation& where) {
     if (isConvex(closed)) return {closed.positions};
-    Solid solid;
-    std::vector<Solid::Vertex_index> vertices;
-    vertices.reserve(closed.positions.size());
-    for (const glm::dvec3& p : closed.positions) vertices.push_back(solid.add_vertex(Exact::Point_3(p.x, p.y, p.z)));
-    for (const auto& t : closed.triangles) {
-        if (solid.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Solid::null_face()) {
-            throw Error(where, "minkowski cannot split this solid into convex parts: it touches itself along an edge or a corner");
-        }
-    }
+    const Solid solid = toExactSolid(closed, where, "minkowski's convex decomposition");
     std::vector<std::vector<glm::dvec3>> parts;
     try {
         Nef nef(solid);
@@ -131,9 +131,22 @@ std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const Sourc
             parts.push_back(std::move(corners));
         }
     } catch (const std::exception& e) {
-        throw Error(where, std::string("minkowski cannot split this solid into convex parts: ") + e.what());
+        failed(where, "minkowski cannot split this solid into convex parts: ", e);
     }
     return parts;
+}
+
+ExactSolid toExactSolid(const Mesh& mesh, const SourceLocation& where, const char* who) {
+    ExactSolid s;
+    std::vector<ExactSolid::Vertex_index> vertices;
+    vertices.reserve(mesh.positions.size());
+    for (const glm::dvec3& p : mesh.positions) vertices.push_back(s.add_vertex(Exact::Point_3(p.x, p.y, p.z)));
+    for (const auto& t : mesh.triangles) {
+        if (s.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == ExactSolid::null_face()) {
+            throw Error(where, std::string(who) + " cannot take this solid: it touches itself along an edge or a corner");
+        }
+    }
+    return s;
 }
 
 ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
@@ -143,10 +156,7 @@ ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
         CGAL::convert_nef_polyhedron_to_polygon_mesh(nef, out, /*triangulate_all_faces=*/true);
         return out;
     } catch (const std::exception& e) {
-        std::string why = e.what();
-        for (char& c : why)
-            if (c == '\n') c = ' ';
-        throw Error(where, "the exact evaluation failed: " + why);
+        failed(where, "the exact evaluation failed: ", e);
     }
 }
 
@@ -161,10 +171,7 @@ ExactSolid nefBoolean(const ExactSolid& a, const ExactSolid& b, Boolean op, cons
         CGAL::convert_nef_polyhedron_to_polygon_mesh(left, out, /*triangulate_all_faces=*/true);
         return out;
     } catch (const std::exception& e) {
-        std::string why = e.what();
-        for (char& c : why)
-            if (c == '\n') c = ' ';
-        throw Error(where, "the exact evaluation failed: " + why);
+        failed(where, "the exact evaluation failed: ", e);
     }
 }
 

@@ -32,6 +32,11 @@ std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const Sourc
 using ExactSolid = CGAL::Surface_mesh<CGAL::Epeck::Point_3>;
 enum class Boolean { Union, Intersection, Difference };
 
+// A closed mesh with its points made exact. Throws strata::Error naming
+// `where`, "<who> cannot take this solid: it touches itself ...", where a
+// halfedge structure cannot hold it.
+ExactSolid toExactSolid(const Mesh& mesh, const SourceLocation& where, const char* who);
+
 // a OP b through Nef polyhedra, triangulated. Throws strata::Error naming
 // `where` when CGAL cannot take a solid.
 // The same solid with each run of coplanar triangles joined into one face
