@@ -11,22 +11,6 @@ namespace strata::render {
 
 namespace {
 
-// Uniform locations in shaders/csg/surface.vert and peel.frag.
-constexpr GLint kViewProjection = 0;
-constexpr GLint kEye = 1;
-constexpr GLint kForward = 2;
-constexpr GLint kPreviousLayer = 3;
-// In shaders/csg/resolve.frag.
-constexpr GLint kFirstLayer = 0;
-constexpr GLint kLayerCount = 1;
-
-
-void setView(gpu::Program& program, const ViewSetup& view) {
-    program.setUniform(kViewProjection, view.viewProjection);
-    program.setUniform(kEye, view.eye);
-    program.setUniform(kForward, view.forward);
-}
-
 bool canBatch() {
     return epoxy_has_gl_extension("GL_ARB_shader_draw_parameters") &&
            epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array");
@@ -49,10 +33,8 @@ PeelPass::PeelPass()
       drawn_("peel drawn", GL_ANY_SAMPLES_PASSED),
       deeperDrawn_("peel deeper drawn", GL_ANY_SAMPLES_PASSED),
       collect_(gpu::Program::fromFiles("peel collect", {"csg/surface.vert", "csg/peel.frag"},
-                                       {{"PEEL_FIRST", ""}, {"COLLECT", ""},
-                                        {"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
-      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"},
-                                       {{"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
+                                       {{"PEEL_FIRST", ""}, {"COLLECT", ""}})),
+      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"})),
       listTarget_("peel lists"),
       resolveStats_("peel resolve stats", 2 * sizeof(GLuint)) {
     if (batched_) {
@@ -180,7 +162,7 @@ void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile,
     target_.attachTexture(GL_COLOR_ATTACHMENT0, layers_);  // layered: gl_Layer picks the layer
     target_.bindForDraw();
     glScissor(0, 0, tile.width, tile.height);
-    drawLayers_.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+    drawLayers_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferDrawLayers);
     commands_.bind(GL_DRAW_INDIRECT_BUFFER);
     batch_.use();
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
@@ -226,18 +208,18 @@ int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile
     resolveStats_.clearToZero();
 
     listTarget_.bindForDraw();
-    fragmentCounts_.bindImage(1, GL_READ_WRITE);
-    fragments_.bindImage(2, GL_READ_WRITE);
+    fragmentCounts_.bindImage(shader::kImageFragmentCounts, GL_READ_WRITE);
+    fragments_.bindImage(shader::kImageFragments, GL_READ_WRITE);
     collect_.use();
     scene.drawLeaf(leaf);
     ++passes_;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
-    layers_.bindImage(3, GL_WRITE_ONLY);
-    resolveStats_.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    layers_.bindImage(shader::kImageLayers, GL_WRITE_ONLY);
+    resolveStats_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferResolveStats);
     resolve_.use();
-    resolve_.setUniform(kFirstLayer, first);
-    resolve_.setUniform(kLayerCount, std::min(layerCount, kCollectCapacity / 2));
+    resolve_.setUniform(shader::kResolveFirstLayer, first);
+    resolve_.setUniform(shader::kResolveLayerCount, std::min(layerCount, kCollectCapacity / 2));
     glDrawArrays(GL_TRIANGLES, 0, 3);  // the scene's vertex array stays bound, see anyDeeperThan
     // Image stores become visible to later image loads and sampling (the
     // evaluator), copies and read-backs of the layers (reserve(), the debug
@@ -269,10 +251,10 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
     const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
     if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
 
-    setView(first_, view);
-    setView(next_, view);
-    setView(collect_, view);
-    if (batched_) setView(batch_, view);
+    setSurfaceView(first_, view);
+    setSurfaceView(next_, view);
+    setSurfaceView(collect_, view);
+    if (batched_) setSurfaceView(batch_, view);
     glViewport(-tile.x, -tile.y, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_BLEND);
@@ -294,7 +276,7 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
             if (!inTile[k] || !isGroup(request, k)) continue;
             const PixelRect valid = region(rects[k], tile, block);
             clearLayers(valid, used, 1);
-            out[k] = {used, 1, used};  // a group's layer index is its index among the tile's groups
+            out[k] = {used, 1, used};  // a group's layer of the ids is its index among the tile's groups
             group_.peel(scene, request.groups[k], valid, layers_, used, used);
             ++used;
             passes_ += 2;
@@ -381,8 +363,8 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
                 // The previous layer was rendered by the last draw: make it
                 // readable (ARB_texture_barrier, core in 4.5).
                 glTextureBarrier();
-                layers_.bindUnit(0);
-                program.setUniform(kPreviousLayer, layer - 1);
+                layers_.bindUnit(shader::kTextureLayers);
+                program.setUniform(shader::kPeelPreviousLayer, layer - 1);
             }
             program.use();
             if (automatic) drawn_.begin();

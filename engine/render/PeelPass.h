@@ -51,6 +51,7 @@
 
 #include "GroupPeel.h"
 #include "SceneBuffers.h"
+#include "ShaderInterface.h"
 #include "ViewSetup.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
@@ -63,7 +64,7 @@ namespace strata::render {
 struct OperandLayers {
     int first = 0;  // first layer in PeelPass::layers()
     int count = 0;  // layers peeled; 0 when the operand misses the tile
-    int group = -1;  // a group's index among the tile's groups, its layer of groupIds(); -1 for the rest
+    int idsLayer = -1;  // a group's layer of groupIds() (its index among the tile's groups); -1 for the rest
 };
 
 struct PeelRequest {
@@ -100,9 +101,9 @@ public:
              const PeelRequest& request, std::vector<OperandLayers>& out);
 
     static constexpr std::size_t kBytesPerTexel = 8;  // one RG32F texel of a layer
-    // Fragments a pixel's list holds when collecting (shaders/csg/resolve.frag
-    // is written for this many): up to 4 layers.
-    static constexpr int kCollectCapacity = 8;
+    // Fragments a pixel's list holds when collecting: up to 4 layers.
+    static constexpr int kCollectCapacity = shader::kCollectCapacity;
+    static_assert(kCollectCapacity == 8, "shaders/csg/resolve.frag reads a list as two vec4s");
     // The lists' images (kCollectCapacity R32F layers and an R32UI count) per
     // pixel, in layers' bytes, counted in the estimate where they are needed.
     static constexpr int kCollectScratchLayers = (kCollectCapacity * 4 + 4 + 7) / 8;

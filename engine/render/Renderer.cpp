@@ -15,6 +15,7 @@
 #include "PeelPass.h"
 #include "SceneBuffers.h"
 #include "ShadePass.h"
+#include "ShaderInterface.h"
 #include "TranslucentPass.h"
 #include "ViewSetup.h"
 #include "strata/core/Error.h"
@@ -401,8 +402,8 @@ void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& o
                     const std::size_t to = static_cast<std::size_t>(frame.height - 1 - (tile.y + y)) * frame.width +
                                            static_cast<std::size_t>(tile.x + x);
                     const float nearValue = -texels[from], farValue = texels[from + 1];
-                    it->nearDepth[to] = nearValue > 1e38f ? none : nearValue;
-                    it->farDepth[to] = farValue < -1e38f ? none : farValue;
+                    it->nearDepth[to] = nearValue >= shader::kClearedDepth ? none : nearValue;
+                    it->farDepth[to] = farValue <= -shader::kClearedDepth ? none : farValue;
                 }
             }
         }
@@ -424,9 +425,9 @@ void Renderer::Impl::readBack(Frame& frame) {
     leaf = flipRows(leaf, w, h, 1);
     frame.leaf.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        frame.leaf[i] = leaf[i] < 0 ? -1 : leaf[i] >> 1;
+        frame.leaf[i] = shader::leafOfCode(leaf[i]);
         if (leaf[i] >= 0) ++frame.stats.coveredPixels;
-        if (leaf[i] == -2) ++frame.stats.unresolvedPixels;
+        if (leaf[i] == shader::kLeafUnresolved) ++frame.stats.unresolvedPixels;
     }
     if (frame.stats.unresolvedPixels > 0) {
         frame.stats.notes.push_back(std::to_string(frame.stats.unresolvedPixels) +
