@@ -134,17 +134,53 @@ public:
     int allocations() const { return allocations_; }  // layer textures created in the last run()
 
 private:
+    // What one run() peels, as its strategies below need it.
+    struct Job {
+        const SceneBuffers& scene;
+        const PixelRect& tile;
+        std::span<const int> operandLeaves;
+        std::span<const PixelRect> rects;
+        int block;
+        const PeelRequest& request;
+        std::span<const char> inTile;  // per operand: its rectangle meets the tile
+        PixelRect valid(std::size_t k) const { return region(rects[k], tile, block); }
+    };
+    // What a strategy returns in place of a layer count: the layers would
+    // not fit the budget, or a pixel's fragments overflowed its list.
+    static constexpr int kOverBudget = -1;
+    static constexpr int kListsOverflowed = -2;
+
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
     // the first `keep` layers. False when that exceeds the budget.
     bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
     // Sets `count` layers from `first` to (-FLT_MAX, -FLT_MAX), "nothing
     // here", inside `valid` (texture pixels).
     void clearLayers(const PixelRect& valid, int first, int count);
-    // Peels the convex operands that run() gave a layer from `firstLayer` on
-    // (out[k].count == 1) in one multi-draw.
-    void peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
-                         std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out,
-                         int firstLayer);
+    // The GL state of run()'s passes, and back.
+    void beginPasses(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile);
+    void endPasses();
+
+    // The strategies, in the order run() applies them. Each gives its
+    // operands layers from `used` (or `first`) on; the first two return the
+    // layers used after them, the others the operand's layer count (or
+    // kOverBudget).
+    // Groups of convex operands, a layer each, through GroupPeel.
+    int peelGroups(const Job& job, const ViewSetup& view, std::vector<OperandLayers>& out);
+    // The one-pass operands not yet peeled, a layer each, in one multi-draw.
+    int peelConvexBatch(const Job& job, std::vector<OperandLayers>& out, int used);
+    // Operand k by the first strategy below that applies to it.
+    int peelOperand(const Job& job, std::size_t k, int first);
+    // `passes` passes of dual depth peeling (1 for a one-pass operand).
+    int peelFixed(const Job& job, int leaf, int first, int passes);
+    // Passes until no pixel has surfaces left (auto peeling, see above).
+    int peelAuto(const Job& job, int leaf, int first);
+    // One pass, `pass` of the operand `leaf`, into layer `layer`; `automatic`:
+    // with auto peeling's stencil counts and query.
+    void peelPass(const SceneBuffers& scene, int leaf, int layer, int pass, bool automatic);
+    // One geometry pass into per-pixel fragment lists, then the lists to
+    // layers (auto: up to kCollectCapacity / 2). kListsOverflowed where a
+    // pixel's fragments overflowed its list (nothing useful drawn).
+    int peelThroughLists(const Job& job, int leaf, const PixelRect& valid, int first);
 
     gpu::Program first_;  // PEEL_FIRST: everything passes
     gpu::Program next_;   // reads the previous layer
@@ -156,12 +192,6 @@ private:
     // surfaces, by the counts of its first pass (see above). True where the
     // 8-bit counts cannot tell (surfaces >= 255).
     bool anyDeeperThan(int surfaces);
-    // Peels operand `leaf` through fragment lists into `layerCount` layers
-    // from `first` (auto: up to kCollectCapacity / 2), reserved by the
-    // caller. Returns the layers it holds, or -1 where a pixel's fragments
-    // overflowed its list (nothing useful drawn).
-    int collect(const SceneBuffers& scene, int leaf, const PixelRect& tile, const PixelRect& valid, int first,
-                int layerCount, bool automatic);
 
     gpu::Framebuffer target_;  // layered, for the convex batch
     gpu::Framebuffer counted_;  // one layer and the counts: the other passes

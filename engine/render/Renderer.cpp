@@ -181,6 +181,29 @@ struct Renderer::Impl {
     void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const std::vector<int>& markLeaves,
                          const std::vector<PixelRect>& markRects, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, Frame& frame);
+    // What every tile of a frame reads (peelAndEvaluate's arguments).
+    struct TileInputs {
+        const ViewSetup& view;
+        const std::vector<PixelRect>& rects;
+        const std::vector<int>& markLeaves;
+        const std::vector<PixelRect>& markRects;
+        const RenderSettings& settings;
+        const std::vector<glm::vec2>& baseColors;
+        const PeelRequest& request;
+    };
+    struct TileCounts {
+        int drawn = 0;   // tiles peeled, evaluated and given normals
+        int splits = 0;  // tiles split in four because their layers outgrew the budget
+    };
+    // The tile grid the frame starts from (see planTiles' body); throws
+    // strata::Error where even the smallest tile's layers exceed the budget.
+    std::vector<PixelRect> planTiles(const TileInputs& in) const;
+    // Peels each tile of `grid`, then evaluates it and recovers its normals;
+    // a tile whose auto peeling outgrows the budget is split in four.
+    TileCounts runTiles(const TileInputs& in, const std::vector<PixelRect>& grid, Frame& frame);
+    // The evaluate and normal passes over one peeled tile.
+    void evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                      Frame& frame);
     // Paints the tile's blocks' forms (EvaluatePass::run) into frame.blockForms.
     void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
@@ -247,31 +270,57 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) {
         request.firstLayerOnly = compiled->unionsOnly;
     }
+    const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request};
+    const std::vector<PixelRect> grid = planTiles(in);
+    const TileCounts counts = runTiles(in, grid, frame);
+    stats.tiles = counts.drawn;
+    std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
+        return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
+    });
+    if (grid.size() > 1) {
+        stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
+                              std::to_string(view.height) + " would exceed the budget of " +
+                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(counts.drawn) +
+                              " tiles, each peeling only the operands that meet it");
+    }
+    if (counts.splits > 0) {
+        stats.notes.push_back("auto peeling needed more layers than estimated: split " +
+                              std::to_string(counts.splits) + " tiles to stay within " +
+                              mebibytes(settings.memoryBudget));
+    }
+    if (settings.layers > 1) {
+        const bool anyConvex = std::any_of(operands.begin(), operands.end(),
+                                           [&](int leaf) { return scene.leaf(leaf).convex; });
+        if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
+    }
+}
 
-    // Tiles: the whole frame, or an even grid of quarters, of quarters of
-    // those, ..., as fine as the densest tile needs for the layers its
-    // operands need (a first guess for auto) to fit the budget. Only the
-    // operands whose rectangle meets a tile are peeled for it, so memory
-    // follows the operands per tile, not their number in the frame. One tile
-    // size for the whole frame lets every tile (and the next frame) reuse one
-    // layer texture: llvmpipe zeroes each new texture, and a fresh 512 MiB
-    // costs more than the peel of several extra tiles.
+std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
+    // The whole frame, or an even grid of quarters, of quarters of those,
+    // ..., as fine as the densest tile needs for the layers its operands
+    // need (a first guess for auto) to fit the budget. Only the operands
+    // whose rectangle meets a tile are peeled for it, so memory follows the
+    // operands per tile, not their number in the frame. One tile size for
+    // the whole frame lets every tile (and the next frame) reuse one layer
+    // texture: llvmpipe zeroes each new texture, and a fresh 512 MiB costs
+    // more than the peel of several extra tiles.
+    const std::vector<int>& operands = compiled->program.operandLeaf;
+    const std::size_t budget = in.settings.memoryBudget;
     std::vector<char> inTile(operands.size());
     auto layersFor = [&](const PixelRect& tile) {
-        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
-        return PeelPass::estimateLayers(scene, operands, inTile, request);
+        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = in.rects[k].intersects(tile) ? 1 : 0;
+        return PeelPass::estimateLayers(scene, operands, inTile, in.request);
     };
     auto area = [](const PixelRect& tile) {
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
     };
     auto fitsBudget = [&](const PixelRect& tile) {
-        return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <=
-               settings.memoryBudget;
+        return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <= budget;
     };
-    std::vector<PixelRect> grid{PixelRect{0, 0, view.width, view.height}};
+    std::vector<PixelRect> grid{PixelRect{0, 0, in.view.width, in.view.height}};
     for (;;) {
         const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
-        if (over == grid.end()) break;
+        if (over == grid.end()) return grid;
         std::vector<PixelRect> finer;
         for (const PixelRect& tile : grid) {
             for (const PixelRect& part : quarters(tile)) finer.push_back(part);
@@ -279,27 +328,30 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
             const int estimate = layersFor(*over);
             const std::size_t perPixel = PeelPass::kBytesPerTexel * static_cast<std::size_t>(estimate);
-            throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
-                        std::to_string(estimate) + " peel layers for only " +
-                        std::to_string(settings.memoryBudget / perPixel) + " pixels at a time; give it at least " +
-                        mebibytes(perPixel * area(*over)));
+            throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate) +
+                        " peel layers for only " + std::to_string(budget / perPixel) +
+                        " pixels at a time; give it at least " + mebibytes(perPixel * area(*over)));
         }
         grid = std::move(finer);
     }
+}
+
+Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const std::vector<PixelRect>& grid,
+                                                    Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const TreeProgram& program = compiled->program;
+    const std::vector<int>& operands = program.operandLeaf;
     std::deque<PixelRect> tiles(grid.begin(), grid.end());
-    auto split = [&tiles](const PixelRect& tile) {
-        for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
-    };
     std::vector<OperandLayers> layers;
-    int tilesDone = 0, splits = 0;
+    TileCounts counts;
     while (!tiles.empty()) {
         // Every tile fits the budget by its estimate: the grid's, and their
         // quarters (fewer operands, fewer pixels) split off below.
         const PixelRect tile = tiles.front();
         tiles.pop_front();
 
-        auto start = Clock::now();
-        const bool fits = peel.run(scene, view, tile, operands, rects, EvaluatePass::kBlock, request, layers);
+        const auto start = Clock::now();
+        const bool fits = peel.run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
         glFinish();
         stats.peelMs += millisecondsSince(start);
         stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
@@ -309,12 +361,12 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         if (!fits) {
             if (quarters(tile).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
-                            std::string("the memory budget of ") + mebibytes(settings.memoryBudget) +
+                            std::string("the memory budget of ") + mebibytes(in.settings.memoryBudget) +
                             " and the GPU's " + std::to_string(peel.maxArrayLayers()) + " array layers allow");
             }
             // Auto peeling went deeper than guessed: split the tile in four.
-            split(tile);
-            ++splits;
+            for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
+            ++counts.splits;
             continue;
         }
         for (std::size_t k = 0; k < operands.size(); ++k) {
@@ -323,41 +375,29 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
                 used = std::max(used, layers[k].count);
             }
         }
-        if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
+        if (in.settings.keepPeelLayers) keepLayers(tile, operands, in.rects, layers, frame);
+        evaluateTile(in, tile, layers, frame);
+        ++counts.drawn;
+    }
+    return counts;
+}
 
-        start = Clock::now();
-        std::vector<BlockForm> forms;
-        evaluate.run(targets, peel.layers(), tile, layers, rects, EvaluatePass::groupTable(leafCount, program, layers),
-                     peel.groupIds(), settings.generalEvaluator, stats, settings.keepBlockForms ? &forms : nullptr);
-        if (settings.keepBlockForms) keepBlockForms(tile, forms, frame);
-        const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
-        stats.evaluateMs += millisecondsSince(start);
-        start = Clock::now();
-        normals.run(targets, scene, view, tile, program, rects, shown, baseColors, markLeaves, markRects);
-        glFinish();
-        stats.normalMs += millisecondsSince(start);
-        ++tilesDone;
-    }
-    stats.tiles = tilesDone;
-    std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
-        return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
-    });
-    if (grid.size() > 1) {
-        stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
-                              std::to_string(view.height) + " would exceed the budget of " +
-                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(tilesDone) +
-                              " tiles, each peeling only the operands that meet it");
-    }
-    if (splits > 0) {
-        stats.notes.push_back("auto peeling needed more layers than estimated: split " + std::to_string(splits) +
-                              " tiles to stay within " + mebibytes(settings.memoryBudget));
-    }
-    if (settings.layers > 1) {
-        const bool anyConvex = std::any_of(operands.begin(), operands.end(),
-                                           [&](int leaf) { return scene.leaf(leaf).convex; });
-        if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
-    }
-
+void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                                  Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const TreeProgram& program = compiled->program;
+    auto start = Clock::now();
+    std::vector<BlockForm> forms;
+    evaluate.run(targets, peel.layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, program, layers),
+                 peel.groupIds(), in.settings.generalEvaluator, stats,
+                 in.settings.keepBlockForms ? &forms : nullptr);
+    if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
+    const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
+    stats.evaluateMs += millisecondsSince(start);
+    start = Clock::now();
+    normals.run(targets, scene, in.view, tile, program, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
+    glFinish();
+    stats.normalMs += millisecondsSince(start);
 }
 
 void Renderer::Impl::keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame) {

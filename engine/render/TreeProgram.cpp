@@ -176,95 +176,107 @@ private:
     // could grow without bound).
     int propagateLiterals(int root) {
         if (root == kEmpty || root == kEverything || isLiteral(root) || innerExpressionShared(root)) return root;
-        std::vector<signed char> known(tree_.leaves.size(), -1);  // per leaf: -1 free, else inside (1) or not
-        std::vector<int> forced;                                     // leaves set in `known`, in order
-        struct Frame {
-            int e;
-            std::size_t next = 0;        // children of e visited
-            std::size_t forcedMark = 0;  // forced.size() on entry
-            std::vector<int> kept;       // e's rebuilt children
-            bool absorbed = false;       // a child was e's absorbing constant
-        };
-        auto value = [&](int e) {  // -1 unknown, else the literal's value
-            const Expr& x = exprs_[static_cast<std::size_t>(e)];
-            const int k = known[static_cast<std::size_t>(x.leaf)];
-            return k < 0 ? -1 : (x.negated ? 1 - k : k);
-        };
-        std::vector<Frame> stack;
+        Held held;
+        held.known.assign(tree_.leaves.size(), -1);
+        std::vector<Rebuild> stack;
+        stack.push_back(Rebuild{root, 0, 0, {}, false});
         int result = -1;
-        auto enter = [&](int e) {
-            Frame f;
-            f.e = e;
-            f.forcedMark = forced.size();
-            stack.push_back(std::move(f));
-        };
-        enter(root);
         while (!stack.empty()) {
-            Frame& f = stack.back();
+            Rebuild& f = stack.back();
             const Expr& x = exprs_[static_cast<std::size_t>(f.e)];
-            const bool isAnd = x.type == Expr::Type::And;
-            const int absorbing = isAnd ? kEmpty : kEverything;
-            const int neutral = isAnd ? kEverything : kEmpty;
-            auto keep = [&](int child) {
-                if (child == absorbing) {
-                    f.absorbed = true;
-                } else if (child != neutral) {
-                    const Expr& c = exprs_[static_cast<std::size_t>(child)];
-                    if (c.type == x.type) {
-                        f.kept.insert(f.kept.end(), c.children.begin(), c.children.end());
-                    } else {
-                        f.kept.push_back(child);
-                    }
-                }
-            };
             if (result >= 0) {  // a child just rebuilt
-                keep(result);
+                keepChild(f, result);
                 result = -1;
             }
-            if (f.next == 0 && f.kept.empty() && !f.absorbed) {
-                // First the literal children: constants where known, else they
-                // hold their value for the rest (a repeat is then a constant).
-                for (int c : x.children) {
-                    if (!isLiteral(c)) continue;
-                    const int v = value(c);
-                    if (v >= 0) {
-                        keep(v == 1 ? kEverything : kEmpty);
-                        continue;
-                    }
-                    const Expr& l = exprs_[static_cast<std::size_t>(c)];
-                    const bool holds = isAnd;  // the literal's value wherever the others matter
-                    known[static_cast<std::size_t>(l.leaf)] = static_cast<signed char>(holds != l.negated ? 1 : 0);
-                    forced.push_back(l.leaf);
-                    f.kept.push_back(c);
-                }
-            }
+            if (f.next == 0 && f.kept.empty() && !f.absorbed) holdLiterals(f, held);
             // Then the other children, under what the literals hold.
             while (!f.absorbed && f.next < x.children.size() && isLiteral(x.children[f.next])) ++f.next;
             if (!f.absorbed && f.next < x.children.size()) {
                 const int child = x.children[f.next++];
-                enter(child);
+                stack.push_back(Rebuild{child, 0, held.forced.size(), {}, false});
                 continue;
             }
-            // Done: fold.
-            int rebuilt;
-            if (f.absorbed) {
-                rebuilt = absorbing;
-            } else if (f.kept.empty()) {
-                rebuilt = neutral;
-            } else if (f.kept.size() == 1) {
-                rebuilt = f.kept.front();
-            } else {
-                Expr e = make(x.type);
-                e.children = std::move(f.kept);
-                exprs_.push_back(std::move(e));
-                rebuilt = static_cast<int>(exprs_.size()) - 1;
-            }
-            for (std::size_t i = f.forcedMark; i < forced.size(); ++i) known[static_cast<std::size_t>(forced[i])] = -1;
-            forced.resize(f.forcedMark);
+            result = rebuilt(f, held);
             stack.pop_back();
-            result = rebuilt;
         }
         return result;
+    }
+
+    // The literals' values that the AND/OR expressions being rebuilt hold.
+    struct Held {
+        std::vector<signed char> known;  // per leaf: -1 free, else inside (1) or not
+        std::vector<int> forced;         // leaves set in `known`, in order
+    };
+    // An expression being rebuilt by propagateLiterals.
+    struct Rebuild {
+        int e;
+        std::size_t next = 0;        // children of e visited
+        std::size_t forcedMark = 0;  // Held::forced.size() on entry
+        std::vector<int> kept;       // e's rebuilt children
+        bool absorbed = false;       // a child was e's absorbing constant
+    };
+
+    static int absorbingOf(Expr::Type type) { return type == Expr::Type::And ? kEmpty : kEverything; }
+    static int neutralOf(Expr::Type type) { return type == Expr::Type::And ? kEverything : kEmpty; }
+
+    // Adds a rebuilt `child` to f's children: a constant absorbs f or
+    // vanishes, a child of f's own operation merges into f.
+    void keepChild(Rebuild& f, int child) const {
+        const Expr::Type type = exprs_[static_cast<std::size_t>(f.e)].type;
+        if (child == absorbingOf(type)) {
+            f.absorbed = true;
+        } else if (child != neutralOf(type)) {
+            const Expr& c = exprs_[static_cast<std::size_t>(child)];
+            if (c.type == type) {
+                f.kept.insert(f.kept.end(), c.children.begin(), c.children.end());
+            } else {
+                f.kept.push_back(child);
+            }
+        }
+    }
+
+    // f's literal children, first: constants where `held` knows them, else
+    // they hold their value for the rest (a repeat is then a constant).
+    void holdLiterals(Rebuild& f, Held& held) const {
+        const Expr& x = exprs_[static_cast<std::size_t>(f.e)];
+        const bool isAnd = x.type == Expr::Type::And;
+        for (int c : x.children) {
+            if (!isLiteral(c)) continue;
+            const Expr& l = exprs_[static_cast<std::size_t>(c)];
+            const int k = held.known[static_cast<std::size_t>(l.leaf)];
+            if (k >= 0) {
+                const int value = l.negated ? 1 - k : k;
+                keepChild(f, value == 1 ? kEverything : kEmpty);
+                continue;
+            }
+            const bool holds = isAnd;  // the literal's value wherever the others matter
+            held.known[static_cast<std::size_t>(l.leaf)] = static_cast<signed char>(holds != l.negated ? 1 : 0);
+            held.forced.push_back(l.leaf);
+            f.kept.push_back(c);
+        }
+    }
+
+    // f, every child visited: its rebuilt expression. Its literals hold no
+    // more.
+    int rebuilt(Rebuild& f, Held& held) {
+        const Expr::Type type = exprs_[static_cast<std::size_t>(f.e)].type;
+        int out;
+        if (f.absorbed) {
+            out = absorbingOf(type);
+        } else if (f.kept.empty()) {
+            out = neutralOf(type);
+        } else if (f.kept.size() == 1) {
+            out = f.kept.front();
+        } else {
+            Expr e = make(type);
+            e.children = std::move(f.kept);
+            exprs_.push_back(std::move(e));
+            out = static_cast<int>(exprs_.size()) - 1;
+        }
+        for (std::size_t i = f.forcedMark; i < held.forced.size(); ++i)
+            held.known[static_cast<std::size_t>(held.forced[i])] = -1;
+        held.forced.resize(f.forcedMark);
+        return out;
     }
 
     // Whether some AND/OR expression under `root` has two parents.

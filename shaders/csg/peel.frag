@@ -16,7 +16,7 @@
 
 layout(location = 0) in float vViewDepth;
 #ifdef COLLECT
-// Collecting (PeelPass::collect): each fragment appends its tagged depth to
+// Collecting (PeelPass::peelThroughLists): each fragment appends its tagged depth to
 // its pixel's list; resolve.frag turns the lists into layers. A pixel whose
 // fragments overflow the list keeps counting, so the resolve can tell.
 layout(binding = kImageFragmentCounts, r32ui) uniform coherent uimage2D uFragmentCounts;

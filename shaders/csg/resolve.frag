@@ -1,4 +1,4 @@
-// Fragment lists to peeled layers (PeelPass::collect), fullscreen over one
+// Fragment lists to peeled layers (PeelPass::peelThroughLists), fullscreen over one
 // operand's rectangle in the tile.
 //
 // peel.frag's COLLECT pass appended every fragment's tagged depth to its
