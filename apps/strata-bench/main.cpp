@@ -35,6 +35,8 @@
 #include "PlainDraw.h"
 #include "SceneLoad.h"
 #include "Scenes.h"
+#include "strata/camera/Camera.h"
+#include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Check.h"
@@ -42,9 +44,7 @@
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
 #include "strata/io/Json.h"
-#include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/ViewBounds.h"
 
 namespace {
 

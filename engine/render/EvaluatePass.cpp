@@ -36,21 +36,21 @@ using TruthTable = std::array<std::uint64_t, 4>;
 // of its value.
 TruthTable truthTable(const std::vector<std::uint32_t>& code, const std::vector<std::uint32_t>& used) {
     auto column = [&](std::uint32_t instruction) {
-        const std::uint32_t operand = instruction >> kOperandShift;
+        const std::uint32_t operand = instruction >> csg::kOperandShift;
         const auto slot = static_cast<std::size_t>(std::find(used.begin(), used.end(), operand) - used.begin());
         TruthTable c{};
         for (std::uint32_t m = 0; m < 256; ++m) {
             if ((m >> slot) & 1u) c[m / 64] |= std::uint64_t(1) << (m % 64);
         }
-        if (instruction & kOpNegate) {
+        if (instruction & csg::kOpNegate) {
             for (std::uint64_t& w : c) w = ~w;
         }
         return c;
     };
     auto combine = [](std::uint32_t op, TruthTable& top, const TruthTable& source) {
-        for (std::size_t w = 0; w < top.size(); ++w) top[w] = op == kOpAnd ? top[w] & source[w] : top[w] | source[w];
+        for (std::size_t w = 0; w < top.size(); ++w) top[w] = op == csg::kOpAnd ? top[w] & source[w] : top[w] | source[w];
     };
-    return foldCode<TruthTable>(code, column, combine);
+    return csg::foldCode<TruthTable>(code, column, combine);
 }
 
 }  // namespace
@@ -85,26 +85,26 @@ gpu::Program& EvaluatePass::programFor(Variant variant, bool leafMarks) {
     return it->second;
 }
 
-void EvaluatePass::setProgram(const TreeProgram& program, bool leafMarks) {
-    program_ = program;
-    operandLeaf_ = program.operandLeaf;
+void EvaluatePass::setTree(const csg::CompiledTree& tree, bool leafMarks) {
+    tree_ = tree;
+    operandLeaf_ = tree.operandLeaf;
     // The variants that look up a group's member cost every written pixel a
     // lookup (both sides of a branch run on llvmpipe): only where needed.
-    groups_ = std::any_of(program.operandGroups.begin(), program.operandGroups.end(),
+    groups_ = std::any_of(tree.operandGroups.begin(), tree.operandGroups.end(),
                           [](const std::vector<int>& members) { return !members.empty(); });
     // Every leaf the evaluator may write: the operands' and their groups' members.
     leafCount_ = operandLeaf_.empty() ? 0 : static_cast<std::size_t>(operandLeaf_.back()) + 1;
-    for (const std::vector<int>& members : program.operandGroups) {
+    for (const std::vector<int>& members : tree.operandGroups) {
         if (!members.empty()) leafCount_ = std::max(leafCount_, static_cast<std::size_t>(members.back()) + 1);
     }
     shownFaces_ = gpu::Buffer("shown faces", std::max<std::size_t>(leafCount_, 1) * sizeof(std::uint32_t), nullptr,
                               GL_DYNAMIC_STORAGE_BIT);
     // Compile now rather than mid-frame the variants that most scenes use.
     if (!operandLeaf_.empty()) {
-        const int operands = program.operandCount();
+        const int operands = tree.operandCount();
         programFor({BlockForm::FirstSurface, 0}, leafMarks);
         programFor({BlockForm::Register, 4}, leafMarks);
-        const bool product = !program.code.empty() && countingTree(program.code).nodes.size() == 1;  // one AND or OR
+        const bool product = !tree.code.empty() && csg::countingTree(tree.code).nodes.size() == 1;  // one AND or OR
         if (product && operands > kRegisterSlots) programFor({BlockForm::Product, 0}, leafMarks);
         if (operands > 4) programFor({BlockForm::Register, kRegisterSlots}, leafMarks);
         if (operands > kRegisterSlots) programFor({BlockForm::Array, capacityFor(operands)}, leafMarks);
@@ -128,21 +128,21 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     int slots = 0;
     bool slotsReach = true;  // every layer number fits a slot's field
     for (std::uint32_t instruction : code) {
-        if (instruction & kOpFromStack) continue;
-        const std::uint32_t operand = instruction >> kOperandShift;
+        if (instruction & csg::kOpFromStack) continue;
+        const std::uint32_t operand = instruction >> csg::kOperandShift;
         if (std::find(used.begin(), used.end(), operand) != used.end()) continue;
         used.push_back(operand);
         slots += operandLayers[operand].count;
         slotsReach = slotsReach && static_cast<unsigned>(operandLayers[operand].first + operandLayers[operand].count) <=
                                        shader::kSlotLayerMask + 1u;
     }
-    if (!generalOnly && code.size() == 1 && (code[0] & kOpNegate) == 0 && slots == 1) {
+    if (!generalOnly && code.size() == 1 && (code[0] & csg::kOpNegate) == 0 && slots == 1) {
         return firstSurfaceTree(used[0], operandLayers);
     }
     if (!generalOnly && slots <= kRegisterSlots && slotsReach) {
         return registerTree(code, used, slots, operandLayers, data);
     }
-    const CountingTree tree = countingTree(code);
+    const csg::CountingTree tree = csg::countingTree(code);
     const bool onePassEach = slots == static_cast<int>(used.size());
     if (onePassEach && !generalOnly && tree.nodes.size() == 1) return productTree(tree, operandLayers, data);
     return arrayTree(tree, used, operandLayers, data);
@@ -189,7 +189,7 @@ EvaluatePass::BlockTree EvaluatePass::registerTree(const std::vector<std::uint32
     return out;
 }
 
-EvaluatePass::BlockTree EvaluatePass::productTree(const CountingTree& tree,
+EvaluatePass::BlockTree EvaluatePass::productTree(const csg::CountingTree& tree,
                                                   const std::vector<OperandLayers>& operandLayers,
                                                   TreeData& data) const {
     // One AND (OR) of literals; each literal's wish is its own value (its
@@ -199,7 +199,7 @@ EvaluatePass::BlockTree EvaluatePass::productTree(const CountingTree& tree,
     out.variant = {BlockForm::Product, 0};
     out.record = {static_cast<unsigned>(data.literals.size()), static_cast<unsigned>(tree.literals.size()),
                   isAnd ? 0u : 1u, 0u};
-    for (const CountingTree::Literal& l : tree.literals) {
+    for (const csg::CountingTree::Literal& l : tree.literals) {
         const OperandLayers& layers = operandLayers[l.operand];
         data.literals.emplace_back(static_cast<unsigned>(layers.first), static_cast<unsigned>(layers.count),
                                    static_cast<unsigned>(operandLeaf_[l.operand]), l.negated == isAnd ? 0u : 1u);
@@ -207,7 +207,7 @@ EvaluatePass::BlockTree EvaluatePass::productTree(const CountingTree& tree,
     return out;
 }
 
-EvaluatePass::BlockTree EvaluatePass::arrayTree(const CountingTree& tree, const std::vector<std::uint32_t>& used,
+EvaluatePass::BlockTree EvaluatePass::arrayTree(const csg::CountingTree& tree, const std::vector<std::uint32_t>& used,
                                                 const std::vector<OperandLayers>& operandLayers,
                                                 TreeData& data) const {
     // The counting tree. An operand with several literals (identical leaves
@@ -218,30 +218,31 @@ EvaluatePass::BlockTree EvaluatePass::arrayTree(const CountingTree& tree, const 
     out.record = {static_cast<unsigned>(data.literals.size()), static_cast<unsigned>(tree.literals.size()),
                   static_cast<unsigned>(data.nodes.size()), static_cast<unsigned>(tree.nodes.size())};
     out.variant = {BlockForm::Array, capacityFor(static_cast<int>(std::max(used.size(), tree.nodes.size())))};
-    std::map<std::uint32_t, std::vector<const CountingTree::Literal*>> byOperand;
-    for (const CountingTree::Literal& l : tree.literals) byOperand[l.operand].push_back(&l);
+    std::map<std::uint32_t, std::vector<const csg::CountingTree::Literal*>> byOperand;
+    for (const csg::CountingTree::Literal& l : tree.literals) byOperand[l.operand].push_back(&l);
     for (std::uint32_t operand : used) {
         const std::size_t runStart = data.literals.size();
         const OperandLayers& layers = operandLayers[operand];
-        for (const CountingTree::Literal* l : byOperand[operand]) {
+        for (const csg::CountingTree::Literal* l : byOperand[operand]) {
             data.literals.emplace_back(static_cast<unsigned>(layers.first), static_cast<unsigned>(layers.count),
                                        static_cast<unsigned>(operandLeaf_[operand]),
                                        l->parent | (l->negated ? shader::kNegate : 0u));
         }
         data.literals[runStart].y |= static_cast<unsigned>(data.literals.size() - runStart) << shader::kRunShift;
     }
-    for (const CountingTree::Node& n : tree.nodes)
+    static_assert(csg::CountingTree::kNoParent == shader::kNoParent, "the root's parent reads as no node");
+    for (const csg::CountingTree::Node& n : tree.nodes)
         data.nodes.emplace_back(n.parent, n.isAnd ? shader::kNodeAnd : 0u, n.children, n.trueWhenOutside);
     return out;
 }
 
-std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const TreeProgram& program,
+std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const csg::CompiledTree& tree,
                                           const std::vector<OperandLayers>& layers) {
     std::vector<int> table(std::max<std::size_t>(leafCount, 1), -1);
-    for (std::size_t k = 0; k < program.operandLeaf.size(); ++k) {
+    for (std::size_t k = 0; k < tree.operandLeaf.size(); ++k) {
         if (layers[k].idsLayer < 0) continue;  // no group, or one missing the tile
-        const std::span<const int> members = program.leavesOf(k);
-        table[static_cast<std::size_t>(program.operandLeaf[k])] = static_cast<int>(table.size());
+        const std::span<const int> members = tree.leavesOf(k);
+        table[static_cast<std::size_t>(tree.operandLeaf[k])] = static_cast<int>(table.size());
         table.push_back(layers[k].idsLayer);
         table.insert(table.end(), members.begin(), members.end());
     }
@@ -286,7 +287,7 @@ EvaluatePass::BlockPlan EvaluatePass::planBlocks(const FrameTargets& targets, co
         auto it = trees.find(list);
         if (it == trees.end()) {
             for (std::uint32_t k : list) present[k] = 1;
-            const std::vector<std::uint32_t> specialised = specializeProgram(program_, present);
+            const std::vector<std::uint32_t> specialised = csg::specializeCode(tree_, present);
             for (std::uint32_t k : list) present[k] = 0;
             it = trees.emplace(list, specialised.empty()
                                          ? BlockTree{}

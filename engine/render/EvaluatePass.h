@@ -8,7 +8,7 @@
 //
 // The tree lives in storage buffers: a tree edit only re-uploads them. Each
 // 16x16 block of a tile gets the tree specialised to the operands whose
-// screen rectangle meets it (TreeProgram.h: specializeProgram, then
+// screen rectangle meets it (strata/csg/CompiledTree.h: specializeCode, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
 // The shader comes in four forms (BlockForm): the first-surface form (the
 // block's tree is one operand of one layer, so the result's first surface is
@@ -37,11 +37,11 @@
 #include "PeelPass.h"
 #include "ShaderInterface.h"
 #include "ViewSetup.h"
+#include "strata/csg/CompiledTree.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/VertexArray.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/TreeProgram.h"
 
 namespace strata::render {
 
@@ -49,10 +49,10 @@ class EvaluatePass {
 public:
     EvaluatePass();
 
-    // Uploads the program; operand k of it is tree leaf program.operandLeaf[k].
-    // Compiles now the variants the program will likely use, writing leaf
+    // Takes the compiled tree; its operand k is tree leaf tree.operandLeaf[k].
+    // Compiles now the variants the tree will likely use, writing leaf
     // marks or not (`leafMarks`, as the frames will ask: FrameTargets::leafMarks).
-    void setProgram(const TreeProgram& program, bool leafMarks);
+    void setTree(const csg::CompiledTree& tree, bool leafMarks);
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
@@ -70,8 +70,8 @@ public:
     // The tile's groups of convex operands for run() (evaluate.frag:
     // groupTable): per tree leaf (`leafCount`) -1, or for a group's operand
     // leaf where its record starts: the group's layer of PeelPass::groupIds
-    // (`layers[k].idsLayer`), then its members (TreeProgram::operandGroups).
-    static std::vector<int> groupTable(std::size_t leafCount, const TreeProgram& program,
+    // (`layers[k].idsLayer`), then its members (csg::CompiledTree::operandGroups).
+    static std::vector<int> groupTable(std::size_t leafCount, const csg::CompiledTree& tree,
                                        const std::vector<OperandLayers>& layers);
 
     // The array form's MAX_LIVE for `count` literals or nodes: a power of
@@ -137,7 +137,7 @@ private:
     void draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile, const BlockPlan& plan,
               const std::vector<int>& groupTable, const gpu::Texture& groupIds, FrameStats& stats);
 
-    // Appends the data of `code` (a specialised program) to `data` in the
+    // Appends the data of `code` (specialised code) to `data` in the
     // cheapest form that holds it (the array form where `generalOnly`).
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
                       TreeData& data, bool generalOnly) const;
@@ -146,9 +146,9 @@ private:
     BlockTree firstSurfaceTree(std::uint32_t operand, const std::vector<OperandLayers>& operandLayers) const;
     BlockTree registerTree(const std::vector<std::uint32_t>& code, const std::vector<std::uint32_t>& used, int slots,
                            const std::vector<OperandLayers>& operandLayers, TreeData& data) const;
-    BlockTree productTree(const CountingTree& tree, const std::vector<OperandLayers>& operandLayers,
+    BlockTree productTree(const csg::CountingTree& tree, const std::vector<OperandLayers>& operandLayers,
                           TreeData& data) const;
-    BlockTree arrayTree(const CountingTree& tree, const std::vector<std::uint32_t>& used,
+    BlockTree arrayTree(const csg::CountingTree& tree, const std::vector<std::uint32_t>& used,
                         const std::vector<OperandLayers>& operandLayers, TreeData& data) const;
 
     // The compiled variant; `leafMarks`: it writes FrameTargets::mark(leaf,
@@ -162,8 +162,8 @@ private:
         auto operator<=>(const ProgramKey&) const = default;
     };
     std::map<ProgramKey, gpu::Program> variants_;
-    bool groups_ = false;  // the program has groups of convex operands (GROUPS variants)
-    TreeProgram program_;
+    bool groups_ = false;  // the tree has groups of convex operands (GROUPS variants)
+    csg::CompiledTree tree_;
     gpu::Buffer blocks_;
     gpu::Buffer blockOperands_;
     gpu::Buffer blockNodes_;

@@ -45,7 +45,7 @@ NormalPass::NormalPass()
                                        {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-                     const TreeProgram& tree, const std::vector<PixelRect>& rects,
+                     const csg::CompiledTree& tree, const std::vector<PixelRect>& rects,
                      const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
                      std::span<const int> markLeaves, std::span<const PixelRect> markRects) {
     for (gpu::Program* program : {&checked_, &trusted_}) setSurfaceView(*program, view);

@@ -19,11 +19,11 @@
 #include "TranslucentPass.h"
 #include "ViewSetup.h"
 #include "strata/core/Error.h"
+#include "strata/csg/CompiledTree.h"
+#include "strata/csg/ConvexGroups.h"
+#include "strata/csg/IdenticalLeaves.h"
 #include "strata/gpu/Check.h"
 #include "strata/render/ColorScheme.h"
-#include "strata/render/ConvexGroups.h"
-#include "strata/render/IdenticalLeaves.h"
-#include "strata/render/TreeProgram.h"
 
 namespace strata::render {
 
@@ -75,29 +75,29 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
     return out;
 }
 
-// Per operand of `program`: whether only ORs lead from the result to its
+// Per operand of `compiled`: whether only ORs lead from the result to its
 // (not complemented) literal. The result is then true wherever the operand
 // is: once a ray enters it, the result is entered, at the latest there. So
 // where every ray starts outside every operand, its nearest surface (the
 // first peeled layer) is all the result can show of it. Not for a leaf with
 // a shell of no volume (SceneBuffers: solidShells): there the nearest entry
 // can have an exit at its very depth, which the first layer would lose.
-std::vector<char> reachedByUnionsOnly(const TreeProgram& program, const SceneBuffers& scene) {
-    std::vector<char> out(program.operandLeaf.size(), 0);
-    if (program.code.empty()) return out;
+std::vector<char> reachedByUnionsOnly(const csg::CompiledTree& compiled, const SceneBuffers& scene) {
+    std::vector<char> out(compiled.operandLeaf.size(), 0);
+    if (compiled.code.empty()) return out;
     using Operands = std::vector<std::uint32_t>;
     auto literal = [](std::uint32_t instruction) {
-        return instruction & kOpNegate ? Operands{} : Operands{instruction >> kOperandShift};
+        return instruction & csg::kOpNegate ? Operands{} : Operands{instruction >> csg::kOperandShift};
     };
     auto combine = [](std::uint32_t op, Operands& top, Operands&& source) {
-        if (op == kOpAnd) {
+        if (op == csg::kOpAnd) {
             top.clear();
         } else {
             top.insert(top.end(), source.begin(), source.end());
         }
     };
-    for (std::uint32_t k : foldCode<Operands>(program.code, literal, combine))
-        out[k] = scene.leaf(program.operandLeaf[k]).solidShells ? 1 : 0;
+    for (std::uint32_t k : csg::foldCode<Operands>(compiled.code, literal, combine))
+        out[k] = scene.leaf(compiled.operandLeaf[k]).solidShells ? 1 : 0;
     return out;
 }
 
@@ -155,13 +155,13 @@ struct Renderer::Impl {
     SceneBuffers scene;
     // The tree compiled with every operand its own (`separate`) and with
     // convex intersections grouped (ConvexGroups.h), each with its
-    // reachedByUnionsOnly; `program` is the one the evaluator holds.
-    struct Compiled {
-        TreeProgram program;
+    // reachedByUnionsOnly; `current` is the one the evaluator holds.
+    struct Compilation {
+        csg::CompiledTree tree;
         std::vector<char> unionsOnly;
     };
-    Compiled separate, grouped;
-    const Compiled* compiled = nullptr;
+    Compilation separate, grouped;
+    const Compilation* current = nullptr;
     std::vector<TranslucentLeaf> translucentLeaves;
     std::size_t leafCount = 0;
     std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
@@ -236,19 +236,19 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     Impl& impl = *impl_;
-    const std::vector<int> same = identicalLeaves(tree, model);
+    const std::vector<int> same = csg::identicalLeaves(tree, model);
     impl.copiedLeaves = 0;
     for (std::size_t i = 0; i < same.size(); ++i) impl.copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
-    impl.separate.program = compileTree(tree, empty, same);
-    impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.program, impl.scene);
-    std::vector<char> convex(impl.separate.program.operandLeaf.size());
+    impl.separate.tree = csg::compileTree(tree, empty, same);
+    impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.tree, impl.scene);
+    std::vector<char> convex(impl.separate.tree.operandLeaf.size());
     for (std::size_t k = 0; k < convex.size(); ++k) {
-        convex[k] = impl.scene.leaf(impl.separate.program.operandLeaf[k]).convex ? 1 : 0;
+        convex[k] = impl.scene.leaf(impl.separate.tree.operandLeaf[k]).convex ? 1 : 0;
     }
-    impl.grouped.program = groupConvexProducts(impl.separate.program, convex, PeelRequest::kMostGroupMembers);
-    impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.program, impl.scene);
-    impl.compiled = &impl.grouped;
-    impl.evaluate.setProgram(impl.grouped.program, impl.canMarkLeaves);
+    impl.grouped.tree = csg::groupConvexProducts(impl.separate.tree, convex, PeelRequest::kMostGroupMembers);
+    impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.tree, impl.scene);
+    impl.current = &impl.grouped;
+    impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
     impl.translucentLeaves = translucentLeaves(tree, impl.scene);
     impl.leafCount = tree.leaves.size();
     impl.hasScene = true;
@@ -260,15 +260,15 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
                                      Frame& frame) {
     FrameStats& stats = frame.stats;
-    const TreeProgram& program = compiled->program;
-    const std::vector<int>& operands = program.operandLeaf;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int>& operands = compiled.operandLeaf;
     if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
-                        program.operandGroups};
+                        compiled.operandGroups};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) {
-        request.firstLayerOnly = compiled->unionsOnly;
+        request.firstLayerOnly = current->unionsOnly;
     }
     const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request};
     const std::vector<PixelRect> grid = planTiles(in);
@@ -304,7 +304,7 @@ std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
     // the whole frame lets every tile (and the next frame) reuse one layer
     // texture: llvmpipe zeroes each new texture, and a fresh 512 MiB costs
     // more than the peel of several extra tiles.
-    const std::vector<int>& operands = compiled->program.operandLeaf;
+    const std::vector<int>& operands = current->tree.operandLeaf;
     const std::size_t budget = in.settings.memoryBudget;
     std::vector<char> inTile(operands.size());
     auto layersFor = [&](const PixelRect& tile) {
@@ -339,8 +339,8 @@ std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
 Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const std::vector<PixelRect>& grid,
                                                     Frame& frame) {
     FrameStats& stats = frame.stats;
-    const TreeProgram& program = compiled->program;
-    const std::vector<int>& operands = program.operandLeaf;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int>& operands = compiled.operandLeaf;
     std::deque<PixelRect> tiles(grid.begin(), grid.end());
     std::vector<OperandLayers> layers;
     TileCounts counts;
@@ -370,7 +370,7 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
             continue;
         }
         for (std::size_t k = 0; k < operands.size(); ++k) {
-            for (int leaf : program.leavesOf(k)) {
+            for (int leaf : compiled.leavesOf(k)) {
                 int& used = stats.layersPerLeaf[static_cast<std::size_t>(leaf)];
                 used = std::max(used, layers[k].count);
             }
@@ -385,17 +385,17 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
 void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
                                   Frame& frame) {
     FrameStats& stats = frame.stats;
-    const TreeProgram& program = compiled->program;
+    const csg::CompiledTree& compiled = current->tree;
     auto start = Clock::now();
     std::vector<BlockForm> forms;
-    evaluate.run(targets, peel.layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, program, layers),
+    evaluate.run(targets, peel.layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, compiled, layers),
                  peel.groupIds(), in.settings.generalEvaluator, stats,
                  in.settings.keepBlockForms ? &forms : nullptr);
     if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
     const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
     stats.evaluateMs += millisecondsSince(start);
     start = Clock::now();
-    normals.run(targets, scene, in.view, tile, program, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
+    normals.run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
     glFinish();
     stats.normalMs += millisecondsSince(start);
 }
@@ -504,13 +504,13 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                                 BlockForm::None);
     }
     // Debug views show each operand's own layers: no groups there.
-    const Compiled& chosen = settings.groupConvexIntersections && !settings.keepPeelLayers ? grouped : separate;
-    if (compiled != &chosen) {
-        evaluate.setProgram(chosen.program, canMarkLeaves);
-        compiled = &chosen;
+    const Compilation& chosen = settings.groupConvexIntersections && !settings.keepPeelLayers ? grouped : separate;
+    if (current != &chosen) {
+        evaluate.setTree(chosen.tree, canMarkLeaves);
+        current = &chosen;
     }
-    const TreeProgram& program = chosen.program;
-    stats.operands = program.operandCount();
+    const csg::CompiledTree& compiled = chosen.tree;
+    stats.operands = compiled.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;
 
@@ -520,11 +520,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     std::vector<PixelRect> rects, markRects;
     std::vector<int> markLeaves;
     PixelRect drawn;
-    if (program.kind == TreeProgram::Kind::Program) {
-        rects.resize(program.operandLeaf.size());
+    if (compiled.kind == csg::CompiledTree::Kind::Code) {
+        rects.resize(compiled.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
             // A group's surfaces lie where all its members' do.
-            const std::span<const int> leaves = program.leavesOf(k);
+            const std::span<const int> leaves = compiled.leavesOf(k);
             for (std::size_t i = 0; i < leaves.size(); ++i) {
                 const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
                 rects[k] = i == 0 ? own : rects[k].intersection(own);
@@ -545,10 +545,10 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
-    if (program.kind == TreeProgram::Kind::Program) {
+    if (compiled.kind == csg::CompiledTree::Kind::Code) {
         peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
-        stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
+        stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");
     }
 

@@ -1,4 +1,4 @@
-#include "strata/render/TreeProgram.h"
+#include "strata/csg/CompiledTree.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -7,7 +7,7 @@
 
 #include "strata/core/Error.h"
 
-namespace strata::render {
+namespace strata::csg {
 
 namespace {
 
@@ -29,20 +29,20 @@ public:
         exprs_.push_back(make(Expr::Type::Everything));  // kEverything
     }
 
-    TreeProgram compile() {
-        TreeProgram program;
-        if (tree_.root < 0) return program;  // nothing at all: empty
+    CompiledTree compile() {
+        CompiledTree compiled;
+        if (tree_.root < 0) return compiled;  // nothing at all: empty
         const int root = propagateLiterals(normalize(tree_.root));
-        if (root == kEmpty) return program;
+        if (root == kEmpty) return compiled;
         if (root == kEverything) {
-            program.kind = TreeProgram::Kind::Everything;
-            return program;
+            compiled.kind = CompiledTree::Kind::Everything;
+            return compiled;
         }
-        program.kind = TreeProgram::Kind::Program;
-        assignOperands(root, program);
+        compiled.kind = CompiledTree::Kind::Code;
+        assignOperands(root, compiled);
         computeNeeds(root);
-        emit(root, program);
-        return program;
+        emit(root, compiled);
+        return compiled;
     }
 
 private:
@@ -318,7 +318,7 @@ private:
         }
     }
 
-    void assignOperands(int root, TreeProgram& program) {
+    void assignOperands(int root, CompiledTree& compiled) {
         std::vector<int> leaves;
         postorder(root, [&](int e) {
             const Expr& x = exprs_[static_cast<std::size_t>(e)];
@@ -326,7 +326,7 @@ private:
         });
         std::sort(leaves.begin(), leaves.end());
         leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
-        program.operandLeaf = leaves;
+        compiled.operandLeaf = leaves;
         operandOfLeaf_.assign(tree_.leaves.size(), -1);
         for (std::size_t k = 0; k < leaves.size(); ++k) {
             operandOfLeaf_[static_cast<std::size_t>(leaves[k])] = static_cast<int>(k);
@@ -367,13 +367,13 @@ private:
         return op | (x.negated ? kOpNegate : 0u) | (operand << kOperandShift);
     }
 
-    void emit(int root, TreeProgram& program) {
+    void emit(int root, CompiledTree& compiled) {
         int depth = 0;
         auto put = [&](std::uint32_t instruction) {
-            program.code.push_back(instruction);
-            if ((instruction & 3u) == kOpPush) ++depth;
+            compiled.code.push_back(instruction);
+            if ((instruction & kOpMask) == kOpPush) ++depth;
             if (instruction & kOpFromStack) --depth;
-            program.stackDepth = std::max(program.stackDepth, depth);
+            compiled.stackDepth = std::max(compiled.stackDepth, depth);
         };
         // Frame: an expression and how many of its subexpression children are emitted.
         std::vector<std::pair<int, std::size_t>> stack{{root, 0}};
@@ -401,8 +401,8 @@ private:
             for (; i < x.children.size(); ++i) put(literal(op, x.children[i]));
             stack.pop_back();
         }
-        if (program.stackDepth > kMaxStackDepth) {
-            throw Error("CSG tree needs an evaluation stack of " + std::to_string(program.stackDepth) +
+        if (compiled.stackDepth > kMaxStackDepth) {
+            throw Error("CSG tree needs an evaluation stack of " + std::to_string(compiled.stackDepth) +
                         " entries; the evaluator holds " + std::to_string(kMaxStackDepth));
         }
     }
@@ -417,20 +417,20 @@ private:
 
 }  // namespace
 
-TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty,
-                        const std::vector<int>& sameLeaf) {
+CompiledTree compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty,
+                         const std::vector<int>& sameLeaf) {
     return Compiler(tree, leafIsEmpty, sameLeaf).compile();
 }
 
-std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,
-                                             bool* constant) {
-    if (program.kind != TreeProgram::Kind::Program) {
-        if (constant) *constant = program.kind == TreeProgram::Kind::Everything;
+std::vector<std::uint32_t> specializeCode(const CompiledTree& compiled, const std::vector<char>& present,
+                                          bool* constant) {
+    if (compiled.kind != CompiledTree::Kind::Code) {
+        if (constant) *constant = compiled.kind == CompiledTree::Kind::Everything;
         return {};
     }
     // Symbolic run of the stack machine: each entry is a constant or the
     // instructions that compute it. Folding keeps the order of evaluation, so
-    // the stack never gets deeper than the original program's.
+    // the stack never gets deeper than the code's.
     struct Entry {
         int constant = -1;  // 0 or 1, or -1 for `code`
         std::vector<std::uint32_t> code;
@@ -439,7 +439,7 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
         Entry e;
         const std::uint32_t operand = instruction >> kOperandShift;
         if (operand < present.size() && present[operand]) {
-            e.code.push_back((instruction & ~3u) | kOpPush);
+            e.code.push_back((instruction & ~kOpMask) | kOpPush);
         } else {
             e.constant = (instruction & kOpNegate) ? 1 : 0;  // absent: outside, so !x is true
         }
@@ -460,13 +460,13 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
         }
         // Both computed: a single-literal b fuses back into AND/OR literal.
         if (b.code.size() == 1) {
-            a.code.push_back((b.code[0] & ~3u) | op);
+            a.code.push_back((b.code[0] & ~kOpMask) | op);
         } else {
             a.code.insert(a.code.end(), b.code.begin(), b.code.end());
             a.code.push_back(op | kOpFromStack);
         }
     };
-    Entry result = foldCode<Entry>(program.code, literal, combine);
+    Entry result = foldCode<Entry>(compiled.code, literal, combine);
     if (constant) *constant = result.constant == 1;
     return result.constant >= 0 ? std::vector<std::uint32_t>{} : std::move(result.code);
 }
@@ -561,7 +561,7 @@ bool runCountingTree(const CountingTree& tree, const std::vector<bool>& operandI
 }
 
 bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& operandInside) {
-    // The same bit-stack machine as shaders/csg/evaluate.frag: top of stack in bit 0.
+    // A stack of bits, top of stack in bit 0.
     std::uint32_t stack = 0;
     for (std::uint32_t instruction : code) {
         std::uint32_t value;
@@ -572,7 +572,7 @@ bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& op
             const std::uint32_t operand = instruction >> kOperandShift;
             value = (operandInside.at(operand) ? 1u : 0u) ^ ((instruction & kOpNegate) ? 1u : 0u);
         }
-        switch (instruction & 3u) {
+        switch (instruction & kOpMask) {
             case kOpPush: stack = (stack << 1) | value; break;
             case kOpAnd: stack &= ~1u | value; break;
             case kOpOr: stack |= value; break;
@@ -582,19 +582,19 @@ bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& op
     return (stack & 1u) != 0;
 }
 
-bool runTreeProgram(const TreeProgram& program, const std::vector<bool>& operandInside) {
-    if (program.kind == TreeProgram::Kind::Empty) return false;
-    if (program.kind == TreeProgram::Kind::Everything) return true;
-    return runCode(program.code, operandInside);
+bool runCompiledTree(const CompiledTree& compiled, const std::vector<bool>& operandInside) {
+    if (compiled.kind == CompiledTree::Kind::Empty) return false;
+    if (compiled.kind == CompiledTree::Kind::Everything) return true;
+    return runCode(compiled.code, operandInside);
 }
 
-std::string disassemble(const TreeProgram& program) {
+std::string disassemble(const CompiledTree& compiled) {
     std::ostringstream out;
-    if (program.kind == TreeProgram::Kind::Empty) return "EMPTY\n";
-    if (program.kind == TreeProgram::Kind::Everything) return "EVERYTHING\n";
+    if (compiled.kind == CompiledTree::Kind::Empty) return "EMPTY\n";
+    if (compiled.kind == CompiledTree::Kind::Everything) return "EVERYTHING\n";
     static const char* const kNames[] = {"PUSH", "AND", "OR", "?"};
-    for (std::uint32_t instruction : program.code) {
-        out << kNames[instruction & 3u] << ' ';
+    for (std::uint32_t instruction : compiled.code) {
+        out << kNames[instruction & kOpMask] << ' ';
         if (instruction & kOpFromStack) {
             out << "pop";
         } else {
@@ -605,4 +605,4 @@ std::string disassemble(const TreeProgram& program) {
     return out.str();
 }
 
-}  // namespace strata::render
+}  // namespace strata::csg
