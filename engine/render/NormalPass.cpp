@@ -82,8 +82,9 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
             // Marks tell flips apart: a draw per flip the leaf shows. One mark for
             // all does not: one draw, and the shader reads the flip.
             for (int flip = 0; flip < (targets.leafMarks ? 2 : 1); ++flip) {
-                const std::uint32_t faces = targets.leafMarks ? (shown >> (flip * EvaluatePass::kFlipped)) & 3u
-                                                              : (shown | shown >> EvaluatePass::kFlipped) & 3u;
+                constexpr std::uint32_t kBoth = EvaluatePass::kFrontFaces | EvaluatePass::kBackFaces;
+                const std::uint32_t faces = targets.leafMarks ? (shown >> (flip * EvaluatePass::kFlipped)) & kBoth
+                                                              : (shown | shown >> EvaluatePass::kFlipped) & kBoth;
                 if (faces == 0) continue;
                 // Faces the result does not show here are culled before rasterizing.
                 if (faces == EvaluatePass::kFrontFaces || faces == EvaluatePass::kBackFaces) {

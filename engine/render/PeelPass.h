@@ -121,7 +121,7 @@ public:
 
     const gpu::Texture& layers() const { return layers_; }
     // The groups of the last run(): which member makes each surface
-    // (GroupPeel::ids), a layer per group (OperandLayers::group).
+    // (GroupPeel::ids), a layer per group (OperandLayers::idsLayer).
     const gpu::Texture& groupIds() const { return group_.ids(); }
     // The layers and, once an operand was collected, the fragment lists.
     std::size_t textureBytes() const {

@@ -68,7 +68,7 @@ ivec2 pixel;
 // which member makes its entry and its exit at each pixel. The leaf written,
 // marked and reported shown is that member. groupTable[leaf]: -1, or where
 // the leaf's group record starts: its layer of uGroupIds, then its members.
-// GROUPS: the program has groups (the lookup costs every written pixel).
+// GROUPS: the compiled tree has groups (the lookup costs every written pixel).
 #ifdef GROUPS
 layout(binding = kTextureGroupIds) uniform usampler2DArray uGroupIds;  // tile pixels: entry | exit << kMemberBits
 layout(std430, binding = kBufferGroupTable) readonly buffer GroupTable {
