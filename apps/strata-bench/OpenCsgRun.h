@@ -8,9 +8,9 @@
 
 #include "Coverage.h"
 #include "OpenCsgComparator.h"
+#include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
-#include "strata/render/Camera.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {

@@ -6,13 +6,13 @@
 
 #include <cstddef>
 
+#include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
 #include "strata/gpu/VertexArray.h"
-#include "strata/render/Camera.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {

@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {

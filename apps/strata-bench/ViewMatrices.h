@@ -4,8 +4,8 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/geometry/Mesh.h"
-#include "strata/render/Camera.h"
 
 namespace strata::bench {
 

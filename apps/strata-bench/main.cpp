@@ -35,6 +35,8 @@
 #include "PlainDraw.h"
 #include "SceneLoad.h"
 #include "Scenes.h"
+#include "strata/camera/Camera.h"
+#include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Check.h"
@@ -42,9 +44,7 @@
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
 #include "strata/io/Json.h"
-#include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/ViewBounds.h"
 
 namespace {
 
@@ -154,30 +154,18 @@ std::vector<std::uint8_t> coverageOf(const render::Frame& frame) {
     return out;
 }
 
-// `make` builds the scene for a camera carrying the image size.
-Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openCsg, const std::string& name, int k,
-               Size size, const std::function<bench::BenchScene(const render::Camera& base)>& make) {
-    Result result;
-    result.scene = name;
-    result.k = k;
-    result.size = size;
-
-    render::Camera base;
-    base.width = size.width;
-    base.height = size.height;
+// strata's frames of `scene` into a host framebuffer, timed: the medians
+// into `result`. Returns one read-back frame (not timed) for its coverage.
+render::Frame timeStrata(const Options& options, const bench::BenchScene& scene, const geometry::Model& model,
+                         const render::Camera& camera, Result& result) {
     const auto setupStart = Clock::now();
-    bench::BenchScene benchScene = make(base);
-    const geometry::Model model = geometry::buildModel(benchScene.tree);
-    const render::Camera camera =
-        benchScene.camera ? *benchScene.camera : render::defaultCamera(render::viewBounds(benchScene.tree, model), base);
-
     render::Renderer renderer;
-    renderer.setScene(benchScene.tree, model);
+    renderer.setScene(scene.tree, model);
     glFinish();
-    result.setupMs = msSince(setupStart);
+    result.setupMs += msSince(setupStart);
 
     // The host's target: renderInto copies the shaded image here.
-    gpu::Texture hostColor = gpu::Texture::create2D("bench host color", GL_RGBA8, size.width, size.height);
+    gpu::Texture hostColor = gpu::Texture::create2D("bench host color", GL_RGBA8, camera.width, camera.height);
     gpu::Framebuffer host("bench host");
     host.attachTexture(GL_COLOR_ATTACHMENT0, hostColor);
     host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
@@ -216,11 +204,15 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     }
     // renderInto does not count covered pixels; one read-back frame does (not
     // timed), and gives the coverage OpenCSG's is checked against.
-    const render::Frame frameForCoverage = renderer.render(camera, settings);
+    render::Frame frameForCoverage = renderer.render(camera, settings);
     result.coveredPixels = frameForCoverage.stats.coveredPixels;
+    return frameForCoverage;
+}
 
-    // The floor, in the same context, right after.
-    bench::PlainDraw plain(benchScene.tree, model, size.width, size.height);
+// The floor, plain rasterization of the same triangles, timed into `result`.
+void timePlain(const Options& options, const bench::BenchScene& scene, const geometry::Model& model,
+               const render::Camera& camera, Result& result) {
+    bench::PlainDraw plain(scene.tree, model, camera.width, camera.height);
     result.triangles = plain.triangles();
     std::vector<double> plainFrames;
     for (int i = 0; i < options.warmup + options.frames; ++i) {
@@ -230,7 +222,31 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     result.plainMs = median(plainFrames);
     result.plainMinMs = plainFrames.empty() ? 0.0 : *std::min_element(plainFrames.begin(), plainFrames.end());
     // Its vertex buffer (3 float positions a vertex) and RGBA8 + depth 32F target.
-    result.plainBytes = plain.triangles() * 3 * 3 * sizeof(float) + std::size_t(size.width) * size.height * 8;
+    result.plainBytes =
+        plain.triangles() * 3 * 3 * sizeof(float) + std::size_t(camera.width) * std::size_t(camera.height) * 8;
+}
+
+// `make` builds the scene for a camera carrying the image size.
+Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openCsg, const std::string& name, int k,
+               Size size, const std::function<bench::BenchScene(const render::Camera& base)>& make) {
+    Result result;
+    result.scene = name;
+    result.k = k;
+    result.size = size;
+
+    render::Camera base;
+    base.width = size.width;
+    base.height = size.height;
+    const auto setupStart = Clock::now();
+    bench::BenchScene benchScene = make(base);
+    const geometry::Model model = geometry::buildModel(benchScene.tree);
+    const render::Camera camera =
+        benchScene.camera ? *benchScene.camera : render::defaultCamera(render::viewBounds(benchScene.tree, model), base);
+    result.setupMs = msSince(setupStart);
+
+    const render::Frame frameForCoverage = timeStrata(options, benchScene, model, camera, result);
+    // The floor, in the same context, right after.
+    timePlain(options, benchScene, model, camera, result);
 
     if (!openCsg.comparator) {
         result.openCsg.unavailable = openCsg.unavailable;
@@ -396,11 +412,9 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     return json.str();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    Options options;
-    CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
+// The command line into `options`; the option of --scenes, which says
+// whether it was given.
+CLI::Option* addOptions(CLI::App& app, Options& options) {
     CLI::Option* scenes =
         app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep, tori, mesh")
             ->delimiter(',')
@@ -425,6 +439,68 @@ int main(int argc, char** argv) {
     app.add_flag("!--no-groups", options.groups,
                  "peel every convex operand of an intersection on its own, not the intersection as one operand "
                  "(to measure what grouping gains)");
+    return scenes;
+}
+
+// OpenCSG's comparator where it was built in and opens, else why not.
+// Leaves strata's context current.
+OpenCsgSide openOpenCsg(const Options& options, gpu::Context& context) {
+    OpenCsgSide openCsg;
+    if (!options.openCsg) {
+        openCsg.unavailable = "OpenCSG left out (--no-opencsg)";
+        return openCsg;
+    }
+    try {
+        openCsg.comparator = bench::openOpenCsgComparator();
+        std::printf("# %s: %s\n", bench::openCsgVersion(), openCsg.comparator->renderer().c_str());
+    } catch (const std::exception& e) {
+        openCsg.unavailable = std::string("OpenCSG unavailable: ") + e.what();
+        std::printf("# %s\n", openCsg.unavailable.c_str());
+    }
+    context.makeCurrent();  // opening the comparator released strata's context
+    return openCsg;
+}
+
+// Every case, a row printed as each ends: per size, the seeded scenes for
+// each K, then the scene files.
+std::vector<Result> runAll(const Options& options, gpu::Context& context, OpenCsgSide& openCsg,
+                           const std::vector<Size>& sizes, const std::vector<scene::Tree>& fileTrees) {
+    std::vector<Result> results;
+    auto run = [&](const std::string& name, int k, Size size,
+                   const std::function<bench::BenchScene(const render::Camera&)>& make) {
+        Result result;
+        try {
+            result = runCase(options, context, openCsg, name, k, size, make);
+        } catch (const std::exception& e) {
+            result.scene = name;
+            result.k = k;
+            result.size = size;
+            result.error = e.what();
+        }
+        printRow(result);
+        results.push_back(std::move(result));
+    };
+    for (const Size& size : sizes) {
+        for (const std::string& name : options.scenes)
+            for (int k : options.ks)
+                run(name, k, size, [&](const render::Camera& base) {
+                    return bench::makeScene(name, k, options.seed, base);
+                });
+        for (std::size_t f = 0; f < fileTrees.size(); ++f) {
+            const scene::Tree& tree = fileTrees[f];
+            run(std::filesystem::path(options.files[f]).filename().string(), static_cast<int>(tree.leaves.size()),
+                size, [&](const render::Camera&) { return bench::BenchScene{tree, std::nullopt}; });
+        }
+    }
+    return results;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
+    const CLI::Option* scenes = addOptions(app, options);
     CLI11_PARSE(app, argc, argv);
     const std::string heap = steadyHeap(options.steadyHeap);
     if (!options.files.empty() && scenes->count() == 0) options.scenes.clear();
@@ -450,51 +526,11 @@ int main(int argc, char** argv) {
         std::printf("# %s, %s; median of %d frames after %d warm-up, glFinish per frame; %s\n",
                     context.renderer().c_str(), context.version().c_str(), options.frames, options.warmup,
                     heap.c_str());
-
-        OpenCsgSide openCsg;
-        if (options.openCsg) {
-            try {
-                openCsg.comparator = bench::openOpenCsgComparator();
-                std::printf("# %s: %s\n", bench::openCsgVersion(), openCsg.comparator->renderer().c_str());
-            } catch (const std::exception& e) {
-                openCsg.unavailable = std::string("OpenCSG unavailable: ") + e.what();
-                std::printf("# %s\n", openCsg.unavailable.c_str());
-            }
-            context.makeCurrent();  // opening the comparator released strata's context
-        } else {
-            openCsg.unavailable = "OpenCSG left out (--no-opencsg)";
-        }
+        OpenCsgSide openCsg = openOpenCsg(options, context);
         // Ascending K, so a setting over the time cap is skipped for every larger K.
         std::sort(options.ks.begin(), options.ks.end());
         printHeader();
-
-        std::vector<Result> results;
-        auto run = [&](const std::string& name, int k, Size size,
-                       const std::function<bench::BenchScene(const render::Camera&)>& make) {
-            Result result;
-            try {
-                result = runCase(options, context, openCsg, name, k, size, make);
-            } catch (const std::exception& e) {
-                result.scene = name;
-                result.k = k;
-                result.size = size;
-                result.error = e.what();
-            }
-            printRow(result);
-            results.push_back(std::move(result));
-        };
-        for (const Size& size : sizes) {
-            for (const std::string& name : options.scenes)
-                for (int k : options.ks)
-                    run(name, k, size, [&](const render::Camera& base) {
-                        return bench::makeScene(name, k, options.seed, base);
-                    });
-            for (std::size_t f = 0; f < fileTrees.size(); ++f) {
-                const scene::Tree& tree = fileTrees[f];
-                run(std::filesystem::path(options.files[f]).filename().string(), static_cast<int>(tree.leaves.size()),
-                    size, [&](const render::Camera&) { return bench::BenchScene{tree, std::nullopt}; });
-            }
-        }
+        const std::vector<Result> results = runAll(options, context, openCsg, sizes, fileTrees);
 
         if (jsonOut.is_open()) {
             jsonOut << toJson(options, context, openCsg, results) << '\n';

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "CommandLine.h"
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 
 namespace strata::apps {
 

@@ -23,9 +23,9 @@
 #include "strata/io/MeshWriter.h"
 #include "strata/io/Stats.h"
 #include "strata/reference/RayCaster.h"
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/ViewBounds.h"
+#include "strata/camera/ViewBounds.h"
 #include "strata/scene/Tree.h"
 
 namespace {

@@ -14,7 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/geometry/Mesh.h"
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 
 namespace strata::view {
 

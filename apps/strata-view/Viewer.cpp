@@ -16,7 +16,7 @@
 #include "strata/gpu/Gl.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/render/ColorScheme.h"
-#include "strata/render/ViewBounds.h"
+#include "strata/camera/ViewBounds.h"
 
 namespace strata::view {
 namespace {

@@ -37,10 +37,6 @@ void Buffer::clearToZero() {
 
 void Buffer::bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
 
-void Buffer::bindRange(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const {
-    glBindBufferRange(target, index, id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes));
-}
-
 void Buffer::bind(GLenum target) const { glBindBuffer(target, id()); }
 
 }  // namespace strata::gpu

@@ -44,10 +44,6 @@ void Framebuffer::clearColor(int drawBuffer, const float rgba[4]) {
     glClearNamedFramebufferfv(id(), GL_COLOR, drawBuffer, rgba);
 }
 
-void Framebuffer::clearColorUint(int drawBuffer, const GLuint rgba[4]) {
-    glClearNamedFramebufferuiv(id(), GL_COLOR, drawBuffer, rgba);
-}
-
 void Framebuffer::clearColorInt(int drawBuffer, const GLint rgba[4]) {
     glClearNamedFramebufferiv(id(), GL_COLOR, drawBuffer, rgba);
 }

@@ -84,10 +84,6 @@ void Texture::bindImage(GLuint unit, GLenum access, int level) const {
                        access, desc_.internalFormat);
 }
 
-void Texture::bindImageLayer(GLuint unit, GLenum access, int layer, int level) const {
-    glBindImageTexture(unit, id(), level, GL_FALSE, layer, access, desc_.internalFormat);
-}
-
 void Texture::clear(GLenum format, GLenum type, const void* value, int level) {
     glClearTexImage(id(), level, format, type, value);
 }

@@ -8,36 +8,40 @@
 //
 // The tree lives in storage buffers: a tree edit only re-uploads them. Each
 // 16x16 block of a tile gets the tree specialised to the operands whose
-// screen rectangle meets it (TreeProgram.h: specializeProgram, then
+// screen rectangle meets it (strata/csg/CompiledTree.h: specializeCode, then
 // countingTree), so a pixel gathers and evaluates only what can matter there.
-// The shader comes in four forms: the first-surface form (the block's tree
-// is one operand of one layer, so the result's first surface is the
-// operand's), the register form (operands of up to eight peeled layers in
-// all, a slot per layer, the tree as a truth table, everything in
-// registers; MAX_LIVE 4 or 8 slots), the product form (more
-// operands of one layer each under a single AND or OR: a CSG product or a
-// union) and the array form (anything else: a heap of surfaces and a
-// counting tree in per-pixel arrays of MAX_LIVE, a power of two from 16 up).
-// Each block is drawn (one instanced quad per block) by the cheapest variant
-// that holds it. A variant is compiled on first use and kept.
+// The shader comes in four forms (BlockForm): the first-surface form (the
+// block's tree is one operand of one layer, so the result's first surface is
+// the operand's), the register form (operands of up to eight peeled layers
+// in all, a slot per layer, the tree as a truth table, everything in
+// registers; MAX_LIVE 4 or 8 slots), the product form (more operands of one
+// layer each under a single AND or OR: a CSG product or a union) and the
+// array form (anything else: a heap of surfaces and a counting tree in
+// per-pixel arrays of MAX_LIVE, a power of two from 16 up). A variant of the
+// shader is a form with its MAX_LIVE; each block is drawn (runs of blocks
+// along a row as one instanced quad) by the cheapest variant that holds it.
+// A variant is compiled on first use and kept.
 //
 // GL state: sets the viewport, the stencil test and function; leaves the
 // stencil test off. Expects blending, depth test and culling off.
 
+#include <compare>
 #include <cstdint>
 #include <map>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "FrameTargets.h"
 #include "PeelPass.h"
+#include "ShaderInterface.h"
 #include "ViewSetup.h"
+#include "strata/csg/CompiledTree.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/VertexArray.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/TreeProgram.h"
 
 namespace strata::render {
 
@@ -45,10 +49,10 @@ class EvaluatePass {
 public:
     EvaluatePass();
 
-    // Uploads the program; operand k of it is tree leaf program.operandLeaf[k].
-    // Compiles now the variants the program will likely use, writing leaf
+    // Takes the compiled tree; its operand k is tree leaf tree.operandLeaf[k].
+    // Compiles now the variants the tree will likely use, writing leaf
     // marks or not (`leafMarks`, as the frames will ask: FrameTargets::leafMarks).
-    void setProgram(const TreeProgram& program, bool leafMarks);
+    void setTree(const csg::CompiledTree& tree, bool leafMarks);
 
     // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
     // gathers, per 16x16 block, only the operands whose rectangle meets it.
@@ -66,51 +70,100 @@ public:
     // The tile's groups of convex operands for run() (evaluate.frag:
     // groupTable): per tree leaf (`leafCount`) -1, or for a group's operand
     // leaf where its record starts: the group's layer of PeelPass::groupIds
-    // (`layers[k].group`), then its members (TreeProgram::operandGroups).
-    static std::vector<int> groupTable(std::size_t leafCount, const TreeProgram& program,
+    // (`layers[k].idsLayer`), then its members (csg::CompiledTree::operandGroups).
+    static std::vector<int> groupTable(std::size_t leafCount, const csg::CompiledTree& tree,
                                        const std::vector<OperandLayers>& layers);
 
-    // The array form's size (MAX_LIVE) for `count` literals or nodes: a power
-    // of two, at least 16.
+    // The array form's MAX_LIVE for `count` literals or nodes: a power of
+    // two, at least 16.
     static int capacityFor(int count);
 
     // Per tree leaf, after run(): which of its faces the result shows in the
     // tile, kFrontFaces | kBackFaces (0: none) where the leaf is the result's
     // own surface, the same shifted by kFlipped where it acts subtracted (its
-    // normal flipped). Waits for the GPU.
+    // normal flipped): bit shader::faceBit(exit, flip). Waits for the GPU.
     std::vector<std::uint32_t> shownFaces() const;
-    static constexpr std::uint32_t kFrontFaces = 1, kBackFaces = 2;
-    static constexpr int kFlipped = 2;
-    // The largest MAX_LIVE of evaluate.frag's register form (compiled for 4
-    // and 8): up to this many peeled layers of the block's operands, the
-    // tree as a truth table.
-    static constexpr int kRegisterForm = 8;
-    // The product and first-surface forms' variant keys (they have no
-    // MAX_LIVE: they keep no arrays).
-    static constexpr int kProductForm = 1;
-    static constexpr int kFirstSurfaceForm = 2;
-    static constexpr int kBlock = 16;  // BLOCK in evaluate.frag
+    static constexpr std::uint32_t kFrontFaces = 1u << shader::faceBit(false, false);
+    static constexpr std::uint32_t kBackFaces = 1u << shader::faceBit(true, false);
+    static constexpr int kFlipped = shader::faceBit(false, true);
+    // The most slots of the register form (compiled for MAX_LIVE 4 and 8):
+    // up to this many peeled layers of the block's operands.
+    static constexpr int kRegisterSlots = 8;
+    static constexpr int kBlock = shader::kBlock;
 
 private:
-    struct BlockTree {
-        glm::uvec4 record{0u};  // the block's entry in `blocks` (evaluate.frag)
-        int form = 0;           // shader variant (MAX_LIVE, kProductForm or kFirstSurfaceForm); 0: constant result, nothing to draw
+    // A variant of evaluate.frag: its form and, for the register and array
+    // forms, its MAX_LIVE.
+    struct Variant {
+        BlockForm form = BlockForm::None;  // None: the result is constant, nothing to draw
+        int maxLive = 0;
+        auto operator<=>(const Variant&) const = default;
     };
-    // Appends the block data of `code` (a specialised program) to `literals`
-    // and `nodes`, in the first-surface, register or product form where it
-    // fits (unless `generalOnly`), else the array form.
-    BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
-                      std::vector<glm::uvec4>& literals, std::vector<glm::uvec4>& nodes, bool generalOnly) const;
-    // The form a shader variant (BlockTree::form, not 0) draws.
-    static BlockForm blockForm(int variant);
-    // `form`: 4, kRegisterForm, kProductForm, kFirstSurfaceForm or a
-    // capacityFor() value; `leafMarks`: the shader writes
-    // FrameTargets::mark(leaf, exit, flip) to the stencil.
-    gpu::Program& programFor(int form, bool leafMarks);
+    // A block's tree as the shader reads it: the block's record (blocks.glsl)
+    // and the variant that draws it.
+    struct BlockTree {
+        glm::uvec4 record{0u};
+        Variant variant;
+    };
+    // Where a block tree's data goes: the literals (or slots) and the inner
+    // nodes of every tree of the tile, one after the other.
+    struct TreeData {
+        std::vector<glm::uvec4> literals;
+        std::vector<glm::uvec4> nodes;
+    };
+    // What one tile draws: every block's record, the runs of blocks each
+    // variant draws (one instanced quad per run), and the leaves whose front
+    // faces count as shown beforehand.
+    struct BlockPlan {
+        int blocksX = 0;
+        std::vector<glm::uvec4> blocks;
+        TreeData data;
+        std::map<Variant, std::vector<std::uint32_t>> blocksOf;  // per variant, its blocks
+        std::vector<glm::uvec2> runs;                            // first block, blocks in the run
+        std::map<Variant, std::size_t> runsOf;                   // per variant, its runs (in order)
+        std::vector<std::uint32_t> shownBefore;                  // per tree leaf
+    };
 
-    std::map<int, gpu::Program> programs_;  // by (form (BlockTree::form) * 2 + leaf marks) * 2 + groups_
-    bool groups_ = false;  // the program has groups of convex operands (GROUPS variants)
-    TreeProgram program_;
+    // The tile's blocks: each one's tree, record and variant (the part of
+    // run() that decides; draw() is the part that draws).
+    BlockPlan planBlocks(const FrameTargets& targets, const PixelRect& tile,
+                         const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
+                         const std::vector<int>& groupTable, bool generalOnly) const;
+    // Per block of the tile (`blocksX` per row), the operands whose rectangle meets it.
+    std::vector<std::vector<std::uint32_t>> operandsPerBlock(const PixelRect& tile, int blocksX,
+                                                             const std::vector<OperandLayers>& operandLayers,
+                                                             const std::vector<PixelRect>& rects) const;
+    // Uploads `plan`, binds the pass's inputs and draws each variant's runs.
+    void draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile, const BlockPlan& plan,
+              const std::vector<int>& groupTable, const gpu::Texture& groupIds, FrameStats& stats);
+
+    // Appends the data of `code` (specialised code) to `data` in the
+    // cheapest form that holds it (the array form where `generalOnly`).
+    BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
+                      TreeData& data, bool generalOnly) const;
+    // One per form: the operands `used` that `code` reads, each once, of
+    // `slots` layers in all.
+    BlockTree firstSurfaceTree(std::uint32_t operand, const std::vector<OperandLayers>& operandLayers) const;
+    BlockTree registerTree(const std::vector<std::uint32_t>& code, const std::vector<std::uint32_t>& used, int slots,
+                           const std::vector<OperandLayers>& operandLayers, TreeData& data) const;
+    BlockTree productTree(const csg::CountingTree& tree, const std::vector<OperandLayers>& operandLayers,
+                          TreeData& data) const;
+    BlockTree arrayTree(const csg::CountingTree& tree, const std::vector<std::uint32_t>& used,
+                        const std::vector<OperandLayers>& operandLayers, TreeData& data) const;
+
+    // The compiled variant; `leafMarks`: it writes FrameTargets::mark(leaf,
+    // exit, flip) to the stencil.
+    gpu::Program& programFor(Variant variant, bool leafMarks);
+
+    struct ProgramKey {
+        Variant variant;
+        bool leafMarks = false;
+        bool groups = false;
+        auto operator<=>(const ProgramKey&) const = default;
+    };
+    std::map<ProgramKey, gpu::Program> variants_;
+    bool groups_ = false;  // the tree has groups of convex operands (GROUPS variants)
+    csg::CompiledTree tree_;
     gpu::Buffer blocks_;
     gpu::Buffer blockOperands_;
     gpu::Buffer blockNodes_;

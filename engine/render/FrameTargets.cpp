@@ -42,7 +42,7 @@ void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
     glDisable(GL_SCISSOR_TEST);
     if (wholeFrame) {
         const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
-        const GLint leaf[4] = {-1, 0, 0, 0};
+        const GLint leaf[4] = {shader::kLeafMiss, 0, 0, 0};
         evaluateTarget.clearColor(0, depth);
         evaluateTarget.clearColorInt(1, leaf);
     }

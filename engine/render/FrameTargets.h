@@ -3,7 +3,7 @@
 // final colour, with a framebuffer per pass that writes them.
 //
 //   resultDepth  R32F     tagged view depth of the visible surface, +inf on a miss   (evaluate)
-//   resultLeaf   R32I     leaf * 2 + flip, -1 on a miss                               (evaluate)
+//   resultLeaf   R32I     shader::leafCode(leaf, flip), kLeafMiss on a miss          (evaluate)
 //   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
 //                         base colour (ShadePass::packBaseColor); 0 on a miss
 //   color        RGBA8    the shaded image                                           (shade, translucent)
@@ -17,19 +17,20 @@
 // branch for its 8 or 16 lanes). Where the driver lets a fragment shader
 // write the stencil value (ARB_shader_stencil_export), the mark names the
 // leaf's mark slot, the facing of its surface there and whether the leaf
-// acts subtracted (1 + 4 slot + exit + 2 flip; evaluate.frag computes the
-// same from the slots buffer), so the normal pass, drawing one leaf at a
-// time, skips the other leaves' pixels before its shader runs. The 8-bit
-// stencil holds 63 slots: up to 63 operands each has its own, and past that
-// leaves whose screen rectangles overlap get different slots where the 63
-// allow (assignMarkSlots); elsewhere every written pixel gets kWritten (and
-// the evaluator's pixels it could not finish get it too, where with leaf
-// marks they get 0).
+// acts subtracted (shader::stencilMark; evaluate.frag writes it from the
+// slots buffer), so the normal pass, drawing one leaf at a time, skips the
+// other leaves' pixels before its shader runs. The 8-bit stencil holds 63
+// slots: up to 63 operands each has its own, and past that leaves whose
+// screen rectangles overlap get different slots where the 63 allow
+// (assignMarkSlots); elsewhere every written pixel gets shader::kMarkWritten
+// (and the evaluator's pixels it could not finish get it too, where with
+// leaf marks they get 0).
 
 #include <cstddef>
 #include <span>
 #include <vector>
 
+#include "ShaderInterface.h"
 #include "ViewSetup.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
@@ -62,13 +63,11 @@ public:
     gpu::Framebuffer normalTarget;    // 0: normal
     gpu::Framebuffer colorTarget;     // 0: color
 
-    static constexpr int kWritten = 2;  // the mark without leaf marks, see above
-
     // Whether the driver can give each pixel its leaf's mark (asks GL).
     static bool canMarkLeaves();
     // This frame's choice, set by the renderer before the evaluate pass.
     bool leafMarks = false;
-    static constexpr int kMarkSlots = 63;  // 4 marks each, 1..252
+    static constexpr int kMarkSlots = shader::kMarkSlots;  // 4 marks each, 1..252
     // Gives each leaf the evaluator may write (tree leaf operandLeaves[k]:
     // the operands, and for a group of convex operands its members; screen
     // rectangle rects[k]) a mark slot, and uploads them (the evaluator's
@@ -82,7 +81,7 @@ public:
     // The stencil value of a pixel showing `leaf`'s front face (its back
     // face: `exit`), flipped (the leaf acts subtracted there) or not.
     int mark(int leaf, bool exit, bool flip) const {
-        return leafMarks ? 1 + markSlot(leaf) * 4 + (exit ? 1 : 0) + (flip ? 2 : 0) : kWritten;
+        return leafMarks ? shader::stencilMark(markSlot(leaf), shader::faceBit(exit, flip)) : shader::kMarkWritten;
     }
 
 private:

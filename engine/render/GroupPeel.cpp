@@ -3,22 +3,10 @@
 #include <algorithm>
 #include <cstring>
 
+#include "ShaderInterface.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
-
-namespace {
-
-// Uniform locations in shaders/csg/surface.vert and peel.frag (GROUP).
-constexpr GLint kViewProjection = 0;
-constexpr GLint kEye = 1;
-constexpr GLint kForward = 2;
-constexpr GLint kKeyBase = 4;
-constexpr GLint kMember = 5;
-// In shaders/csg/group.frag.
-constexpr GLint kGroup = 0;
-
-}  // namespace
 
 GroupPeel::GroupPeel()
     : draw_(gpu::Program::fromFiles("peel group", {"csg/surface.vert", "csg/peel.frag"},
@@ -59,19 +47,17 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
         ids_ = gpu::Texture::create2DArray("peel group ids", GL_R32UI, tile.width, tile.height, std::max(groups, 1));
     }
 
-    draw_.setUniform(kViewProjection, view.viewProjection);
-    draw_.setUniform(kEye, view.eye);
-    draw_.setUniform(kForward, view.forward);
+    setSurfaceView(draw_, view);
     // Tagged depths from half the near plane's on map into [0, 1) in order
     // (peel.frag: orderKey); every fragment lies beyond the near plane.
     const float base = static_cast<float>(view.nearPlane * 0.5);
     std::uint32_t bits = 0;
     std::memcpy(&bits, &base, sizeof bits);
-    draw_.setUniform(kKeyBase, bits);
+    draw_.setUniform(shader::kPeelKeyBase, bits);
 }
 
 void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-                     const gpu::Texture& layers, int layer, int group) {
+                     const gpu::Texture& layers, int layer, int idsLayer) {
     glScissor(valid.x, valid.y, valid.width, valid.height);
     target_.bindForDraw();
     const float none[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
@@ -96,7 +82,7 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
             glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
         }
         for (std::size_t m = 0; m < members.size(); ++m) {
-            draw_.setUniform(kMember, static_cast<float>(m));
+            draw_.setUniform(shader::kPeelMember, static_cast<float>(m));
             scene.drawLeaf(members[m]);
         }
     }
@@ -110,10 +96,10 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
     layerTarget_.bindForDraw();
     glStencilFunc(GL_EQUAL, static_cast<GLint>(members.size()), 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    scratch_.bindUnit(0);
-    ids_.bindImage(3, GL_WRITE_ONLY);
+    scratch_.bindUnit(shader::kTextureGroupScratch);
+    ids_.bindImage(shader::kImageGroupIds, GL_WRITE_ONLY);
     resolve_.use();
-    resolve_.setUniform(kGroup, group);
+    resolve_.setUniform(shader::kGroupIdsLayer, idsLayer);
     glDrawArrays(GL_TRIANGLES, 0, 3);  // reads no attribute: any vertex array does
     glDisable(GL_STENCIL_TEST);
     // The evaluator samples the layer and the ids.

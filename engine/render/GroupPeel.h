@@ -45,21 +45,23 @@ class GroupPeel {
 public:
     GroupPeel();  // compiles the shaders; needs a current context
 
+    // Members are counted in the 8-bit stencil.
     static constexpr int kMostMembers = 255;
-    static constexpr int kNoMember = 0xff;  // in ids(): no entry
 
     // Bytes per pixel of a tile for `groups` groups: scratch, depth-stencil, ids.
     static std::size_t bytesPerPixel(int groups) { return 16 + 8 + 4 * static_cast<std::size_t>(groups); }
 
     // Makes room for `groups` groups in `tile`. Call before the tile's first peel().
     void begin(const ViewSetup& view, const PixelRect& tile, int groups);
-    // Peels group `group` (0 .. groups - 1 of begin()): `members` (leaves,
-    // ascending) inside `valid` (tile pixels), into layer `layer` of `layers`.
+    // Peels a group: `members` (leaves, ascending) inside `valid` (tile
+    // pixels), into layer `layer` of `layers`, and its members into layer
+    // `idsLayer` (0 .. groups - 1 of begin()) of ids().
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-              const gpu::Texture& layers, int layer, int group);
+              const gpu::Texture& layers, int layer, int idsLayer);
 
-    // R32UI, a layer per group, tile pixels: entry member | exit member << 8
-    // where the group has a surface (kNoMember: no entry).
+    // R32UI, a layer per group, tile pixels: entry member | exit member <<
+    // shader::kMemberBits where the group has a surface (shader::kNoMember:
+    // no entry).
     const gpu::Texture& ids() const { return ids_; }
     std::size_t bytes() const;
     // Frees the images: a frame without groups keeps no memory outside the

@@ -3,20 +3,12 @@
 #include <algorithm>
 
 #include "EvaluatePass.h"
-
+#include "ShaderInterface.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
 
 namespace {
-
-// Uniform locations in shaders/csg/surface.vert and normal.frag.
-constexpr GLint kViewProjection = 0;
-constexpr GLint kEye = 1;
-constexpr GLint kForward = 2;
-constexpr GLint kLeaf = 3;
-constexpr GLint kBaseColor = 5;
-constexpr GLint kFlip = 6;  // TRUST_MARKS only
 
 // Per tree leaf: whether the stencil marks in its rectangle within `tile`
 // are its own, that is, no other leaf holding its mark slot this frame
@@ -62,22 +54,18 @@ NormalPass::NormalPass()
                                        {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})) {}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-                     const TreeProgram& tree, const std::vector<PixelRect>& rects,
+                     const csg::CompiledTree& tree, const std::vector<PixelRect>& rects,
                      const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
                      std::span<const int> markLeaves, std::span<const PixelRect> markRects) {
-    for (gpu::Program* program : {&checked_, &trusted_}) {
-        program->setUniform(kViewProjection, view.viewProjection);
-        program->setUniform(kEye, view.eye);
-        program->setUniform(kForward, view.forward);
-    }
+    for (gpu::Program* program : {&checked_, &trusted_}) setSurfaceView(*program, view);
     const std::vector<char> ownMarks =
         targets.leafMarks ? marksOwnedInRect(targets, markLeaves, markRects, tile) : std::vector<char>{};
     auto ownsMarks = [&](int leaf) {
         return static_cast<std::size_t>(leaf) < ownMarks.size() && ownMarks[static_cast<std::size_t>(leaf)];
     };
     const gpu::Program* inUse = nullptr;
-    targets.resultDepth.bindUnit(0);
-    targets.resultLeaf.bindUnit(1);
+    targets.resultDepth.bindUnit(shader::kTextureResultDepth);
+    targets.resultLeaf.bindUnit(shader::kTextureResultLeaf);
     targets.normalTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
@@ -98,13 +86,14 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
                 program.use();
                 inUse = &program;
             }
-            program.setUniform(kLeaf, leaf);
-            program.setUniform(kBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
+            program.setUniform(shader::kNormalLeaf, leaf);
+            program.setUniform(shader::kNormalBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
             // Marks tell flips apart: a draw per flip the leaf shows. One mark for
             // all does not: one draw, and the shader reads the flip.
             for (int flip = 0; flip < (targets.leafMarks ? 2 : 1); ++flip) {
-                const std::uint32_t faces = targets.leafMarks ? (shown >> (flip * EvaluatePass::kFlipped)) & 3u
-                                                              : (shown | shown >> EvaluatePass::kFlipped) & 3u;
+                constexpr std::uint32_t kBoth = EvaluatePass::kFrontFaces | EvaluatePass::kBackFaces;
+                const std::uint32_t faces = targets.leafMarks ? (shown >> (flip * EvaluatePass::kFlipped)) & kBoth
+                                                              : (shown | shown >> EvaluatePass::kFlipped) & kBoth;
                 if (faces == 0) continue;
                 // Faces the result does not show here are culled before rasterizing.
                 if (faces == EvaluatePass::kFrontFaces || faces == EvaluatePass::kBackFaces) {
@@ -115,7 +104,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
                 }
                 glStencilFuncSeparate(GL_FRONT, GL_EQUAL, targets.mark(leaf, false, flip != 0), 0xff);
                 glStencilFuncSeparate(GL_BACK, GL_EQUAL, targets.mark(leaf, true, flip != 0), 0xff);
-                if (&program == &trusted_) program.setUniform(kFlip, flip);
+                if (&program == &trusted_) program.setUniform(shader::kNormalFlip, flip);
                 scene.drawLeaf(leaf);
             }
         }

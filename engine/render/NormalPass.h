@@ -35,10 +35,10 @@
 #include "FrameTargets.h"
 #include "SceneBuffers.h"
 #include "ViewSetup.h"
+#include "strata/csg/CompiledTree.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
-#include "strata/render/TreeProgram.h"
 
 namespace strata::render {
 
@@ -50,12 +50,12 @@ public:
     // rectangle; `shownFaces[leaf]` says which faces of the leaf the result
     // shows in the tile (EvaluatePass::shownFaces): only those are drawn.
     // `baseColors[leaf]` is the leaf's ShadePass::baseColors entry.
-    // A group operand's members (TreeProgram::leavesOf) are each drawn as a
+    // A group operand's members (csg::CompiledTree::leavesOf) are each drawn as a
     // leaf of their own within the group's rectangle. `markLeaves` and
     // `markRects`: the leaves that hold mark slots this frame and their
     // screen rectangles, as FrameTargets::assignMarkSlots got them.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-             const TreeProgram& tree, const std::vector<PixelRect>& rects,
+             const csg::CompiledTree& tree, const std::vector<PixelRect>& rects,
              const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
              std::span<const int> markLeaves, std::span<const PixelRect> markRects);
 

@@ -11,22 +11,6 @@ namespace strata::render {
 
 namespace {
 
-// Uniform locations in shaders/csg/surface.vert and peel.frag.
-constexpr GLint kViewProjection = 0;
-constexpr GLint kEye = 1;
-constexpr GLint kForward = 2;
-constexpr GLint kPreviousLayer = 3;
-// In shaders/csg/resolve.frag.
-constexpr GLint kFirstLayer = 0;
-constexpr GLint kLayerCount = 1;
-
-
-void setView(gpu::Program& program, const ViewSetup& view) {
-    program.setUniform(kViewProjection, view.viewProjection);
-    program.setUniform(kEye, view.eye);
-    program.setUniform(kForward, view.forward);
-}
-
 bool canBatch() {
     return epoxy_has_gl_extension("GL_ARB_shader_draw_parameters") &&
            epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array");
@@ -49,10 +33,8 @@ PeelPass::PeelPass()
       drawn_("peel drawn", GL_ANY_SAMPLES_PASSED),
       deeperDrawn_("peel deeper drawn", GL_ANY_SAMPLES_PASSED),
       collect_(gpu::Program::fromFiles("peel collect", {"csg/surface.vert", "csg/peel.frag"},
-                                       {{"PEEL_FIRST", ""}, {"COLLECT", ""},
-                                        {"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
-      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"},
-                                       {{"COLLECT_CAPACITY", std::to_string(kCollectCapacity)}})),
+                                       {{"PEEL_FIRST", ""}, {"COLLECT", ""}})),
+      resolve_(gpu::Program::fromFiles("peel resolve", {"common/fullscreen.vert", "csg/resolve.frag"})),
       listTarget_("peel lists"),
       resolveStats_("peel resolve stats", 2 * sizeof(GLuint)) {
     if (batched_) {
@@ -160,32 +142,201 @@ void PeelPass::clearLayers(const PixelRect& valid, int first, int count) {
                        cleared);
 }
 
-void PeelPass::peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
-                               std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out,
-                               int firstLayer) {
+bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
+                   std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
+                   const PeelRequest& request, std::vector<OperandLayers>& out) {
+    out.assign(operandLeaves.size(), {});
+    passes_ = 0;
+    allocations_ = 0;
+    collected_ = 0;
+    std::vector<char> inTile(operandLeaves.size());
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
+    // The lists' images stay from frame to frame only while some operand may
+    // be collected: otherwise their memory is outside the budget's count.
+    if (fragmentCounts_.id() && !anyListed(scene, operandLeaves, inTile, request)) {
+        fragments_ = {};
+        fragmentCounts_ = {};
+    }
+    const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
+    if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
+
+    const Job job{scene, tile, operandLeaves, rects, block, request, inTile};
+    beginPasses(scene, view, tile);
+    // Groups first, then the convex batch, one layer each (reserve() made
+    // room for all); then the other operands one by one.
+    int used = peelGroups(job, view, out);
+    if (batched_) used = peelConvexBatch(job, out, used);
+    bool fits = true;
+    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
+        if (!inTile[k] || scene.leaf(operandLeaves[k]).indexCount == 0 || out[k].count > 0) continue;
+        const int count = peelOperand(job, k, used);
+        if (count == kOverBudget) {
+            fits = false;
+            break;
+        }
+        out[k] = {used, count};
+        used += count;
+    }
+    endPasses();
+    return fits;
+}
+
+void PeelPass::beginPasses(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile) {
+    setSurfaceView(first_, view);
+    setSurfaceView(next_, view);
+    setSurfaceView(collect_, view);
+    if (batched_) setSurfaceView(batch_, view);
+    glViewport(-tile.x, -tile.y, view.width, view.height);
+    glEnable(GL_SCISSOR_TEST);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MAX);
+    glBlendFunc(GL_ONE, GL_ONE);
+    scene.vertexArray().bind();
+}
+
+void PeelPass::endPasses() {
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    target_.detach(GL_COLOR_ATTACHMENT0);
+    counted_.detach(GL_COLOR_ATTACHMENT0);
+    gpu::checkErrors();
+}
+
+int PeelPass::peelGroups(const Job& job, const ViewSetup& view, std::vector<OperandLayers>& out) {
+    int groups = 0;
+    for (std::size_t k = 0; k < job.operandLeaves.size(); ++k)
+        groups += job.inTile[k] && isGroup(job.request, k) ? 1 : 0;
+    if (groups == 0) {
+        group_.release();
+        return 0;
+    }
+    glDisable(GL_BLEND);
+    group_.begin(view, job.tile, groups);
+    int used = 0;
+    for (std::size_t k = 0; k < job.operandLeaves.size(); ++k) {
+        if (!job.inTile[k] || !isGroup(job.request, k)) continue;
+        const PixelRect valid = job.valid(k);
+        clearLayers(valid, used, 1);
+        // The groups take the first layers, so a group's layer is also its
+        // index among the tile's groups: its layer of the ids.
+        out[k] = {used, 1, used};
+        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used);
+        ++used;
+        passes_ += 2;
+    }
+    glEnable(GL_BLEND);
+    return used;
+}
+
+int PeelPass::peelConvexBatch(const Job& job, std::vector<OperandLayers>& out, int used) {
     std::vector<DrawElementsIndirectCommand> commands;
     std::vector<std::uint32_t> drawLayers;
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-        if (out[k].count == 0 || out[k].first < firstLayer) continue;
+    for (std::size_t k = 0; k < job.operandLeaves.size(); ++k) {
+        const LeafRange& range = job.scene.leaf(job.operandLeaves[k]);
+        if (!job.inTile[k] || range.indexCount == 0 || out[k].count > 0 || !onePass(range, job.request, k)) continue;
+        out[k] = {used++, 1};
         // The layer is cleared where the evaluator reads it; the operand's
         // fragments fall inside its rectangle, so nothing else is touched.
-        const PixelRect valid = region(rects[k], tile, block);
-        clearLayers(valid, out[k].first, 1);
-        const LeafRange& range = scene.leaf(operandLeaves[k]);
+        clearLayers(job.valid(k), out[k].first, 1);
         commands.push_back({static_cast<GLuint>(range.indexCount), 1, static_cast<GLuint>(range.firstIndex), 0, 0});
         drawLayers.push_back(static_cast<std::uint32_t>(out[k].first));
     }
+    if (commands.empty()) return used;
     gpu::Buffer::uploadGrowing(commands_, "peel batch commands", commands);
     gpu::Buffer::uploadGrowing(drawLayers_, "peel batch layers", drawLayers);
     target_.attachTexture(GL_COLOR_ATTACHMENT0, layers_);  // layered: gl_Layer picks the layer
     target_.bindForDraw();
-    glScissor(0, 0, tile.width, tile.height);
-    drawLayers_.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+    glScissor(0, 0, job.tile.width, job.tile.height);
+    drawLayers_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferDrawLayers);
     commands_.bind(GL_DRAW_INDIRECT_BUFFER);
     batch_.use();
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(commands.size()), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     passes_ += static_cast<int>(commands.size());
+    return used;
+}
+
+int PeelPass::peelOperand(const Job& job, std::size_t k, int first) {
+    const int leaf = job.operandLeaves[k];
+    const LeafRange& range = job.scene.leaf(leaf);
+    const PixelRect valid = job.valid(k);
+    glScissor(valid.x, valid.y, valid.width, valid.height);
+    // Convex: one pass holds every surface (first layer only: all that
+    // matters).
+    if (onePass(range, job.request, k)) return peelFixed(job, leaf, first, 1);
+    if (listed(range, job.request, k)) {
+        // One pass through fragment lists where they hold every fragment;
+        // else pass by pass.
+        const int count = peelThroughLists(job, leaf, valid, first);
+        if (count != kListsOverflowed) return count;
+    }
+    return job.request.fixedLayers > 0 ? peelFixed(job, leaf, first, job.request.fixedLayers)
+                                       : peelAuto(job, leaf, first);
+}
+
+int PeelPass::peelFixed(const Job& job, int leaf, int first, int passes) {
+    for (int pass = 0; pass < passes; ++pass) {
+        const int layer = first + pass;
+        if (!reserve(job.tile.width, job.tile.height, layer + 1, layer, job.request.budgetBytes)) return kOverBudget;
+        peelPass(job.scene, leaf, layer, pass, false);
+    }
+    return passes;
+}
+
+int PeelPass::peelAuto(const Job& job, int leaf, int first) {
+    for (int pass = 0;; ++pass) {
+        if (pass > 0) {
+            // Surfaces left somewhere? Waiting for that answer also finishes
+            // the last pass, so its own query costs no wait.
+            const bool deeper = anyDeeperThan(2 * pass);
+            // Surfaces at one depth peel together, so the counts can promise
+            // more than was left: then the last layer is scratch.
+            if (drawn_.result() == 0) return pass - 1;
+            if (!deeper) return pass;
+        }
+        const int layer = first + pass;
+        if (!reserve(job.tile.width, job.tile.height, layer + 1, layer, job.request.budgetBytes)) return kOverBudget;
+        peelPass(job.scene, leaf, layer, pass, true);
+    }
+}
+
+void PeelPass::peelPass(const SceneBuffers& scene, int leaf, int layer, int pass, bool automatic) {
+    const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
+    counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
+    counted_.bindForDraw();
+    counted_.clearColor(0, cleared);
+    if (automatic) {
+        // The first pass counts each pixel's surfaces; the later ones skip
+        // the pixels whose surfaces are all peeled.
+        glEnable(GL_STENCIL_TEST);
+        if (pass == 0) {
+            const GLint zero = 0;
+            glClearNamedFramebufferiv(counted_.id(), GL_STENCIL, 0, &zero);
+            glStencilFunc(GL_ALWAYS, 0, 0xff);
+            glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+        } else {
+            glStencilFunc(GL_LESS, 2 * pass, 0xff);
+            glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        }
+    }
+    gpu::Program& program = pass == 0 ? first_ : next_;
+    if (pass > 0) {
+        // The previous layer was rendered by the last draw: make it
+        // readable (ARB_texture_barrier, core in 4.5).
+        glTextureBarrier();
+        layers_.bindUnit(shader::kTextureLayers);
+        program.setUniform(shader::kPeelPreviousLayer, layer - 1);
+    }
+    program.use();
+    if (automatic) drawn_.begin();
+    scene.drawLeaf(leaf);
+    ++passes_;
+    if (automatic) {
+        drawn_.end();
+        glDisable(GL_STENCIL_TEST);
+    }
 }
 
 bool PeelPass::anyDeeperThan(int surfaces) {
@@ -206,8 +357,15 @@ bool PeelPass::anyDeeperThan(int surfaces) {
     return deeperDrawn_.result() != 0;
 }
 
-int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile, const PixelRect& valid, int first,
-                      int layerCount, bool automatic) {
+int PeelPass::peelThroughLists(const Job& job, int leaf, const PixelRect& valid, int first) {
+    const PixelRect& tile = job.tile;
+    const bool automatic = job.request.fixedLayers <= 0;
+    const int layerCount = automatic ? kCollectCapacity / 2 : job.request.fixedLayers;
+    // The lists' images come out of the budget.
+    const std::size_t scratch = static_cast<std::size_t>(kCollectScratchLayers) * kBytesPerTexel *
+                                static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+    const std::size_t budget = job.request.budgetBytes > scratch ? job.request.budgetBytes - scratch : 0;
+    if (!reserve(tile.width, tile.height, first + layerCount, first, budget)) return kOverBudget;
     // The lists' images are the tile's size exactly: the budget counts them so
     // (run's reserve), and a larger pair left from an earlier frame would
     // hold memory the budget does not know of.
@@ -226,18 +384,18 @@ int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile
     resolveStats_.clearToZero();
 
     listTarget_.bindForDraw();
-    fragmentCounts_.bindImage(1, GL_READ_WRITE);
-    fragments_.bindImage(2, GL_READ_WRITE);
+    fragmentCounts_.bindImage(shader::kImageFragmentCounts, GL_READ_WRITE);
+    fragments_.bindImage(shader::kImageFragments, GL_READ_WRITE);
     collect_.use();
-    scene.drawLeaf(leaf);
+    job.scene.drawLeaf(leaf);
     ++passes_;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
-    layers_.bindImage(3, GL_WRITE_ONLY);
-    resolveStats_.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    layers_.bindImage(shader::kImageLayers, GL_WRITE_ONLY);
+    resolveStats_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferResolveStats);
     resolve_.use();
-    resolve_.setUniform(kFirstLayer, first);
-    resolve_.setUniform(kLayerCount, std::min(layerCount, kCollectCapacity / 2));
+    resolve_.setUniform(shader::kResolveFirstLayer, first);
+    resolve_.setUniform(shader::kResolveLayerCount, std::min(layerCount, kCollectCapacity / 2));
     glDrawArrays(GL_TRIANGLES, 0, 3);  // the scene's vertex array stays bound, see anyDeeperThan
     // Image stores become visible to later image loads and sampling (the
     // evaluator), copies and read-backs of the layers (reserve(), the debug
@@ -246,166 +404,9 @@ int PeelPass::collect(const SceneBuffers& scene, int leaf, const PixelRect& tile
                     GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint most[2] = {0, 0};  // layers, and fragments where a list overflowed
     resolveStats_.downloadSpan(std::span<GLuint>(most));
-    if (most[1] > 0) return -1;
+    if (most[1] > 0) return kListsOverflowed;
     ++collected_;
     return automatic ? static_cast<int>(most[0]) : layerCount;
-}
-
-bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
-                   std::span<const int> operandLeaves, std::span<const PixelRect> rects, int block,
-                   const PeelRequest& request, std::vector<OperandLayers>& out) {
-    out.assign(operandLeaves.size(), {});
-    passes_ = 0;
-    allocations_ = 0;
-    collected_ = 0;
-    std::vector<char> inTile(operandLeaves.size());
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
-    // The lists' images stay from frame to frame only while some operand may
-    // be collected: otherwise their memory is outside the budget's count.
-    if (fragmentCounts_.id() && !anyListed(scene, operandLeaves, inTile, request)) {
-        fragments_ = {};
-        fragmentCounts_ = {};
-    }
-    const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
-    if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
-
-    setView(first_, view);
-    setView(next_, view);
-    setView(collect_, view);
-    if (batched_) setView(batch_, view);
-    glViewport(-tile.x, -tile.y, view.width, view.height);
-    glEnable(GL_SCISSOR_TEST);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_MAX);
-    glBlendFunc(GL_ONE, GL_ONE);
-    scene.vertexArray().bind();
-
-    const float cleared[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
-    int used = 0;
-    // Groups first, one layer each (reserve() made room for all).
-    int groups = 0;
-    for (std::size_t k = 0; k < operandLeaves.size(); ++k) groups += inTile[k] && isGroup(request, k) ? 1 : 0;
-    if (groups == 0) {
-        group_.release();
-    } else {
-        glDisable(GL_BLEND);
-        group_.begin(view, tile, groups);
-        for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-            if (!inTile[k] || !isGroup(request, k)) continue;
-            const PixelRect valid = region(rects[k], tile, block);
-            clearLayers(valid, used, 1);
-            out[k] = {used, 1, used};  // a group's layer index is its index among the tile's groups
-            group_.peel(scene, request.groups[k], valid, layers_, used, used);
-            ++used;
-            passes_ += 2;
-        }
-        glEnable(GL_BLEND);
-    }
-    if (batched_) {
-        // Convex (and first-layer-only) operands next, one layer each.
-        const int batchStart = used;
-        for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
-            const LeafRange& range = scene.leaf(operandLeaves[k]);
-            if (inTile[k] && range.indexCount > 0 && out[k].count == 0 && onePass(range, request, k)) {
-                out[k] = {used++, 1};
-            }
-        }
-        if (used > batchStart) peelConvexBatch(scene, tile, operandLeaves, rects, block, out, batchStart);
-    }
-    bool fits = true;
-    for (std::size_t k = 0; k < operandLeaves.size() && fits; ++k) {
-        const int leaf = operandLeaves[k];
-        const LeafRange& range = scene.leaf(leaf);
-        if (!inTile[k] || range.indexCount == 0 || out[k].count > 0) continue;
-        // Convex: one pass holds every surface (first layer only: all that
-        // matters). Auto: until no surface is left.
-        const bool one = onePass(range, request, k);
-        const bool automatic = request.fixedLayers <= 0 && !one;
-        const int most = one ? 1 : (automatic ? std::numeric_limits<int>::max() : request.fixedLayers);
-        const PixelRect valid = region(rects[k], tile, block);
-        glScissor(valid.x, valid.y, valid.width, valid.height);
-        if (listed(range, request, k)) {
-            // One pass through fragment lists where they hold every
-            // fragment; else the passes below.
-            const int room = automatic ? kCollectCapacity / 2 : request.fixedLayers;
-            const std::size_t scratch = static_cast<std::size_t>(kCollectScratchLayers) * kBytesPerTexel *
-                                        static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
-            if (!reserve(tile.width, tile.height, used + room, used,
-                         request.budgetBytes > scratch ? request.budgetBytes - scratch : 0)) {
-                fits = false;
-                break;
-            }
-            const int count = collect(scene, leaf, tile, valid, used, room, automatic);
-            if (count >= 0) {
-                out[k] = {used, count};
-                used += count;
-                continue;
-            }
-        }
-        int count = 0;
-        for (int pass = 0; pass < most; ++pass) {
-            if (automatic && pass > 0) {
-                // Surfaces left somewhere? Waiting for that answer also
-                // finishes the last pass, so its own query costs no wait.
-                const bool deeper = anyDeeperThan(2 * pass);
-                // Surfaces at one depth peel together, so the counts can
-                // promise more than was left: then the last layer is scratch.
-                if (drawn_.result() == 0) {
-                    --count;
-                    break;
-                }
-                if (!deeper) break;
-            }
-            const int layer = used + count;
-            if (!reserve(tile.width, tile.height, layer + 1, used + count, request.budgetBytes)) {
-                fits = false;
-                break;
-            }
-            counted_.attachLayer(GL_COLOR_ATTACHMENT0, layers_, layer);
-            counted_.bindForDraw();
-            counted_.clearColor(0, cleared);
-            if (automatic) {
-                glEnable(GL_STENCIL_TEST);
-                if (pass == 0) {
-                    const GLint zero = 0;
-                    glClearNamedFramebufferiv(counted_.id(), GL_STENCIL, 0, &zero);
-                    glStencilFunc(GL_ALWAYS, 0, 0xff);
-                    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-                } else {
-                    glStencilFunc(GL_LESS, 2 * pass, 0xff);
-                    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-                }
-            }
-            gpu::Program& program = pass == 0 ? first_ : next_;
-            if (pass > 0) {
-                // The previous layer was rendered by the last draw: make it
-                // readable (ARB_texture_barrier, core in 4.5).
-                glTextureBarrier();
-                layers_.bindUnit(0);
-                program.setUniform(kPreviousLayer, layer - 1);
-            }
-            program.use();
-            if (automatic) drawn_.begin();
-            scene.drawLeaf(leaf);
-            ++passes_;
-            if (automatic) {
-                drawn_.end();
-                glDisable(GL_STENCIL_TEST);
-            }
-            ++count;
-        }
-        out[k] = {used, count};
-        used += count;
-    }
-
-    glDisable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_STENCIL_TEST);
-    target_.detach(GL_COLOR_ATTACHMENT0);
-    counted_.detach(GL_COLOR_ATTACHMENT0);
-    gpu::checkErrors();
-    return fits;
 }
 
 }  // namespace strata::render

@@ -51,6 +51,7 @@
 
 #include "GroupPeel.h"
 #include "SceneBuffers.h"
+#include "ShaderInterface.h"
 #include "ViewSetup.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
@@ -63,7 +64,7 @@ namespace strata::render {
 struct OperandLayers {
     int first = 0;  // first layer in PeelPass::layers()
     int count = 0;  // layers peeled; 0 when the operand misses the tile
-    int group = -1;  // a group's index among the tile's groups, its layer of groupIds(); -1 for the rest
+    int idsLayer = -1;  // a group's layer of groupIds() (its index among the tile's groups); -1 for the rest
 };
 
 struct PeelRequest {
@@ -100,9 +101,9 @@ public:
              const PeelRequest& request, std::vector<OperandLayers>& out);
 
     static constexpr std::size_t kBytesPerTexel = 8;  // one RG32F texel of a layer
-    // Fragments a pixel's list holds when collecting (shaders/csg/resolve.frag
-    // is written for this many): up to 4 layers.
-    static constexpr int kCollectCapacity = 8;
+    // Fragments a pixel's list holds when collecting: up to 4 layers.
+    static constexpr int kCollectCapacity = shader::kCollectCapacity;
+    static_assert(kCollectCapacity == 8, "shaders/csg/resolve.frag reads a list as two vec4s");
     // The lists' images (kCollectCapacity R32F layers and an R32UI count) per
     // pixel, in layers' bytes, counted in the estimate where they are needed.
     static constexpr int kCollectScratchLayers = (kCollectCapacity * 4 + 4 + 7) / 8;
@@ -120,7 +121,7 @@ public:
 
     const gpu::Texture& layers() const { return layers_; }
     // The groups of the last run(): which member makes each surface
-    // (GroupPeel::ids), a layer per group (OperandLayers::group).
+    // (GroupPeel::ids), a layer per group (OperandLayers::idsLayer).
     const gpu::Texture& groupIds() const { return group_.ids(); }
     // The layers and, once an operand was collected, the fragment lists.
     std::size_t textureBytes() const {
@@ -133,17 +134,53 @@ public:
     int allocations() const { return allocations_; }  // layer textures created in the last run()
 
 private:
+    // What one run() peels, as its strategies below need it.
+    struct Job {
+        const SceneBuffers& scene;
+        const PixelRect& tile;
+        std::span<const int> operandLeaves;
+        std::span<const PixelRect> rects;
+        int block;
+        const PeelRequest& request;
+        std::span<const char> inTile;  // per operand: its rectangle meets the tile
+        PixelRect valid(std::size_t k) const { return region(rects[k], tile, block); }
+    };
+    // What a strategy returns in place of a layer count: the layers would
+    // not fit the budget, or a pixel's fragments overflowed its list.
+    static constexpr int kOverBudget = -1;
+    static constexpr int kListsOverflowed = -2;
+
     // Makes room for `needed` layers of a tile of `width` x `height`, keeping
     // the first `keep` layers. False when that exceeds the budget.
     bool reserve(int width, int height, int needed, int keep, std::size_t budgetBytes);
     // Sets `count` layers from `first` to (-FLT_MAX, -FLT_MAX), "nothing
     // here", inside `valid` (texture pixels).
     void clearLayers(const PixelRect& valid, int first, int count);
-    // Peels the convex operands that run() gave a layer from `firstLayer` on
-    // (out[k].count == 1) in one multi-draw.
-    void peelConvexBatch(const SceneBuffers& scene, const PixelRect& tile, std::span<const int> operandLeaves,
-                         std::span<const PixelRect> rects, int block, const std::vector<OperandLayers>& out,
-                         int firstLayer);
+    // The GL state of run()'s passes, and back.
+    void beginPasses(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile);
+    void endPasses();
+
+    // The strategies, in the order run() applies them. Each gives its
+    // operands layers from `used` (or `first`) on; the first two return the
+    // layers used after them, the others the operand's layer count (or
+    // kOverBudget).
+    // Groups of convex operands, a layer each, through GroupPeel.
+    int peelGroups(const Job& job, const ViewSetup& view, std::vector<OperandLayers>& out);
+    // The one-pass operands not yet peeled, a layer each, in one multi-draw.
+    int peelConvexBatch(const Job& job, std::vector<OperandLayers>& out, int used);
+    // Operand k by the first strategy below that applies to it.
+    int peelOperand(const Job& job, std::size_t k, int first);
+    // `passes` passes of dual depth peeling (1 for a one-pass operand).
+    int peelFixed(const Job& job, int leaf, int first, int passes);
+    // Passes until no pixel has surfaces left (auto peeling, see above).
+    int peelAuto(const Job& job, int leaf, int first);
+    // One pass, `pass` of the operand `leaf`, into layer `layer`; `automatic`:
+    // with auto peeling's stencil counts and query.
+    void peelPass(const SceneBuffers& scene, int leaf, int layer, int pass, bool automatic);
+    // One geometry pass into per-pixel fragment lists, then the lists to
+    // layers (auto: up to kCollectCapacity / 2). kListsOverflowed where a
+    // pixel's fragments overflowed its list (nothing useful drawn).
+    int peelThroughLists(const Job& job, int leaf, const PixelRect& valid, int first);
 
     gpu::Program first_;  // PEEL_FIRST: everything passes
     gpu::Program next_;   // reads the previous layer
@@ -155,12 +192,6 @@ private:
     // surfaces, by the counts of its first pass (see above). True where the
     // 8-bit counts cannot tell (surfaces >= 255).
     bool anyDeeperThan(int surfaces);
-    // Peels operand `leaf` through fragment lists into `layerCount` layers
-    // from `first` (auto: up to kCollectCapacity / 2), reserved by the
-    // caller. Returns the layers it holds, or -1 where a pixel's fragments
-    // overflowed its list (nothing useful drawn).
-    int collect(const SceneBuffers& scene, int leaf, const PixelRect& tile, const PixelRect& valid, int first,
-                int layerCount, bool automatic);
 
     gpu::Framebuffer target_;  // layered, for the convex batch
     gpu::Framebuffer counted_;  // one layer and the counts: the other passes

@@ -15,14 +15,15 @@
 #include "PeelPass.h"
 #include "SceneBuffers.h"
 #include "ShadePass.h"
+#include "ShaderInterface.h"
 #include "TranslucentPass.h"
 #include "ViewSetup.h"
 #include "strata/core/Error.h"
+#include "strata/csg/CompiledTree.h"
+#include "strata/csg/ConvexGroups.h"
+#include "strata/csg/IdenticalLeaves.h"
 #include "strata/gpu/Check.h"
 #include "strata/render/ColorScheme.h"
-#include "strata/render/ConvexGroups.h"
-#include "strata/render/IdenticalLeaves.h"
-#include "strata/render/TreeProgram.h"
 
 namespace strata::render {
 
@@ -74,29 +75,29 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
     return out;
 }
 
-// Per operand of `program`: whether only ORs lead from the result to its
+// Per operand of `compiled`: whether only ORs lead from the result to its
 // (not complemented) literal. The result is then true wherever the operand
 // is: once a ray enters it, the result is entered, at the latest there. So
 // where every ray starts outside every operand, its nearest surface (the
 // first peeled layer) is all the result can show of it. Not for a leaf with
 // a shell of no volume (SceneBuffers: solidShells): there the nearest entry
 // can have an exit at its very depth, which the first layer would lose.
-std::vector<char> reachedByUnionsOnly(const TreeProgram& program, const SceneBuffers& scene) {
-    std::vector<char> out(program.operandLeaf.size(), 0);
-    if (program.code.empty()) return out;
+std::vector<char> reachedByUnionsOnly(const csg::CompiledTree& compiled, const SceneBuffers& scene) {
+    std::vector<char> out(compiled.operandLeaf.size(), 0);
+    if (compiled.code.empty()) return out;
     using Operands = std::vector<std::uint32_t>;
     auto literal = [](std::uint32_t instruction) {
-        return instruction & kOpNegate ? Operands{} : Operands{instruction >> kOperandShift};
+        return instruction & csg::kOpNegate ? Operands{} : Operands{instruction >> csg::kOperandShift};
     };
     auto combine = [](std::uint32_t op, Operands& top, Operands&& source) {
-        if (op == kOpAnd) {
+        if (op == csg::kOpAnd) {
             top.clear();
         } else {
             top.insert(top.end(), source.begin(), source.end());
         }
     };
-    for (std::uint32_t k : foldCode<Operands>(program.code, literal, combine))
-        out[k] = scene.leaf(program.operandLeaf[k]).solidShells ? 1 : 0;
+    for (std::uint32_t k : csg::foldCode<Operands>(compiled.code, literal, combine))
+        out[k] = scene.leaf(compiled.operandLeaf[k]).solidShells ? 1 : 0;
     return out;
 }
 
@@ -154,13 +155,13 @@ struct Renderer::Impl {
     SceneBuffers scene;
     // The tree compiled with every operand its own (`separate`) and with
     // convex intersections grouped (ConvexGroups.h), each with its
-    // reachedByUnionsOnly; `program` is the one the evaluator holds.
-    struct Compiled {
-        TreeProgram program;
+    // reachedByUnionsOnly; `current` is the one the evaluator holds.
+    struct Compilation {
+        csg::CompiledTree tree;
         std::vector<char> unionsOnly;
     };
-    Compiled separate, grouped;
-    const Compiled* compiled = nullptr;
+    Compilation separate, grouped;
+    const Compilation* current = nullptr;
     std::vector<TranslucentLeaf> translucentLeaves;
     std::size_t leafCount = 0;
     std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
@@ -180,6 +181,29 @@ struct Renderer::Impl {
     void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const std::vector<int>& markLeaves,
                          const std::vector<PixelRect>& markRects, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, Frame& frame);
+    // What every tile of a frame reads (peelAndEvaluate's arguments).
+    struct TileInputs {
+        const ViewSetup& view;
+        const std::vector<PixelRect>& rects;
+        const std::vector<int>& markLeaves;
+        const std::vector<PixelRect>& markRects;
+        const RenderSettings& settings;
+        const std::vector<glm::vec2>& baseColors;
+        const PeelRequest& request;
+    };
+    struct TileCounts {
+        int drawn = 0;   // tiles peeled, evaluated and given normals
+        int splits = 0;  // tiles split in four because their layers outgrew the budget
+    };
+    // The tile grid the frame starts from (see planTiles' body); throws
+    // strata::Error where even the smallest tile's layers exceed the budget.
+    std::vector<PixelRect> planTiles(const TileInputs& in) const;
+    // Peels each tile of `grid`, then evaluates it and recovers its normals;
+    // a tile whose auto peeling outgrows the budget is split in four.
+    TileCounts runTiles(const TileInputs& in, const std::vector<PixelRect>& grid, Frame& frame);
+    // The evaluate and normal passes over one peeled tile.
+    void evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                      Frame& frame);
     // Paints the tile's blocks' forms (EvaluatePass::run) into frame.blockForms.
     void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
@@ -212,19 +236,19 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
     Impl& impl = *impl_;
-    const std::vector<int> same = identicalLeaves(tree, model);
+    const std::vector<int> same = csg::identicalLeaves(tree, model);
     impl.copiedLeaves = 0;
     for (std::size_t i = 0; i < same.size(); ++i) impl.copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
-    impl.separate.program = compileTree(tree, empty, same);
-    impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.program, impl.scene);
-    std::vector<char> convex(impl.separate.program.operandLeaf.size());
+    impl.separate.tree = csg::compileTree(tree, empty, same);
+    impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.tree, impl.scene);
+    std::vector<char> convex(impl.separate.tree.operandLeaf.size());
     for (std::size_t k = 0; k < convex.size(); ++k) {
-        convex[k] = impl.scene.leaf(impl.separate.program.operandLeaf[k]).convex ? 1 : 0;
+        convex[k] = impl.scene.leaf(impl.separate.tree.operandLeaf[k]).convex ? 1 : 0;
     }
-    impl.grouped.program = groupConvexProducts(impl.separate.program, convex, PeelRequest::kMostGroupMembers);
-    impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.program, impl.scene);
-    impl.compiled = &impl.grouped;
-    impl.evaluate.setProgram(impl.grouped.program, impl.canMarkLeaves);
+    impl.grouped.tree = csg::groupConvexProducts(impl.separate.tree, convex, PeelRequest::kMostGroupMembers);
+    impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.tree, impl.scene);
+    impl.current = &impl.grouped;
+    impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
     impl.translucentLeaves = translucentLeaves(tree, impl.scene);
     impl.leafCount = tree.leaves.size();
     impl.hasScene = true;
@@ -236,41 +260,67 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
                                      Frame& frame) {
     FrameStats& stats = frame.stats;
-    const TreeProgram& program = compiled->program;
-    const std::vector<int>& operands = program.operandLeaf;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int>& operands = compiled.operandLeaf;
     if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
-                        program.operandGroups};
+                        compiled.operandGroups};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) {
-        request.firstLayerOnly = compiled->unionsOnly;
+        request.firstLayerOnly = current->unionsOnly;
     }
+    const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request};
+    const std::vector<PixelRect> grid = planTiles(in);
+    const TileCounts counts = runTiles(in, grid, frame);
+    stats.tiles = counts.drawn;
+    std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
+        return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
+    });
+    if (grid.size() > 1) {
+        stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
+                              std::to_string(view.height) + " would exceed the budget of " +
+                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(counts.drawn) +
+                              " tiles, each peeling only the operands that meet it");
+    }
+    if (counts.splits > 0) {
+        stats.notes.push_back("auto peeling needed more layers than estimated: split " +
+                              std::to_string(counts.splits) + " tiles to stay within " +
+                              mebibytes(settings.memoryBudget));
+    }
+    if (settings.layers > 1) {
+        const bool anyConvex = std::any_of(operands.begin(), operands.end(),
+                                           [&](int leaf) { return scene.leaf(leaf).convex; });
+        if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
+    }
+}
 
-    // Tiles: the whole frame, or an even grid of quarters, of quarters of
-    // those, ..., as fine as the densest tile needs for the layers its
-    // operands need (a first guess for auto) to fit the budget. Only the
-    // operands whose rectangle meets a tile are peeled for it, so memory
-    // follows the operands per tile, not their number in the frame. One tile
-    // size for the whole frame lets every tile (and the next frame) reuse one
-    // layer texture: llvmpipe zeroes each new texture, and a fresh 512 MiB
-    // costs more than the peel of several extra tiles.
+std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
+    // The whole frame, or an even grid of quarters, of quarters of those,
+    // ..., as fine as the densest tile needs for the layers its operands
+    // need (a first guess for auto) to fit the budget. Only the operands
+    // whose rectangle meets a tile are peeled for it, so memory follows the
+    // operands per tile, not their number in the frame. One tile size for
+    // the whole frame lets every tile (and the next frame) reuse one layer
+    // texture: llvmpipe zeroes each new texture, and a fresh 512 MiB costs
+    // more than the peel of several extra tiles.
+    const std::vector<int>& operands = current->tree.operandLeaf;
+    const std::size_t budget = in.settings.memoryBudget;
     std::vector<char> inTile(operands.size());
     auto layersFor = [&](const PixelRect& tile) {
-        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = rects[k].intersects(tile) ? 1 : 0;
-        return PeelPass::estimateLayers(scene, operands, inTile, request);
+        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = in.rects[k].intersects(tile) ? 1 : 0;
+        return PeelPass::estimateLayers(scene, operands, inTile, in.request);
     };
     auto area = [](const PixelRect& tile) {
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
     };
     auto fitsBudget = [&](const PixelRect& tile) {
-        return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <=
-               settings.memoryBudget;
+        return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <= budget;
     };
-    std::vector<PixelRect> grid{PixelRect{0, 0, view.width, view.height}};
+    std::vector<PixelRect> grid{PixelRect{0, 0, in.view.width, in.view.height}};
     for (;;) {
         const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
-        if (over == grid.end()) break;
+        if (over == grid.end()) return grid;
         std::vector<PixelRect> finer;
         for (const PixelRect& tile : grid) {
             for (const PixelRect& part : quarters(tile)) finer.push_back(part);
@@ -278,27 +328,30 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
             const int estimate = layersFor(*over);
             const std::size_t perPixel = PeelPass::kBytesPerTexel * static_cast<std::size_t>(estimate);
-            throw Error("renderer: a memory budget of " + mebibytes(settings.memoryBudget) + " holds " +
-                        std::to_string(estimate) + " peel layers for only " +
-                        std::to_string(settings.memoryBudget / perPixel) + " pixels at a time; give it at least " +
-                        mebibytes(perPixel * area(*over)));
+            throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate) +
+                        " peel layers for only " + std::to_string(budget / perPixel) +
+                        " pixels at a time; give it at least " + mebibytes(perPixel * area(*over)));
         }
         grid = std::move(finer);
     }
+}
+
+Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const std::vector<PixelRect>& grid,
+                                                    Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int>& operands = compiled.operandLeaf;
     std::deque<PixelRect> tiles(grid.begin(), grid.end());
-    auto split = [&tiles](const PixelRect& tile) {
-        for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
-    };
     std::vector<OperandLayers> layers;
-    int tilesDone = 0, splits = 0;
+    TileCounts counts;
     while (!tiles.empty()) {
         // Every tile fits the budget by its estimate: the grid's, and their
         // quarters (fewer operands, fewer pixels) split off below.
         const PixelRect tile = tiles.front();
         tiles.pop_front();
 
-        auto start = Clock::now();
-        const bool fits = peel.run(scene, view, tile, operands, rects, EvaluatePass::kBlock, request, layers);
+        const auto start = Clock::now();
+        const bool fits = peel.run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
         glFinish();
         stats.peelMs += millisecondsSince(start);
         stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
@@ -308,55 +361,43 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         if (!fits) {
             if (quarters(tile).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
-                            std::string("the memory budget of ") + mebibytes(settings.memoryBudget) +
+                            std::string("the memory budget of ") + mebibytes(in.settings.memoryBudget) +
                             " and the GPU's " + std::to_string(peel.maxArrayLayers()) + " array layers allow");
             }
             // Auto peeling went deeper than guessed: split the tile in four.
-            split(tile);
-            ++splits;
+            for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
+            ++counts.splits;
             continue;
         }
         for (std::size_t k = 0; k < operands.size(); ++k) {
-            for (int leaf : program.leavesOf(k)) {
+            for (int leaf : compiled.leavesOf(k)) {
                 int& used = stats.layersPerLeaf[static_cast<std::size_t>(leaf)];
                 used = std::max(used, layers[k].count);
             }
         }
-        if (settings.keepPeelLayers) keepLayers(tile, operands, rects, layers, frame);
+        if (in.settings.keepPeelLayers) keepLayers(tile, operands, in.rects, layers, frame);
+        evaluateTile(in, tile, layers, frame);
+        ++counts.drawn;
+    }
+    return counts;
+}
 
-        start = Clock::now();
-        std::vector<BlockForm> forms;
-        evaluate.run(targets, peel.layers(), tile, layers, rects, EvaluatePass::groupTable(leafCount, program, layers),
-                     peel.groupIds(), settings.generalEvaluator, stats, settings.keepBlockForms ? &forms : nullptr);
-        if (settings.keepBlockForms) keepBlockForms(tile, forms, frame);
-        const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
-        stats.evaluateMs += millisecondsSince(start);
-        start = Clock::now();
-        normals.run(targets, scene, view, tile, program, rects, shown, baseColors, markLeaves, markRects);
-        glFinish();
-        stats.normalMs += millisecondsSince(start);
-        ++tilesDone;
-    }
-    stats.tiles = tilesDone;
-    std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
-        return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
-    });
-    if (grid.size() > 1) {
-        stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
-                              std::to_string(view.height) + " would exceed the budget of " +
-                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(tilesDone) +
-                              " tiles, each peeling only the operands that meet it");
-    }
-    if (splits > 0) {
-        stats.notes.push_back("auto peeling needed more layers than estimated: split " + std::to_string(splits) +
-                              " tiles to stay within " + mebibytes(settings.memoryBudget));
-    }
-    if (settings.layers > 1) {
-        const bool anyConvex = std::any_of(operands.begin(), operands.end(),
-                                           [&](int leaf) { return scene.leaf(leaf).convex; });
-        if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
-    }
-
+void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                                  Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const csg::CompiledTree& compiled = current->tree;
+    auto start = Clock::now();
+    std::vector<BlockForm> forms;
+    evaluate.run(targets, peel.layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, compiled, layers),
+                 peel.groupIds(), in.settings.generalEvaluator, stats,
+                 in.settings.keepBlockForms ? &forms : nullptr);
+    if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
+    const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
+    stats.evaluateMs += millisecondsSince(start);
+    start = Clock::now();
+    normals.run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
+    glFinish();
+    stats.normalMs += millisecondsSince(start);
 }
 
 void Renderer::Impl::keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame) {
@@ -401,8 +442,8 @@ void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& o
                     const std::size_t to = static_cast<std::size_t>(frame.height - 1 - (tile.y + y)) * frame.width +
                                            static_cast<std::size_t>(tile.x + x);
                     const float nearValue = -texels[from], farValue = texels[from + 1];
-                    it->nearDepth[to] = nearValue > 1e38f ? none : nearValue;
-                    it->farDepth[to] = farValue < -1e38f ? none : farValue;
+                    it->nearDepth[to] = nearValue >= shader::kClearedDepth ? none : nearValue;
+                    it->farDepth[to] = farValue <= -shader::kClearedDepth ? none : farValue;
                 }
             }
         }
@@ -424,9 +465,9 @@ void Renderer::Impl::readBack(Frame& frame) {
     leaf = flipRows(leaf, w, h, 1);
     frame.leaf.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        frame.leaf[i] = leaf[i] < 0 ? -1 : leaf[i] >> 1;
+        frame.leaf[i] = shader::leafOfCode(leaf[i]);
         if (leaf[i] >= 0) ++frame.stats.coveredPixels;
-        if (leaf[i] == -2) ++frame.stats.unresolvedPixels;
+        if (leaf[i] == shader::kLeafUnresolved) ++frame.stats.unresolvedPixels;
     }
     if (frame.stats.unresolvedPixels > 0) {
         frame.stats.notes.push_back(std::to_string(frame.stats.unresolvedPixels) +
@@ -463,13 +504,13 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                                 BlockForm::None);
     }
     // Debug views show each operand's own layers: no groups there.
-    const Compiled& chosen = settings.groupConvexIntersections && !settings.keepPeelLayers ? grouped : separate;
-    if (compiled != &chosen) {
-        evaluate.setProgram(chosen.program, canMarkLeaves);
-        compiled = &chosen;
+    const Compilation& chosen = settings.groupConvexIntersections && !settings.keepPeelLayers ? grouped : separate;
+    if (current != &chosen) {
+        evaluate.setTree(chosen.tree, canMarkLeaves);
+        current = &chosen;
     }
-    const TreeProgram& program = chosen.program;
-    stats.operands = program.operandCount();
+    const csg::CompiledTree& compiled = chosen.tree;
+    stats.operands = compiled.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;
 
@@ -479,11 +520,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     std::vector<PixelRect> rects, markRects;
     std::vector<int> markLeaves;
     PixelRect drawn;
-    if (program.kind == TreeProgram::Kind::Program) {
-        rects.resize(program.operandLeaf.size());
+    if (compiled.kind == csg::CompiledTree::Kind::Code) {
+        rects.resize(compiled.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
             // A group's surfaces lie where all its members' do.
-            const std::span<const int> leaves = program.leavesOf(k);
+            const std::span<const int> leaves = compiled.leavesOf(k);
             for (std::size_t i = 0; i < leaves.size(); ++i) {
                 const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
                 rects[k] = i == 0 ? own : rects[k].intersection(own);
@@ -504,10 +545,10 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
-    if (program.kind == TreeProgram::Kind::Program) {
+    if (compiled.kind == csg::CompiledTree::Kind::Code) {
         peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
-        stats.notes.push_back(program.kind == TreeProgram::Kind::Empty ? "the CSG result is empty"
+        stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");
     }
 

@@ -7,10 +7,17 @@
 #include <glm/vec4.hpp>
 
 #include "Convexity.h"
+#include "ShaderInterface.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/LastCorners.h"
 
 namespace strata::render {
+
+void setSurfaceView(gpu::Program& program, const ViewSetup& view) {
+    program.setUniform(shader::kSurfaceViewProjection, view.viewProjection);
+    program.setUniform(shader::kSurfaceEye, view.eye);
+    program.setUniform(shader::kSurfaceForward, view.forward);
+}
 
 void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model) {
     if (model.leafMeshes.size() != tree.leaves.size()) {

@@ -12,7 +12,8 @@
 //   translucent passes need no lookup by gl_PrimitiveID. Corners keep
 //   their order, and copies their position, so a triangle is set up and
 //   rasterized exactly as in the other array.
-// A leaf's range indexes both alike.
+// A leaf's range indexes both alike. Every pass that draws them does so with
+// shaders/csg/surface.vert as its vertex stage (setSurfaceView).
 
 #include <cstddef>
 #include <span>
@@ -21,8 +22,10 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "ViewSetup.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Buffer.h"
+#include "strata/gpu/Program.h"
 #include "strata/gpu/VertexArray.h"
 #include "strata/scene/Tree.h"
 
@@ -70,5 +73,9 @@ private:
     std::vector<std::size_t> firstVertex_;     // per leaf, and one past the last
     geometry::Bounds bounds_;
 };
+
+// Sets surface.vert's uniforms (the view) on `program`, a program whose
+// vertex stage it is.
+void setSurfaceView(gpu::Program& program, const ViewSetup& view);
 
 }  // namespace strata::render

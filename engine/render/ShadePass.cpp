@@ -3,22 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ShaderInterface.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
-
-namespace {
-
-// Uniform locations in shaders/csg/shade.frag.
-constexpr GLint kBackground = 0;
-constexpr GLint kForward = 3;
-constexpr GLint kRight = 4;
-constexpr GLint kUp = 5;
-constexpr GLint kHalfExtent = 6;
-constexpr GLint kOrthographic = 7;
-constexpr GLint kSize = 8;
-
-}  // namespace
 
 ShadePass::ShadePass()
     : program_(gpu::Program::fromFiles("shade", {"common/fullscreen.vert", "csg/shade.frag"})), empty_("shade") {}
@@ -41,15 +29,15 @@ std::vector<glm::vec2> ShadePass::baseColors(const SceneBuffers& scene, const Co
 
 void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme,
                     const std::optional<PixelRect>& marked) {
-    program_.setUniform(kBackground, scheme.background);
-    program_.setUniform(kForward, view.forward);
-    program_.setUniform(kRight, view.right);
-    program_.setUniform(kUp, view.up);
-    program_.setUniform(kHalfExtent, view.halfExtent);
-    program_.setUniform(kOrthographic, view.orthographic ? 1 : 0);
-    program_.setUniform(kSize, glm::ivec2(view.width, view.height));
+    program_.setUniform(shader::kShadeBackground, scheme.background);
+    program_.setUniform(shader::kShadeForward, view.forward);
+    program_.setUniform(shader::kShadeRight, view.right);
+    program_.setUniform(shader::kShadeUp, view.up);
+    program_.setUniform(shader::kShadeHalfExtent, view.halfExtent);
+    program_.setUniform(shader::kShadeOrthographic, view.orthographic ? 1 : 0);
+    program_.setUniform(shader::kShadeSize, glm::ivec2(view.width, view.height));
     program_.use();
-    targets.normal.bindUnit(0);
+    targets.normal.bindUnit(shader::kTextureNormal);
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     if (marked) {

@@ -2,20 +2,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "ShaderInterface.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
-
-namespace {
-
-// Uniform locations in shaders/csg/surface.vert and translucent.frag.
-constexpr GLint kViewProjection = 0;
-constexpr GLint kEye = 1;
-constexpr GLint kForward = 2;
-constexpr GLint kColor = 3;
-constexpr GLint kToLight = 5;
-
-}  // namespace
 
 TranslucentPass::TranslucentPass()
     : program_(gpu::Program::fromFiles("translucent", {"csg/surface.vert", "csg/translucent.frag"},
@@ -24,12 +14,10 @@ TranslucentPass::TranslucentPass()
 void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
                           const std::vector<TranslucentLeaf>& leaves) {
     if (leaves.empty()) return;
-    program_.setUniform(kViewProjection, view.viewProjection);
-    program_.setUniform(kEye, view.eye);
-    program_.setUniform(kForward, view.forward);
-    program_.setUniform(kToLight, glm::normalize(-view.forward + 0.25f * (view.up - view.right)));
+    setSurfaceView(program_, view);
+    program_.setUniform(shader::kTranslucentToLight, glm::normalize(-view.forward + 0.25f * (view.up - view.right)));
     program_.use();
-    targets.resultDepth.bindUnit(0);
+    targets.resultDepth.bindUnit(shader::kTextureResultDepth);
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_BLEND);
@@ -39,7 +27,7 @@ void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, cons
     glCullFace(GL_BACK);
     scene.flatVertexArray().bind();
     for (const TranslucentLeaf& t : leaves) {
-        program_.setUniform(kColor, t.color);
+        program_.setUniform(shader::kTranslucentColor, t.color);
         scene.drawLeaf(t.leaf);
     }
     glDisable(GL_CULL_FACE);

@@ -10,8 +10,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/geometry/Mesh.h"
-#include "strata/render/Camera.h"
 
 namespace strata::render {
 

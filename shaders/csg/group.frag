@@ -11,13 +11,14 @@
 // untagged, as the evaluator does: an entry and an exit at one depth leave
 // the ray outside. Where the group has a surface, the two members are kept
 // in the group's layer of the ids.
+#include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
 layout(early_fragment_tests) in;
 
-layout(binding = 0) uniform sampler2D uScratch;
-layout(binding = 3, r32ui) uniform writeonly uimage2DArray uIds;
-layout(location = 0) uniform int uGroup;
+layout(binding = kTextureGroupScratch) uniform sampler2D uScratch;
+layout(binding = kImageGroupIds, r32ui) uniform writeonly uimage2DArray uIds;
+layout(location = kGroupIdsLayer) uniform int uIdsLayer;
 
 layout(location = 0) out vec2 outDepths;
 
@@ -27,7 +28,7 @@ void main() {
     float entry = winners.r;
     float exit = winners.g;
     int exitMember = int(winners.a);
-    int entryMember = 0xff;  // GroupPeel::kNoMember
+    int entryMember = int(kNoMember);
     if (entry < 0.0) {
         outDepths = vec2(-exit, exit);
     } else if (untagged(entry) < untagged(exit)) {
@@ -36,5 +37,5 @@ void main() {
     } else {
         discard;
     }
-    imageStore(uIds, ivec3(pixel, uGroup), uvec4(uint(entryMember) | uint(exitMember) << 8u));
+    imageStore(uIds, ivec3(pixel, uIdsLayer), uvec4(uint(entryMember) | uint(exitMember) << kMemberBits));
 }

@@ -13,18 +13,19 @@
 // leaves whose marks are their own, and the checking one.
 layout(early_fragment_tests) in;
 
+#include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
 layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit
 layout(location = 0) out vec4 outNormal;
 
-layout(binding = 0) uniform sampler2D uResultDepth;   // tagged depth, +inf on a miss
-layout(binding = 1) uniform isampler2D uResultLeaf;   // leaf * 2 + flip, -1 on a miss
+layout(binding = kTextureResultDepth) uniform sampler2D uResultDepth;  // tagged depth, +inf on a miss
+layout(binding = kTextureResultLeaf) uniform isampler2D uResultLeaf;   // leafCode (interface.glsl)
 
-layout(location = 3) uniform int uLeaf;           // the leaf being drawn
+layout(location = kNormalLeaf) uniform int uLeaf;  // the leaf being drawn
 // The leaf's packed base colours (ShadePass::baseColors): x its own surface, y cut.
-layout(location = 5) uniform vec2 uBaseColor;
+layout(location = kNormalBaseColor) uniform vec2 uBaseColor;
 
 #ifdef TRUST_MARKS
 // A convex leaf whose marks no other leaf shares in its rectangle
@@ -32,7 +33,7 @@ layout(location = 5) uniform vec2 uBaseColor;
 // already says that the pixel shows this leaf, this facing and this flip,
 // and a convex leaf has one fragment of each facing on a ray, so the checks
 // below could only agree. The draw's flip is a uniform.
-layout(location = 6) uniform int uFlip;
+layout(location = kNormalFlip) uniform int uFlip;
 
 void main() {
     bool cut = uFlip != 0;
@@ -42,7 +43,7 @@ void main() {
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int code = texelFetch(uResultLeaf, pixel, 0).r;
-    if (code < 0 || (code >> 1) != uLeaf) discard;
+    if (leafOfCode(code) != uLeaf) discard;
     float result = texelFetch(uResultDepth, pixel, 0).r;
     float t = taggedDepth(vViewDepth, gl_FrontFacing);
     if (isExit(t) != isExit(result)) discard;
@@ -50,7 +51,7 @@ void main() {
     // where the peel pass's was one tile's. A few ulps of slack cover the
     // rounding that an offset viewport or another fragment shader may bring.
     if (abs(t - result) > 1.0e-6 * result) discard;
-    bool cut = (code & 1) != 0;
+    bool cut = flipOfCode(code);
     outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #endif

@@ -11,18 +11,19 @@
 // against the others. Writes (tagged depth, tagged depth, member, member),
 // of which the pass's colour mask keeps the entry or the exit half, and as
 // its depth an order key of the tagged depth.
+#include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
 layout(location = 0) in float vViewDepth;
 #ifdef COLLECT
-// Collecting (PeelPass::collect): each fragment appends its tagged depth to
+// Collecting (PeelPass::peelThroughLists): each fragment appends its tagged depth to
 // its pixel's list; resolve.frag turns the lists into layers. A pixel whose
 // fragments overflow the list keeps counting, so the resolve can tell.
-layout(binding = 1, r32ui) uniform coherent uimage2D uFragmentCounts;
-layout(binding = 2, r32f) uniform writeonly image2DArray uFragments;
+layout(binding = kImageFragmentCounts, r32ui) uniform coherent uimage2D uFragmentCounts;
+layout(binding = kImageFragments, r32f) uniform writeonly image2DArray uFragments;
 #elif defined(GROUP)
-layout(location = 4) uniform uint uKeyBase;  // bits of a depth before every fragment's
-layout(location = 5) uniform float uMember;  // the member's index in its group
+layout(location = kPeelKeyBase) uniform uint uKeyBase;  // bits of a depth before every fragment's
+layout(location = kPeelMember) uniform float uMember;   // the member's index in its group
 layout(location = 0) out vec4 outGroup;
 
 // The tagged depth's bit pattern, from uKeyBase's on, as a normal float in
@@ -49,8 +50,8 @@ layout(early_fragment_tests) in;
 // The previous layer. Another layer of the same texture is the render target:
 // GL allows that read after a glTextureBarrier() (ARB_texture_barrier, core in
 // 4.5) as long as no texel is both read and written by one draw.
-layout(binding = 0) uniform sampler2DArray uLayers;
-layout(location = 3) uniform int uPreviousLayer;
+layout(binding = kTextureLayers) uniform sampler2DArray uLayers;
+layout(location = kPeelPreviousLayer) uniform int uPreviousLayer;
 #endif
 
 void main() {
@@ -58,7 +59,7 @@ void main() {
 #ifdef COLLECT
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint slot = imageAtomicAdd(uFragmentCounts, pixel, 1u);
-    if (slot < uint(COLLECT_CAPACITY)) imageStore(uFragments, ivec3(pixel, int(slot)), vec4(t));
+    if (slot < uint(kCollectCapacity)) imageStore(uFragments, ivec3(pixel, int(slot)), vec4(t));
 #elif defined(GROUP)
     gl_FragDepth = orderKey(t);
     outGroup = vec4(t, t, uMember, uMember);

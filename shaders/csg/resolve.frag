@@ -1,4 +1,4 @@
-// Fragment lists to peeled layers (PeelPass::collect), fullscreen over one
+// Fragment lists to peeled layers (PeelPass::peelThroughLists), fullscreen over one
 // operand's rectangle in the tile.
 //
 // peel.frag's COLLECT pass appended every fragment's tagged depth to its
@@ -16,20 +16,21 @@
 // count, and the caller peels the operand pass by pass instead.
 // Counts are left at 0 for the next operand: the lists' region is the
 // operand's rectangle, and this pass visits all of it.
-#if COLLECT_CAPACITY != 8
-#error "the loads below are written for lists of 8 (PeelPass::kCollectCapacity)"
-#endif
-layout(binding = 1, r32ui) uniform uimage2D uFragmentCounts;
-layout(binding = 2, r32f) uniform readonly image2DArray uFragments;
-layout(binding = 3, rg32f) uniform writeonly image2DArray uLayers;
+// The loads below are written for lists of kCollectCapacity = 8 (PeelPass.cpp
+// checks that).
+#include "csg/interface.glsl"
 
-layout(std430, binding = 7) buffer ResolveStats {
+layout(binding = kImageFragmentCounts, r32ui) uniform uimage2D uFragmentCounts;
+layout(binding = kImageFragments, r32f) uniform readonly image2DArray uFragments;
+layout(binding = kImageLayers, rg32f) uniform writeonly image2DArray uLayers;
+
+layout(std430, binding = kBufferResolveStats) buffer ResolveStats {
     uint mostLayers;
     uint overflowed;  // the most fragments of a pixel whose list overflowed, else 0
 };
 
-layout(location = 0) uniform int uFirstLayer;
-layout(location = 1) uniform int uLayerCount;  // at most 4
+layout(location = kResolveFirstLayer) uniform int uFirstLayer;
+layout(location = kResolveLayerCount) uniform int uLayerCount;  // at most 4
 
 const float kInfinity = uintBitsToFloat(0x7f800000u);
 
@@ -38,7 +39,7 @@ void main() {
     uint count = imageLoad(uFragmentCounts, pixel).r;
     if (count == 0u) return;
     imageStore(uFragmentCounts, pixel, uvec4(0u));
-    if (count > uint(COLLECT_CAPACITY)) {
+    if (count > uint(kCollectCapacity)) {
         atomicMax(overflowed, count);
         return;
     }

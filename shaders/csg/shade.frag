@@ -6,21 +6,22 @@
 // Light: Lambert from a light beside the eye, plus ambient. A Sobel filter on
 // the normal buffer darkens creases and silhouettes (the look of the original
 // image-space CSG papers). Empty pixels get the scheme's background, opaque.
+#include "csg/interface.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
 
 // World-space outward normal in xyz; w the packed base colour
 // (ShadePass::packBaseColor), 0 on a miss. Nearest, clamped to the edge.
-layout(binding = 0) uniform sampler2D uNormal;
+layout(binding = kTextureNormal) uniform sampler2D uNormal;
 
-layout(location = 0) uniform vec4 uBackground;
-layout(location = 3) uniform vec3 uForward;
-layout(location = 4) uniform vec3 uRight;
-layout(location = 5) uniform vec3 uUp;
-layout(location = 6) uniform vec2 uHalfExtent;   // tan(fov/2) * (aspect, 1): perspective ray slopes
-layout(location = 7) uniform int uOrthographic;
-layout(location = 8) uniform ivec2 uSize;
+layout(location = kShadeBackground) uniform vec4 uBackground;
+layout(location = kShadeForward) uniform vec3 uForward;
+layout(location = kShadeRight) uniform vec3 uRight;
+layout(location = kShadeUp) uniform vec3 uUp;
+layout(location = kShadeHalfExtent) uniform vec2 uHalfExtent;  // tan(fov/2) * (aspect, 1): perspective ray slopes
+layout(location = kShadeOrthographic) uniform int uOrthographic;
+layout(location = kShadeSize) uniform ivec2 uSize;
 
 const float kAmbient = 0.35;
 const float kDiffuse = 0.65;

@@ -16,8 +16,11 @@
 #ifdef LAYERED
 #extension GL_ARB_shader_draw_parameters : require
 #extension GL_ARB_shader_viewport_layer_array : require
+#endif
+#include "csg/interface.glsl"
 
-layout(std430, binding = 6) readonly buffer DrawLayers {
+#ifdef LAYERED
+layout(std430, binding = kBufferDrawLayers) readonly buffer DrawLayers {
     uint drawLayers[];
 };
 #endif
@@ -28,9 +31,9 @@ layout(location = 1) in vec3 aFaceNormal;
 layout(location = 1) flat out vec3 vFaceNormal;
 #endif
 
-layout(location = 0) uniform mat4 uViewProjection;
-layout(location = 1) uniform vec3 uEye;
-layout(location = 2) uniform vec3 uForward;
+layout(location = kSurfaceViewProjection) uniform mat4 uViewProjection;
+layout(location = kSurfaceEye) uniform vec3 uEye;
+layout(location = kSurfaceForward) uniform vec3 uForward;
 
 // Linear view depth dot(P - eye, f): an affine function of P, so perspective-
 // correct interpolation gives its exact value at every fragment.

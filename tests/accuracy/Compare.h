@@ -38,8 +38,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/reference/RayCaster.h"
-#include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
 
 namespace strata::accuracy {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 
 namespace strata::accuracy {
 

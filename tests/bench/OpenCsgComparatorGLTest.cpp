@@ -9,10 +9,10 @@
 
 #include "OpenCsgRun.h"
 #include "Scenes.h"
+#include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Model.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/ViewBounds.h"
 
 using namespace strata;
 

@@ -40,14 +40,14 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/core/Error.h"
+#include "strata/csg/CompiledTree.h"
 #include "strata/geometry/Model.h"
 #include "strata/geometry/Primitives.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
-#include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
-#include "strata/render/TreeProgram.h"
 #include "strata/scene/Tree.h"
 
 using namespace strata;
@@ -427,7 +427,7 @@ int formFigures(render::Renderer& renderer, const Writer& write) {
     return all ? 0 : 1;
 }
 
-// The compiled program of a small tree, as docs/algorithm.md lists it:
+// The compiled code of a small tree, as docs/algorithm.md lists it:
 // (A ∪ B) − (C ∩ D) − E. Only the tree matters here, not the meshes.
 void printProgram() {
     scene::Tree tree;
@@ -436,9 +436,9 @@ void printProgram() {
     const int ab = tree.addNode(NodeKind::Union, {leaf[0], leaf[1]});
     const int cd = tree.addNode(NodeKind::Intersection, {leaf[2], leaf[3]});
     tree.root = tree.addNode(NodeKind::Difference, {ab, cd, leaf[4]});
-    const render::TreeProgram program = render::compileTree(tree);
-    std::printf("program of (A u B) - (C n D) - E, operands A..E = 0..4, stack depth %d:\n", program.stackDepth);
-    std::string text = render::disassemble(program);
+    const csg::CompiledTree compiled = csg::compileTree(tree);
+    std::printf("program of (A u B) - (C n D) - E, operands A..E = 0..4, stack depth %d:\n", compiled.stackDepth);
+    std::string text = csg::disassemble(compiled);
     std::printf("%s", text.c_str());
 }
 

@@ -36,12 +36,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Gl.h"
 #include "strata/io/ImageWriter.h"
-#include "strata/render/Camera.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/Tree.h"
 
@@ -92,7 +92,7 @@ scene::Leaf leafFromHostMesh(const HostMesh& mesh, std::optional<glm::dvec4> col
 // --- Matrices into a strata camera -------------------------------------------
 
 // strata's Camera is OpenSCAD's: eye, center, vertical field of view, Z up
-// (strata/render/Camera.h). This turns a host's lookAt-style view matrix (world
+// (strata/camera/Camera.h). This turns a host's lookAt-style view matrix (world
 // to eye space, the eye looking down its -Z) and a symmetric perspective or
 // orthographic projection, OpenGL style (glm::perspective / glm::ortho), into
 // one. Throws strata::Error for what such a camera cannot express: a roll (an

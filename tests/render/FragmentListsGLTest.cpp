@@ -1,5 +1,5 @@
 // Peeling a non-convex operand in one geometry pass through per-pixel
-// fragment lists (PeelPass::collect) against dual depth peeling pass by pass.
+// fragment lists (PeelPass::peelThroughLists) against dual depth peeling pass by pass.
 // The passes are checked against analytic depths and the CPU reference
 // elsewhere (RendererGLTest, the accuracy suite); here the lists must give
 // the very same layers, bit for bit, and so the same frames: random unions,

@@ -61,7 +61,6 @@ public:
     // Binds to an indexed target: GL_SHADER_STORAGE_BUFFER, GL_UNIFORM_BUFFER,
     // GL_ATOMIC_COUNTER_BUFFER, GL_TRANSFORM_FEEDBACK_BUFFER.
     void bindBase(GLenum target, GLuint index) const;
-    void bindRange(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const;
     // Binds to a non-indexed target (GL_DRAW_INDIRECT_BUFFER, GL_PIXEL_PACK_BUFFER, ...).
     void bind(GLenum target) const;
 

@@ -43,7 +43,6 @@ public:
 
     // Clears draw buffer `drawBuffer` (an index into setDrawBuffers) to a value.
     void clearColor(int drawBuffer, const float rgba[4]);
-    void clearColorUint(int drawBuffer, const GLuint rgba[4]);
     void clearColorInt(int drawBuffer, const GLint rgba[4]);
     void clearDepth(float depth);
 

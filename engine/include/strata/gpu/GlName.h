@@ -55,8 +55,5 @@ struct QueryDeleter {
 struct VertexArrayDeleter {
     void operator()(GLuint id) const { glDeleteVertexArrays(1, &id); }
 };
-struct SamplerDeleter {
-    void operator()(GLuint id) const { glDeleteSamplers(1, &id); }
-};
 
 }  // namespace strata::gpu

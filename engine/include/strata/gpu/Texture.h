@@ -36,10 +36,9 @@ public:
 
     // Binds to texture unit `unit` for sampling (glBindTextureUnit).
     void bindUnit(GLuint unit) const;
-    // Binds level `level` to image unit `unit` for imageLoad/imageStore, all
-    // layers of an array texture (layered) or one of them.
+    // Binds level `level` to image unit `unit` for imageLoad/imageStore (every
+    // layer of an array texture).
     void bindImage(GLuint unit, GLenum access, int level = 0) const;
-    void bindImageLayer(GLuint unit, GLenum access, int layer, int level = 0) const;
 
     // Fills level `level` (every layer) with one texel value given in
     // `format`/`type` (glClearTexImage); null clears to zero.

@@ -28,8 +28,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
-#include "strata/render/Camera.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::reference {

@@ -26,7 +26,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 
 namespace strata::reference {
 

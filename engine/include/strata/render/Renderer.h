@@ -5,7 +5,7 @@
 //
 // The passes (engine/render/*Pass.h, shaders/csg/) and what each owns:
 //   peel       PeelPass        dual depth peeling into an RG32F array texture
-//   evaluate   EvaluatePass    the compiled tree (TreeProgram.h) per pixel
+//   evaluate   EvaluatePass    the compiled tree (strata/csg/CompiledTree.h) per pixel
 //   normal     NormalPass      the visible leaves redrawn for face normals
 //   shade      ShadePass       colours, Lambert light, Sobel outline
 //   translucent TranslucentPass '%' and '#' leaves over the image
@@ -22,8 +22,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
-#include "strata/render/Camera.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::render {

@@ -9,28 +9,23 @@
 #ifdef LEAF_MARKS
 #extension GL_ARB_shader_stencil_export : require
 #endif
+#include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
-#ifndef MAX_LIVE
-#define MAX_LIVE 64
-#endif
-#ifndef BLOCK
-#define BLOCK 16
-#endif
-layout(binding = 0) uniform sampler2DArray uLayers;
+layout(binding = kTextureLayers) uniform sampler2DArray uLayers;
 #include "csg/blocks.glsl"
-layout(location = 2) uniform ivec2 uTileOrigin;
-layout(location = 4) uniform int uLoopBudget;  // kept active: EvaluatePass sets it
+layout(location = kEvaluateTileOrigin) uniform ivec2 uTileOrigin;
+layout(location = kEvaluateLoopBudget) uniform int uLoopBudget;  // kept active: EvaluatePass sets it
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
-    vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x & 0xffffu), 0).rg;
-    if (layer.r <= -3.0e38 || uLoopBudget < -5) discard;
+    vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x & kSlotLayerMask), 0).rg;
+    if (layer.r <= -kClearedDepth || uLoopBudget < -5) discard;
     outDepth = -layer.r;
-    outLeaf = 0;
+    outLeaf = leafCode(0, false);
 #ifdef LEAF_MARKS
-    gl_FragStencilRefARB = 1;
+    gl_FragStencilRefARB = stencilMark(0, faceBit(false, false));
 #endif
 }

@@ -1,4 +1,4 @@
-#include "strata/render/TreeProgram.h"
+#include "strata/csg/CompiledTree.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -7,7 +7,7 @@
 
 #include "strata/core/Error.h"
 
-namespace strata::render {
+namespace strata::csg {
 
 namespace {
 
@@ -29,20 +29,20 @@ public:
         exprs_.push_back(make(Expr::Type::Everything));  // kEverything
     }
 
-    TreeProgram compile() {
-        TreeProgram program;
-        if (tree_.root < 0) return program;  // nothing at all: empty
+    CompiledTree compile() {
+        CompiledTree compiled;
+        if (tree_.root < 0) return compiled;  // nothing at all: empty
         const int root = propagateLiterals(flattenSameType(normalize(tree_.root)));
-        if (root == kEmpty) return program;
+        if (root == kEmpty) return compiled;
         if (root == kEverything) {
-            program.kind = TreeProgram::Kind::Everything;
-            return program;
+            compiled.kind = CompiledTree::Kind::Everything;
+            return compiled;
         }
-        program.kind = TreeProgram::Kind::Program;
-        assignOperands(root, program);
+        compiled.kind = CompiledTree::Kind::Code;
+        assignOperands(root, compiled);
         computeNeeds(root);
-        emit(root, program);
-        return program;
+        emit(root, compiled);
+        return compiled;
     }
 
 private:
@@ -218,95 +218,107 @@ private:
     // could grow without bound).
     int propagateLiterals(int root) {
         if (root == kEmpty || root == kEverything || isLiteral(root) || innerExpressionShared(root)) return root;
-        std::vector<signed char> known(tree_.leaves.size(), -1);  // per leaf: -1 free, else inside (1) or not
-        std::vector<int> forced;                                     // leaves set in `known`, in order
-        struct Frame {
-            int e;
-            std::size_t next = 0;        // children of e visited
-            std::size_t forcedMark = 0;  // forced.size() on entry
-            std::vector<int> kept;       // e's rebuilt children
-            bool absorbed = false;       // a child was e's absorbing constant
-        };
-        auto value = [&](int e) {  // -1 unknown, else the literal's value
-            const Expr& x = exprs_[static_cast<std::size_t>(e)];
-            const int k = known[static_cast<std::size_t>(x.leaf)];
-            return k < 0 ? -1 : (x.negated ? 1 - k : k);
-        };
-        std::vector<Frame> stack;
+        Held held;
+        held.known.assign(tree_.leaves.size(), -1);
+        std::vector<Rebuild> stack;
+        stack.push_back(Rebuild{root, 0, 0, {}, false});
         int result = -1;
-        auto enter = [&](int e) {
-            Frame f;
-            f.e = e;
-            f.forcedMark = forced.size();
-            stack.push_back(std::move(f));
-        };
-        enter(root);
         while (!stack.empty()) {
-            Frame& f = stack.back();
+            Rebuild& f = stack.back();
             const Expr& x = exprs_[static_cast<std::size_t>(f.e)];
-            const bool isAnd = x.type == Expr::Type::And;
-            const int absorbing = isAnd ? kEmpty : kEverything;
-            const int neutral = isAnd ? kEverything : kEmpty;
-            auto keep = [&](int child) {
-                if (child == absorbing) {
-                    f.absorbed = true;
-                } else if (child != neutral) {
-                    const Expr& c = exprs_[static_cast<std::size_t>(child)];
-                    if (c.type == x.type) {
-                        f.kept.insert(f.kept.end(), c.children.begin(), c.children.end());
-                    } else {
-                        f.kept.push_back(child);
-                    }
-                }
-            };
             if (result >= 0) {  // a child just rebuilt
-                keep(result);
+                keepChild(f, result);
                 result = -1;
             }
-            if (f.next == 0 && f.kept.empty() && !f.absorbed) {
-                // First the literal children: constants where known, else they
-                // hold their value for the rest (a repeat is then a constant).
-                for (int c : x.children) {
-                    if (!isLiteral(c)) continue;
-                    const int v = value(c);
-                    if (v >= 0) {
-                        keep(v == 1 ? kEverything : kEmpty);
-                        continue;
-                    }
-                    const Expr& l = exprs_[static_cast<std::size_t>(c)];
-                    const bool holds = isAnd;  // the literal's value wherever the others matter
-                    known[static_cast<std::size_t>(l.leaf)] = static_cast<signed char>(holds != l.negated ? 1 : 0);
-                    forced.push_back(l.leaf);
-                    f.kept.push_back(c);
-                }
-            }
+            if (f.next == 0 && f.kept.empty() && !f.absorbed) holdLiterals(f, held);
             // Then the other children, under what the literals hold.
             while (!f.absorbed && f.next < x.children.size() && isLiteral(x.children[f.next])) ++f.next;
             if (!f.absorbed && f.next < x.children.size()) {
                 const int child = x.children[f.next++];
-                enter(child);
+                stack.push_back(Rebuild{child, 0, held.forced.size(), {}, false});
                 continue;
             }
-            // Done: fold.
-            int rebuilt;
-            if (f.absorbed) {
-                rebuilt = absorbing;
-            } else if (f.kept.empty()) {
-                rebuilt = neutral;
-            } else if (f.kept.size() == 1) {
-                rebuilt = f.kept.front();
-            } else {
-                Expr e = make(x.type);
-                e.children = std::move(f.kept);
-                exprs_.push_back(std::move(e));
-                rebuilt = static_cast<int>(exprs_.size()) - 1;
-            }
-            for (std::size_t i = f.forcedMark; i < forced.size(); ++i) known[static_cast<std::size_t>(forced[i])] = -1;
-            forced.resize(f.forcedMark);
+            result = rebuilt(f, held);
             stack.pop_back();
-            result = rebuilt;
         }
         return result;
+    }
+
+    // The literals' values that the AND/OR expressions being rebuilt hold.
+    struct Held {
+        std::vector<signed char> known;  // per leaf: -1 free, else inside (1) or not
+        std::vector<int> forced;         // leaves set in `known`, in order
+    };
+    // An expression being rebuilt by propagateLiterals.
+    struct Rebuild {
+        int e;
+        std::size_t next = 0;        // children of e visited
+        std::size_t forcedMark = 0;  // Held::forced.size() on entry
+        std::vector<int> kept;       // e's rebuilt children
+        bool absorbed = false;       // a child was e's absorbing constant
+    };
+
+    static int absorbingOf(Expr::Type type) { return type == Expr::Type::And ? kEmpty : kEverything; }
+    static int neutralOf(Expr::Type type) { return type == Expr::Type::And ? kEverything : kEmpty; }
+
+    // Adds a rebuilt `child` to f's children: a constant absorbs f or
+    // vanishes, a child of f's own operation merges into f.
+    void keepChild(Rebuild& f, int child) const {
+        const Expr::Type type = exprs_[static_cast<std::size_t>(f.e)].type;
+        if (child == absorbingOf(type)) {
+            f.absorbed = true;
+        } else if (child != neutralOf(type)) {
+            const Expr& c = exprs_[static_cast<std::size_t>(child)];
+            if (c.type == type) {
+                f.kept.insert(f.kept.end(), c.children.begin(), c.children.end());
+            } else {
+                f.kept.push_back(child);
+            }
+        }
+    }
+
+    // f's literal children, first: constants where `held` knows them, else
+    // they hold their value for the rest (a repeat is then a constant).
+    void holdLiterals(Rebuild& f, Held& held) const {
+        const Expr& x = exprs_[static_cast<std::size_t>(f.e)];
+        const bool isAnd = x.type == Expr::Type::And;
+        for (int c : x.children) {
+            if (!isLiteral(c)) continue;
+            const Expr& l = exprs_[static_cast<std::size_t>(c)];
+            const int k = held.known[static_cast<std::size_t>(l.leaf)];
+            if (k >= 0) {
+                const int value = l.negated ? 1 - k : k;
+                keepChild(f, value == 1 ? kEverything : kEmpty);
+                continue;
+            }
+            const bool holds = isAnd;  // the literal's value wherever the others matter
+            held.known[static_cast<std::size_t>(l.leaf)] = static_cast<signed char>(holds != l.negated ? 1 : 0);
+            held.forced.push_back(l.leaf);
+            f.kept.push_back(c);
+        }
+    }
+
+    // f, every child visited: its rebuilt expression. Its literals hold no
+    // more.
+    int rebuilt(Rebuild& f, Held& held) {
+        const Expr::Type type = exprs_[static_cast<std::size_t>(f.e)].type;
+        int out;
+        if (f.absorbed) {
+            out = absorbingOf(type);
+        } else if (f.kept.empty()) {
+            out = neutralOf(type);
+        } else if (f.kept.size() == 1) {
+            out = f.kept.front();
+        } else {
+            Expr e = make(type);
+            e.children = std::move(f.kept);
+            exprs_.push_back(std::move(e));
+            out = static_cast<int>(exprs_.size()) - 1;
+        }
+        for (std::size_t i = f.forcedMark; i < held.forced.size(); ++i)
+            held.known[static_cast<std::size_t>(held.forced[i])] = -1;
+        held.forced.resize(f.forcedMark);
+        return out;
     }
 
     // Whether some AND/OR expression under `root` has two parents.
@@ -348,7 +360,7 @@ private:
         }
     }
 
-    void assignOperands(int root, TreeProgram& program) {
+    void assignOperands(int root, CompiledTree& compiled) {
         std::vector<int> leaves;
         postorder(root, [&](int e) {
             const Expr& x = exprs_[static_cast<std::size_t>(e)];
@@ -356,7 +368,7 @@ private:
         });
         std::sort(leaves.begin(), leaves.end());
         leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
-        program.operandLeaf = leaves;
+        compiled.operandLeaf = leaves;
         operandOfLeaf_.assign(tree_.leaves.size(), -1);
         for (std::size_t k = 0; k < leaves.size(); ++k) {
             operandOfLeaf_[static_cast<std::size_t>(leaves[k])] = static_cast<int>(k);
@@ -397,13 +409,13 @@ private:
         return op | (x.negated ? kOpNegate : 0u) | (operand << kOperandShift);
     }
 
-    void emit(int root, TreeProgram& program) {
+    void emit(int root, CompiledTree& compiled) {
         int depth = 0;
         auto put = [&](std::uint32_t instruction) {
-            program.code.push_back(instruction);
-            if ((instruction & 3u) == kOpPush) ++depth;
+            compiled.code.push_back(instruction);
+            if ((instruction & kOpMask) == kOpPush) ++depth;
             if (instruction & kOpFromStack) --depth;
-            program.stackDepth = std::max(program.stackDepth, depth);
+            compiled.stackDepth = std::max(compiled.stackDepth, depth);
         };
         // Frame: an expression and how many of its subexpression children are emitted.
         std::vector<std::pair<int, std::size_t>> stack{{root, 0}};
@@ -431,8 +443,8 @@ private:
             for (; i < x.children.size(); ++i) put(literal(op, x.children[i]));
             stack.pop_back();
         }
-        if (program.stackDepth > kMaxStackDepth) {
-            throw Error("CSG tree needs an evaluation stack of " + std::to_string(program.stackDepth) +
+        if (compiled.stackDepth > kMaxStackDepth) {
+            throw Error("CSG tree needs an evaluation stack of " + std::to_string(compiled.stackDepth) +
                         " entries; the evaluator holds " + std::to_string(kMaxStackDepth));
         }
     }
@@ -447,20 +459,20 @@ private:
 
 }  // namespace
 
-TreeProgram compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty,
-                        const std::vector<int>& sameLeaf) {
+CompiledTree compileTree(const scene::Tree& tree, const std::vector<bool>& leafIsEmpty,
+                         const std::vector<int>& sameLeaf) {
     return Compiler(tree, leafIsEmpty, sameLeaf).compile();
 }
 
-std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const std::vector<char>& present,
-                                             bool* constant) {
-    if (program.kind != TreeProgram::Kind::Program) {
-        if (constant) *constant = program.kind == TreeProgram::Kind::Everything;
+std::vector<std::uint32_t> specializeCode(const CompiledTree& compiled, const std::vector<char>& present,
+                                          bool* constant) {
+    if (compiled.kind != CompiledTree::Kind::Code) {
+        if (constant) *constant = compiled.kind == CompiledTree::Kind::Everything;
         return {};
     }
     // Symbolic run of the stack machine: each entry is a constant or the
     // instructions that compute it. Folding keeps the order of evaluation, so
-    // the stack never gets deeper than the original program's.
+    // the stack never gets deeper than the code's.
     struct Entry {
         int constant = -1;  // 0 or 1, or -1 for `code`
         std::vector<std::uint32_t> code;
@@ -469,7 +481,7 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
         Entry e;
         const std::uint32_t operand = instruction >> kOperandShift;
         if (operand < present.size() && present[operand]) {
-            e.code.push_back((instruction & ~3u) | kOpPush);
+            e.code.push_back((instruction & ~kOpMask) | kOpPush);
         } else {
             e.constant = (instruction & kOpNegate) ? 1 : 0;  // absent: outside, so !x is true
         }
@@ -490,13 +502,13 @@ std::vector<std::uint32_t> specializeProgram(const TreeProgram& program, const s
         }
         // Both computed: a single-literal b fuses back into AND/OR literal.
         if (b.code.size() == 1) {
-            a.code.push_back((b.code[0] & ~3u) | op);
+            a.code.push_back((b.code[0] & ~kOpMask) | op);
         } else {
             a.code.insert(a.code.end(), b.code.begin(), b.code.end());
             a.code.push_back(op | kOpFromStack);
         }
     };
-    Entry result = foldCode<Entry>(program.code, literal, combine);
+    Entry result = foldCode<Entry>(compiled.code, literal, combine);
     if (constant) *constant = result.constant == 1;
     return result.constant >= 0 ? std::vector<std::uint32_t>{} : std::move(result.code);
 }
@@ -591,7 +603,7 @@ bool runCountingTree(const CountingTree& tree, const std::vector<bool>& operandI
 }
 
 bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& operandInside) {
-    // The same bit-stack machine as shaders/csg/evaluate.frag: top of stack in bit 0.
+    // A stack of bits, top of stack in bit 0.
     std::uint32_t stack = 0;
     for (std::uint32_t instruction : code) {
         std::uint32_t value;
@@ -602,7 +614,7 @@ bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& op
             const std::uint32_t operand = instruction >> kOperandShift;
             value = (operandInside.at(operand) ? 1u : 0u) ^ ((instruction & kOpNegate) ? 1u : 0u);
         }
-        switch (instruction & 3u) {
+        switch (instruction & kOpMask) {
             case kOpPush: stack = (stack << 1) | value; break;
             case kOpAnd: stack &= ~1u | value; break;
             case kOpOr: stack |= value; break;
@@ -612,19 +624,19 @@ bool runCode(const std::vector<std::uint32_t>& code, const std::vector<bool>& op
     return (stack & 1u) != 0;
 }
 
-bool runTreeProgram(const TreeProgram& program, const std::vector<bool>& operandInside) {
-    if (program.kind == TreeProgram::Kind::Empty) return false;
-    if (program.kind == TreeProgram::Kind::Everything) return true;
-    return runCode(program.code, operandInside);
+bool runCompiledTree(const CompiledTree& compiled, const std::vector<bool>& operandInside) {
+    if (compiled.kind == CompiledTree::Kind::Empty) return false;
+    if (compiled.kind == CompiledTree::Kind::Everything) return true;
+    return runCode(compiled.code, operandInside);
 }
 
-std::string disassemble(const TreeProgram& program) {
+std::string disassemble(const CompiledTree& compiled) {
     std::ostringstream out;
-    if (program.kind == TreeProgram::Kind::Empty) return "EMPTY\n";
-    if (program.kind == TreeProgram::Kind::Everything) return "EVERYTHING\n";
+    if (compiled.kind == CompiledTree::Kind::Empty) return "EMPTY\n";
+    if (compiled.kind == CompiledTree::Kind::Everything) return "EVERYTHING\n";
     static const char* const kNames[] = {"PUSH", "AND", "OR", "?"};
-    for (std::uint32_t instruction : program.code) {
-        out << kNames[instruction & 3u] << ' ';
+    for (std::uint32_t instruction : compiled.code) {
+        out << kNames[instruction & kOpMask] << ' ';
         if (instruction & kOpFromStack) {
             out << "pop";
         } else {
@@ -635,4 +647,4 @@ std::string disassemble(const TreeProgram& program) {
     return out.str();
 }
 
-}  // namespace strata::render
+}  // namespace strata::csg

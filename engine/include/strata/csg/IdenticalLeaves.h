@@ -16,10 +16,10 @@
 #include "strata/geometry/Model.h"
 #include "strata/scene/Tree.h"
 
-namespace strata::render {
+namespace strata::csg {
 
 // Per tree leaf i: the lowest leaf whose solid is leaf i's exactly (i itself
 // where no lower one is). Leaves without triangles map to themselves.
 std::vector<int> identicalLeaves(const scene::Tree& tree, const geometry::Model& model);
 
-}  // namespace strata::render
+}  // namespace strata::csg

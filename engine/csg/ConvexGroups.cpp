@@ -1,27 +1,27 @@
-#include "strata/render/ConvexGroups.h"
+#include "strata/csg/ConvexGroups.h"
 
 #include <algorithm>
 #include <map>
 
-namespace strata::render {
+namespace strata::csg {
 
 namespace {
 
 // Whether the instruction reads an operand (a literal): every PUSH, as
 // foldCode reads them, and an AND or OR not taking its value from the stack.
 bool isLiteral(std::uint32_t instruction) {
-    return (instruction & 3u) == kOpPush || !(instruction & kOpFromStack);
+    return (instruction & kOpMask) == kOpPush || !(instruction & kOpFromStack);
 }
 
 }  // namespace
 
-TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<char>& groupable,
-                                std::size_t mostMembers) {
-    if (program.kind != TreeProgram::Kind::Program || mostMembers < 2) return program;
-    const std::vector<std::uint32_t>& code = program.code;
+CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
+                                 std::size_t mostMembers) {
+    if (compiled.kind != CompiledTree::Kind::Code || mostMembers < 2) return compiled;
+    const std::vector<std::uint32_t>& code = compiled.code;
     // Literal instructions in code order: countingTree's literals are the same, one for one.
     std::vector<std::size_t> literalAt;
-    std::vector<int> uses(program.operandLeaf.size(), 0);
+    std::vector<int> uses(compiled.operandLeaf.size(), 0);
     for (std::size_t i = 0; i < code.size(); ++i) {
         if (!isLiteral(code[i])) continue;
         literalAt.push_back(i);
@@ -43,9 +43,9 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
     // keeps its first literal's instruction and deletes the others, all of
     // them AND (OR) with a literal (a node's only PUSH is its first
     // literal), which leave the stack as it was.
-    const std::size_t n = program.operandLeaf.size();
+    const std::size_t n = compiled.operandLeaf.size();
     std::vector<std::vector<int>> members(n);
-    for (std::size_t k = 0; k < n; ++k) members[k] = {program.operandLeaf[k]};
+    for (std::size_t k = 0; k < n; ++k) members[k] = {compiled.operandLeaf[k]};
     std::vector<char> deleted(code.size(), 0);
     bool any = false;
     for (const auto& [node, literals] : byNode) {
@@ -54,7 +54,7 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
             const std::uint32_t keeper = tree.literals[literals[start]].operand;
             for (std::size_t i = start + 1; i < end; ++i) {
                 const std::uint32_t operand = tree.literals[literals[i]].operand;
-                members[keeper].push_back(program.operandLeaf[operand]);
+                members[keeper].push_back(compiled.operandLeaf[operand]);
                 members[operand].clear();
                 deleted[literalAt[literals[i]]] = 1;
             }
@@ -62,7 +62,7 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
             any = true;
         }
     }
-    if (!any) return program;
+    if (!any) return compiled;
 
     // Renumber: the operands left, by their lowest leaf.
     std::vector<std::size_t> kept;
@@ -71,9 +71,9 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
     }
     std::sort(kept.begin(), kept.end(), [&](std::size_t a, std::size_t b) { return members[a][0] < members[b][0]; });
     std::vector<std::uint32_t> renumbered(n, 0);
-    TreeProgram out;
-    out.kind = program.kind;
-    out.stackDepth = program.stackDepth;
+    CompiledTree out;
+    out.kind = compiled.kind;
+    out.stackDepth = compiled.stackDepth;
     out.operandGroups.resize(kept.size());
     for (std::size_t j = 0; j < kept.size(); ++j) {
         renumbered[kept[j]] = static_cast<std::uint32_t>(j);
@@ -90,4 +90,4 @@ TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<ch
     return out;
 }
 
-}  // namespace strata::render
+}  // namespace strata::csg

@@ -40,7 +40,7 @@ struct Steps {
 Steps stepsOf(uint layer) {
     vec2 texel = texelFetch(uLayers, ivec3(pixel, int(layer)), 0).rg;
     float near = -texel.r;
-    bool hit = near < kCleared;
+    bool hit = near < kClearedDepth;
     bool two = hit && texel.g > near;
     Steps s;
     s.first = hit ? untagged(near) : kInfinity;

@@ -5,8 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "strata/camera/ViewBounds.h"
 #include "strata/geometry/Model.h"
-#include "strata/render/ViewBounds.h"
 
 using namespace strata;
 

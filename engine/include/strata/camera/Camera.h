@@ -1,7 +1,8 @@
 #pragma once
 // The camera of docs/contract.md ("Camera"): OpenSCAD's conventions, Z up.
 // Pure math, shared by the GPU renderer and the CPU reference so both sample
-// exactly the same rays.
+// exactly the same rays. Its own room (strata_camera); the namespace is the
+// renderer's, whose API takes a Camera.
 
 #include <vector>
 

@@ -11,8 +11,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
+#include "strata/camera/Camera.h"
 #include "strata/core/Error.h"
-#include "strata/render/Camera.h"
 
 using strata::render::Camera;
 using strata::render::Projection;

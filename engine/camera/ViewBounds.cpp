@@ -1,4 +1,4 @@
-#include "strata/render/ViewBounds.h"
+#include "strata/camera/ViewBounds.h"
 
 #include <utility>
 #include <vector>

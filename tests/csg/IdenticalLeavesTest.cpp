@@ -6,9 +6,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/csg/CompiledTree.h"
+#include "strata/csg/IdenticalLeaves.h"
 #include "strata/geometry/Model.h"
-#include "strata/render/IdenticalLeaves.h"
-#include "strata/render/TreeProgram.h"
 
 using namespace strata;
 using scene::NodeKind;
@@ -46,15 +46,15 @@ TEST(IdenticalLeaves, SameSolidColourAndDisplayMapToTheLowest) {
     nodes.push_back(tree.addLeaf(tiny));                                // 8: one ulp away
     tree.root = tree.addNode(NodeKind::Union, nodes);
     const geometry::Model model = geometry::buildModel(tree);
-    const std::vector<int> same = render::identicalLeaves(tree, model);
+    const std::vector<int> same = csg::identicalLeaves(tree, model);
     EXPECT_EQ(same, (std::vector<int>{0, 1, 0, 3, 3, 5, 6, 1, 8}));
 
     // compileTree: the copies' literals use their originals' operands.
-    const render::TreeProgram program = render::compileTree(tree, {}, same);
-    EXPECT_EQ(program.operandLeaf, (std::vector<int>{0, 1, 3, 5, 6, 8}));
+    const csg::CompiledTree compiled = csg::compileTree(tree, {}, same);
+    EXPECT_EQ(compiled.operandLeaf, (std::vector<int>{0, 1, 3, 5, 6, 8}));
     // Inside operand 0 only: leaves 0 and 2 both.
-    EXPECT_TRUE(render::runTreeProgram(program, {true, false, false, false, false, false}));
-    EXPECT_FALSE(render::runTreeProgram(program, {false, false, false, false, false, false}));
+    EXPECT_TRUE(csg::runCompiledTree(compiled, {true, false, false, false, false, false}));
+    EXPECT_FALSE(csg::runCompiledTree(compiled, {false, false, false, false, false, false}));
 }
 
 TEST(IdenticalLeaves, ACopyMinusItsOriginalIsEmpty) {
@@ -64,13 +64,13 @@ TEST(IdenticalLeaves, ACopyMinusItsOriginalIsEmpty) {
     const int b = tree.addLeaf(cube({0, 0, 0}));
     tree.root = tree.addNode(NodeKind::Difference, {a, b});
     const geometry::Model model = geometry::buildModel(tree);
-    EXPECT_EQ(render::compileTree(tree, {}, render::identicalLeaves(tree, model)).kind,
-              render::TreeProgram::Kind::Empty);
-    EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Program);  // not shared: two operands
+    EXPECT_EQ(csg::compileTree(tree, {}, csg::identicalLeaves(tree, model)).kind,
+              csg::CompiledTree::Kind::Empty);
+    EXPECT_EQ(csg::compileTree(tree).kind, csg::CompiledTree::Kind::Code);  // not shared: two operands
 }
 
 TEST(IdenticalLeaves, AnOutOfRangeMappingIsAnError) {
     scene::Tree tree;
     tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(cube({0, 0, 0}))});
-    EXPECT_THROW(render::compileTree(tree, {}, {3}), Error);
+    EXPECT_THROW(csg::compileTree(tree, {}, {3}), Error);
 }

@@ -1,10 +1,10 @@
-#include "strata/render/IdenticalLeaves.h"
+#include "strata/csg/IdenticalLeaves.h"
 
 #include <bit>
 #include <cstdint>
 #include <unordered_map>
 
-namespace strata::render {
+namespace strata::csg {
 
 namespace {
 
@@ -53,4 +53,4 @@ std::vector<int> identicalLeaves(const scene::Tree& tree, const geometry::Model&
     return same;
 }
 
-}  // namespace strata::render
+}  // namespace strata::csg

@@ -1,4 +1,4 @@
-#include "strata/render/Camera.h"
+#include "strata/camera/Camera.h"
 
 #include <cmath>
 #include <numbers>

@@ -15,20 +15,21 @@
 #include <cstddef>
 #include <vector>
 
-#include "strata/render/TreeProgram.h"
+#include "strata/csg/CompiledTree.h"
 
-namespace strata::render {
+namespace strata::csg {
 
-// `program` with, in every AND of its counting tree (TreeProgram.h), the
+// `compiled` with, in every AND of its counting tree (CompiledTree.h), the
 // plain literals of the operands with groupable[k] != 0 that are each their
-// operand's only literal in the program, joined into one operand per run of
-// at most `mostMembers`: the run's first literal in code order stands for
-// all of them (it now names the group's operand) and the others leave the
-// code. So do the negated ones in every OR: !a | !b is !(a & b), and a
-// subtracted intersection, A - (B & C), is A & (!B | !C) once compiled. A group's operand is its lowest member leaf;
-// program.operandGroups[group] lists its member leaves, ascending. Operands
-// are renumbered so that operandLeaf stays ascending.
-TreeProgram groupConvexProducts(const TreeProgram& program, const std::vector<char>& groupable,
-                                std::size_t mostMembers);
+// operand's only literal in the code, joined into one operand per run of at
+// most `mostMembers`: the run's first literal in code order stands for all
+// of them (it now names the group's operand) and the others leave the code.
+// So do the negated ones in every OR: !a | !b is !(a & b), and a subtracted
+// intersection, A - (B & C), is A & (!B | !C) once compiled. A group's
+// operand is its lowest member leaf; operandGroups[group] of the result
+// lists its member leaves, ascending. Operands are renumbered so that
+// operandLeaf stays ascending.
+CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
+                                 std::size_t mostMembers);
 
-}  // namespace strata::render
+}  // namespace strata::csg

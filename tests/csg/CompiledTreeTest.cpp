@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "strata/render/ConvexGroups.h"
-#include "strata/render/TreeProgram.h"
+#include "strata/csg/CompiledTree.h"
+#include "strata/csg/ConvexGroups.h"
 
 using namespace strata;
 using scene::NodeKind;
@@ -59,9 +59,9 @@ bool direct(const Tree& tree, int node, const std::vector<bool>& inside, const s
     return false;
 }
 
-std::vector<bool> operandStates(const render::TreeProgram& program, const std::vector<bool>& leafInside) {
+std::vector<bool> operandStates(const csg::CompiledTree& compiled, const std::vector<bool>& leafInside) {
     std::vector<bool> states;
-    for (int l : program.operandLeaf) states.push_back(leafInside[static_cast<std::size_t>(l)]);
+    for (int l : compiled.operandLeaf) states.push_back(leafInside[static_cast<std::size_t>(l)]);
     return states;
 }
 
@@ -79,16 +79,16 @@ int randomNode(Tree& tree, std::mt19937& rng, int depth) {
     return tree.addNode(kind, children);
 }
 
-// Calls f(program, rng) for each of 300 seeded random trees (randomNode,
-// `depth` levels) that compiles to a program rather than a constant.
+// Calls f(compiled, rng) for each of 300 seeded random trees (randomNode,
+// `depth` levels) that compiles to code rather than a constant.
 template <class F>
-void forRandomPrograms(unsigned seed, int depth, F f) {
+void forRandomTrees(unsigned seed, int depth, F f) {
     std::mt19937 rng(seed);
     for (int t = 0; t < 300; ++t) {
         Tree tree;
         tree.root = randomNode(tree, rng, depth);
-        const render::TreeProgram program = render::compileTree(tree);
-        if (program.kind == render::TreeProgram::Kind::Program) f(program, rng);
+        const csg::CompiledTree compiled = csg::compileTree(tree);
+        if (compiled.kind == csg::CompiledTree::Kind::Code) f(compiled, rng);
     }
 }
 
@@ -115,144 +115,144 @@ std::vector<bool> randomStates(const std::vector<int>& same, std::mt19937& rng) 
 
 }  // namespace
 
-TEST(TreeProgram, DifferenceBecomesIntersectionWithComplements) {
+TEST(CompiledTree, DifferenceBecomesIntersectionWithComplements) {
     Tree tree;
     const int a = leaf(tree), b = leaf(tree), c = leaf(tree);
     tree.root = tree.addNode(NodeKind::Difference, {a, b, c});
-    const render::TreeProgram program = render::compileTree(tree);
-    ASSERT_EQ(program.kind, render::TreeProgram::Kind::Program);
-    EXPECT_EQ(render::disassemble(program), "PUSH 0\nAND !1\nAND !2\n");
-    EXPECT_EQ(program.stackDepth, 1);
-    EXPECT_EQ(program.operandLeaf, (std::vector<int>{0, 1, 2}));
+    const csg::CompiledTree compiled = csg::compileTree(tree);
+    ASSERT_EQ(compiled.kind, csg::CompiledTree::Kind::Code);
+    EXPECT_EQ(csg::disassemble(compiled), "PUSH 0\nAND !1\nAND !2\n");
+    EXPECT_EQ(compiled.stackDepth, 1);
+    EXPECT_EQ(compiled.operandLeaf, (std::vector<int>{0, 1, 2}));
 }
 
-TEST(TreeProgram, ComplementsReachTheLeavesByDeMorgan) {
+TEST(CompiledTree, ComplementsReachTheLeavesByDeMorgan) {
     // a - (b ∪ c) = a ∩ ¬b ∩ ¬c, flattened into one AND;
     // a - (b ∩ c) = a ∩ (¬b ∪ ¬c).
     Tree tree;
     const int a = leaf(tree), b = leaf(tree), c = leaf(tree);
     const int u = tree.addNode(NodeKind::Union, {b, c});
     tree.root = tree.addNode(NodeKind::Difference, {a, u});
-    EXPECT_EQ(render::disassemble(render::compileTree(tree)), "PUSH 0\nAND !1\nAND !2\n");
+    EXPECT_EQ(csg::disassemble(csg::compileTree(tree)), "PUSH 0\nAND !1\nAND !2\n");
 
     Tree tree2;
     const int a2 = leaf(tree2), b2 = leaf(tree2), c2 = leaf(tree2);
     const int i2 = tree2.addNode(NodeKind::Intersection, {b2, c2});
     tree2.root = tree2.addNode(NodeKind::Difference, {a2, i2});
     // The subexpression (¬b ∪ ¬c) goes first, the literal a is fused after it.
-    EXPECT_EQ(render::disassemble(render::compileTree(tree2)), "PUSH !1\nOR !2\nAND 0\n");
+    EXPECT_EQ(csg::disassemble(csg::compileTree(tree2)), "PUSH !1\nOR !2\nAND 0\n");
 }
 
-TEST(TreeProgram, EmptySetsFold) {
+TEST(CompiledTree, EmptySetsFold) {
     {   // union() is empty
         Tree tree;
         tree.root = tree.addNode(NodeKind::Union, {});
-        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+        EXPECT_EQ(csg::compileTree(tree).kind, csg::CompiledTree::Kind::Empty);
     }
     {   // intersection with an empty child is empty
         Tree tree;
         const int a = leaf(tree);
         tree.root = tree.addNode(NodeKind::Intersection, {a, tree.addNode(NodeKind::Union, {})});
-        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+        EXPECT_EQ(csg::compileTree(tree).kind, csg::CompiledTree::Kind::Empty);
     }
     {   // difference with an empty first child is empty
         Tree tree;
         const int e = tree.addNode(NodeKind::Union, {});
         tree.root = tree.addNode(NodeKind::Difference, {e, leaf(tree)});
-        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+        EXPECT_EQ(csg::compileTree(tree).kind, csg::CompiledTree::Kind::Empty);
     }
     {   // subtracting the empty set, or an empty intersection, leaves the minuend
         Tree tree;
         const int a = leaf(tree), b = leaf(tree);
         const int emptyInter = tree.addNode(NodeKind::Intersection, {b, tree.addNode(NodeKind::Union, {})});
         tree.root = tree.addNode(NodeKind::Difference, {a, emptyInter, tree.addNode(NodeKind::Intersection, {})});
-        const auto program = render::compileTree(tree);
-        EXPECT_EQ(render::disassemble(program), "PUSH 0\n");
-        EXPECT_EQ(program.operandLeaf, (std::vector<int>{0}));  // b is not an operand
+        const auto compiled = csg::compileTree(tree);
+        EXPECT_EQ(csg::disassemble(compiled), "PUSH 0\n");
+        EXPECT_EQ(compiled.operandLeaf, (std::vector<int>{0}));  // b is not an operand
     }
     {   // an empty leaf (no triangles) and a background leaf drop out of a union
         Tree tree;
         const int a = leaf(tree), b = leaf(tree), c = leaf(tree, scene::Display::Background);
         tree.root = tree.addNode(NodeKind::Union, {a, b, c});
-        const auto program = render::compileTree(tree, {true, false, false});
-        EXPECT_EQ(render::disassemble(program), "PUSH 0\n");
-        EXPECT_EQ(program.operandLeaf, (std::vector<int>{1}));
+        const auto compiled = csg::compileTree(tree, {true, false, false});
+        EXPECT_EQ(csg::disassemble(compiled), "PUSH 0\n");
+        EXPECT_EQ(compiled.operandLeaf, (std::vector<int>{1}));
     }
     {   // no root at all
         Tree tree;
-        EXPECT_EQ(render::compileTree(tree).kind, render::TreeProgram::Kind::Empty);
+        EXPECT_EQ(csg::compileTree(tree).kind, csg::CompiledTree::Kind::Empty);
     }
 }
 
-TEST(TreeProgram, NestedNodesOfOneKindFlatten) {
+TEST(CompiledTree, NestedNodesOfOneKindFlatten) {
     Tree tree;
     const int a = leaf(tree), b = leaf(tree), c = leaf(tree), d = leaf(tree);
     const int inner = tree.addNode(NodeKind::Union, {b, tree.addNode(NodeKind::Union, {c, d})});
     tree.root = tree.addNode(NodeKind::Union, {a, inner});
-    EXPECT_EQ(render::disassemble(render::compileTree(tree)), "PUSH 0\nOR 1\nOR 2\nOR 3\n");
+    EXPECT_EQ(csg::disassemble(csg::compileTree(tree)), "PUSH 0\nOR 1\nOR 2\nOR 3\n");
 }
 
-TEST(TreeProgram, MatchesTheTreeOnRandomTreesAndStates) {
+TEST(CompiledTree, MatchesTheTreeOnRandomTreesAndStates) {
     std::mt19937 rng(20240611);
-    int programs = 0;
+    int codes = 0;
     for (int t = 0; t < 400; ++t) {
         Tree tree;
         tree.root = randomNode(tree, rng, 5);
         std::vector<bool> empty(tree.leaves.size());
         for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = (rng() % 13) == 0;
-        const render::TreeProgram program = render::compileTree(tree, empty);
-        if (program.kind == render::TreeProgram::Kind::Program) ++programs;
+        const csg::CompiledTree compiled = csg::compileTree(tree, empty);
+        if (compiled.kind == csg::CompiledTree::Kind::Code) ++codes;
         for (int s = 0; s < 64; ++s) {
             std::vector<bool> inside(tree.leaves.size());
             for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() & 1u) != 0;
-            ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
+            ASSERT_EQ(csg::runCompiledTree(compiled, operandStates(compiled, inside)),
                       direct(tree, tree.root, inside, empty))
-                << "tree " << t << ", state " << s << "\n" << render::disassemble(program);
+                << "tree " << t << ", state " << s << "\n" << csg::disassemble(compiled);
         }
         // Every operand is a leaf that the tree uses, in ascending order.
-        for (std::size_t k = 1; k < program.operandLeaf.size(); ++k) {
-            EXPECT_LT(program.operandLeaf[k - 1], program.operandLeaf[k]);
+        for (std::size_t k = 1; k < compiled.operandLeaf.size(); ++k) {
+            EXPECT_LT(compiled.operandLeaf[k - 1], compiled.operandLeaf[k]);
         }
         // Sethi–Ullman: at most floor(log2(literals)) + 1 stack entries.
         int literals = 0;
-        for (std::uint32_t instruction : program.code) literals += (instruction & render::kOpFromStack) ? 0 : 1;
+        for (std::uint32_t instruction : compiled.code) literals += (instruction & csg::kOpFromStack) ? 0 : 1;
         if (literals > 0) {
-            EXPECT_LE(program.stackDepth, static_cast<int>(std::floor(std::log2(literals))) + 1);
+            EXPECT_LE(compiled.stackDepth, static_cast<int>(std::floor(std::log2(literals))) + 1);
         }
     }
-    EXPECT_GT(programs, 100);  // the random trees are not all folded away
+    EXPECT_GT(codes, 100);  // the random trees are not all folded away
 }
 
-TEST(TreeProgram, MatchesTheTreeWhereLeavesRepeat) {
+TEST(CompiledTree, MatchesTheTreeWhereLeavesRepeat) {
     // Random trees whose leaves are random copies of lower ones (sameLeaf):
     // the copies share an operand, and an AND's (OR's) literal becomes a
     // constant inside its other children. The tree's own meaning, with every
     // copy inside exactly where its original is, is the reference.
     std::mt19937 rng(20261123);
-    int programs = 0, shorter = 0;
+    int codes = 0, shorter = 0;
     for (int t = 0; t < 400; ++t) {
         Tree tree;
         tree.root = randomNode(tree, rng, 5);
         const std::vector<int> same = randomCopies(tree, rng, 2);
-        const render::TreeProgram program = render::compileTree(tree, {}, same);
-        if (program.kind != render::TreeProgram::Kind::Program) continue;
-        ++programs;
-        const render::TreeProgram unshared = render::compileTree(tree);
-        const bool unsharedIsProgram = unshared.kind == render::TreeProgram::Kind::Program;
-        if (unsharedIsProgram && program.code.size() < unshared.code.size()) ++shorter;
+        const csg::CompiledTree compiled = csg::compileTree(tree, {}, same);
+        if (compiled.kind != csg::CompiledTree::Kind::Code) continue;
+        ++codes;
+        const csg::CompiledTree unshared = csg::compileTree(tree);
+        const bool unsharedIsCode = unshared.kind == csg::CompiledTree::Kind::Code;
+        if (unsharedIsCode && compiled.code.size() < unshared.code.size()) ++shorter;
         for (int s = 0; s < 64; ++s) {
             const std::vector<bool> inside = randomStates(same, rng);
-            ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
+            ASSERT_EQ(csg::runCompiledTree(compiled, operandStates(compiled, inside)),
                       direct(tree, tree.root, inside, {}))
-                << "tree " << t << ", state " << s << "\n" << render::disassemble(program);
+                << "tree " << t << ", state " << s << "\n" << csg::disassemble(compiled);
         }
-        for (int leaf : program.operandLeaf) EXPECT_EQ(same[static_cast<std::size_t>(leaf)], leaf);
+        for (int leaf : compiled.operandLeaf) EXPECT_EQ(same[static_cast<std::size_t>(leaf)], leaf);
     }
-    EXPECT_GT(programs, 100);
+    EXPECT_GT(codes, 100);
     EXPECT_GT(shorter, 50);  // the literals that ancestors hold do fold away
 }
 
-TEST(TreeProgram, AChainIntersectedWithOneSolidAtEveryLevelKeepsOneIntersection) {
+TEST(CompiledTree, AChainIntersectedWithOneSolidAtEveryLevelKeepsOneIntersection) {
     // strata-bench's deep scene: c, then union, difference, ... with the same
     // sphere s intersected every 8th step. Sharing s, only the outermost
     // intersection with it is left; every other s literal folds away.
@@ -273,23 +273,23 @@ TEST(TreeProgram, AChainIntersectedWithOneSolidAtEveryLevelKeepsOneIntersection)
         node = tree.addNode(kind, {node, l});
     }
     tree.root = node;
-    const render::TreeProgram program = render::compileTree(tree, {}, same);
+    const csg::CompiledTree compiled = csg::compileTree(tree, {}, same);
     int sphereLiterals = 0;
-    for (std::uint32_t instruction : program.code) {
-        if (instruction & render::kOpFromStack) continue;
-        const int operand = static_cast<int>(instruction >> render::kOperandShift);
-        sphereLiterals += program.operandLeaf[static_cast<std::size_t>(operand)] == sphere ? 1 : 0;
+    for (std::uint32_t instruction : compiled.code) {
+        if (instruction & csg::kOpFromStack) continue;
+        const int operand = static_cast<int>(instruction >> csg::kOperandShift);
+        sphereLiterals += compiled.operandLeaf[static_cast<std::size_t>(operand)] == sphere ? 1 : 0;
     }
     EXPECT_EQ(sphereLiterals, 1);
-    EXPECT_EQ(program.operandCount(), 64 - 6);  // the 7 spheres are one operand
+    EXPECT_EQ(compiled.operandCount(), 64 - 6);  // the 7 spheres are one operand
     std::mt19937 rng(5);
     for (int s = 0; s < 200; ++s) {
         const std::vector<bool> inside = randomStates(same, rng);
-        ASSERT_EQ(render::runTreeProgram(program, operandStates(program, inside)), direct(tree, tree.root, inside, {}));
+        ASSERT_EQ(csg::runCompiledTree(compiled, operandStates(compiled, inside)), direct(tree, tree.root, inside, {}));
     }
 }
 
-TEST(TreeProgram, BalancedTreeStackGrowsWithLogOfLeaves) {
+TEST(CompiledTree, BalancedTreeStackGrowsWithLogOfLeaves) {
     // A complete binary tree of 1024 leaves alternating union and intersection
     // by level cannot flatten: its stack need is exactly its height, 10.
     Tree tree;
@@ -306,20 +306,20 @@ TEST(TreeProgram, BalancedTreeStackGrowsWithLogOfLeaves) {
         unionLevel = !unionLevel;
     }
     tree.root = level.front();
-    const auto program = render::compileTree(tree);
-    EXPECT_EQ(program.stackDepth, 10);
-    EXPECT_EQ(program.operandCount(), 1024);
+    const auto compiled = csg::compileTree(tree);
+    EXPECT_EQ(compiled.stackDepth, 10);
+    EXPECT_EQ(compiled.operandCount(), 1024);
     // Spot-check the meaning on a few states against the tree itself.
     std::mt19937 rng(7);
     for (int s = 0; s < 50; ++s) {
         std::vector<bool> inside(1024);
         for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = (rng() % 4) != 0;
-        EXPECT_EQ(render::runTreeProgram(program, operandStates(program, inside)),
+        EXPECT_EQ(csg::runCompiledTree(compiled, operandStates(compiled, inside)),
                   direct(tree, tree.root, inside, {}));
     }
 }
 
-TEST(TreeProgram, VeryDeepChainsCompileWithoutRecursionAndOneStackEntry) {
+TEST(CompiledTree, VeryDeepChainsCompileWithoutRecursionAndOneStackEntry) {
     // union(a0, intersection(a1, union(a2, ...))) 200000 levels deep.
     Tree tree;
     int node = leaf(tree);
@@ -327,12 +327,12 @@ TEST(TreeProgram, VeryDeepChainsCompileWithoutRecursionAndOneStackEntry) {
         node = tree.addNode(i % 2 ? NodeKind::Union : NodeKind::Intersection, {leaf(tree), node});
     }
     tree.root = node;
-    const auto program = render::compileTree(tree);
-    EXPECT_EQ(program.stackDepth, 1);
-    EXPECT_EQ(program.code.size(), 200001u);
+    const auto compiled = csg::compileTree(tree);
+    EXPECT_EQ(compiled.stackDepth, 1);
+    EXPECT_EQ(compiled.code.size(), 200001u);
 }
 
-TEST(TreeProgram, DeepChainsOfOneKindFlattenInLinearMemory) {
+TEST(CompiledTree, DeepChainsOfOneKindFlattenInLinearMemory) {
     // difference(difference(... difference(a, b1) ..., b199999), b200000):
     // one AND of 200001 literals. Flattening level by level would hold a
     // list per level, 2e10 entries in all.
@@ -340,59 +340,59 @@ TEST(TreeProgram, DeepChainsOfOneKindFlattenInLinearMemory) {
     int node = leaf(tree);
     for (int i = 0; i < 200000; ++i) node = tree.addNode(NodeKind::Difference, {node, leaf(tree)});
     tree.root = node;
-    const auto program = render::compileTree(tree);
-    EXPECT_EQ(program.stackDepth, 1);
-    EXPECT_EQ(program.code.size(), 200001u);
-    EXPECT_EQ(program.operandLeaf.size(), 200001u);
+    const auto compiled = csg::compileTree(tree);
+    EXPECT_EQ(compiled.stackDepth, 1);
+    EXPECT_EQ(compiled.code.size(), 200001u);
+    EXPECT_EQ(compiled.operandLeaf.size(), 200001u);
 }
 
-TEST(TreeProgram, SharedSubtreesAreEvaluatedWherePlaced) {
+TEST(CompiledTree, SharedSubtreesAreEvaluatedWherePlaced) {
     // The same node used twice, once subtracted: (a ∪ b) - (a ∩ b) = a xor b.
     Tree tree;
     const int a = leaf(tree), b = leaf(tree);
     const int u = tree.addNode(NodeKind::Union, {a, b});
     const int i = tree.addNode(NodeKind::Intersection, {a, b});
     tree.root = tree.addNode(NodeKind::Difference, {u, i});
-    const auto program = render::compileTree(tree);
-    EXPECT_EQ(program.operandCount(), 2);
+    const auto compiled = csg::compileTree(tree);
+    EXPECT_EQ(compiled.operandCount(), 2);
     for (int s = 0; s < 4; ++s) {
         const bool ia = s & 1, ib = s & 2;
-        EXPECT_EQ(render::runTreeProgram(program, {ia, ib}), ia != ib) << s;
+        EXPECT_EQ(csg::runCompiledTree(compiled, {ia, ib}), ia != ib) << s;
     }
 }
 
-TEST(TreeProgram, CyclesAndBadIndicesAreErrors) {
+TEST(CompiledTree, CyclesAndBadIndicesAreErrors) {
     Tree tree;
     const int a = leaf(tree);
     const int u = tree.addNode(NodeKind::Union, {a});
     tree.nodes[static_cast<std::size_t>(u)].children.push_back(u);
     tree.root = u;
-    EXPECT_THROW(render::compileTree(tree), Error);
+    EXPECT_THROW(csg::compileTree(tree), Error);
 
     Tree bad;
     bad.root = bad.addNode(NodeKind::Union, {42});
-    EXPECT_THROW(render::compileTree(bad), Error);
+    EXPECT_THROW(csg::compileTree(bad), Error);
 }
 
-TEST(TreeProgram, SpecializingToPresentOperandsKeepsTheMeaning) {
-    // Where an operand has no surface it is outside: the specialised program
+TEST(CompiledTree, SpecializingToPresentOperandsKeepsTheMeaning) {
+    // Where an operand has no surface it is outside: the specialised code
     // must agree with the full one on every state with absent operands outside.
     int folded = 0, constants = 0;
-    forRandomPrograms(99, 5, [&](const render::TreeProgram& program, std::mt19937& rng) {
+    forRandomTrees(99, 5, [&](const csg::CompiledTree& compiled, std::mt19937& rng) {
         for (int m = 0; m < 8; ++m) {
-            std::vector<char> present(static_cast<std::size_t>(program.operandCount()));
+            std::vector<char> present(static_cast<std::size_t>(compiled.operandCount()));
             for (char& p : present) p = (rng() % 3) != 0;
             bool constant = false;
-            const std::vector<std::uint32_t> code = render::specializeProgram(program, present, &constant);
-            EXPECT_LE(code.size(), program.code.size());
-            folded += code.size() < program.code.size() ? 1 : 0;
+            const std::vector<std::uint32_t> code = csg::specializeCode(compiled, present, &constant);
+            EXPECT_LE(code.size(), compiled.code.size());
+            folded += code.size() < compiled.code.size() ? 1 : 0;
             constants += code.empty() ? 1 : 0;
             for (int s = 0; s < 16; ++s) {
                 std::vector<bool> inside(present.size());
                 for (std::size_t k = 0; k < inside.size(); ++k) inside[k] = present[k] && (rng() & 1u);
-                const bool want = render::runTreeProgram(program, inside);
-                const bool got = code.empty() ? constant : render::runCode(code, inside);
-                ASSERT_EQ(got, want) << render::disassemble(program);
+                const bool want = csg::runCompiledTree(compiled, inside);
+                const bool got = code.empty() ? constant : csg::runCode(code, inside);
+                ASSERT_EQ(got, want) << csg::disassemble(compiled);
             }
         }
     });
@@ -400,18 +400,18 @@ TEST(TreeProgram, SpecializingToPresentOperandsKeepsTheMeaning) {
     EXPECT_GT(constants, 10);
 }
 
-TEST(TreeProgram, SpecializingACheeseLeavesOnlyTheNearbyHoles) {
+TEST(CompiledTree, SpecializingACheeseLeavesOnlyTheNearbyHoles) {
     // cube - s1 - s2 - s3 where only s2 is present: cube AND !s2.
     Tree tree;
     std::vector<int> children;
     for (int i = 0; i < 4; ++i) children.push_back(leaf(tree));
     tree.root = tree.addNode(NodeKind::Difference, children);
-    const render::TreeProgram program = render::compileTree(tree);
-    render::TreeProgram view = program;
-    view.code = render::specializeProgram(program, {1, 0, 1, 0});
-    EXPECT_EQ(render::disassemble(view), "PUSH 0\nAND !2\n");
+    const csg::CompiledTree compiled = csg::compileTree(tree);
+    csg::CompiledTree view = compiled;
+    view.code = csg::specializeCode(compiled, {1, 0, 1, 0});
+    EXPECT_EQ(csg::disassemble(view), "PUSH 0\nAND !2\n");
     bool constant = true;
-    EXPECT_TRUE(render::specializeProgram(program, {0, 1, 1, 1}, &constant).empty());  // no cube: empty
+    EXPECT_TRUE(csg::specializeCode(compiled, {0, 1, 1, 1}, &constant).empty());  // no cube: empty
     EXPECT_FALSE(constant);
 }
 
@@ -420,24 +420,24 @@ namespace {
 // The evaluator's incremental update (shaders/csg/evaluate.frag, array form):
 // one literal changes, counts climb while node values change.
 struct CountingState {
-    const render::CountingTree& tree;
+    const csg::CountingTree& tree;
     std::vector<std::uint32_t> trueChildren;
     std::vector<bool> inside;
 
-    CountingState(const render::CountingTree& t, std::size_t operands) : tree(t), inside(operands, false) {
-        for (const render::CountingTree::Node& n : tree.nodes) trueChildren.push_back(n.trueWhenOutside);
+    CountingState(const csg::CountingTree& t, std::size_t operands) : tree(t), inside(operands, false) {
+        for (const csg::CountingTree::Node& n : tree.nodes) trueChildren.push_back(n.trueWhenOutside);
     }
     bool value(std::uint32_t node) const {
-        const render::CountingTree::Node& n = tree.nodes[node];
+        const csg::CountingTree::Node& n = tree.nodes[node];
         return n.isAnd ? trueChildren[node] == n.children : trueChildren[node] != 0;
     }
     void set(std::uint32_t operand, bool now) {
         if (inside[operand] == now) return;
         inside[operand] = now;
-        for (const render::CountingTree::Literal& l : tree.literals) {
+        for (const csg::CountingTree::Literal& l : tree.literals) {
             if (l.operand != operand) continue;
             bool rising = now != l.negated;
-            for (std::uint32_t node = l.parent; node != render::CountingTree::kNoParent;) {
+            for (std::uint32_t node = l.parent; node != csg::CountingTree::kNoParent;) {
                 const bool before = value(node);
                 trueChildren[node] += rising ? 1u : std::uint32_t(-1);
                 const bool after = value(node);
@@ -451,15 +451,15 @@ struct CountingState {
 
 }  // namespace
 
-TEST(TreeProgram, CountingTreesFollowTheProgramOneChangeAtATime) {
+TEST(CompiledTree, CountingTreesFollowTheCodeOneChangeAtATime) {
     int checked = 0;
-    forRandomPrograms(7, 6, [&](const render::TreeProgram& program, std::mt19937& rng) {
-        const render::CountingTree counting = render::countingTree(program.code);
+    forRandomTrees(7, 6, [&](const csg::CompiledTree& compiled, std::mt19937& rng) {
+        const csg::CountingTree counting = csg::countingTree(compiled.code);
 
         // Shape: the root first, every parent before its children, each
         // literal and non-root node counted once as a child.
         ASSERT_FALSE(counting.nodes.empty());
-        EXPECT_EQ(counting.nodes[0].parent, render::CountingTree::kNoParent);
+        EXPECT_EQ(counting.nodes[0].parent, csg::CountingTree::kNoParent);
         std::uint32_t children = 0;
         for (std::size_t i = 0; i < counting.nodes.size(); ++i) {
             children += counting.nodes[i].children;
@@ -469,27 +469,27 @@ TEST(TreeProgram, CountingTreesFollowTheProgramOneChangeAtATime) {
         }
         EXPECT_EQ(children, counting.literals.size() + counting.nodes.size() - 1);
 
-        const auto operands = static_cast<std::size_t>(program.operandCount());
+        const auto operands = static_cast<std::size_t>(compiled.operandCount());
         CountingState state(counting, operands);
-        EXPECT_EQ(state.value(0), render::runTreeProgram(program, state.inside));
+        EXPECT_EQ(state.value(0), csg::runCompiledTree(compiled, state.inside));
         for (int step = 0; step < 40; ++step) {
             state.set(static_cast<std::uint32_t>(rng() % operands), (rng() & 1u) != 0);
-            ASSERT_EQ(state.value(0), render::runTreeProgram(program, state.inside)) << render::disassemble(program);
-            ASSERT_EQ(render::runCountingTree(counting, state.inside), state.value(0));
+            ASSERT_EQ(state.value(0), csg::runCompiledTree(compiled, state.inside)) << csg::disassemble(compiled);
+            ASSERT_EQ(csg::runCountingTree(counting, state.inside), state.value(0));
             ++checked;
         }
     });
     EXPECT_GT(checked, 4000);
 }
 
-TEST(TreeProgram, ACheeseIsOneCountingNode) {
+TEST(CompiledTree, ACheeseIsOneCountingNode) {
     // cube - s1 - s2 - s3 = cube AND !s1 AND !s2 AND !s3: one AND of four,
     // three of them true while everything is outside.
     Tree tree;
     std::vector<int> children;
     for (int i = 0; i < 4; ++i) children.push_back(leaf(tree));
     tree.root = tree.addNode(NodeKind::Difference, children);
-    const render::CountingTree counting = render::countingTree(render::compileTree(tree).code);
+    const csg::CountingTree counting = csg::countingTree(csg::compileTree(tree).code);
     ASSERT_EQ(counting.nodes.size(), 1u);
     EXPECT_TRUE(counting.nodes[0].isAnd);
     EXPECT_EQ(counting.nodes[0].children, 4u);
@@ -498,10 +498,10 @@ TEST(TreeProgram, ACheeseIsOneCountingNode) {
 }
 
 // Operand states where a group operand is inside where all its members are.
-std::vector<bool> groupedStates(const render::TreeProgram& program, const std::vector<bool>& leafInside) {
-    std::vector<bool> states = operandStates(program, leafInside);
-    for (std::size_t k = 0; k < program.operandGroups.size(); ++k) {
-        for (int member : program.operandGroups[k]) {
+std::vector<bool> groupedStates(const csg::CompiledTree& compiled, const std::vector<bool>& leafInside) {
+    std::vector<bool> states = operandStates(compiled, leafInside);
+    for (std::size_t k = 0; k < compiled.operandGroups.size(); ++k) {
+        for (int member : compiled.operandGroups[k]) {
             states[k] = states[k] && leafInside[static_cast<std::size_t>(member)];
         }
     }
@@ -510,7 +510,7 @@ std::vector<bool> groupedStates(const render::TreeProgram& program, const std::v
 
 TEST(ConvexGroups, KeepTheTreesMeaningOnRandomTrees) {
     // Random trees (some leaves repeated), random operands marked groupable,
-    // groups of at most 2 to 5: the grouped program, a group inside where
+    // groups of at most 2 to 5: the grouped tree, a group inside where
     // all its members are, against the tree's own meaning.
     std::mt19937 rng(20261124);
     int grouped = 0;
@@ -518,22 +518,22 @@ TEST(ConvexGroups, KeepTheTreesMeaningOnRandomTrees) {
         Tree tree;
         tree.root = randomNode(tree, rng, 5);
         const std::vector<int> same = randomCopies(tree, rng, 5);
-        const render::TreeProgram program = render::compileTree(tree, {}, same);
-        std::vector<char> groupable(program.operandLeaf.size());
+        const csg::CompiledTree compiled = csg::compileTree(tree, {}, same);
+        std::vector<char> groupable(compiled.operandLeaf.size());
         for (char& g : groupable) g = rng() % 4 != 0 ? 1 : 0;
         const std::size_t most = 2 + rng() % 4;
-        const render::TreeProgram groups = render::groupConvexProducts(program, groupable, most);
-        ASSERT_EQ(groups.kind, program.kind);
-        if (groups.kind != render::TreeProgram::Kind::Program) continue;
-        if (groups.operandCount() < program.operandCount()) ++grouped;
+        const csg::CompiledTree groups = csg::groupConvexProducts(compiled, groupable, most);
+        ASSERT_EQ(groups.kind, compiled.kind);
+        if (groups.kind != csg::CompiledTree::Kind::Code) continue;
+        if (groups.operandCount() < compiled.operandCount()) ++grouped;
         for (int s = 0; s < 64; ++s) {
             const std::vector<bool> inside = randomStates(same, rng);
-            ASSERT_EQ(render::runTreeProgram(groups, groupedStates(groups, inside)),
+            ASSERT_EQ(csg::runCompiledTree(groups, groupedStates(groups, inside)),
                       direct(tree, tree.root, inside, {}))
-                << "tree " << t << ", state " << s << "\n" << render::disassemble(program) << "grouped:\n"
-                << render::disassemble(groups);
+                << "tree " << t << ", state " << s << "\n" << csg::disassemble(compiled) << "grouped:\n"
+                << csg::disassemble(groups);
         }
-        // Every operand of the first program is in exactly one operand of the
+        // Every operand of the first tree is in exactly one operand of the
         // second; operands stay ascending; a group is groupable leaves only.
         std::vector<int> seen;
         for (std::size_t k = 0; k < groups.operandLeaf.size(); ++k) {
@@ -551,13 +551,13 @@ TEST(ConvexGroups, KeepTheTreesMeaningOnRandomTrees) {
             EXPECT_LE(members.size(), most);
             for (int member : members) {
                 seen.push_back(member);
-                const auto at = std::find(program.operandLeaf.begin(), program.operandLeaf.end(), member);
-                ASSERT_NE(at, program.operandLeaf.end());
-                EXPECT_TRUE(groupable[static_cast<std::size_t>(at - program.operandLeaf.begin())]);
+                const auto at = std::find(compiled.operandLeaf.begin(), compiled.operandLeaf.end(), member);
+                ASSERT_NE(at, compiled.operandLeaf.end());
+                EXPECT_TRUE(groupable[static_cast<std::size_t>(at - compiled.operandLeaf.begin())]);
             }
         }
         std::sort(seen.begin(), seen.end());
-        EXPECT_EQ(seen, program.operandLeaf);
+        EXPECT_EQ(seen, compiled.operandLeaf);
     }
     EXPECT_GT(grouped, 50);  // some of the random trees have groups
 }
@@ -567,21 +567,21 @@ TEST(ConvexGroups, AnIntersectionOfSolidsIsOneOperandInRunsOfTheMost) {
     std::vector<int> children;
     for (int i = 0; i < 10; ++i) children.push_back(leaf(tree));
     tree.root = tree.addNode(NodeKind::Intersection, children);
-    const render::TreeProgram program = render::compileTree(tree);
+    const csg::CompiledTree compiled = csg::compileTree(tree);
     const std::vector<char> all(10, 1);
-    const render::TreeProgram one = render::groupConvexProducts(program, all, 255);
+    const csg::CompiledTree one = csg::groupConvexProducts(compiled, all, 255);
     ASSERT_EQ(one.operandCount(), 1);
     EXPECT_EQ(one.operandGroups[0], (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
-    EXPECT_EQ(render::disassemble(one), "PUSH 0\n");
-    const render::TreeProgram runs = render::groupConvexProducts(program, all, 4);
+    EXPECT_EQ(csg::disassemble(one), "PUSH 0\n");
+    const csg::CompiledTree runs = csg::groupConvexProducts(compiled, all, 4);
     ASSERT_EQ(runs.operandCount(), 3);
     std::vector<std::size_t> sizes;
     for (const auto& g : runs.operandGroups) sizes.push_back(g.size());
     std::sort(sizes.begin(), sizes.end());
     EXPECT_EQ(sizes, (std::vector<std::size_t>{2, 4, 4}));
     // Not groupable: nothing changes.
-    const render::TreeProgram none = render::groupConvexProducts(program, std::vector<char>(10, 0), 255);
-    EXPECT_EQ(none.code, program.code);
+    const csg::CompiledTree none = csg::groupConvexProducts(compiled, std::vector<char>(10, 0), 255);
+    EXPECT_EQ(none.code, compiled.code);
     EXPECT_TRUE(none.operandGroups.empty());
 }
 
@@ -593,10 +593,10 @@ TEST(ConvexGroups, SubtractedAndRepeatedSolidsStayTheirOwn) {
     tree.root = tree.addNode(NodeKind::Union, {tree.addNode(NodeKind::Difference, {a, b, c}),
                                                tree.addNode(NodeKind::Intersection, {d, e}),
                                                tree.addNode(NodeKind::Intersection, {d, f})});
-    const render::TreeProgram program = render::compileTree(tree);
-    const render::TreeProgram same = render::groupConvexProducts(program, std::vector<char>(6, 1), 255);
-    EXPECT_EQ(same.code, program.code);
-    EXPECT_EQ(same.operandLeaf, program.operandLeaf);
+    const csg::CompiledTree compiled = csg::compileTree(tree);
+    const csg::CompiledTree same = csg::groupConvexProducts(compiled, std::vector<char>(6, 1), 255);
+    EXPECT_EQ(same.code, compiled.code);
+    EXPECT_EQ(same.operandLeaf, compiled.operandLeaf);
 }
 
 TEST(ConvexGroups, ASubtractedIntersectionIsOneNegatedOperand) {
@@ -604,12 +604,12 @@ TEST(ConvexGroups, ASubtractedIntersectionIsOneNegatedOperand) {
     Tree tree;
     const int a = leaf(tree), b = leaf(tree), c = leaf(tree);
     tree.root = tree.addNode(NodeKind::Difference, {a, tree.addNode(NodeKind::Intersection, {b, c})});
-    const render::TreeProgram grouped =
-        render::groupConvexProducts(render::compileTree(tree), std::vector<char>(3, 1), 255);
+    const csg::CompiledTree grouped =
+        csg::groupConvexProducts(csg::compileTree(tree), std::vector<char>(3, 1), 255);
     ASSERT_EQ(grouped.operandLeaf, (std::vector<int>{0, 1}));
     EXPECT_EQ(grouped.operandGroups[1], (std::vector<int>{1, 2}));
     for (int state = 0; state < 8; ++state) {
         const std::vector<bool> inside{(state & 1) != 0, (state & 2) != 0, (state & 4) != 0};
-        EXPECT_EQ(render::runTreeProgram(grouped, groupedStates(grouped, inside)), direct(tree, tree.root, inside, {}));
+        EXPECT_EQ(csg::runCompiledTree(grouped, groupedStates(grouped, inside)), direct(tree, tree.root, inside, {}));
     }
 }

@@ -1,0 +1,195 @@
+// The array form of evaluate.frag, for every block the other forms do not
+// hold. It merges all operands' surface lists front to back with a binary
+// min-heap of their next surfaces, and keeps the tree up to date
+// incrementally instead of rerunning it after each surface: the block's tree
+// is n-ary AND/OR over literals (a counting tree, engine/csg/CompiledTree.h),
+// so each inner node keeps a count of its children that are true (AND is
+// true when all are, OR when any is). An operand's change adds or removes one
+// from its parent's count and climbs only while the node's own value
+// changes. A pixel with S surfaces and L live operands costs O(S log L)
+// steps, not O(S * L) as a rerun of the whole tree would.
+//
+// Per-pixel arrays of MAX_LIVE heap entries, live-operand slots and node
+// counts: on llvmpipe each array access is a gather or scatter per lane,
+// several times the cost of the register form. blocks[b] and the buffers'
+// layout: blocks.glsl.
+
+uint nodeBase;
+
+// The literal's operand's next surface at or after list position `cursor`
+// (0..2n-1: near side, then far side backwards), or +inf. Moves `cursor`
+// past it.
+float nextSurface(uvec4 literal, inout int cursor) {
+    int first = int(literal.x);
+    int n = int(literal.y & kLayerCountMask);
+    while (cursor < 2 * n) {
+        --budget;
+        int j = cursor;
+        if (j < n) {
+            vec2 layer = texelFetch(uLayers, ivec3(pixel, first + j), 0).rg;
+            if (-layer.r >= kClearedDepth) {
+                // Layer j caught nothing, nor will any later one: go to the far
+                // side of layer j - 1.
+                cursor = 2 * n - j;
+                continue;
+            }
+            cursor = j + 1;
+            return -layer.r;
+        }
+        int l = 2 * n - 1 - j;
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, first + l), 0).rg;
+        cursor = j + 1;
+        // far == near: the layer caught a single surface, already walked.
+        if (layer.g > -layer.r) return layer.g;
+    }
+    return kInfinity;
+}
+
+uint trueChildren[MAX_LIVE];  // per inner node
+
+// Live operands: slot s holds an operand that still has surfaces ahead.
+int slotCursor[MAX_LIVE];     // its position in its surface list
+uint slotEntry[MAX_LIVE];     // its first literal in blockOperands
+uint slotLiterals[MAX_LIVE];  // its literals there, one after the other
+bool slotInside[MAX_LIVE];
+
+// Min-heap of the slots' next surfaces (tagged depths), root at 0.
+float heapDepth[MAX_LIVE];
+int heapSlot[MAX_LIVE];
+int heapSize;
+
+bool nodeValue(uint node) {
+    uvec4 n = blockNodes[nodeBase + node];
+    return n.y == kNodeAnd ? trueChildren[node] == n.z : trueChildren[node] != 0u;
+}
+
+// A literal under `literal`'s parent turned true (or false): update the
+// counts up the tree while values change. Node 0 is the root.
+void literalChanged(uint literal, bool nowTrue) {
+    uint node = literal & ~kNegate;
+    bool rising = nowTrue;
+    while (node != kNoParent) {
+        --budget;
+        bool before = nodeValue(node);
+        if (rising) {
+            ++trueChildren[node];
+        } else {
+            --trueChildren[node];
+        }
+        bool after = nodeValue(node);
+        if (after == before) return;
+        rising = after;
+        node = blockNodes[nodeBase + node].x;
+    }
+}
+
+// Sets slot s's operand inside or outside.
+void setInside(int s, bool inside) {
+    if (slotInside[s] == inside) return;
+    slotInside[s] = inside;
+    for (uint j = 0u; j < slotLiterals[s]; ++j) {
+        uint literal = blockOperands[slotEntry[s] + j].w;
+        literalChanged(literal, inside != ((literal & kNegate) != 0u));
+    }
+}
+
+// Restores the heap order below position i after its depth grew.
+void siftDown(int i) {
+    float depth = heapDepth[i];
+    int slot = heapSlot[i];
+    while (true) {
+        --budget;
+        int child = 2 * i + 1;
+        if (child >= heapSize) break;
+        if (child + 1 < heapSize && heapDepth[child + 1] < heapDepth[child]) ++child;
+        if (heapDepth[child] >= depth) break;
+        heapDepth[i] = heapDepth[child];
+        heapSlot[i] = heapSlot[child];
+        i = child;
+    }
+    heapDepth[i] = depth;
+    heapSlot[i] = slot;
+}
+
+// Every operand outside, then each operand that has a surface here in a
+// slot of the heap at its first surface; a back face first means inside
+// from the start.
+void startWalk(uvec4 block) {
+    // Every operand outside: the counts the CPU worked out for that.
+    for (uint n = 0u; n < block.w; ++n) trueChildren[n] = blockNodes[nodeBase + n].w;
+
+    heapSize = 0;
+    for (uint i = 0u; i < block.y; ++i) {
+        uvec4 literal = blockOperands[block.x + i];
+        // An operand's literals follow each other, the first holding their
+        // number (above kRunShift), the others 0: one slot each.
+        // (Stepping i by that number instead lost surfaces on llvmpipe, Mesa
+        // 22.3, though every value was right: keep the loop stepping by one.)
+        uint run = literal.y >> kRunShift;
+        if (run == 0u) continue;
+        int cursor = 0;
+        float d = nextSurface(literal, cursor);
+        if (d == kInfinity) continue;
+        int s = heapSize++;
+        slotCursor[s] = cursor;
+        slotEntry[s] = block.x + i;
+        slotLiterals[s] = run;
+        slotInside[s] = false;
+        if (isExit(d)) setInside(s, true);
+        heapDepth[s] = d;
+        heapSlot[s] = s;
+    }
+    for (int i = heapSize / 2 - 1; i >= 0; --i) siftDown(i);
+}
+
+void main() {
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    uvec4 block = vRecord;
+    nodeBase = block.z;
+    budget = uLoopBudget;
+    startWalk(block);
+
+    bool inside = block.y > 0u && nodeValue(0u);
+    while (heapSize > 0) {
+        if (budget < 0) {
+            writeUnresolved();
+            return;
+        }
+        float depth = untagged(heapDepth[0]);
+        // Every surface at this depth changes its operand's state before the
+        // tree is asked again.
+        int entryLeaf = -1, exitLeaf = -1;
+        while (heapSize > 0 && untagged(heapDepth[0]) == depth) {
+            --budget;
+            int s = heapSlot[0];
+            bool exit = isExit(heapDepth[0]);
+            setInside(s, !exit);
+            uvec4 literal = blockOperands[slotEntry[s]];
+            int leaf = int(literal.z);
+            if (exit) {
+                if (exitLeaf < 0) exitLeaf = leaf;
+            } else {
+                if (entryLeaf < 0) entryLeaf = leaf;
+            }
+            int cursor = slotCursor[s];
+            float next = nextSurface(literal, cursor);
+            slotCursor[s] = cursor;
+            if (next == kInfinity) {  // operand done: the last entry takes its place
+                --heapSize;
+                heapDepth[0] = heapDepth[heapSize];
+                heapSlot[0] = heapSlot[heapSize];
+            } else {
+                heapDepth[0] = next;
+            }
+            siftDown(0);
+        }
+
+        bool now = nodeValue(0u);
+        if (now != inside) {
+            writeSurface(depth, now, entryLeaf, exitLeaf);
+            return;
+        }
+        inside = now;
+    }
+    discard;
+}

@@ -1,0 +1,30 @@
+// The first-surface form of evaluate.frag, for blocks whose tree is one
+// operand, not negated, of one peeled layer (a cheese's cube where no hole
+// reaches, one tooth of a union of teeth): the result is the operand, so its
+// first surface is the result's. A front face there enters both; a back face
+// (the eye inside the operand) leaves both. Where the layer's two surfaces
+// lie at one depth (a ray grazing an edge, a flat sheet) the operand is
+// entered and left at once and the result shows nothing. This is the
+// register form's walk for one slot, step for step. Nothing to flip.
+//
+// blocks[b]: x the operand's layer in uLayers, y its tree leaf, z (with leaf
+// marks) the leaf's stencilMark for a front face; nothing in blockOperands.
+// The renderer marks the leaf's front faces shown for every such block
+// (EvaluatePass.cpp), so only the rare back face needs the atomic; a
+// group's member is known here only, so it always does.
+void main() {
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
+    float first = -layer.r;
+    if (first >= kClearedDepth || (layer.g > first && untagged(layer.g) == untagged(first))) discard;
+    int face = faceBit(isExit(first), false);
+    bool grouped = isGroup(int(vRecord.y));
+    int leaf = surfaceLeaf(int(vRecord.y), face != 0);
+    outDepth = first;
+    outLeaf = leafCode(leaf, false);
+    if (face != 0 || grouped) atomicOr(shownFaces[leaf], 1u << face);
+#ifdef LEAF_MARKS
+    // The record carries the leaf's mark, but not a group member's.
+    gl_FragStencilRefARB = grouped ? stencilMark(markSlots[leaf], face) : int(vRecord.z) + face;
+#endif
+}

@@ -1,0 +1,114 @@
+// The register form of evaluate.frag, for blocks whose operands have at most
+// eight peeled layers in all (eight convex operands, say, or a mesh of three
+// layers and five spheres): a slot per layer, each holding at most two
+// surfaces here, the layer's near and far, and the block's tree is a truth
+// table over the operands' inside bits. No arrays and no loops but the walk
+// over depths: every slot is one component of a vector (bank A holds slots
+// 0-3, bank B slots 4-7). Compiled for 4 and 8 slots (MAX_LIVE).
+//
+// An operand's inside bit follows its surfaces as the array form's walk
+// does: a front face enters, a back face leaves, and where one depth holds
+// several of its surfaces (its layers meet there, or a ray grazes its edge)
+// a back face among them wins, as it comes last in tagged order. An operand
+// whose first layer's near surface is a back face starts inside.
+//
+// blocks[b]: x first slot in blockOperands, y slot count, z the truth table
+// (bit m: the result when operand i is inside exactly for the bits i of m)
+// for 4 slots, or for 8 the index in blockNodes of its 256 bits (two uvec4,
+// bit m in word m / 32). blockOperands[x + i]: x the slot's layer in
+// uLayers, y its operand's bit in the table (kSlotOperandMask), with bit
+// kSlotFirstLayerBit set on the operand's first layer, z its tree leaf. The
+// vertex stage hands the fragments the slots packed (blocks.glsl).
+
+// Slot c of a bank (slot i of the block): its layer's near and far surface,
+// where the layer caught any.
+#define LOAD_SLOT(nearSide, farSide, layers, c, i)                                          \
+    if (block.y > uint(i)) {                                                                \
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, layers[c] & kSlotLayerMask), 0).rg;   \
+        if (-layer.r < kClearedDepth) {                                                     \
+            nearSide[c] = -layer.r;                                                         \
+            if (layer.g > -layer.r) farSide[c] = layer.g;                                   \
+        }                                                                                   \
+    }
+
+// Slot c's next surface, where it lies at `depth`: its operand enters or
+// leaves, and the slot moves on to its far surface, or is done.
+#define TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)                     \
+        if (head[c] != kInfinity && untagged(head[c]) == depth) {                \
+            if (isExit(head[c])) {                                               \
+                left |= bits[c];                                                 \
+                if (exitLeaf < 0) exitLeaf = leaf[c];                            \
+            } else {                                                             \
+                entered |= bits[c];                                              \
+                if (entryLeaf < 0) entryLeaf = leaf[c];                          \
+            }                                                                    \
+            head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
+        }
+// Both of slot c's surfaces can lie at one depth (a ray grazing its edge).
+#define TAKE_SLOT(head, nearSide, farSide, leaf, bits, c)    \
+        TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c) \
+        TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)
+
+#if MAX_LIVE > 4
+#define RESULT(bits) ((((bits) < 128u ? tableLow : tableHigh)[((bits) >> 5) & 3u] >> ((bits) & 31u)) & 1u) != 0u
+#else
+#define RESULT(bits) ((block.z >> (bits)) & 1u) != 0u
+#endif
+
+void main() {
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    uvec4 block = vRecord;
+    vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
+    ivec4 leafA = ivec4(vLeafA);
+    uvec4 bitA = uvec4(1u) << ((vLayerA >> kSlotLayerBits) & kSlotOperandMask);  // the slot's operand in the table
+#if MAX_LIVE > 4
+    vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
+    ivec4 leafB = ivec4(vLeafB);
+    uvec4 bitB = uvec4(1u) << ((vLayerB >> kSlotLayerBits) & kSlotOperandMask);
+    uvec4 tableLow = vTableLow, tableHigh = vTableHigh;
+#endif
+    LOAD_SLOT(nearA, farA, vLayerA, 0, 0) LOAD_SLOT(nearA, farA, vLayerA, 1, 1)
+    LOAD_SLOT(nearA, farA, vLayerA, 2, 2) LOAD_SLOT(nearA, farA, vLayerA, 3, 3)
+#if MAX_LIVE > 4
+    LOAD_SLOT(nearB, farB, vLayerB, 0, 4) LOAD_SLOT(nearB, farB, vLayerB, 1, 5)
+    LOAD_SLOT(nearB, farB, vLayerB, 2, 6) LOAD_SLOT(nearB, farB, vLayerB, 3, 7)
+#endif
+
+    // An operand whose first surface is a back face is inside from the start
+    // (the near side of its first layer, flagged in the slot's info).
+    const uint kFirstLayerShift = kSlotLayerBits + kSlotFirstLayerBit;
+    uvec4 starts = bitA * (floatBitsToUint(nearA) & (vLayerA >> kFirstLayerShift) & 1u);
+    uint insideBits = starts.x | starts.y | starts.z | starts.w;
+    vec4 headA = nearA;
+#if MAX_LIVE > 4
+    starts = bitB * (floatBitsToUint(nearB) & (vLayerB >> kFirstLayerShift) & 1u);
+    insideBits |= starts.x | starts.y | starts.z | starts.w;
+    vec4 headB = nearB;
+#endif
+    bool inside = RESULT(insideBits);
+    while (true) {
+        float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
+#if MAX_LIVE > 4
+        nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
+#endif
+        if (nearest == kInfinity) break;
+        float depth = untagged(nearest);
+        // Every surface at this depth changes its operand's state before the
+        // tree is asked again.
+        int entryLeaf = -1, exitLeaf = -1;
+        uint entered = 0u, left = 0u;  // operand bits
+        TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
+        TAKE_SLOT(headA, nearA, farA, leafA, bitA, 2) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 3)
+#if MAX_LIVE > 4
+        TAKE_SLOT(headB, nearB, farB, leafB, bitB, 0) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 1)
+        TAKE_SLOT(headB, nearB, farB, leafB, bitB, 2) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 3)
+#endif
+        insideBits = (insideBits | entered) & ~left;  // a back face wins, as in the array form
+        bool now = RESULT(insideBits);
+        if (now != inside) {
+            writeSurface(depth, now, entryLeaf, exitLeaf);
+            return;
+        }
+    }
+    discard;
+}
