@@ -1,6 +1,9 @@
 #include "FrameTargets.h"
 
+#include "strata/core/Error.h"
+
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 
@@ -8,6 +11,23 @@ namespace strata::render {
 
 void FrameTargets::ensure(int width, int height) {
     if (width == width_ && height == height_) return;
+    try {
+        allocate(width, height);
+    } catch (const Error&) {
+        // What fails at this size is the memory (a driver reports it as an
+        // incomplete framebuffer, or an out-of-memory error): say so, once.
+        *this = FrameTargets{};
+        const double mebibytes = static_cast<double>(width) * height * kBytesPerPixel / (1024.0 * 1024.0);
+        char text[160];
+        std::snprintf(text, sizeof text, "renderer: not enough memory for a %d x %d image (its targets take %.0f MiB)",
+                      width, height, mebibytes);
+        throw Error(text);
+    }
+    width_ = width;
+    height_ = height;
+}
+
+void FrameTargets::allocate(int width, int height) {
     resultDepth = gpu::Texture::create2D("result depth", GL_R32F, width, height);
     resultLeaf = gpu::Texture::create2D("result leaf", GL_R32I, width, height);
     normal = gpu::Texture::create2D("result normal", GL_RGBA32F, width, height);
@@ -33,9 +53,6 @@ void FrameTargets::ensure(int width, int height) {
     colorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
     colorTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
     colorTarget.checkComplete();
-
-    width_ = width;
-    height_ = height;
 }
 
 void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {

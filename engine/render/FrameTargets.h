@@ -40,7 +40,9 @@ namespace strata::render {
 
 class FrameTargets {
 public:
-    // (Re)creates the images when the size changes.
+    // (Re)creates the images when the size changes. Throws strata::Error
+    // "renderer: not enough memory for a W x H image (...)" when they cannot
+    // be made, and is then empty again.
     void ensure(int width, int height);
     // Sets pixels to "miss": marks 0 and normal 0 inside `drawn`, and where
     // `wholeFrame` those and depth +inf and leaf -1 everywhere. The passes
@@ -85,6 +87,9 @@ public:
     }
 
 private:
+    // depth 4, leaf 4, normal 16, colour 4, marks 1
+    static constexpr double kBytesPerPixel = 29;
+    void allocate(int width, int height);
     int width_ = 0, height_ = 0;
     std::vector<int> markSlots_;  // per tree leaf
     gpu::Buffer markSlotBuffer_;

@@ -291,3 +291,21 @@ TEST(StrataRenderGL, ATerminatedRunLeavesNoTemporary) {
         std::filesystem::remove(dir / "z.exr");
     }
 }
+
+// An image too large for the memory the process may use: one line saying
+// so, not a GL error from an engine source line.
+TEST(StrataRenderGL, AnImageTooLargeForMemoryIsOneLine) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit allows";
+#else
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", "cube(size = 1);\n");
+    const ProcessResult r = runProcess({"/bin/sh", "-c", "ulimit -v 3000000 && exec \"$0\" \"$1\" -o \"$2\" --imgsize 16384,16384",
+                                        kExe, scene, dir / "big.png"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("renderer: not enough memory for a 16384 x 16384 image (its targets take 7424 MiB)", 0), 0u)
+        << r.err;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"cube.csg"});
+#endif
+}
