@@ -92,7 +92,23 @@ public:
 
 private:
     // Statements
+    // One statement: its head, then what its name makes of it.
+    struct Statement {
+        std::string name;
+        std::vector<CsgArgument> args;
+        SourceLocation where;  // the name's position
+        bool background = false, highlight = false, root = false, disabled = false;  // % # ! *
+        bool dropped = false;  // under a dropped parent, or '*'
+        bool hasBlock = false, braces = false;
+    };
     void statement();
+    Statement statementHead();
+    Open openFor(const Statement& st, const Open& parent) const;
+    void enterBlock(const Statement& st, Open open);
+    void openProjection(const Statement& st, Open open, const Open& parent);
+    void openFlatLeaf(const Statement& st, Open open);
+    void leafStatement(const Statement& st, Open open, const Open& parent);
+    void operationStatement(const Statement& st, Open open);
     void closeBlock();
     void closeOne();
     void pushBlock(Open open, const SourceLocation& where);
@@ -236,15 +252,35 @@ void Parser::statement() {
         statementFinished();
         return;
     }
-    SourceLocation where = lex_.where();
-    bool background = false, highlight = false, root = false, disabled = false;
+    Statement st = statementHead();
+    const Open& parent = stack_.back();
+    st.dropped = parent.node < 0 || st.disabled;
+    Open open = openFor(st, parent);
+    if (st.name == "projection") return openProjection(st, std::move(open), parent);
+    if (parent.flat) {
+        const int parentFlatNode = parent.flatNode;
+        const int index = flatStatement(st.name, st.args, open, parentFlatNode < 0 || st.disabled || st.background, st.where);
+        if (index >= 0) pending().tree.nodes[static_cast<std::size_t>(parentFlatNode)].children.push_back(index);
+        return enterBlock(st, std::move(open));
+    }
+    if (st.name == "linear_extrude" || st.name == "rotate_extrude" || st.name == "offset" || isFlatShape(st.name, st.args)) {
+        return openFlatLeaf(st, std::move(open));
+    }
+    if (isSolidName(st.name) || st.name == "import") return leafStatement(st, std::move(open), parent);
+    operationStatement(st, std::move(open));
+}
+
+// The statement up to its body: modifiers, name, arguments, and whether a
+// block ('{' or a single child statement) follows.
+Parser::Statement Parser::statementHead() {
+    Statement st;
     while (lex_.token() == Token::Punct &&
            (lex_.punct() == '%' || lex_.punct() == '#' || lex_.punct() == '!' || lex_.punct() == '*')) {
         switch (lex_.punct()) {
-            case '%': background = true; break;
-            case '#': highlight = true; break;
-            case '!': root = true; break;
-            default: disabled = true; break;
+            case '%': st.background = true; break;
+            case '#': st.highlight = true; break;
+            case '!': st.root = true; break;
+            default: st.disabled = true; break;
         }
         lex_.next();
     }
@@ -252,160 +288,154 @@ void Parser::statement() {
         if (lex_.token() == Token::End) lex_.fail("unexpected end of file: expected a statement");
         lex_.fail("expected a module name");
     }
-    std::string name = lex_.text();
-    SourceLocation nameWhere = lex_.where();
+    st.name = lex_.text();
     // Modifiers are written at column 0 before the tabs; the node is where its name is.
-    where = nameWhere;
+    st.where = lex_.where();
     lex_.next();
-    expectPunct('(', ("after '" + name + "'").c_str());
-    std::vector<CsgArgument> args = arguments();
+    expectPunct('(', ("after '" + st.name + "'").c_str());
+    st.args = arguments();
     sawStatement_ = true;
-
-    const Open& parent = stack_.back();
-    const bool dropped = parent.node < 0 || disabled;
-    Context ctx = parent.context;
-    if (background) ctx.display = Display::Background;
-    else if (highlight && ctx.display == Display::Normal) ctx.display = Display::Highlight;
-    if (root && rootNode_ < 0 && !dropped) {
-        ctx = Context{};  // '!' makes this subtree the whole scene, without its ancestors' transforms
-        if (highlight) ctx.display = Display::Highlight;
-    }
-
-    const bool hasBlock = !(lex_.token() == Token::Punct && lex_.punct() == ';');
-    bool braces = false;
-    if (!hasBlock) {
+    st.hasBlock = !(lex_.token() == Token::Punct && lex_.punct() == ';');
+    if (!st.hasBlock) {
         lex_.next();
     } else if (lex_.token() == Token::Punct && lex_.punct() == '{') {
-        braces = true;
+        st.braces = true;
         lex_.next();
     } else if (lex_.token() == Token::End) {
-        lex_.fail("unexpected end of file after '" + name + "(...)': expected ';' or '{'");
+        lex_.fail("unexpected end of file after '" + st.name + "(...)': expected ';' or '{'");
     }
+    return st;
+}
 
+// The block a statement opens, with the context its modifiers make.
+Open Parser::openFor(const Statement& st, const Open& parent) const {
+    Context ctx = parent.context;
+    if (st.background) ctx.display = Display::Background;
+    else if (st.highlight && ctx.display == Display::Normal) ctx.display = Display::Highlight;
+    if (st.root && rootNode_ < 0 && !st.dropped) {
+        ctx = Context{};  // '!' makes this subtree the whole scene, without its ancestors' transforms
+        if (st.highlight) ctx.display = Display::Highlight;
+    }
     Open open;
-    open.braces = braces;
+    open.braces = st.braces;
     open.context = ctx;
-    open.isBackgroundRoot = background && parent.context.display != Display::Background;
-    open.isRoot = root && rootNode_ < 0 && !dropped;
+    open.isBackgroundRoot = st.background && parent.context.display != Display::Background;
+    open.isRoot = st.root && rootNode_ < 0 && !st.dropped;
+    return open;
+}
 
-    if (name == "projection") {
-        // Solids again below it, whatever the context: read as a tree of their own.
-        const bool off = parent.flat ? (parent.flatNode < 0 || disabled || background) : dropped;
-        open.gather = Open::Gather::Projection;
-        open.cut = boolean(args, "cut", 0, false);
-        open.flat = false;
-        open.flatParent = parent.flat ? parent.flatNode : -1;
-        open.outside = ctx;
-        open.context = Context{};
-        if (!off) {
-            open.node = tree_.addNode(NodeKind::Union, {});
-            tree_.nodes[static_cast<std::size_t>(open.node)].where = where;
-        }
-        pushBlock(std::move(open), where);
-        if (!hasBlock) closeBlock();
-        return;
-    }
-    if (parent.flat) {
-        const int parentFlatNode = parent.flatNode;
-        const int index = flatStatement(name, args, open, parentFlatNode < 0 || disabled || background, where);
-        if (index >= 0) pending().tree.nodes[static_cast<std::size_t>(parentFlatNode)].children.push_back(index);
-        pushBlock(std::move(open), where);
-        if (!hasBlock) closeBlock();
-        return;
-    }
-    if (name == "linear_extrude" || name == "rotate_extrude" || name == "offset" || isFlatShape(name, args)) {
-        if (!dropped) {
-            // A leaf whose shape is read from here on: the extrusion's children,
-            // or this 2D statement itself (shown as a slab).
-            Leaf leaf = leafAt(ctx, where);
-            if (name == "linear_extrude") leaf.primitive = linearExtrude(args, where);
-            else if (name == "rotate_extrude") leaf.primitive = rotateExtrude(args, where);
-            else leaf.primitive = FlatSlab{};
-            pending_.push_back(PendingFlat{std::move(leaf), FlatTree{}});
-            open.ownsFlat = true;
-            if (std::holds_alternative<FlatSlab>(pending().leaf.primitive)) {
-                pending().tree.root = flatStatement(name, args, open, false, where);
-            } else {
-                open.flat = true;
-                FlatNode root;
-                root.where = where;
-                open.flatNode = pending().tree.root = pending().tree.add(std::move(root));
-            }
-        }
-        pushBlock(std::move(open), where);
-        if (!hasBlock) closeBlock();
-        return;
-    }
+// Pushes the statement's block; a statement without one closes at once.
+void Parser::enterBlock(const Statement& st, Open open) {
+    pushBlock(std::move(open), st.where);
+    if (!st.hasBlock) closeBlock();
+}
 
-    int leafNode = -1;
+// projection(): solids again below it, whatever the context, read as a tree of their own.
+void Parser::openProjection(const Statement& st, Open open, const Open& parent) {
+    const bool off = parent.flat ? (parent.flatNode < 0 || st.disabled || st.background) : st.dropped;
+    open.gather = Open::Gather::Projection;
+    open.cut = boolean(st.args, "cut", 0, false);
+    open.flat = false;
+    open.flatParent = parent.flat ? parent.flatNode : -1;
+    open.outside = open.context;
+    open.context = Context{};
+    if (!off) {
+        open.node = tree_.addNode(NodeKind::Union, {});
+        tree_.nodes[static_cast<std::size_t>(open.node)].where = st.where;
+    }
+    enterBlock(st, std::move(open));
+}
+
+// An extrusion, or a 2D statement among solids: a leaf whose shape is read
+// from here on (the extrusion's children, or this statement itself, shown as
+// a slab).
+void Parser::openFlatLeaf(const Statement& st, Open open) {
+    if (!st.dropped) {
+        Leaf leaf = leafAt(open.context, st.where);
+        if (st.name == "linear_extrude") leaf.primitive = linearExtrude(st.args, st.where);
+        else if (st.name == "rotate_extrude") leaf.primitive = rotateExtrude(st.args, st.where);
+        else leaf.primitive = FlatSlab{};
+        pending_.push_back(PendingFlat{std::move(leaf), FlatTree{}});
+        open.ownsFlat = true;
+        if (std::holds_alternative<FlatSlab>(pending().leaf.primitive)) {
+            pending().tree.root = flatStatement(st.name, st.args, open, false, st.where);
+        } else {
+            open.flat = true;
+            FlatNode root;
+            root.where = st.where;
+            open.flatNode = pending().tree.root = pending().tree.add(std::move(root));
+        }
+    }
+    enterBlock(st, std::move(open));
+}
+
+// A solid (cube, sphere, cylinder, polyhedron, import, surface): a leaf.
+void Parser::leafStatement(const Statement& st, Open open, const Open& parent) {
+    const int leafNode = st.dropped ? -1 : makeLeaf(st.name, st.args, open.context, st.where);
+    if (leafNode >= 0) {
+        if (open.isRoot) rootNode_ = leafNode;
+        else if (open.isBackgroundRoot) tree_.background.push_back(leafNode);
+        else attach(leafNode, parent);
+    }
+    if (!st.hasBlock) {
+        statementFinished();
+    } else {
+        // A primitive with children: OpenSCAD ignores them; so do we, but parse them.
+        open.node = -1;
+        pushBlock(std::move(open), st.where);
+    }
+}
+
+// An operation on its children: a boolean, a transform or colour, a node
+// whose children become other leaves when it closes (hull, minkowski,
+// resize), or one strata leaves out with a warning.
+void Parser::operationStatement(const Statement& st, Open open) {
+    const std::string& name = st.name;
     NodeKind kind = NodeKind::Union;
     bool known = true;
-    bool leafLike = false;
     if (name == "group" || name == "union" || name == "render" || name == "assign") {
-        kind = NodeKind::Union;
         open.collapsible = true;
     } else if (name == "intersection") {
         kind = NodeKind::Intersection;
     } else if (name == "difference") {
         kind = NodeKind::Difference;
     } else if (name == "hull" || name == "minkowski") {
-        kind = NodeKind::Union;  // collects the children; closing turns them into hull leaves
+        // Collects the children; closing turns them into hull leaves.
         open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
     } else if (name == "resize") {
-        kind = NodeKind::Union;  // its leaves are placed relative to it, and scaled when the model is built
+        // Its leaves are placed relative to it, and scaled when the model is built.
         open.gather = Open::Gather::Resize;
-        if (!dropped) {
-            open.resize = resizeArguments(args);
-            open.resize.outer = ctx.transform;
-            open.resize.where = where;
+        if (!st.dropped) {
+            open.resize = resizeArguments(st.args);
+            open.resize.outer = open.context.transform;
+            open.resize.where = st.where;
             open.context.transform = glm::dmat4(1.0);
         }
     } else if (name == "multmatrix") {
-        if (!dropped) open.context.transform = ctx.transform * multmatrix(args, where);
+        if (!st.dropped) open.context.transform = open.context.transform * multmatrix(st.args, st.where);
         open.collapsible = true;
     } else if (name == "color") {
-        if (!dropped) {
-            glm::dvec4 c = color(args, where);
+        if (!st.dropped) {
+            const glm::dvec4 c = color(st.args, st.where);
             for (int i = 0; i < 4; ++i) {
                 if (open.context.color[i] < 0.0) open.context.color[i] = c[i];  // outermost wins
             }
         }
         open.collapsible = true;
-    } else if (isSolidName(name) || name == "import") {
-        leafLike = true;
-        if (!dropped) leafNode = makeLeaf(name, args, ctx, where);
     } else if (unsupportedNames().count(name) != 0) {
         known = false;
-        if (!dropped) unsupported(name, where);
+        if (!st.dropped) unsupported(name, st.where);
     } else {
-        lex_.failAt(where, "unknown module '" + name + "'");
+        lex_.failAt(st.where, "unknown module '" + name + "'");
     }
-
-    if (leafLike) {
-        if (leafNode >= 0) {
-            if (open.isRoot) rootNode_ = leafNode;
-            else if (open.isBackgroundRoot) tree_.background.push_back(leafNode);
-            else attach(leafNode, parent);
-        }
-        if (!hasBlock) {
-            statementFinished();
-        } else {
-            // A primitive with children: OpenSCAD ignores them; so do we, but parse them.
-            open.node = -1;
-            pushBlock(std::move(open), where);
-        }
-        return;
-    }
-
-    if (!known || dropped) {
+    if (!known || st.dropped) {
         open.node = -1;
     } else {
         open.node = tree_.addNode(kind, {});
-        tree_.nodes[static_cast<std::size_t>(open.node)].where = where;
+        tree_.nodes[static_cast<std::size_t>(open.node)].where = st.where;
     }
-    pushBlock(std::move(open), where);
     // No children at all: an empty group, difference or intersection.
-    if (!hasBlock) closeBlock();
+    enterBlock(st, std::move(open));
 }
 
 void Parser::pushBlock(Open open, const SourceLocation& where) {
