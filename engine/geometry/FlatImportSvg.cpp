@@ -117,6 +117,10 @@ std::size_t skipDigits(const char*& first, const char* last) {
     return static_cast<std::size_t>(first - save);
 }
 
+// Long, and kept whole: it walks Boost.Spirit's real parser step by step
+// (sign, integer digits, fraction, exponent, nan and inf), the parser
+// OpenSCAD's SVG reader uses, so that every number reads to the same double;
+// split, its running state would have to travel between the pieces.
 bool spiritReal(const char*& first, const char* last, double& attr) {
     if (first == last) return false;
     const char* save = first;
@@ -1236,6 +1240,9 @@ ClipperLib::cInt toGrid(double v) {
 
 }  // namespace
 
+// Long, and kept in one piece: it is OpenSCAD's SVG import in its order
+// (document units and viewBox to a scale, each shape's outline cleaned, the
+// union, the placement), each step a few lines that read the steps before.
 Outlines importSvg(const scene::FlatImport& import, const std::string& text) {
     const std::vector<std::unique_ptr<Shape>> shapes = readShapes(import, text);
     // ImportModule replaces a dpi below 0.001 by the default, 72.

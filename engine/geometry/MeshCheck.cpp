@@ -150,6 +150,9 @@ void mergeCoincidentVertices(Mesh& mesh) {
     mesh.positions = std::move(kept);
 }
 
+// Long, and kept in one piece: one pass over a triangle list that it edits
+// in place (slivers split across their long edge, the edge map kept up to
+// date, then triangles and vertices compacted); the pieces share the map.
 void dropDegenerateTriangles(Mesh& mesh) {
     mergeCoincidentVertices(mesh);
     auto& tris = mesh.triangles;

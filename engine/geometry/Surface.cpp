@@ -80,6 +80,9 @@ std::string_view trim(std::string_view s) {
     return s;
 }
 
+// Long, and kept in one piece: it reproduces OpenSCAD's line reader for
+// .dat files rule by rule (comments, blank lines, short rows, where reading
+// stops), whose rules depend on the line before.
 HeightMap readDat(const std::string& path, const std::string& bytes) {
     const std::string_view text(bytes);
     std::size_t pos = 0;

@@ -502,6 +502,10 @@ std::string fontName(const scene::Text& text) { return text.font.empty() ? std::
 
 }  // namespace
 
+// Long, and kept in one piece: it follows OpenSCAD's text() in its order
+// (fragments for the size, the font, the code points, shaping, the extent
+// for the alignment, each glyph's outline), and its steps share the shaped
+// run and the font's metrics.
 std::vector<Outlines> textGlyphs(const scene::Text& text) {
     std::vector<Outlines> result;
     // TextModule::instantiate: a fraction of the circle's fragments for the text size.

@@ -151,6 +151,9 @@ struct ReferenceScene::Impl {
     double padding = 0.0;
 };
 
+// Long, and kept in one piece: the reference's inner loop for one ray (clip
+// to the box, gather Embree's candidates, exact crossings, order, the tree
+// along the ray), written out so each step's arrays stay in the workspace.
 RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, Workspace& workspace) const {
     RayHit miss;
     miss.t = kInfinity;
