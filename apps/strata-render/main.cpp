@@ -18,12 +18,14 @@
 #include "strata/core/Progress.h"
 #include "strata/geometry/Exact.h"
 #include "strata/geometry/Model.h"
+#include "strata/geometry/SurfaceColors.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/io/MeshWriter.h"
 #include "strata/io/Stats.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/camera/Camera.h"
+#include "strata/render/ColorScheme.h"
 #include "strata/render/Renderer.h"
 #include "strata/camera/ViewBounds.h"
 #include "strata/scene/Tree.h"
@@ -62,7 +64,12 @@ io::StagedFile exportExact(const apps::RenderOptions& options, const scene::Tree
     if (result.triangles.empty()) {
         throw Error(SourceLocation{options.scene, 0, 0}, "the CSG result is empty: nothing to export");
     }
-    return io::stageMesh(options.exportPath, result);
+    // 3MF carries colours: each triangle its leaf's color(), else the scheme's face colour.
+    std::vector<glm::vec4> colors;
+    if (io::meshFormatOf(options.exportPath) == io::MeshFormat::ThreeMf) {
+        colors = geometry::surfaceColors(result, tree, model, render::colorScheme(options.colorScheme).faceFront);
+    }
+    return io::stageMesh(options.exportPath, result, colors);
 }
 
 int run(const apps::RenderOptions& options) {

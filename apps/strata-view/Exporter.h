@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include <glm/vec4.hpp>
+
 #include "Loader.h"
 #include "SceneFile.h"
 
@@ -28,7 +30,7 @@ public:
 
     // Starts exporting `scene` (copied) into `path` (.stl, .off, .obj or
     // .3mf); false, with nothing started, while another export runs.
-    bool start(const LoadedScene& scene, const std::string& path);
+    bool start(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor);
     // The finished export, if one finished since the last call.
     std::optional<ExportResult> poll();
     bool busy() const { return running_.valid(); }
@@ -43,6 +45,7 @@ private:
 // The result of `scene` written to `path`: what Exporter runs, and what a
 // caller with its own thread can run. Reports steps to this thread's
 // Progress sink; throws strata::Error, or Cancelled.
-std::size_t exportExact(const LoadedScene& scene, const std::string& path);
+// A 3MF file gets each triangle's leaf colour, `faceColor` where a leaf has none.
+std::size_t exportExact(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor);
 
 }  // namespace strata::view

@@ -313,7 +313,7 @@ void Viewer::startExport(const std::string& path) {
         message_ = e.what();
         return;
     }
-    exporter_.start(scene_, path);
+    exporter_.start(scene_, path, render::colorScheme(settings_.colorScheme).faceFront);
     message_ = "exporting " + path + "...";
 }
 

@@ -21,6 +21,12 @@
 #include <string>
 #include <vector>
 
+#include <Model/COM/NMR_DLLInterfaces.h>
+
+#include <array>
+#include <fstream>
+#include <iterator>
+
 #include "RunProcess.h"
 #include "TempDir.h"
 
@@ -127,6 +133,69 @@ TEST(StrataRenderExport, EveryFormatHoldsTheSameSolid) {
     const ProcessResult r = runProcess({kExe, scene, "--export", dir / "plate.3mf", "--export-exact"});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_GT(std::filesystem::file_size(dir / "plate.3mf"), 100u);
+}
+
+// A 3MF export colours each triangle by the leaf whose surface it lies on,
+// read back through lib3mf: a red cube, a blue sphere, and a grey-less cut.
+TEST(StrataRenderExport, ThreeMfColoursEachTriangleByItsLeaf) {
+    TempDir dir;
+    const std::string scene = dir.write("colours.csg",
+                                        "color([1, 0, 0, 1]) difference() { cube(size = 10); "
+                                        "multmatrix([[1, 0, 0, 5], [0, 1, 0, 5], [0, 0, 1, 5], [0, 0, 0, 1]]) cube(size = 10); }\n"
+                                        "multmatrix([[1, 0, 0, 30], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) "
+                                        "color([0, 0, 1, 1]) sphere($fn = 16, r = 5);\n");
+    const ProcessResult r = runProcess({kExe, scene, "--export", dir / "c.3mf", "--export-exact"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream in(dir / "c.3mf", std::ios::binary);
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    NMR::PLib3MFModel* model = nullptr;
+    ASSERT_EQ(NMR::lib3mf_createmodel(&model), LIB3MF_OK);
+    NMR::PLib3MFModelReader* reader = nullptr;
+    ASSERT_EQ(NMR::lib3mf_model_queryreader(model, "3mf", &reader), LIB3MF_OK);
+    ASSERT_EQ(NMR::lib3mf_reader_readfrombuffer(reader, bytes.data(), bytes.size()), LIB3MF_OK);
+    NMR::PLib3MFModelResourceIterator* meshes = nullptr;
+    ASSERT_EQ(NMR::lib3mf_model_getmeshobjects(model, &meshes), LIB3MF_OK);
+    BOOL more = false;
+    ASSERT_EQ(NMR::lib3mf_resourceiterator_movenext(meshes, &more), LIB3MF_OK);
+    NMR::PLib3MFModelResource* mesh = nullptr;
+    ASSERT_EQ(NMR::lib3mf_resourceiterator_getcurrent(meshes, &mesh), LIB3MF_OK);
+    NMR::PLib3MFModelResourceIterator* groups = nullptr;
+    ASSERT_EQ(NMR::lib3mf_model_getbasematerials(model, &groups), LIB3MF_OK);
+    ASSERT_EQ(NMR::lib3mf_resourceiterator_movenext(groups, &more), LIB3MF_OK);
+    NMR::PLib3MFModelResource* group = nullptr;
+    ASSERT_EQ(NMR::lib3mf_resourceiterator_getcurrent(groups, &group), LIB3MF_OK);
+    NMR::PLib3MFPropertyHandler* properties = nullptr;
+    ASSERT_EQ(NMR::lib3mf_meshobject_createpropertyhandler(mesh, &properties), LIB3MF_OK);
+    DWORD triangles = 0;
+    ASSERT_EQ(NMR::lib3mf_meshobject_gettrianglecount(mesh, &triangles), LIB3MF_OK);
+    ASSERT_GT(triangles, 20u);
+    int red = 0, blue = 0;
+    for (DWORD t = 0; t < triangles; ++t) {
+        NMR::MODELMESHTRIANGLE tri{};
+        ASSERT_EQ(NMR::lib3mf_meshobject_gettriangle(mesh, t, &tri), LIB3MF_OK);
+        float x = 0;
+        for (int k = 0; k < 3; ++k) {
+            NMR::MODELMESHVERTEX v{};
+            ASSERT_EQ(NMR::lib3mf_meshobject_getvertex(mesh, tri.m_nIndices[k], &v), LIB3MF_OK);
+            x += v.m_fPosition[0] / 3.0f;
+        }
+        DWORD groupId = 0, index = 0;
+        ASSERT_EQ(NMR::lib3mf_propertyhandler_getbasematerial(properties, t, &groupId, &index), LIB3MF_OK);
+        BYTE rgba[4] = {};
+        ASSERT_EQ(NMR::lib3mf_basematerial_getdisplaycolor(group, index, &rgba[0], &rgba[1], &rgba[2], &rgba[3]), LIB3MF_OK);
+        // The block (and its cut, by a subtrahend under the same color()) is red, the sphere blue.
+        if (x < 15.0f) {
+            EXPECT_EQ((std::array<int, 3>{rgba[0], rgba[1], rgba[2]}), (std::array<int, 3>{255, 0, 0})) << t;
+            ++red;
+        } else {
+            EXPECT_EQ((std::array<int, 3>{rgba[0], rgba[1], rgba[2]}), (std::array<int, 3>{0, 0, 255})) << t;
+            ++blue;
+        }
+    }
+    EXPECT_GT(red, 0);
+    EXPECT_GT(blue, 0);
+    for (NMR::PLib3MFBase* object : std::initializer_list<NMR::PLib3MFBase*>{properties, group, groups, mesh, meshes, reader, model})
+        NMR::lib3mf_release(object);
 }
 
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {
