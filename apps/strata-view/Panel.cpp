@@ -74,6 +74,23 @@ void Viewer::drawPanel() {
         if (ImGui::Button("reset")) resetView();
     }
 
+    if (ImGui::CollapsingHeader("console", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::BeginChild("console lines", ImVec2(0, 120), true, ImGuiWindowFlags_HorizontalScrollbar);
+        for (const ConsoleLine& line : console_.lines()) {
+            const bool colored = line.kind != ConsoleLine::Kind::Info;
+            if (colored) {
+                ImGui::PushStyleColor(ImGuiCol_Text, line.kind == ConsoleLine::Kind::Error     ? kErrorColor
+                                                     : line.kind == ConsoleLine::Kind::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
+                                                                                               : ImVec4(0.6f, 0.9f, 1.0f, 1.0f));
+            }
+            ImGui::TextUnformatted(line.text.c_str());
+            if (colored) ImGui::PopStyleColor();
+        }
+        // Follow the newest line unless the user scrolled up.
+        if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 1.0f) ImGui::SetScrollHereY(1.0f);
+        ImGui::EndChild();
+    }
+
     if (ImGui::CollapsingHeader("export")) {
         if (exportPath_.empty()) exportPath_ = defaultExportPath();
         char buffer[1024];

@@ -75,7 +75,7 @@ Error openscadError(const std::string& scad, const std::string& output, int stat
 
 // Runs openscad to turn `scad` into CSG at `csg`; its chatter goes to a log file
 // so it cannot interleave with ours.
-void convertScad(const std::string& scad, const std::string& csg, const fs::path& log) {
+std::vector<std::string> convertScad(const std::string& scad, const std::string& csg, const fs::path& log) {
     const std::string openscad = findOnPath("openscad");
     if (openscad.empty())
         throw Error(SourceLocation{scad, 0, 0},
@@ -102,10 +102,22 @@ void convertScad(const std::string& scad, const std::string& csg, const fs::path
     std::ostringstream output;
     output << in.rdbuf();
     if (code != 0 || !fs::exists(csg)) throw openscadError(scad, output.str(), code);
+    // What the model printed (echo, warnings), for the viewer's console; not
+    // OpenSCAD's own progress chatter.
+    std::vector<std::string> printed;
+    std::istringstream lines(output.str());
+    for (std::string line; std::getline(lines, line);) {
+        if (line.starts_with("ECHO:") || line.starts_with("WARNING:") || line.starts_with("ERROR:") ||
+            line.starts_with("TRACE:") || line.starts_with("DEPRECATED:")) {
+            printed.push_back(line);
+        }
+    }
+    return printed;
 }
 
-// As strata-render: a .csg through the parser, a mesh as a tree of one Import leaf.
-scene::Tree readTree(const std::string& path) {
+// As strata-render: a .csg through the parser, a mesh as a tree of one Import
+// leaf; a .scad through openscad, whose printed lines go to `printed`.
+scene::Tree readTree(const std::string& path, std::vector<std::string>& printed) {
     const std::string ext = apps::lowerExtension(path);
     if (ext != ".csg" && ext != ".scad" && !apps::isMeshExtension(ext))
         throw Error(SourceLocation{path, 0, 0},
@@ -115,7 +127,7 @@ scene::Tree readTree(const std::string& path) {
     if (ext == ".scad") {
         const TempFolder folder;
         const std::string csg = (folder.path() / "scene.csg").string();
-        convertScad(path, csg, folder.path() / "openscad.log");
+        printed = convertScad(path, csg, folder.path() / "openscad.log");
         // Named after the .scad, and relative imports resolved from its folder,
         // since the temporary .csg is gone by the time anyone reads a message.
         std::ifstream in(csg, std::ios::binary);
@@ -130,7 +142,7 @@ scene::Tree readTree(const std::string& path) {
 
 LoadedScene loadSceneFile(const std::string& path) {
     LoadedScene scene;
-    scene.tree = readTree(path);
+    scene.tree = readTree(path, scene.openscadOutput);
     scene.model = geometry::buildModel(scene.tree);
     // What the model forgave (an inside-out polyhedron) is shown with the reader's warnings.
     scene.tree.warnings.insert(scene.tree.warnings.end(), scene.model.warnings.begin(), scene.model.warnings.end());

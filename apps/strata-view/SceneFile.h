@@ -5,6 +5,7 @@
 // CPU only, so it runs on the loader thread.
 
 #include <string>
+#include <vector>
 
 #include "strata/geometry/Model.h"
 #include "strata/scene/Tree.h"
@@ -14,6 +15,7 @@ namespace strata::view {
 struct LoadedScene {
     scene::Tree tree;
     geometry::Model model;
+    std::vector<std::string> openscadOutput;  // a .scad's ECHO, WARNING, ... lines, as OpenSCAD printed them
 };
 
 // Parses and tessellates. Throws strata::Error with strata-render's one-line

@@ -179,7 +179,7 @@ void checkArguments(Command& c, std::string_view name) {
         break;
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
     case CommandKind::Panel: oneOf({"on", "off"}); break;
-    case CommandKind::Print: oneOf({"camera", "error", "stats", "tree"}); break;
+    case CommandKind::Print: oneOf({"camera", "console", "error", "stats", "title", "tree"}); break;
     case CommandKind::Sleep: whole(0, 0, 600000, "milliseconds from 0 to 600000"); break;
     case CommandKind::Screenshot:
     case CommandKind::ScreenshotWindow:

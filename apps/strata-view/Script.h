@@ -35,7 +35,7 @@ enum class CommandKind {
     Export,           // export PATH         (the exact result as a mesh; waits until written)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
-    Print,            // print camera|error|stats|tree
+    Print,            // print camera|console|error|stats|title|tree
     Sleep,            // sleep MS
     Quit,             // quit
 };

@@ -149,6 +149,8 @@ bool Viewer::runCommand(const Command& c) {
             if (what == "camera") std::cout << cameraLine() << std::endl;
             if (what == "error") std::cout << (loadError_.empty() ? "no error" : loadError_) << std::endl;
             if (what == "stats") std::cout << statsLine(stats_) << std::endl;
+            if (what == "console") std::cout << console_.text();
+            if (what == "title") std::cout << title() << std::endl;
             if (what == "tree")
                 for (const TreeRow& row : rows_)
                     std::cout << std::string(static_cast<std::size_t>(row.depth) * 2, ' ') << row.node << ' '

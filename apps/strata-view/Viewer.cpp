@@ -58,6 +58,9 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
     imgui_ = std::make_unique<ImGuiSession>(window_);
     resetView();
     for (const Warning& w : scene_.tree.warnings) std::cerr << w.message << '\n';
+    console_.add(ConsoleLine::Kind::Info, "loaded " + path_);
+    for (const std::string& line : scene_.openscadOutput) console_.addOpenscad(line);
+    for (const Warning& w : scene_.tree.warnings) console_.add(ConsoleLine::Kind::Warning, w.message);
 }
 
 Viewer::~Viewer() {
@@ -119,15 +122,22 @@ void Viewer::applyLoad(LoadResult result) {
     if (result.cancelled) {
         // Not an error in the file: the last good model stays, as does any error it had.
         std::cerr << result.error << '\n';
+        console_.add(ConsoleLine::Kind::Info, result.error);
         return;
     }
     if (!result.scene) {
-        // The last good model stays on screen; the panel shows why the new one did not load.
+        // The last good model stays on screen; the panel, the view and the title say why the new one did not load.
         loadError_ = result.error;
         std::cerr << result.error << '\n';
+        console_.add(ConsoleLine::Kind::Error, result.error);
+        updateTitle();
         return;
     }
     loadError_.clear();
+    console_.add(ConsoleLine::Kind::Info, "loaded " + result.path + " in " +
+                                              std::to_string(static_cast<long long>(result.milliseconds)) + " ms");
+    for (const std::string& line : result.scene->openscadOutput) console_.addOpenscad(line);
+    for (const Warning& w : result.scene->tree.warnings) console_.add(ConsoleLine::Kind::Warning, w.message);
     for (const Warning& w : result.scene->tree.warnings) std::cerr << w.message << '\n';
     const bool sameShape = result.scene->tree.nodes.size() == scene_.tree.nodes.size();
     scene_ = std::move(*result.scene);
@@ -137,8 +147,8 @@ void Viewer::applyLoad(LoadResult result) {
     if (result.path != path_) {
         path_ = result.path;
         watch_ = FileWatch(path_);
-        glfwSetWindowTitle(window_.window(), ("strata-view: " + path_).c_str());
     }
+    updateTitle();
     sceneDirty_ = true;
 }
 
@@ -197,6 +207,7 @@ void Viewer::drawWindow() {
     ImGui::NewFrame();
     if (showPanel_) drawPanel();
     if (debugView_ == DebugView::Peel) drawPeelLabels();
+    drawStaleBadge();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
@@ -295,6 +306,29 @@ void Viewer::copyCamera() {
     message_ = "copied the --camera= argument";
 }
 
+// "strata-view: FILE", and while the shown model is stale (its file no
+// longer loads) a note that says so, visible with the panel hidden too.
+std::string Viewer::title() const {
+    std::string t = "strata-view: " + path_;
+    if (!loadError_.empty()) t += "  [error: showing the last good version]";
+    return t;
+}
+
+void Viewer::updateTitle() { glfwSetWindowTitle(window_.window(), title().c_str()); }
+
+// The stale model's badge over the view, drawn whether the panel shows or not.
+void Viewer::drawStaleBadge() {
+    if (loadError_.empty()) return;
+    const ImGuiViewport* view = ImGui::GetMainViewport();
+    const std::string text = "error, showing the last good version: " + loadError_;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const ImVec2 at(view->Pos.x + 8.0f, view->Pos.y + view->Size.y - size.y - 8.0f);
+    draw->AddRectFilled(ImVec2(at.x - 4.0f, at.y - 2.0f), ImVec2(at.x + size.x + 4.0f, at.y + size.y + 2.0f),
+                        IM_COL32(40, 0, 0, 200));
+    draw->AddText(at, IM_COL32(255, 90, 90, 255), text.c_str());
+}
+
 // Beside the scene: model.csg -> model.stl.
 std::string Viewer::defaultExportPath() const {
     std::filesystem::path p(path_);
@@ -323,9 +357,11 @@ void Viewer::pollExport() {
     if (done->error.empty()) {
         message_ = "exported " + done->path + " (" + std::to_string(done->triangles) + " triangles, " +
                    std::to_string(static_cast<long long>(done->milliseconds)) + " ms)";
+        console_.add(ConsoleLine::Kind::Info, message_);
     } else {
         message_ = done->error;
         std::cerr << done->error << '\n';
+        console_.add(done->cancelled ? ConsoleLine::Kind::Info : ConsoleLine::Kind::Error, done->error);
     }
     lastExport_ = std::move(done);
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "FileWatch.h"
+#include "Console.h"
 #include "Exporter.h"
 #include "Loader.h"
 #include "Orbit.h"
@@ -85,6 +86,9 @@ private:
     void saveNumberedScreenshot();
     void copyCamera();
     void startExport(const std::string& path);
+    void updateTitle();
+    std::string title() const;
+    void drawStaleBadge();
     void pollExport();
     std::string defaultExportPath() const;
     std::string cameraLine() const;
@@ -114,6 +118,7 @@ private:
     Loader loader_;
     Exporter exporter_;
     std::string exportPath_;         // the panel's export file name
+    Console console_;
     std::optional<ExportResult> lastExport_;  // the last finished export, for a waiting script
     FileWatch watch_;
     std::chrono::steady_clock::time_point lastPoll_;

@@ -307,4 +307,28 @@ TEST_F(StrataView, OpensScadThroughOpenscad) {
     expectSameAsRender(readPng(dir / "scad.png"), render(dir / "a.csg", {"--camera=0,0,0,60,0,30,80"}));
 }
 
+TEST_F(StrataView, ConsoleShowsOpenscadsEchoAndAStaleModelSaysSoInTheTitle) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    const std::string scad = dir.write("a.scad", "echo(\"hello from the model\");\ncube(5);\n");
+    dir.write("broken.scad", "cube(5)\nsphere(;\n");
+    const ProcessResult r = view(scad,
+                                 "size 64 64\n"
+                                 "panel off\n"
+                                 "print console\n"
+                                 "print title\n"
+                                 "copy broken.scad a.scad\n"
+                                 "wait-reload\n"
+                                 "print title\n"
+                                 "print console\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // OpenSCAD's ECHO line, as OpenSCAD prints it, before the reload.
+    const std::size_t echo = r.out.find("ECHO: \"hello from the model\"\n");
+    EXPECT_NE(echo, std::string::npos) << r.out;
+    // With the panel hidden, the title tells that the model shown is stale, and the console has the error.
+    EXPECT_NE(r.out.find("strata-view: " + scad + "\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("strata-view: " + scad + "  [error: showing the last good version]\n"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.rfind(scad + ":"), std::string::npos) << r.out;
+}
+
 }  // namespace
