@@ -46,7 +46,7 @@ void Viewer::onMouseButton(int button, int action, int mods) {
         glfwGetWindowSize(window_.window(), &ww, &wh);
         const double sx = window_.framebufferWidth() / double(std::max(ww, 1));
         const double sy = window_.framebufferHeight() / double(std::max(wh, 1));
-        recenterAt(static_cast<int>(x * sx), static_cast<int>(y * sy));
+        recenterAt(static_cast<int>(x * sx) - viewLeft(), static_cast<int>(y * sy));
         lastLeftPress_ = -1.0;
         drag_.button = -1;
         return;

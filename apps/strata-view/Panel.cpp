@@ -23,10 +23,19 @@ constexpr std::array<const char*, kDebugViews> kDebugNames{"shaded", "depth", "n
 }  // namespace
 
 void Viewer::drawPanel() {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.85f);
-    if (!ImGui::Begin("strata-view")) {
+    // Docked at the left, as tall as the window; its right edge can be dragged.
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float height = viewport->Size.y;
+    ImGui::SetNextWindowPos(viewport->Pos);
+    ImGui::SetNextWindowSize(ImVec2(panelWidth_, height), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(220.0f, height), ImVec2(std::max(220.0f, viewport->Size.x * 0.5f), height));
+    const bool open = ImGui::Begin("strata-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse);
+    const float width = ImGui::GetWindowWidth();
+    if (width != panelWidth_) {
+        panelWidth_ = width;  // the view is sized to what is left on the next frame
+        viewDirty_ = true;
+    }
+    if (!open) {
         ImGui::End();
         return;
     }
@@ -193,7 +202,9 @@ void Viewer::drawPeelLabels() {
             if (tile.layer != 0 || tile.far) continue;
             label = std::to_string(tile.leaf);
         }
-        draw->AddText(ImVec2(tile.x / scale.x + 3, tile.y / scale.y + 2), IM_COL32(255, 220, 120, 255), label.c_str());
+        const float left = static_cast<float>(viewLeft()) / scale.x;
+        draw->AddText(ImVec2(left + tile.x / scale.x + 3, tile.y / scale.y + 2), IM_COL32(255, 220, 120, 255),
+                      label.c_str());
     }
 }
 

@@ -44,8 +44,8 @@ void ViewTarget::upload(const std::vector<std::uint8_t>& rgba) {
     color_.upload(0, 0, 0, width_, height_, 1, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
 }
 
-void ViewTarget::blitToWindow(int windowHeight) const {
-    glBlitNamedFramebuffer(framebuffer_.id(), 0, 0, 0, width_, height_, 0, windowHeight - height_, width_,
+void ViewTarget::blitToWindow(int windowHeight, int left) const {
+    glBlitNamedFramebuffer(framebuffer_.id(), 0, 0, 0, width_, height_, left, windowHeight - height_, left + width_,
                            windowHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 

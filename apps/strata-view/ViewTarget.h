@@ -24,7 +24,9 @@ public:
     void upload(const std::vector<std::uint8_t>& rgba);
     // Copies the view to the default framebuffer, its top-left corner at the
     // window's top-left (the window may be larger than a scripted view size).
-    void blitToWindow(int windowHeight) const;
+    // Copies the image into the window's framebuffer with its left edge at
+    // column `left` and its top at the window's top.
+    void blitToWindow(int windowHeight, int left = 0) const;
     // RGBA8, row 0 at the top, as strata-render writes its PNG.
     std::vector<std::uint8_t> read() const;
 

@@ -100,7 +100,7 @@ void Viewer::step(bool waitForEvents) {
     if (std::optional<LoadResult> result = loader_.poll()) applyLoad(std::move(*result));
     pollExport();
     if (sceneDirty_) uploadScene();
-    const int w = fixedSize_ ? fixedSize_->first : window_.framebufferWidth();
+    const int w = fixedSize_ ? fixedSize_->first : window_.framebufferWidth() - viewLeft();
     const int h = fixedSize_ ? fixedSize_->second : window_.framebufferHeight();
     if (w > 0 && h > 0 && (w != target_.width() || h != target_.height())) {
         target_.resize(w, h);
@@ -200,7 +200,7 @@ void Viewer::drawWindow() {
     const glm::vec4 bg = render::colorScheme(settings_.colorScheme).background;
     glClearColor(bg.r, bg.g, bg.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    if (target_.width() > 0) target_.blitToWindow(fh);
+    if (target_.width() > 0) target_.blitToWindow(fh, viewLeft());
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -304,6 +304,16 @@ std::string Viewer::cameraLine() const { return cameraArgument(camera()); }
 void Viewer::copyCamera() {
     glfwSetClipboardString(window_.window(), cameraLine().c_str());
     message_ = "copied the --camera= argument";
+}
+
+// The panel is docked at the left; the view takes the rest of the window,
+// so fitting and framing frame what can be seen.
+int Viewer::viewLeft() const {
+    if (!showPanel_) return 0;
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.window(), &ww, &wh);
+    const double scale = window_.framebufferWidth() / double(std::max(ww, 1));
+    return std::min(static_cast<int>(std::lround(panelWidth_ * scale)), window_.framebufferWidth() / 2);
 }
 
 // "strata-view: FILE", and while the shown model is stale (its file no

@@ -140,6 +140,8 @@ private:
     render::FrameStats stats_;
     std::optional<std::pair<int, int>> fixedSize_;  // a script's `size`; else the window's
     bool showPanel_ = true;
+    float panelWidth_ = 340.0f;      // the docked panel's width in window units (the user may drag its edge)
+    int viewLeft() const;            // the 3D view's first framebuffer column: right of the panel
     bool sceneDirty_ = true, viewDirty_ = true;
     bool quit_ = false;
 

@@ -307,6 +307,22 @@ TEST_F(StrataView, OpensScadThroughOpenscad) {
     expectSameAsRender(readPng(dir / "scad.png"), render(dir / "a.csg", {"--camera=0,0,0,60,0,30,80"}));
 }
 
+TEST_F(StrataView, ThePanelIsDockedBesideTheViewAndFramingFramesWhatIsSeen) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const std::string script = dir / "script.txt";
+    std::ofstream(script) << "view-all\nscreenshot docked.png\npanel off\nview-all\nscreenshot whole.png\n";
+    const ProcessResult r = runProcess({kView, scene, "--imgsize", "1000,600", "--script", script});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image docked = readPng(dir / "docked.png"), whole = readPng(dir / "whole.png");
+    // With the panel, the view is what the panel leaves of the window, and the
+    // model is fitted into it; without, the view is the whole window.
+    EXPECT_EQ(whole.width, 1000);
+    EXPECT_EQ(docked.height, 600);
+    EXPECT_GT(docked.width, 500);
+    EXPECT_LT(docked.width, 800);
+    EXPECT_GT(drawnPixels(docked), 1000);
+}
+
 TEST_F(StrataView, ConsoleShowsOpenscadsEchoAndAStaleModelSaysSoInTheTitle) {
     if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
     const std::string scad = dir.write("a.scad", "echo(\"hello from the model\");\ncube(5);\n");
