@@ -169,6 +169,8 @@ void Viewer::drawPanel() {
 
 void Viewer::drawTreePanel() {
     ImGui::TextDisabled("shown / # highlight / node");
+    // A .scad's nodes are positioned in OpenSCAD's CSG export of it, not in the .scad.
+    const bool csgExport = path_.ends_with(".scad") || path_.ends_with(".SCAD");
     // A clipper: a tree of a million leaves lists only the rows on screen.
     ImGuiListClipper clipper;
     clipper.Begin(static_cast<int>(rows_.size()));
@@ -185,7 +187,7 @@ void Viewer::drawTreePanel() {
             ImGui::SetCursorPosX(ImGui::GetCursorPosX() + 12.0f * static_cast<float>(row.depth));
             const int line = scene_.tree.nodes[static_cast<std::size_t>(row.node)].where.line;
             ImGui::Text("%s%d %s%s", row.background ? "% " : "", row.node, row.label.c_str(),
-                        line > 0 ? (" (line " + std::to_string(line) + ")").c_str() : "");
+                        line > 0 ? ((csgExport ? " (CSG line " : " (line ") + std::to_string(line) + ")").c_str() : "");
             ImGui::PopID();
         }
     }

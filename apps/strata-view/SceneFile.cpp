@@ -128,10 +128,11 @@ scene::Tree readTree(const std::string& path, std::vector<std::string>& printed)
         const TempFolder folder;
         const std::string csg = (folder.path() / "scene.csg").string();
         printed = convertScad(path, csg, folder.path() / "openscad.log");
-        // Named after the .scad, and relative imports resolved from its folder,
-        // since the temporary .csg is gone by the time anyone reads a message.
+        // Positions are in OpenSCAD's CSG export, not in the .scad: messages
+        // say so ("a.scad (CSG export):9:6: ..."). Relative imports resolve
+        // from the .scad's folder.
         std::ifstream in(csg, std::ios::binary);
-        scene::Tree tree = scene::parseCsg(in, path, fs::path(path).parent_path().string());
+        scene::Tree tree = scene::parseCsg(in, path + " (CSG export)", fs::path(path).parent_path().string());
         tree.source = path;
         return tree;
     }

@@ -307,6 +307,16 @@ TEST_F(StrataView, OpensScadThroughOpenscad) {
     expectSameAsRender(readPng(dir / "scad.png"), render(dir / "a.csg", {"--camera=0,0,0,60,0,30,80"}));
 }
 
+TEST_F(StrataView, AScadsMessagesSayTheyArePositionsInItsCsgExport) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    // OpenSCAD exports this; strata refuses the open polyhedron, at its line in the export.
+    const std::string scad = dir.write("open.scad", "\n\n// three lines down\npolyhedron(points = [[0, 0, 0], [1, 0, 0], "
+                                                    "[0, 1, 0]], faces = [[0, 1, 2]]);\n");
+    const ProcessResult r = runProcess({kView, scad}, {{"DISPLAY", ":4999"}});
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(r.err.starts_with(scad + " (CSG export):1:1: polyhedron is not a closed solid")) << r.err;
+}
+
 TEST_F(StrataView, ThePanelIsDockedBesideTheViewAndFramingFramesWhatIsSeen) {
     const std::string scene = dir.write("a.csg", kScene);
     const std::string script = dir / "script.txt";
