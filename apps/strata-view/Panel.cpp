@@ -172,17 +172,35 @@ void Viewer::drawTreePanel() {
     // A .scad's nodes are positioned in OpenSCAD's CSG export of it, not in the .scad.
     const bool csgExport = path_.ends_with(".scad") || path_.ends_with(".SCAD");
     // A clipper: a tree of a million leaves lists only the rows on screen.
+    // Rows under a hidden node show unticked and greyed: hiding the parent hides them.
+    std::vector<bool> hiddenAbove(rows_.size(), false);
+    std::vector<int> hiddenDepths;
+    for (std::size_t k = 0; k < rows_.size(); ++k) {
+        while (!hiddenDepths.empty() && hiddenDepths.back() >= rows_[k].depth) hiddenDepths.pop_back();
+        hiddenAbove[k] = !hiddenDepths.empty();
+        if (edits_.hidden.contains(rows_[k].node)) hiddenDepths.push_back(rows_[k].depth);
+    }
     ImGuiListClipper clipper;
     clipper.Begin(static_cast<int>(rows_.size()));
     while (clipper.Step()) {
         for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
             const TreeRow& row = rows_[static_cast<std::size_t>(k)];
             ImGui::PushID(row.node);
-            bool shown = !edits_.hidden.contains(row.node);
+            const bool underHidden = hiddenAbove[static_cast<std::size_t>(k)];
+            bool shown = !edits_.hidden.contains(row.node) && !underHidden;
+            ImGui::BeginDisabled(underHidden);
             if (ImGui::Checkbox("##shown", &shown)) toggleHidden(row.node);
+            ImGui::EndDisabled();
             ImGui::SameLine();
-            bool highlighted = edits_.highlighted.contains(row.node);
+            // A '#' written in the file shows ticked; the box cannot take it away.
+            const scene::Node& node = scene_.tree.nodes[static_cast<std::size_t>(row.node)];
+            const bool sourceHighlight = node.kind == scene::NodeKind::Leaf &&
+                                         scene_.tree.leaves[static_cast<std::size_t>(node.leaf)].display ==
+                                             scene::Display::Highlight;
+            bool highlighted = sourceHighlight || edits_.highlighted.contains(row.node);
+            ImGui::BeginDisabled(sourceHighlight);
             if (ImGui::Checkbox("##highlight", &highlighted)) toggleHighlight(row.node);
+            ImGui::EndDisabled();
             ImGui::SameLine();
             ImGui::SetCursorPosX(ImGui::GetCursorPosX() + 12.0f * static_cast<float>(row.depth));
             const int line = scene_.tree.nodes[static_cast<std::size_t>(row.node)].where.line;
