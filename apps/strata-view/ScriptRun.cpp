@@ -55,12 +55,14 @@ bool Viewer::runCommand(const Command& c) {
                 loader_.request(path(0));
                 loadsAtWait_ = loadsFinished_;
                 waitingSince_ = Clock::now();
+                scriptOpening_ = true;
             }
             [[fallthrough]];
         case CommandKind::WaitReload:
             // Done once a load has finished since the last wait and none is under way.
             if (!waitingSince_) waitingSince_ = Clock::now();
             if (loadsFinished_ > loadsAtWait_ && !loader_.busy()) {
+                scriptOpening_ = false;
                 if (c.kind == CommandKind::Open && !loadError_.empty()) throw Error(loadError_);
                 loadsAtWait_ = loadsFinished_;
                 waitingSince_.reset();

@@ -128,7 +128,8 @@ void Viewer::applyLoad(LoadResult result) {
     if (!result.scene) {
         // The last good model stays on screen; the panel, the view and the title say why the new one did not load.
         loadError_ = result.error;
-        std::cerr << result.error << '\n';
+        // A script's `open` reports its own failure, as the script's error.
+        if (!scriptOpening_) std::cerr << result.error << '\n';
         console_.add(ConsoleLine::Kind::Error, result.error);
         updateTitle();
         return;

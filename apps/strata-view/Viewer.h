@@ -153,6 +153,7 @@ private:
     // Script state
     std::string scriptPath_;
     int loadsAtWait_ = 0;
+    bool scriptOpening_ = false;  // a script's `open` is waiting for its load
     std::optional<std::chrono::steady_clock::time_point> waitingSince_;
     std::optional<std::string> windowShot_;  // screenshot-window: written by drawWindow
     int windowShotFrames_ = 0;

@@ -271,6 +271,14 @@ TEST_F(StrataView, DoubleClickRecentresOnTheSurfaceUnderThePixel) {
     EXPECT_EQ(cams[1], cams[0]);            // the background: nothing to centre on
 }
 
+TEST_F(StrataView, AScriptOpeningAMissingFileSaysSoOnce) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene, "size 32 32\nopen missing.csg\n");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_TRUE(r.err.starts_with(dir / "script.txt:2:1: ")) << r.err;
+}
+
 TEST_F(StrataView, ScriptErrorsAtRunTimeNameTheCommand) {
     const std::string scene = dir.write("a.csg", kScene);
     const ProcessResult r = view(scene, "size 32 32\ntoggle 999\n");
