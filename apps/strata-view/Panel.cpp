@@ -40,13 +40,14 @@ void Viewer::drawPanel() {
         return;
     }
     ImGui::TextWrapped("%s", path_.c_str());
+    // One status line, loading or not, so that the panel does not jump.
     if (loader_.busy()) {
-        ImGui::Text("loading... %.1f s", loader_.runningSeconds());
-        const std::string step = loader_.progressText();
-        if (!step.empty()) ImGui::TextWrapped("%s", step.c_str());
-        if (ImGui::SmallButton("cancel")) loader_.cancel();
+        if (ImGui::SmallButton("cancel (Esc)")) loader_.cancel();
         ImGui::SameLine();
-        ImGui::TextDisabled("(or Esc)");
+        const std::string step = loader_.progressText();
+        ImGui::Text("loading... %.1f s%s%s", loader_.runningSeconds(), step.empty() ? "" : ": ", step.c_str());
+    } else {
+        ImGui::TextDisabled("shown; reloads when the file changes (F5: now)");
     }
     if (!loadError_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
