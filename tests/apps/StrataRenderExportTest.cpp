@@ -21,12 +21,11 @@
 #include <string>
 #include <vector>
 
-#include <Model/COM/NMR_DLLInterfaces.h>
-
 #include <array>
 #include <fstream>
 #include <iterator>
 
+#include "../io/ThreeMfFile.h"
 #include "RunProcess.h"
 #include "TempDir.h"
 
@@ -148,24 +147,11 @@ TEST(StrataRenderExport, ThreeMfColoursEachTriangleByItsLeaf) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::ifstream in(dir / "c.3mf", std::ios::binary);
     std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    NMR::PLib3MFModel* model = nullptr;
-    ASSERT_EQ(NMR::lib3mf_createmodel(&model), LIB3MF_OK);
-    NMR::PLib3MFModelReader* reader = nullptr;
-    ASSERT_EQ(NMR::lib3mf_model_queryreader(model, "3mf", &reader), LIB3MF_OK);
-    ASSERT_EQ(NMR::lib3mf_reader_readfrombuffer(reader, bytes.data(), bytes.size()), LIB3MF_OK);
-    NMR::PLib3MFModelResourceIterator* meshes = nullptr;
-    ASSERT_EQ(NMR::lib3mf_model_getmeshobjects(model, &meshes), LIB3MF_OK);
-    BOOL more = false;
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_movenext(meshes, &more), LIB3MF_OK);
-    NMR::PLib3MFModelResource* mesh = nullptr;
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_getcurrent(meshes, &mesh), LIB3MF_OK);
-    NMR::PLib3MFModelResourceIterator* groups = nullptr;
-    ASSERT_EQ(NMR::lib3mf_model_getbasematerials(model, &groups), LIB3MF_OK);
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_movenext(groups, &more), LIB3MF_OK);
-    NMR::PLib3MFModelResource* group = nullptr;
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_getcurrent(groups, &group), LIB3MF_OK);
-    NMR::PLib3MFPropertyHandler* properties = nullptr;
-    ASSERT_EQ(NMR::lib3mf_meshobject_createpropertyhandler(mesh, &properties), LIB3MF_OK);
+    const strata::testing::ThreeMfFile file(bytes);
+    NMR::PLib3MFModelResource* mesh = file.mesh();
+    NMR::PLib3MFModelResource* group = file.materials();
+    ASSERT_NE(group, nullptr);
+    NMR::PLib3MFPropertyHandler* properties = file.properties();
     DWORD triangles = 0;
     ASSERT_EQ(NMR::lib3mf_meshobject_gettrianglecount(mesh, &triangles), LIB3MF_OK);
     ASSERT_GT(triangles, 20u);
@@ -194,8 +180,6 @@ TEST(StrataRenderExport, ThreeMfColoursEachTriangleByItsLeaf) {
     }
     EXPECT_GT(red, 0);
     EXPECT_GT(blue, 0);
-    for (NMR::PLib3MFBase* object : std::initializer_list<NMR::PLib3MFBase*>{properties, group, groups, mesh, meshes, reader, model})
-        NMR::lib3mf_release(object);
 }
 
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {

@@ -18,6 +18,7 @@
 
 #include "strata/core/Error.h"
 #include "strata/io/MeshWriter.h"
+#include "ThreeMfFile.h"
 
 using namespace strata;
 
@@ -129,18 +130,8 @@ TEST(MeshWriter, ThreeMfReadsBackThroughLib3mfWithItsColours) {
     EXPECT_EQ(bytes[0], 'P');  // a zip archive
     EXPECT_EQ(bytes[1], 'K');
 
-    NMR::PLib3MFModel* model = nullptr;
-    ASSERT_EQ(NMR::lib3mf_createmodel(&model), LIB3MF_OK);
-    NMR::PLib3MFModelReader* reader = nullptr;
-    ASSERT_EQ(NMR::lib3mf_model_queryreader(model, "3mf", &reader), LIB3MF_OK);
-    ASSERT_EQ(NMR::lib3mf_reader_readfrombuffer(reader, bytes.data(), bytes.size()), LIB3MF_OK);
-    NMR::PLib3MFModelResourceIterator* meshes = nullptr;
-    ASSERT_EQ(NMR::lib3mf_model_getmeshobjects(model, &meshes), LIB3MF_OK);
-    BOOL more = false;
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_movenext(meshes, &more), LIB3MF_OK);
-    ASSERT_TRUE(more);
-    NMR::PLib3MFModelResource* resource = nullptr;
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_getcurrent(meshes, &resource), LIB3MF_OK);
+    const strata::testing::ThreeMfFile file(bytes);
+    NMR::PLib3MFModelResource* resource = file.mesh();
     DWORD vertices = 0, triangles = 0;
     EXPECT_EQ(NMR::lib3mf_meshobject_getvertexcount(resource, &vertices), LIB3MF_OK);
     EXPECT_EQ(NMR::lib3mf_meshobject_gettrianglecount(resource, &triangles), LIB3MF_OK);
@@ -150,23 +141,14 @@ TEST(MeshWriter, ThreeMfReadsBackThroughLib3mfWithItsColours) {
     EXPECT_EQ(NMR::lib3mf_meshobject_getvertex(resource, 3, &apex), LIB3MF_OK);
     EXPECT_EQ(apex.m_fPosition[2], static_cast<float>(m.positions[3].z));
     // Two distinct colours: two base materials, the third triangle the second one.
-    NMR::PLib3MFModelResourceIterator* groups = nullptr;
-    ASSERT_EQ(NMR::lib3mf_model_getbasematerials(model, &groups), LIB3MF_OK);
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_movenext(groups, &more), LIB3MF_OK);
-    ASSERT_TRUE(more);
-    NMR::PLib3MFModelResource* group = nullptr;
-    ASSERT_EQ(NMR::lib3mf_resourceiterator_getcurrent(groups, &group), LIB3MF_OK);
+    ASSERT_NE(file.materials(), nullptr);
     DWORD materials = 0;
-    EXPECT_EQ(NMR::lib3mf_basematerial_getcount(group, &materials), LIB3MF_OK);
+    EXPECT_EQ(NMR::lib3mf_basematerial_getcount(file.materials(), &materials), LIB3MF_OK);
     EXPECT_EQ(materials, 2u);
-    NMR::PLib3MFPropertyHandler* properties = nullptr;
-    ASSERT_EQ(NMR::lib3mf_meshobject_createpropertyhandler(resource, &properties), LIB3MF_OK);
     DWORD groupId = 0, first = 0, third = 0;
-    EXPECT_EQ(NMR::lib3mf_propertyhandler_getbasematerial(properties, 0, &groupId, &first), LIB3MF_OK);
-    EXPECT_EQ(NMR::lib3mf_propertyhandler_getbasematerial(properties, 2, &groupId, &third), LIB3MF_OK);
+    EXPECT_EQ(NMR::lib3mf_propertyhandler_getbasematerial(file.properties(), 0, &groupId, &first), LIB3MF_OK);
+    EXPECT_EQ(NMR::lib3mf_propertyhandler_getbasematerial(file.properties(), 2, &groupId, &third), LIB3MF_OK);
     EXPECT_NE(first, third);
-    for (NMR::PLib3MFBase* object : std::initializer_list<NMR::PLib3MFBase*>{properties, group, groups, resource, meshes, reader, model})
-        NMR::lib3mf_release(object);
 }
 
 TEST(MeshWriter, StagedMeshesAreWrittenWholeOrNotAtAll) {
