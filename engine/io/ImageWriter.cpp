@@ -120,16 +120,6 @@ std::string writeAll(int fd, const std::vector<unsigned char>& bytes) {
 // system has none, into a named temporary there.
 StagedFile stage(const std::string& path, const std::string& what, const char* format, const OIIO::ImageSpec& spec,
                  const void* pixels) {
-    if (path.empty()) cannotWrite("<empty path>", what, "no file name");
-    if (path.find('\0') != std::string::npos) cannotWrite(path, what, "the name holds a NUL byte");
-    const fs::path target(path);
-    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec)) cannotWrite(path, what, "no folder '" + folder.string() + "'");
-    if (fs::is_directory(target, ec)) cannotWrite(path, what, "it is a folder");
-    const fs::file_status status = fs::status(target, ec);
-    if (!ec && fs::exists(status) && !fs::is_regular_file(status)) cannotWrite(path, what, "it is not a regular file");
-
     std::vector<unsigned char> bytes;
     {
         OIIO::Filesystem::IOVecOutput memory(bytes);
@@ -147,12 +137,27 @@ StagedFile stage(const std::string& path, const std::string& what, const char* f
         }
         if (!out->close()) cannotWrite(path, what, oneLine(out->geterror()));
     }
-    return StagedFile::write(folder.string(), path, what, bytes);
+    return StagedFile::write(path, what, bytes);
+}
+
+// The folder a file named `path` goes into; throws unless a file can be
+// written there under that name (not a folder, FIFO or device).
+fs::path checkedFolder(const std::string& path, const std::string& what) {
+    if (path.empty()) cannotWrite("<empty path>", what, "no file name");
+    if (path.find('\0') != std::string::npos) cannotWrite(path, what, "the name holds a NUL byte");
+    const fs::path target(path);
+    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) cannotWrite(path, what, "no folder '" + folder.string() + "'");
+    if (fs::is_directory(target, ec)) cannotWrite(path, what, "it is a folder");
+    const fs::file_status status = fs::status(target, ec);
+    if (!ec && fs::exists(status) && !fs::is_regular_file(status)) cannotWrite(path, what, "it is not a regular file");
+    return folder;
 }
 
 }  // namespace
-StagedFile StagedFile::write(const std::string& folder, const std::string& target, const std::string& what,
-                             const std::vector<unsigned char>& bytes) {
+StagedFile StagedFile::write(const std::string& target, const std::string& what, const std::vector<unsigned char>& bytes) {
+    const std::string folder = checkedFolder(target, what).string();
     removeStaleTemporaries(folder);
     StagedFile staged;
     staged.target_ = target;

@@ -201,19 +201,13 @@ std::vector<unsigned char> meshBytes(const geometry::Mesh& mesh, MeshFormat form
 
 StagedFile stageMesh(const std::string& path, const geometry::Mesh& mesh, std::span<const glm::vec4> colors) {
     const MeshFormat format = meshFormatOf(path);
-    const std::filesystem::path target(path);
-    const std::filesystem::path folder = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) {
-        throw Error(SourceLocation{path, 0, 0}, "cannot write (no folder '" + folder.string() + "')");
-    }
     std::vector<unsigned char> bytes;
     try {
         bytes = meshBytes(mesh, format, colors);
     } catch (const Error& e) {
-        throw Error(SourceLocation{path, 0, 0}, std::string("cannot write (") + e.what() + ")");
+        throw Error(SourceLocation{path, 0, 0}, std::string("cannot write mesh (") + e.what() + ")");
     }
-    return StagedFile::write(folder.string(), path, "mesh", bytes);
+    return StagedFile::write(path, "mesh", bytes);
 }
 
 }  // namespace strata::io

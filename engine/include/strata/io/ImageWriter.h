@@ -35,10 +35,11 @@ public:
     StagedFile& operator=(const StagedFile&) = delete;
     ~StagedFile();
 
-    // Writes `bytes` (the file's whole content) for `target`, in `folder`, the
-    // target's folder. Throws strata::Error("<target>: cannot write <what> (...)").
-    static StagedFile write(const std::string& folder, const std::string& target, const std::string& what,
-                            const std::vector<unsigned char>& bytes);
+    // Writes `bytes` (the file's whole content) for `target`, in the target's
+    // folder. Throws strata::Error("<target>: cannot write <what> (...)"),
+    // also when no file can be written under that name (no folder; a folder,
+    // FIFO or device there; a NUL in the name).
+    static StagedFile write(const std::string& target, const std::string& what, const std::vector<unsigned char>& bytes);
 
     // Renames the file onto the target (replacing an old file of that
     // name). Throws strata::Error("<target>: cannot write (...)") on failure.
