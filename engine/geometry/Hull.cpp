@@ -106,17 +106,20 @@ Mesh tessellate(const scene::Hull& hull) {
     for (const scene::Leaf& summand : hull.summands) {
         const Mesh m = leafMesh(summand);
         if (m.positions.empty()) return Mesh{};  // a sum with nothing is nothing
-        if (points.size() > kMaxHullPoints / m.positions.size()) {
-            throw Error("minkowski: too many points (" + std::to_string(points.size()) + " x " +
-                        std::to_string(m.positions.size()) + ")");
-        }
-        std::vector<glm::dvec3> sums;
-        sums.reserve(points.size() * m.positions.size());
-        for (const glm::dvec3& p : points)
-            for (const glm::dvec3& q : m.positions) sums.push_back(p + q);
-        points = std::move(sums);
+        points = pointSums(points, m.positions);
     }
     return convexHull(points);
+}
+
+std::vector<glm::dvec3> pointSums(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+    if (!b.empty() && a.size() > kMaxHullPoints / b.size()) {
+        throw Error("minkowski: too many points (" + std::to_string(a.size()) + " x " + std::to_string(b.size()) + ")");
+    }
+    std::vector<glm::dvec3> sums;
+    sums.reserve(a.size() * b.size());
+    for (const glm::dvec3& p : a)
+        for (const glm::dvec3& q : b) sums.push_back(p + q);
+    return sums;
 }
 
 }  // namespace strata::geometry

@@ -71,14 +71,7 @@ Mesh minkowskiSum(const scene::MinkowskiSum& sum) {
     for (std::size_t k = 0; k < hulls; ++k) {
         reportProgress("minkowski: hulls", k, hulls);
         Part points = parts[0][choice[0]];
-        for (std::size_t i = 1; i < parts.size(); ++i) {
-            const Part& other = parts[i][choice[i]];
-            Part sums;
-            sums.reserve(points.size() * other.size());
-            for (const glm::dvec3& p : points)
-                for (const glm::dvec3& q : other) sums.push_back(p + q);
-            points = std::move(sums);
-        }
+        for (std::size_t i = 1; i < parts.size(); ++i) points = pointSums(points, parts[i][choice[i]]);
         Mesh piece = convexHull(points);
         if (!piece.triangles.empty()) pieces.push_back(std::move(piece));
         for (std::size_t i = 0; i < parts.size() && ++choice[i] == parts[i].size(); ++i) choice[i] = 0;

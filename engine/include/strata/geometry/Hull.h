@@ -16,6 +16,11 @@ namespace strata::geometry {
 // volume (fewer than four, or all in one plane), as OpenSCAD makes nothing.
 Mesh convexHull(const std::vector<glm::dvec3>& points);
 
+// Every point of `a` moved by every point of `b`: the corners whose hull is
+// the Minkowski sum of the hulls of `a` and `b`. Throws strata::Error
+// ("minkowski: too many points ...") past 2^24 of them.
+std::vector<glm::dvec3> pointSums(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b);
+
 // The hull of every part's vertices (world space), each moved by a vertex of
 // every summand in turn.
 Mesh tessellate(const scene::Hull& hull);
