@@ -12,16 +12,14 @@
 #include <vector>
 
 #include "Options.h"
+#include "ExactExport.h"
 #include "SceneLoad.h"
 #include "StderrProgress.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
-#include "strata/geometry/Exact.h"
 #include "strata/geometry/Model.h"
-#include "strata/geometry/SurfaceColors.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
-#include "strata/io/MeshWriter.h"
 #include "strata/io/Stats.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/camera/Camera.h"
@@ -49,77 +47,10 @@ void checkOutputFolder(const std::string& path) {
         throw Error(SourceLocation{path, 0, 0}, "cannot write (no folder '" + parent.string() + "')");
 }
 
-// --export-exact: the whole tree's result through CGAL, as one mesh.
-io::StagedFile exportExact(const apps::RenderOptions& options, const scene::Tree& tree, const geometry::Model& model,
-                           apps::StderrProgress& progress) {
-    if (tree.isFlat()) {
-        throw Error(SourceLocation{options.scene, 0, 0},
-                    "a 2D model has no solid to export (OpenSCAD exports it as DXF or SVG)");
-    }
-    geometry::Mesh result;
-    if (tree.root >= 0) {
-        const ProgressScope scope(&progress);
-        result = geometry::exactResult(tree, tree.root, model.leafMeshes);
-    }
-    if (result.triangles.empty()) {
-        throw Error(SourceLocation{options.scene, 0, 0}, "the CSG result is empty: nothing to export");
-    }
-    // 3MF carries colours: each triangle its leaf's color(), else the scheme's face colour.
-    std::vector<glm::vec4> colors;
-    if (io::meshFormatOf(options.exportPath) == io::MeshFormat::ThreeMf) {
-        colors = geometry::surfaceColors(result, tree, model, render::colorScheme(options.colorScheme).faceFront);
-    }
-    return io::stageMesh(options.exportPath, result, colors);
-}
-
-int run(const apps::RenderOptions& options) {
-    const auto start = Clock::now();
-    io::RunStats stats;
-    stats.scene = options.scene;
-    stats.width = options.width;
-    stats.height = options.height;
-
-    checkOutputFolder(options.png);
-    checkOutputFolder(options.depth);
-    checkOutputFolder(options.normal);
-
-    auto t = Clock::now();
-    const scene::Tree tree = apps::loadSceneFile(options.scene);
-    stats.parseMs = msSince(t);
-    // Warnings are printed once everything is written: a run that fails
-    // says one line, its error.
-    for (const Warning& w : tree.warnings) stats.warnings.push_back(w.message);
-    stats.unsupported = tree.unsupported;
-    stats.leaves = static_cast<int>(tree.leaves.size());
-    stats.dimensions = tree.isFlat() ? 2 : 3;
-
-    t = Clock::now();
-    apps::StderrProgress progress("strata-render");
-    geometry::Model model;
-    {
-        const ProgressScope scope(&progress);
-        model = geometry::buildModel(tree);
-    }
-    stats.geometryMs = msSince(t);
-    for (const Warning& w : model.warnings) stats.warnings.push_back(w.message);
-    for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
-
-    // The exported mesh is staged first, committed with the images.
-    std::vector<io::StagedFile> staged;
-    if (!options.exportPath.empty()) {
-        checkOutputFolder(options.exportPath);
-        t = Clock::now();
-        staged.push_back(exportExact(options, tree, model, progress));
-        stats.exportMs = msSince(t);
-        if (options.png.empty() && options.depth.empty() && options.normal.empty()) {
-            staged.front().commit();
-            stats.totalMs = msSince(start);
-            for (const std::string& w : stats.warnings) std::cerr << w << '\n';
-            if (options.stats) std::cout << io::statsJson(stats) << std::endl;
-            return 0;
-        }
-    }
-
+// The frame: camera, GL context, renderer (or the CPU reference), and the
+// images staged into `staged`.
+void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, const geometry::Model& model,
+                  io::RunStats& stats, std::vector<io::StagedFile>& staged) {
     render::Camera base;
     base.width = options.width;
     base.height = options.height;
@@ -139,7 +70,7 @@ int run(const apps::RenderOptions& options) {
     settings.colorScheme = options.colorScheme;
 
     // The context is made first and destroyed last (after the renderer's GL objects).
-    t = Clock::now();
+    auto t = Clock::now();
     gpu::Context context;
     stats.contextMs = msSince(t);
     stats.renderer = context.renderer();
@@ -166,15 +97,64 @@ int run(const apps::RenderOptions& options) {
     }
     stats.frame = frame.stats;
 
-    // Stage every output, then commit them all: a failure anywhere writes none.
     t = Clock::now();
     if (!options.png.empty()) staged.push_back(io::stagePng(options.png, frame.width, frame.height, frame.rgba));
     if (!options.depth.empty())
         staged.push_back(io::stageDepthExr(options.depth, frame.width, frame.height, frame.depth));
     if (!options.normal.empty())
         staged.push_back(io::stageNormalExr(options.normal, frame.width, frame.height, frame.normal));
-    for (io::StagedFile& file : staged) file.commit();
     stats.writeMs = msSince(t);
+}
+
+int run(const apps::RenderOptions& options) {
+    const auto start = Clock::now();
+    io::RunStats stats;
+    stats.scene = options.scene;
+    stats.width = options.width;
+    stats.height = options.height;
+
+    checkOutputFolder(options.png);
+    checkOutputFolder(options.depth);
+    checkOutputFolder(options.normal);
+    checkOutputFolder(options.exportPath);
+
+    auto t = Clock::now();
+    const scene::Tree tree = apps::loadSceneFile(options.scene);
+    stats.parseMs = msSince(t);
+    // Warnings are printed once everything is written: a run that fails
+    // says one line, its error.
+    for (const Warning& w : tree.warnings) stats.warnings.push_back(w.message);
+    stats.unsupported = tree.unsupported;
+    stats.leaves = static_cast<int>(tree.leaves.size());
+    stats.dimensions = tree.isFlat() ? 2 : 3;
+
+    t = Clock::now();
+    apps::StderrProgress progress("strata-render");
+    geometry::Model model;
+    {
+        const ProgressScope scope(&progress);
+        model = geometry::buildModel(tree);
+    }
+    stats.geometryMs = msSince(t);
+    for (const Warning& w : model.warnings) stats.warnings.push_back(w.message);
+    for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
+
+    // Every output is staged, then all are committed: a failure anywhere writes none.
+    std::vector<io::StagedFile> staged;
+    if (!options.exportPath.empty()) {
+        t = Clock::now();
+        const ProgressScope scope(&progress);
+        staged.push_back(apps::stageExactExport(tree, model, options.exportPath,
+                                                render::colorScheme(options.colorScheme).faceFront)
+                             .file);
+        stats.exportMs = msSince(t);
+    }
+    // With --export alone nothing is rendered (and no GL context made).
+    const bool images = !options.png.empty() || !options.depth.empty() || !options.normal.empty();
+    if (images || options.exportPath.empty()) renderImages(options, tree, model, stats, staged);
+    t = Clock::now();
+    for (io::StagedFile& file : staged) file.commit();
+    stats.writeMs += msSince(t);
     stats.totalMs = msSince(start);
 
     for (const std::string& w : stats.warnings) std::cerr << w << '\n';

@@ -42,10 +42,4 @@ private:
     std::shared_ptr<LoadProgress> progress_;
 };
 
-// The result of `scene` written to `path`: what Exporter runs, and what a
-// caller with its own thread can run. Reports steps to this thread's
-// Progress sink; throws strata::Error, or Cancelled.
-// A 3MF file gets each triangle's leaf colour, `faceColor` where a leaf has none.
-std::size_t exportExact(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor);
-
 }  // namespace strata::view

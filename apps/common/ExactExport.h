@@ -1,0 +1,29 @@
+#pragma once
+// The exact export, as strata-render's --export-exact and strata-view's
+// export both run it: the whole tree's result evaluated by CGAL, each
+// triangle given its leaf's colour when the format carries colours (3MF),
+// staged for writing. Reports its steps to the calling thread's Progress.
+
+#include <cstddef>
+#include <string>
+
+#include <glm/vec4.hpp>
+
+#include "strata/geometry/Model.h"
+#include "strata/io/ImageWriter.h"
+#include "strata/scene/Tree.h"
+
+namespace strata::apps {
+
+struct ExactExport {
+    io::StagedFile file;        // commit() puts it in place
+    std::size_t triangles = 0;
+};
+
+// Throws strata::Error naming the scene (tree.source) for a 2D model or an
+// empty result, and naming `path` when it cannot be written. `faceColor` is
+// the colour of triangles whose leaf has no color().
+ExactExport stageExactExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+                             const glm::vec4& faceColor);
+
+}  // namespace strata::apps
