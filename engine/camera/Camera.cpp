@@ -1,6 +1,8 @@
 #include "strata/camera/Camera.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -85,6 +87,20 @@ Ray Camera::ray(int i, int j) const {
 }
 
 double Camera::viewDepth(const glm::dvec3& p) const { return glm::dot(p - eye, forward()); }
+
+double coincidenceTolerance(const Camera& camera, const geometry::Bounds& box) {
+    auto largest = [](const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
+    double scale = largest(camera.eye);
+    if (!box.empty()) {
+        for (int k = 0; k < 8; ++k) {
+            const glm::dvec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                                    (k & 4) ? box.max.z : box.min.z};
+            scale = std::max({scale, largest(corner), std::abs(camera.viewDepth(corner))});
+        }
+    }
+    constexpr double kFraction = 1.0 / 65536.0;
+    return std::max(scale * kFraction, std::numeric_limits<double>::min());
+}
 
 glm::dmat4 Camera::viewMatrix() const {
     // gluLookAt: rows r, u, -f, then the eye moved to the origin. glm is column-major: m[col][row].

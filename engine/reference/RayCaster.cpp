@@ -116,6 +116,8 @@ struct Workspace {
     std::vector<Crossing> crossings;
     std::vector<IntervalList> leafLists;
     std::vector<int> touched;
+    std::vector<std::size_t> order;  // hits by t
+    std::vector<double> placed;      // per hit: the t of its group of coincident crossings
     CsgProgram::Workspace evaluation;
 };
 
@@ -137,7 +139,7 @@ struct ReferenceScene::Impl {
         }
     }
 
-    RayHit trace(const render::Ray& ray, double tStart, Workspace& workspace) const;
+    RayHit trace(const render::Ray& ray, double tStart, double coincidence, Workspace& workspace) const;
 
     CsgProgram program;
     RTCDevice device = nullptr;
@@ -148,13 +150,15 @@ struct ReferenceScene::Impl {
     glm::dvec3 boxMin{kInfinity}, boxMax{-kInfinity};  // padded box of every traced triangle
     glm::dvec3 offset{0.0};
     double size = 0.0;  // the box's diagonal
+    geometry::Bounds bounds;  // of every leaf mesh, background leaves too: the GPU's box for the tolerance
     double padding = 0.0;
 };
 
 // Long, and kept in one piece: the reference's inner loop for one ray (clip
 // to the box, gather Embree's candidates, exact crossings, order, the tree
 // along the ray), written out so each step's arrays stay in the workspace.
-RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, Workspace& workspace) const {
+RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double coincidence,
+                                   Workspace& workspace) const {
     RayHit miss;
     miss.t = kInfinity;
     if (!scene) return miss;
@@ -213,13 +217,32 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, Worksp
                            }),
                hits.end());
 
+    // Coincident crossings (docs/algorithm.md, "Coincident surfaces"): in
+    // order along the ray, a crossing more than `coincidence` beyond the
+    // current group's first one starts the next group, and every crossing
+    // takes its group's first t. The tree then sees one place where the
+    // surfaces of several leaves were, as exact arithmetic would.
+    std::vector<std::size_t>& order = workspace.order;
+    order.resize(hits.size());
+    for (std::size_t k = 0; k < hits.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return hits[a].t != hits[b].t ? hits[a].t < hits[b].t : a < b;
+    });
+    std::vector<double>& placed = workspace.placed;
+    placed.resize(hits.size());
+    double anchor = -kInfinity;
+    for (std::size_t k : order) {
+        if (!(hits[k].t - anchor <= coincidence)) anchor = hits[k].t;
+        placed[k] = anchor;
+    }
+
     if (workspace.leafLists.size() < program.leafCount()) workspace.leafLists.resize(program.leafCount());
     const double tolerance = kMergeFraction * (size + glm::length(origin - offset));
     for (std::size_t first = 0; first < hits.size();) {
         std::size_t last = first;
         workspace.crossings.clear();
         for (; last < hits.size() && hits[last].leaf == hits[first].leaf; ++last) {
-            workspace.crossings.push_back({hits[last].t, hits[last].entering, static_cast<int>(last)});
+            workspace.crossings.push_back({placed[last], hits[last].entering, static_cast<int>(last)});
         }
         const int leaf = hits[first].leaf;
         leafIntervals(leaf, workspace.crossings, tolerance, workspace.leafLists[static_cast<std::size_t>(leaf)]);
@@ -233,13 +256,30 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, Worksp
     workspace.touched.clear();
     if (!change) return miss;
 
-    const RawHit& crossing = hits[static_cast<std::size_t>(change->surface.crossing)];
-    const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(crossing.leaf)];
+    // The surface shown where the result changes: of the crossings in that
+    // group, one whose facing changes its leaf as the result changes (the
+    // result's own face), else one facing the other way (a subtracted face,
+    // its normal flipped); the lowest leaf, then the nearest. The GPU
+    // evaluator chooses by the same rule.
+    const RawHit* chosen = nullptr;
+    bool flip = false;
+    for (const bool sameWay : {true, false}) {
+        for (std::size_t k : order) {
+            if (placed[k] != change->t || (hits[k].entering == change->resultEnters) != sameWay) continue;
+            if (!chosen || hits[k].leaf < chosen->leaf) chosen = &hits[k];
+        }
+        if (chosen) {
+            flip = !sameWay;
+            break;
+        }
+    }
+    if (!chosen) return miss;  // cannot happen: the change has a crossing of its group
+    const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(chosen->leaf)];
     RayHit result;
-    result.t = change->t;
-    result.leaf = crossing.leaf;
-    result.normal = geometry.normals[crossing.triangle];
-    result.cut = change->flipNormal();
+    result.t = chosen->t;
+    result.leaf = chosen->leaf;
+    result.normal = geometry.normals[chosen->triangle];
+    result.cut = flip;
     if (result.cut) result.normal = -result.normal;
     return result;
 }
@@ -252,6 +292,9 @@ ReferenceScene::ReferenceScene(const scene::Tree& tree, const geometry::Model& m
     }
     Impl& impl = *impl_;
     impl.byLeaf.assign(tree.leaves.size(), nullptr);
+    for (const geometry::Mesh& mesh : model.leafMeshes) {
+        if (!mesh.triangles.empty()) impl.bounds.extend(geometry::boundsOf(mesh));
+    }
 
     // The box of what is traced, and the padding that follows from its size.
     double largest = 0.0;
@@ -330,9 +373,9 @@ ReferenceScene::~ReferenceScene() = default;
 ReferenceScene::ReferenceScene(ReferenceScene&&) noexcept = default;
 ReferenceScene& ReferenceScene::operator=(ReferenceScene&&) noexcept = default;
 
-RayHit ReferenceScene::trace(const render::Ray& ray, double tStart) const {
+RayHit ReferenceScene::trace(const render::Ray& ray, double tStart, double coincidence) const {
     Workspace workspace;
-    return impl_->trace(ray, tStart, workspace);
+    return impl_->trace(ray, tStart, coincidence, workspace);
 }
 
 ReferenceImage ReferenceScene::render(const render::Camera& camera, const ReferenceOptions& options) const {
@@ -350,6 +393,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
     image.cut.assign(pixels, 0);
 
     const glm::dvec3 forward = camera.forward();
+    const double coincidence = coincidenceTolerance(camera, impl_->bounds);
     std::atomic<int> nextRow{0};
     int rowsDone = 0;
     std::mutex progressMutex;
@@ -364,7 +408,9 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
                     // The start where the ray crosses the plane at view depth nearDepth.
                     const double tStart =
                         (options.nearDepth - glm::dot(ray.origin - camera.eye, forward)) / glm::dot(ray.direction, forward);
-                    const RayHit hit = impl_->trace(ray, std::max(tStart, 0.0), workspace);
+                    // The tolerance is a view depth; along this ray it is that much more t.
+                    const double along = coincidence / glm::dot(ray.direction, forward);
+                    const RayHit hit = impl_->trace(ray, std::max(tStart, 0.0), along, workspace);
                     if (!hit.hit()) continue;
                     const std::size_t index = static_cast<std::size_t>(j) * camera.width + i;
                     image.depth[index] = static_cast<float>(camera.viewDepth(ray.origin + hit.t * ray.direction));

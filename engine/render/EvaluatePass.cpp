@@ -338,7 +338,7 @@ EvaluatePass::BlockPlan EvaluatePass::planBlocks(const FrameTargets& targets, co
 
 void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                         const BlockPlan& plan, const std::vector<int>& groupTable, const gpu::Texture& groupIds,
-                        FrameStats& stats) {
+                        double coincidence, FrameStats& stats) {
     gpu::Buffer::uploadGrowing(blocks_, "evaluate blocks", plan.blocks);
     gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", plan.data.literals);
     gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", plan.data.nodes);
@@ -380,6 +380,7 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
         program.setUniform(shader::kEvaluateFirstBlock, first);
         program.setUniform(shader::kEvaluateTileSize, glm::ivec2(tile.width, tile.height));
         program.setUniform(shader::kEvaluateBlocksX, plan.blocksX);
+        program.setUniform(shader::kEvaluateCoincidence, static_cast<float>(coincidence));
         program.use();
         glDrawArraysInstanced(GL_TRIANGLES, 0, 6, runs);
         first += runs;
@@ -391,7 +392,7 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
 void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
                        const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly,
-                       FrameStats& stats, std::vector<BlockForm>* forms) {
+                       double coincidence, FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
     const BlockPlan plan = planBlocks(targets, tile, operandLayers, rects, groupTable, generalOnly);
     if (forms != nullptr) {
@@ -400,7 +401,7 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
             for (std::uint32_t b : list) (*forms)[b] = variant.form;
         }
     }
-    draw(targets, layers, tile, plan, groupTable, groupIds, stats);
+    draw(targets, layers, tile, plan, groupTable, groupIds, coincidence, stats);
 }
 
 }  // namespace strata::render

@@ -64,8 +64,8 @@ public:
     // no texture without groups) name the member of a group that makes a surface.
     void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
              const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-             const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly, FrameStats& stats,
-             std::vector<BlockForm>* forms = nullptr);
+             const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly, double coincidence,
+             FrameStats& stats, std::vector<BlockForm>* forms = nullptr);
 
     // The tile's groups of convex operands for run() (evaluate.frag:
     // groupTable): per tree leaf (`leafCount`) -1, or for a group's operand
@@ -135,7 +135,8 @@ private:
                                                              const std::vector<PixelRect>& rects) const;
     // Uploads `plan`, binds the pass's inputs and draws each variant's runs.
     void draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile, const BlockPlan& plan,
-              const std::vector<int>& groupTable, const gpu::Texture& groupIds, FrameStats& stats);
+              const std::vector<int>& groupTable, const gpu::Texture& groupIds, double coincidence,
+              FrameStats& stats);
 
     // Appends the data of `code` (specialised code) to `data` in the
     // cheapest form that holds it (the array form where `generalOnly`).

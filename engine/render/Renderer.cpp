@@ -389,7 +389,7 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
     auto start = Clock::now();
     std::vector<BlockForm> forms;
     evaluate.run(targets, peel.layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, compiled, layers),
-                 peel.groupIds(), in.settings.generalEvaluator, stats,
+                 peel.groupIds(), in.settings.generalEvaluator, in.view.coincidence, stats,
                  in.settings.keepBlockForms ? &forms : nullptr);
     if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
     const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator

@@ -76,6 +76,7 @@ ViewSetup makeView(const Camera& camera, const geometry::Bounds& sceneBounds) {
     view.up = glm::vec3(camera.up());
     const double t = std::tan(camera.fovDegrees * std::numbers::pi / 360.0);
     view.halfExtent = glm::vec2(static_cast<float>(t * camera.width / camera.height), static_cast<float>(t));
+    view.coincidence = coincidenceTolerance(camera, sceneBounds);
     return view;
 }
 

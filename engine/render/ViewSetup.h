@@ -51,6 +51,7 @@ struct ViewSetup {
     glm::vec3 eye{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
     glm::dvec3 eyeD{0.0}, forwardD{0.0};
     glm::vec2 halfExtent{0.0f};  // perspective: tan(fov/2) * (W/H, 1)
+    double coincidence = 0.0;    // coincidenceTolerance (Camera.h) of the scene's box in this view
 };
 
 // Near = max(a small fraction of the scene's size, its nearest depth less a

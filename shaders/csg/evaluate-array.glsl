@@ -155,22 +155,16 @@ void main() {
             writeUnresolved();
             return;
         }
-        float depth = untagged(heapDepth[0]);
-        // Every surface at this depth changes its operand's state before the
-        // tree is asked again.
-        int entryLeaf = -1, exitLeaf = -1;
-        while (heapSize > 0 && untagged(heapDepth[0]) == depth) {
+        float limit = untagged(heapDepth[0]) + uCoincidence;
+        // Every surface of the cluster (evaluate.frag) toggles its operand
+        // before the tree is asked again.
+        startCluster();
+        while (heapSize > 0 && untagged(heapDepth[0]) <= limit) {
             --budget;
             int s = heapSlot[0];
-            bool exit = isExit(heapDepth[0]);
-            setInside(s, !exit);
+            setInside(s, !slotInside[s]);
             uvec4 literal = blockOperands[slotEntry[s]];
-            int leaf = int(literal.z);
-            if (exit) {
-                if (exitLeaf < 0) exitLeaf = leaf;
-            } else {
-                if (entryLeaf < 0) entryLeaf = leaf;
-            }
+            considerSurface(heapDepth[0], int(literal.z), inside);
             int cursor = slotCursor[s];
             float next = nextSurface(literal, cursor);
             slotCursor[s] = cursor;
@@ -186,10 +180,9 @@ void main() {
 
         bool now = nodeValue(0u);
         if (now != inside) {
-            writeSurface(depth, now, entryLeaf, exitLeaf);
+            writeChosenSurface(now);
             return;
         }
-        inside = now;
     }
     discard;
 }

@@ -3,8 +3,9 @@
 // reaches, one tooth of a union of teeth): the result is the operand, so its
 // first surface is the result's. A front face there enters both; a back face
 // (the eye inside the operand) leaves both. Where the layer's two surfaces
-// lie at one depth (a ray grazing an edge, a flat sheet) the operand is
-// entered and left at once and the result shows nothing. This is the
+// lie in one cluster (evaluate.frag: a ray grazing an edge, a sheet thinner
+// than the tolerance) the operand is entered and left at once and the
+// result shows nothing. This is the
 // register form's walk for one slot, step for step. Nothing to flip.
 //
 // blocks[b]: x the operand's layer in uLayers, y its tree leaf, z (with leaf
@@ -16,7 +17,7 @@ void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
     float first = -layer.r;
-    if (first >= kClearedDepth || (layer.g > first && untagged(layer.g) == untagged(first))) discard;
+    if (first >= kClearedDepth || (layer.g > first && untagged(layer.g) <= untagged(first) + uCoincidence)) discard;
     int face = faceBit(isExit(first), false);
     bool grouped = isGroup(int(vRecord.y));
     int leaf = surfaceLeaf(int(vRecord.y), face != 0);

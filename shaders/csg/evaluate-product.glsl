@@ -17,14 +17,20 @@
 //   consecutive content literals, d is it.
 // - P true before every surface: P turns false at the earliest step where
 //   some literal stops being content, one pass.
-// Depths here are untagged: every surface at one depth takes effect before
-// the tree is asked again, as in the other forms. The leaves written are
-// those of the lowest slot with an entry (exit) at the chosen depth, the
-// register form's choice.
+// With coincident surfaces (evaluate.frag) the result is asked only after
+// whole clusters: the answer is the first cluster [a, a + tolerance] after
+// which P differs from its start. The seek finds the first depth X where P
+// differs at all; the cluster holding X is found by walking back over
+// surfaces closer than the tolerance to the chain's start and forward again
+// from cluster to cluster; if P at that cluster's end is back to its start
+// (X lay on a sliver thinner than the tolerance), the seek goes on from the
+// next cluster. The surface written is chosen among the cluster's by the
+// rule of evaluate.frag.
 //
 // Cost: n literal visits when the answer is the first surface, up to n per
 // move otherwise (the slots of one pixel that move d in slot order cost one
-// round in all: a stack of subtracted solids listed front to back).
+// round in all: a stack of subtracted solids listed front to back), and
+// four more rounds to place the cluster and choose its surface.
 
 const float kNone = -kInfinity;  // d before every surface
 
@@ -33,7 +39,8 @@ const float kNone = -kInfinity;  // d before every surface
 // first, between them and after the second. An operand whose first surface is
 // a back face was inside from the ray's start.
 struct Steps {
-    float first, second;
+    float first, second;              // untagged
+    float firstTagged, secondTagged;  // as peeled
     bool before, between, after;
 };
 
@@ -43,8 +50,10 @@ Steps stepsOf(uint layer) {
     bool hit = near < kClearedDepth;
     bool two = hit && texel.g > near;
     Steps s;
-    s.first = hit ? untagged(near) : kInfinity;
-    s.second = two ? untagged(texel.g) : kInfinity;
+    s.firstTagged = hit ? near : kInfinity;
+    s.secondTagged = two ? texel.g : kInfinity;
+    s.first = untagged(s.firstTagged);
+    s.second = untagged(s.secondTagged);
     s.before = hit && isExit(near);
     s.between = hit && !isExit(near);
     s.after = two ? !isExit(texel.g) : s.between;
@@ -65,23 +74,45 @@ float seek(Steps s, float d, bool want) {
     return kInfinity;
 }
 
-// The first step where membership stops being `want` (it is `want` before
-// every surface); +inf for none.
-float leave(Steps s, bool want) {
-    return stateAt(s, s.first) != want ? s.first : (s.after != want ? s.second : kInfinity);
+bool spent() {
+    if (--budget >= 0) return false;
+    writeUnresolved();
+    return true;
 }
 
-int entrySlot, exitSlot;  // the lowest slot with an entry / an exit at the chosen depth
-
-void noteSurfacesAt(Steps s, float d, int slot) {
-    bool entry = (s.first == d && s.between) || (s.second == d && s.after);
-    bool exit = (s.first == d && s.before) || (s.second == d && !s.after);
-    if (entry && slot < entrySlot) entrySlot = slot;
-    if (exit && slot < exitSlot) exitSlot = slot;
+// P after every surface at depths <= d (d may be kNone).
+bool productAt(uvec4 block, float d) {
+    for (uint j = 0u; j < block.y; ++j) {
+        uvec4 literal = blockOperands[block.x + j];
+        if (stateAt(stepsOf(literal.x), d) != (literal.w != 0u)) return false;
+    }
+    return true;
 }
 
-int leafOfSlot(uvec4 block, int slot) {
-    return slot < int(block.y) ? int(blockOperands[block.x + uint(slot)].z) : -1;
+// The least surface depth above d (+inf for none), or the greatest below
+// d (kNone for none), over every literal.
+float surfaceAbove(uvec4 block, float d) {
+    float best = kInfinity;
+    for (uint j = 0u; j < block.y; ++j) {
+        Steps s = stepsOf(blockOperands[block.x + j].x);
+        if (s.first > d) best = min(best, s.first);
+        else if (s.second > d) best = min(best, s.second);
+    }
+    return best;
+}
+
+float surfaceBelow(uvec4 block, float d) {
+    float best = kNone;
+    for (uint j = 0u; j < block.y; ++j) {
+        Steps s = stepsOf(blockOperands[block.x + j].x);
+        if (s.second < d && s.second != kInfinity) best = max(best, s.second);
+        else if (s.first < d) best = max(best, s.first);
+    }
+    return best;
+}
+
+int leafOfSlot(uvec4 block, uint slot) {
+    return int(blockOperands[block.x + slot].z);
 }
 
 void main() {
@@ -89,42 +120,71 @@ void main() {
     uvec4 block = vRecord;
     uint n = block.y;
     budget = uLoopBudget;
-    entrySlot = exitSlot = int(n);
+    float tolerance = uCoincidence;
 
-    // P false before every surface: where does it turn true?
-    float d = kNone;
-    uint content = 0u;  // literals content at d in a row
-    uint i = 0u;
-    while (content < n && d != kInfinity) {
-        if (--budget < 0) {
-            writeUnresolved();
+    // P before every surface, and the value the answer's cluster must leave.
+    bool startsTrue = productAt(block, kNone);
+    bool target = !startsTrue;
+    float from = kNone;  // the seek's start: the first cluster not yet ruled out
+    while (true) {
+        // The least depth d >= from where P == target.
+        float d = from;
+        if (target) {
+            // Visit the literals in turn; one that is not content at d moves d
+            // to its own first step after d where it would be.
+            uint content = 0u;  // literals content at d in a row
+            uint i = 0u;
+            while (content < n && d != kInfinity) {
+                if (spent()) return;
+                uvec4 literal = blockOperands[block.x + i];
+                float moved = seek(stepsOf(literal.x), d, literal.w != 0u);
+                if (moved != d) {
+                    d = moved;
+                    content = 1u;
+                } else {
+                    ++content;
+                }
+                i = i + 1u == n ? 0u : i + 1u;
+            }
+        } else {
+            // The first literal to stop being content.
+            float least = kInfinity;
+            for (uint j = 0u; j < n; ++j) {
+                uvec4 literal = blockOperands[block.x + j];
+                least = min(least, seek(stepsOf(literal.x), d, literal.w == 0u));
+            }
+            d = least;
+        }
+        if (d == kInfinity) discard;
+        // The cluster holding d: back to the start of its chain of close
+        // surfaces, then forward cluster by cluster.
+        float anchor = d;
+        while (true) {
+            if (spent()) return;
+            float below = surfaceBelow(block, anchor);
+            if (below == kNone || anchor - below > tolerance) break;
+            anchor = below;
+        }
+        while (d - anchor > tolerance) {
+            if (spent()) return;
+            anchor = surfaceAbove(block, anchor + tolerance);
+        }
+        float end = anchor + tolerance;
+        if (productAt(block, end) == target) {
+            // The result is P for an AND, !P for an OR; it is entered where it turns true.
+            bool isOr = block.z != 0u;
+            bool resultInside = startsTrue != isOr;
+            startCluster();
+            for (uint j = 0u; j < n; ++j) {
+                Steps s = stepsOf(blockOperands[block.x + j].x);
+                int leaf = leafOfSlot(block, j);
+                if (s.first >= anchor && s.first <= end) considerSurface(s.firstTagged, leaf, resultInside);
+                if (s.second >= anchor && s.second <= end) considerSurface(s.secondTagged, leaf, resultInside);
+            }
+            writeChosenSurface(!resultInside);
             return;
         }
-        uvec4 literal = blockOperands[block.x + i];
-        Steps s = stepsOf(literal.x);
-        float moved = seek(s, d, literal.w != 0u);
-        if (moved != d) {
-            d = moved;
-            content = 1u;
-            entrySlot = exitSlot = int(n);
-        } else {
-            ++content;
-        }
-        noteSurfacesAt(s, d, int(i));
-        i = i + 1u == n ? 0u : i + 1u;
+        from = surfaceAbove(block, end);
+        if (spent()) return;
     }
-    bool startsTrue = d == kNone;
-    // P true before every surface: where does it turn false?
-    if (startsTrue) {
-        d = kInfinity;
-        for (uint j = 0u; j < n; ++j) {
-            uvec4 literal = blockOperands[block.x + j];
-            d = min(d, leave(stepsOf(literal.x), literal.w != 0u));
-        }
-        for (uint j = 0u; d != kInfinity && j < n; ++j) noteSurfacesAt(stepsOf(blockOperands[block.x + j].x), d, int(j));
-    }
-    if (d == kInfinity) discard;
-    // The result is P for an AND, !P for an OR; it is entered where it turns true.
-    bool isOr = block.z != 0u;
-    writeSurface(d, startsTrue == isOr, leafOfSlot(block, entrySlot), leafOfSlot(block, exitSlot));
 }

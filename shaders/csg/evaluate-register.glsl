@@ -7,10 +7,10 @@
 // 0-3, bank B slots 4-7). Compiled for 4 and 8 slots (MAX_LIVE).
 //
 // An operand's inside bit follows its surfaces as the array form's walk
-// does: a front face enters, a back face leaves, and where one depth holds
-// several of its surfaces (its layers meet there, or a ray grazes its edge)
-// a back face among them wins, as it comes last in tagged order. An operand
-// whose first layer's near surface is a back face starts inside.
+// does: each surface of a cluster (evaluate.frag) toggles it, so a pair
+// within one cluster (its layers meet there, or a ray grazes its edge)
+// changes nothing. An operand whose first layer's near surface is a back
+// face starts inside.
 //
 // blocks[b]: x first slot in blockOperands, y slot count, z the truth table
 // (bit m: the result when operand i is inside exactly for the bits i of m)
@@ -31,20 +31,16 @@
         }                                                                                   \
     }
 
-// Slot c's next surface, where it lies at `depth`: its operand enters or
-// leaves, and the slot moves on to its far surface, or is done.
+// Slot c's next surface, where it lies in the cluster (depth <= `limit`):
+// it toggles its operand, is considered for the surface shown, and the slot
+// moves on to its far surface, or is done.
 #define TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)                     \
-        if (head[c] != kInfinity && untagged(head[c]) == depth) {                \
-            if (isExit(head[c])) {                                               \
-                left |= bits[c];                                                 \
-                if (exitLeaf < 0) exitLeaf = leaf[c];                            \
-            } else {                                                             \
-                entered |= bits[c];                                              \
-                if (entryLeaf < 0) entryLeaf = leaf[c];                          \
-            }                                                                    \
+        if (head[c] != kInfinity && untagged(head[c]) <= limit) {                \
+            toggled ^= bits[c];                                                  \
+            considerSurface(head[c], leaf[c], inside);                           \
             head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
         }
-// Both of slot c's surfaces can lie at one depth (a ray grazing its edge).
+// Both of slot c's surfaces can lie in one cluster (a ray grazing its edge).
 #define TAKE_SLOT(head, nearSide, farSide, leaf, bits, c)    \
         TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c) \
         TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)
@@ -92,21 +88,21 @@ void main() {
         nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
 #endif
         if (nearest == kInfinity) break;
-        float depth = untagged(nearest);
-        // Every surface at this depth changes its operand's state before the
+        float limit = untagged(nearest) + uCoincidence;
+        // Every surface of the cluster changes its operand's state before the
         // tree is asked again.
-        int entryLeaf = -1, exitLeaf = -1;
-        uint entered = 0u, left = 0u;  // operand bits
+        startCluster();
+        uint toggled = 0u;  // operand bits
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 2) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 3)
 #if MAX_LIVE > 4
         TAKE_SLOT(headB, nearB, farB, leafB, bitB, 0) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 1)
         TAKE_SLOT(headB, nearB, farB, leafB, bitB, 2) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 3)
 #endif
-        insideBits = (insideBits | entered) & ~left;  // a back face wins, as in the array form
+        insideBits ^= toggled;
         bool now = RESULT(insideBits);
         if (now != inside) {
-            writeSurface(depth, now, entryLeaf, exitLeaf);
+            writeChosenSurface(now);
             return;
         }
     }

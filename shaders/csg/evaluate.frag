@@ -95,17 +95,55 @@ int surfaceLeaf(int leaf, bool exit) {
 }
 #endif
 
-// The result changes at `depth` (untagged): entered (now true) or left.
-// entryLeaf / exitLeaf: the tree leaf of the first operand that
-// entered / left there, -1 for none. Prefer a surface whose operand changes
-// the same way as the result: it is the result's own face.
-void writeSurface(float depth, bool entered, int entryLeaf, int exitLeaf) {
-    bool operandEntered = entered ? entryLeaf >= 0 : exitLeaf < 0;
-    bool flip = operandEntered != entered;
-    int leaf = surfaceLeaf(operandEntered ? entryLeaf : exitLeaf, !operandEntered);
-    outDepth = uintBitsToFloat(floatBitsToUint(depth) | (operandEntered ? 0u : 1u));
+// Coincident surfaces (docs/algorithm.md): surfaces of any operands whose
+// untagged depths lie within uCoincidence of the first of them are one place
+// along the ray, a cluster: in depth order, the first surface not yet walked
+// opens a cluster that takes every surface up to its depth + uCoincidence.
+// Each surface of a cluster toggles its operand (a pair of one operand's
+// surfaces cancels: a sliver thinner than the tolerance is no solid), and
+// only then is the tree asked again. The CPU reference clusters the same way.
+layout(location = kEvaluateCoincidence) uniform float uCoincidence;
+
+// The surface shown where the result changes, chosen among the cluster's:
+// one whose facing changes its operand as the result changes (the result's
+// own face), else one facing the other way (a subtracted face, flipped); of
+// those the lowest tree leaf, then the nearest. The reference's rule too: a
+// face that several leaves share shows the same leaf from every view.
+const int kNoLeaf = 0x7fffffff;
+int sameLeaf, otherLeaf;
+float sameSurface, otherSurface;  // tagged depths
+
+void startCluster() {
+    sameLeaf = otherLeaf = kNoLeaf;
+}
+
+// A surface of the cluster: `tagged` its tagged depth, `leaf` its operand's
+// tree leaf; `resultInside` the result's membership before the cluster.
+void considerSurface(float tagged, int leaf, bool resultInside) {
+    if (isExit(tagged) == resultInside) {
+        if (leaf < sameLeaf || (leaf == sameLeaf && tagged < sameSurface)) {
+            sameLeaf = leaf;
+            sameSurface = tagged;
+        }
+    } else if (leaf < otherLeaf || (leaf == otherLeaf && tagged < otherSurface)) {
+        otherLeaf = leaf;
+        otherSurface = tagged;
+    }
+}
+
+// Writes the chosen surface of the cluster where the result was entered
+// (`entered`) or left: its own tagged depth (the normal pass finds its
+// fragment by it) and its leaf code (leafCode in interface.glsl: flipped
+// where its operand changes against the result, as a subtracted one does).
+void writeChosenSurface(bool entered) {
+    bool same = sameLeaf != kNoLeaf;
+    float surface = same ? sameSurface : otherSurface;
+    bool exit = isExit(surface);
+    bool flip = exit == entered;
+    int leaf = surfaceLeaf(same ? sameLeaf : otherLeaf, exit);
+    outDepth = surface;
     outLeaf = leafCode(leaf, flip);
-    int face = faceBit(!operandEntered, flip);
+    int face = faceBit(exit, flip);
     atomicOr(shownFaces[leaf], 1u << face);
 #ifdef LEAF_MARKS
     gl_FragStencilRefARB = stencilMark(markSlots[leaf], face);

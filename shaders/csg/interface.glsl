@@ -43,6 +43,7 @@ SHARED int kEvaluateLoopBudget = 4;  // the array and product forms
 SHARED int kEvaluateFirstBlock = 5;  // this draw's first run of blocks in drawnBlocks
 SHARED int kEvaluateTileSize = 6;    // pixels
 SHARED int kEvaluateBlocksX = 7;     // blocks per row of the tile
+SHARED int kEvaluateCoincidence = 8;  // the coincidence tolerance, a view depth
 
 // normal.frag (after surface.vert's).
 SHARED int kNormalLeaf = 3;

@@ -48,6 +48,16 @@ struct Camera {
     glm::dmat4 projectionMatrix(double zNear, double zFar) const;
 };
 
+// Surfaces along one view ray whose view depths differ by no more than this
+// count as one place, the coincidence tolerance (docs/algorithm.md,
+// "Coincident surfaces"): 2^-16 of the largest magnitude that the GPU's float
+// depths and positions carry in this view (the eye's coordinates, the box's
+// corners and their view depths), so it scales with the scene and the
+// camera, and stays 2^7 times above the rounding of a float (2^-23) that
+// puts rotated copies of one plane apart. The GPU evaluator and the CPU
+// reference take the same value for one frame. Positive, also for an empty box.
+double coincidenceTolerance(const Camera& camera, const geometry::Bounds& box);
+
 // OpenSCAD's --camera: 6 numbers (eye, center) or 7 (gimbal: translate, rotate,
 // distance). Throws strata::Error on any other count.
 Camera cameraFromArguments(const std::vector<double>& numbers, const Camera& base);

@@ -79,8 +79,11 @@ public:
     ReferenceScene(ReferenceScene&&) noexcept;
     ReferenceScene& operator=(ReferenceScene&&) noexcept;
 
-    // The first change of the result along the ray at parameter t > tStart.
-    RayHit trace(const render::Ray& ray, double tStart = 0.0) const;
+    // The first change of the result along the ray at parameter t > tStart,
+    // crossings within `coincidence` (of t) counting as one place
+    // (docs/algorithm.md, "Coincident surfaces"; render() takes the
+    // camera's coincidenceTolerance). 0: only equal t coincide.
+    RayHit trace(const render::Ray& ray, double tStart = 0.0, double coincidence = 0.0) const;
 
     ReferenceImage render(const render::Camera& camera, const ReferenceOptions& options = {}) const;
 
