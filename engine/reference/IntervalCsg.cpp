@@ -269,4 +269,29 @@ const IntervalList& CsgProgram::evaluate(std::span<const IntervalList> leafLists
     return stack[0];
 }
 
+bool CsgProgram::contains(std::span<const char> inside, std::vector<char>& stack) const {
+    stack.clear();
+    for (const Instruction& instruction : code_) {
+        switch (instruction.op) {
+            case Op::Leaf: stack.push_back(inside[static_cast<std::size_t>(instruction.operand)]); break;
+            case Op::Empty: stack.push_back(0); break;
+            case Op::Union:
+            case Op::Intersection:
+            case Op::Difference: {
+                const std::size_t base = stack.size() - static_cast<std::size_t>(instruction.operand);
+                char value = stack[base];
+                for (std::size_t k = base + 1; k < stack.size(); ++k) {
+                    if (instruction.op == Op::Union) value = value || stack[k];
+                    else if (instruction.op == Op::Intersection) value = value && stack[k];
+                    else value = value && !stack[k];
+                }
+                stack.resize(base + 1);
+                stack[base] = value;
+                break;
+            }
+        }
+    }
+    return !stack.empty() && stack.back() != 0;
+}
+
 }  // namespace strata::reference

@@ -118,6 +118,8 @@ struct Workspace {
     std::vector<int> touched;
     std::vector<std::size_t> order;  // hits by t
     std::vector<double> placed;      // per hit: the t of its group of coincident crossings
+    std::vector<char> inside;        // per leaf, while choosing the surface shown
+    std::vector<char> stack;         // CsgProgram::contains
     CsgProgram::Workspace evaluation;
 };
 
@@ -218,10 +220,11 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
                hits.end());
 
     // Coincident crossings (docs/algorithm.md, "Coincident surfaces"): in
-    // order along the ray, a crossing more than `coincidence` beyond the
-    // current group's first one starts the next group, and every crossing
-    // takes its group's first t. The tree then sees one place where the
-    // surfaces of several leaves were, as exact arithmetic would.
+    // order along the ray, crossings no more than `coincidence` apart belong
+    // to one group (a chain: each within the tolerance of the one before),
+    // and every crossing takes its group's first t. The tree then sees one
+    // place where the surfaces of several leaves were, as exact arithmetic
+    // would.
     std::vector<std::size_t>& order = workspace.order;
     order.resize(hits.size());
     for (std::size_t k = 0; k < hits.size(); ++k) order[k] = k;
@@ -230,9 +233,10 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
     });
     std::vector<double>& placed = workspace.placed;
     placed.resize(hits.size());
-    double anchor = -kInfinity;
+    double anchor = -kInfinity, previous = -kInfinity;
     for (std::size_t k : order) {
-        if (!(hits[k].t - anchor <= coincidence)) anchor = hits[k].t;
+        if (!(hits[k].t - previous <= coincidence)) anchor = hits[k].t;
+        previous = hits[k].t;
         placed[k] = anchor;
     }
 
@@ -252,34 +256,70 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
 
     const std::optional<FirstChange> change =
         firstChange(program.evaluate(workspace.leafLists, workspace.evaluation));
+    // Each leaf's membership just before the change's group, while the lists are at hand.
+    std::vector<char>& inside = workspace.inside;
+    inside.assign(program.leafCount(), 0);
+    if (change) {
+        for (int leaf : workspace.touched) {
+            for (const Interval& interval : workspace.leafLists[static_cast<std::size_t>(leaf)]) {
+                if (interval.begin < change->t && change->t <= interval.end) inside[static_cast<std::size_t>(leaf)] = 1;
+            }
+        }
+    }
     for (int leaf : workspace.touched) workspace.leafLists[static_cast<std::size_t>(leaf)].clear();
     workspace.touched.clear();
     if (!change) return miss;
 
-    // The surface shown where the result changes: of the crossings in that
-    // group, one whose facing changes its leaf as the result changes (the
-    // result's own face), else one facing the other way (a subtracted face,
-    // its normal flipped); the lowest leaf, then the nearest. The GPU
-    // evaluator chooses by the same rule.
-    const RawHit* chosen = nullptr;
-    bool flip = false;
-    for (const bool sameWay : {true, false}) {
-        for (std::size_t k : order) {
-            if (placed[k] != change->t || (hits[k].entering == change->resultEnters) != sameWay) continue;
-            if (!chosen || hits[k].leaf < chosen->leaf) chosen = &hits[k];
+    // The surface shown, by the GPU evaluator's rule (evaluate.frag): the
+    // group's crossings in order along the ray, the tree asked after each t;
+    // the first after which the result differs from before the group marks
+    // the face (crossings chained within a quarter of the tolerance) whose
+    // crossing is shown: one whose facing changes its leaf as the result
+    // changes, else one facing the other way (its normal flipped); the
+    // lowest leaf, then the nearest.
+    const bool resultBefore = !change->resultEnters;
+    const double faceTolerance = coincidence * 0.25;
+    const RawHit* pick = nullptr;
+    bool pickSame = false, changed = false;
+    double faceEnd = -kInfinity;
+    for (std::size_t at = 0; at < order.size();) {
+        if (placed[order[at]] != change->t) {
+            ++at;
+            continue;
         }
-        if (chosen) {
-            flip = !sameWay;
-            break;
+        std::size_t next = at;
+        bool done = false;
+        for (; next < order.size() && hits[order[next]].t == hits[order[at]].t; ++next) {
+            const RawHit& hit = hits[order[next]];
+            if (placed[order[next]] != change->t) continue;
+            inside[static_cast<std::size_t>(hit.leaf)] ^= 1;
+            if (hit.t - faceEnd > faceTolerance) {
+                if (changed) {
+                    done = true;
+                    continue;
+                }
+                pick = nullptr;
+            }
+            if (done) continue;
+            faceEnd = hit.t;
+            const bool same = hit.entering == change->resultEnters;
+            if (!pick || (same && !pickSame) ||
+                (same == pickSame && (hit.leaf < pick->leaf || (hit.leaf == pick->leaf && hit.t < pick->t)))) {
+                pick = &hit;
+                pickSame = same;
+            }
         }
+        if (done) break;
+        if (program.contains(inside, workspace.stack) != resultBefore) changed = true;
+        at = next;
     }
-    if (!chosen) return miss;  // cannot happen: the change has a crossing of its group
-    const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(chosen->leaf)];
+    if (!pick) return miss;  // cannot happen: the change has a crossing of its group
+    const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(pick->leaf)];
     RayHit result;
-    result.t = chosen->t;
-    result.leaf = chosen->leaf;
-    result.normal = geometry.normals[chosen->triangle];
-    result.cut = flip;
+    result.t = pick->t;
+    result.leaf = pick->leaf;
+    result.normal = geometry.normals[pick->triangle];
+    result.cut = !pickSame;
     if (result.cut) result.normal = -result.normal;
     return result;
 }

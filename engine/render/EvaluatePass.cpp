@@ -180,9 +180,8 @@ EvaluatePass::BlockTree EvaluatePass::registerTree(const std::vector<std::uint32
     for (std::size_t bit = 0; bit < used.size(); ++bit) {
         const std::uint32_t operand = used[bit];
         for (int layer = 0; layer < operandLayers[operand].count; ++layer) {
-            const unsigned info =
-                static_cast<unsigned>(bit) | (layer == 0 ? 1u << shader::kSlotFirstLayerBit : 0u);
-            data.literals.emplace_back(static_cast<unsigned>(operandLayers[operand].first + layer), info,
+            data.literals.emplace_back(static_cast<unsigned>(operandLayers[operand].first + layer),
+                                       static_cast<unsigned>(bit),
                                        static_cast<unsigned>(operandLeaf_[operand]), 0u);
         }
     }

@@ -45,6 +45,22 @@ float nextSurface(uvec4 literal, inout int cursor) {
     return kInfinity;
 }
 
+// Whether the literal's operand has an odd number of surfaces here: a layer
+// holds two, or one where its near and far sides are one surface, and the
+// first empty layer ends the list.
+bool surfaceCountIsOdd(uvec4 literal) {
+    int first = int(literal.x);
+    int n = int(literal.y & kLayerCountMask);
+    bool odd = false;
+    for (int j = 0; j < n; ++j) {
+        --budget;
+        vec2 layer = texelFetch(uLayers, ivec3(pixel, first + j), 0).rg;
+        if (-layer.r >= kClearedDepth) break;
+        if (!(layer.g > -layer.r)) odd = !odd;
+    }
+    return odd;
+}
+
 uint trueChildren[MAX_LIVE];  // per inner node
 
 // Live operands: slot s holds an operand that still has surfaces ahead.
@@ -112,8 +128,8 @@ void siftDown(int i) {
 }
 
 // Every operand outside, then each operand that has a surface here in a
-// slot of the heap at its first surface; a back face first means inside
-// from the start.
+// slot of the heap at its first surface; an odd number of surfaces means
+// inside from the start (evaluate.frag, "inside at the start").
 void startWalk(uvec4 block) {
     // Every operand outside: the counts the CPU worked out for that.
     for (uint n = 0u; n < block.w; ++n) trueChildren[n] = blockNodes[nodeBase + n].w;
@@ -135,7 +151,7 @@ void startWalk(uvec4 block) {
         slotEntry[s] = block.x + i;
         slotLiterals[s] = run;
         slotInside[s] = false;
-        if (isExit(d)) setInside(s, true);
+        if (surfaceCountIsOdd(literal)) setInside(s, true);
         heapDepth[s] = d;
         heapSlot[s] = s;
     }
@@ -150,16 +166,30 @@ void main() {
     startWalk(block);
 
     bool inside = block.y > 0u && nodeValue(0u);
-    while (heapSize > 0) {
+    // Surface by surface in depth order, the tree asked after each depth; a
+    // surface beyond the cluster's reach (the tolerance past its last
+    // surface) closes it, and the tree's answer after the whole cluster
+    // decides (evaluate.frag).
+    float reach = -kInfinity;
+    bool open = false;
+    while (true) {
         if (budget < 0) {
             writeUnresolved();
             return;
         }
-        float limit = untagged(heapDepth[0]) + uCoincidence;
-        // Every surface of the cluster (evaluate.frag) toggles its operand
-        // before the tree is asked again.
-        startCluster();
-        while (heapSize > 0 && untagged(heapDepth[0]) <= limit) {
+        float nearest = heapSize > 0 ? heapDepth[0] : kInfinity;
+        if (nearest == kInfinity || untagged(nearest) > reach) {
+            if (open && nodeValue(0u) != inside) {
+                writeChosenSurface(!inside);
+                return;
+            }
+            if (nearest == kInfinity) break;
+            startCluster();
+            open = true;
+        }
+        float depth = untagged(nearest);
+        reach = depth + uCoincidence;
+        while (heapSize > 0 && untagged(heapDepth[0]) == depth) {
             --budget;
             int s = heapSlot[0];
             setInside(s, !slotInside[s]);
@@ -177,12 +207,7 @@ void main() {
             }
             siftDown(0);
         }
-
-        bool now = nodeValue(0u);
-        if (now != inside) {
-            writeChosenSurface(now);
-            return;
-        }
+        noteResult(nodeValue(0u), inside);
     }
     discard;
 }

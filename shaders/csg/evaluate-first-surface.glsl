@@ -6,7 +6,7 @@
 // lie in one cluster (evaluate.frag: a ray grazing an edge, a sheet thinner
 // than the tolerance) the operand is entered and left at once and the
 // result shows nothing. This is the
-// register form's walk for one slot, step for step. Nothing to flip.
+// register form's walk for one slot, step for step.
 //
 // blocks[b]: x the operand's layer in uLayers, y its tree leaf, z (with leaf
 // marks) the leaf's stencilMark for a front face; nothing in blockOperands.
@@ -17,12 +17,19 @@ void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
     float first = -layer.r;
-    if (first >= kClearedDepth || (layer.g > first && untagged(layer.g) <= untagged(first) + uCoincidence)) discard;
-    int face = faceBit(isExit(first), false);
+    bool two = layer.g > first;
+    if (first >= kClearedDepth || (two && untagged(layer.g) <= untagged(first) + uCoincidence)) discard;
+    // Two surfaces: the ray starts outside and enters here; one: it starts
+    // inside and leaves (evaluate.frag, "inside at the start"). A surface
+    // whose facing says otherwise (rounding on a sliver triangle) is the
+    // result's face flipped, as the other forms have it.
+    bool exit = isExit(first);
+    bool flip = exit == two;
+    int face = faceBit(exit, flip);
     bool grouped = isGroup(int(vRecord.y));
-    int leaf = surfaceLeaf(int(vRecord.y), face != 0);
+    int leaf = surfaceLeaf(int(vRecord.y), exit);
     outDepth = first;
-    outLeaf = leafCode(leaf, false);
+    outLeaf = leafCode(leaf, flip);
     if (face != 0 || grouped) atomicOr(shownFaces[leaf], 1u << face);
 #ifdef LEAF_MARKS
     // The record carries the leaf's mark, but not a group member's.

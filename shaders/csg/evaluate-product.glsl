@@ -18,26 +18,26 @@
 // - P true before every surface: P turns false at the earliest step where
 //   some literal stops being content, one pass.
 // With coincident surfaces (evaluate.frag) the result is asked only after
-// whole clusters: the answer is the first cluster [a, a + tolerance] after
-// which P differs from its start. The seek finds the first depth X where P
-// differs at all; the cluster holding X is found by walking back over
-// surfaces closer than the tolerance to the chain's start and forward again
-// from cluster to cluster; if P at that cluster's end is back to its start
-// (X lay on a sliver thinner than the tolerance), the seek goes on from the
-// next cluster. The surface written is chosen among the cluster's by the
-// rule of evaluate.frag.
+// whole clusters: the answer is the first cluster after which P differs
+// from its start. The seek finds the first depth X where P differs at all;
+// the cluster holding X runs from the surfaces before X while each lies
+// within the tolerance of the next, to those after X while each lies within
+// the tolerance of the one before; if P at that cluster's end is back to its
+// start (X lay on a sliver thinner than the tolerance), the seek goes on
+// from the next cluster. The surface written is chosen among the cluster's
+// by the rule of evaluate.frag.
 //
 // Cost: n literal visits when the answer is the first surface, up to n per
 // move otherwise (the slots of one pixel that move d in slot order cost one
 // round in all: a stack of subtracted solids listed front to back), and
-// four more rounds to place the cluster and choose its surface.
+// about six more rounds to place the cluster and choose its surface.
 
 const float kNone = -kInfinity;  // d before every surface
 
 // An operand's surfaces along the ray from its one layer: `first` and
 // `second` (untagged; +inf where missing) and its membership before the
-// first, between them and after the second. An operand whose first surface is
-// a back face was inside from the ray's start.
+// first, between them and after the second. An operand with one surface
+// here was inside from the ray's start (evaluate.frag, "inside at the start").
 struct Steps {
     float first, second;              // untagged
     float firstTagged, secondTagged;  // as peeled
@@ -54,9 +54,9 @@ Steps stepsOf(uint layer) {
     s.secondTagged = two ? texel.g : kInfinity;
     s.first = untagged(s.firstTagged);
     s.second = untagged(s.secondTagged);
-    s.before = hit && isExit(near);
-    s.between = hit && !isExit(near);
-    s.after = two ? !isExit(texel.g) : s.between;
+    s.before = hit && !two;
+    s.between = two;
+    s.after = false;
     return s;
 }
 
@@ -156,8 +156,7 @@ void main() {
             d = least;
         }
         if (d == kInfinity) discard;
-        // The cluster holding d: back to the start of its chain of close
-        // surfaces, then forward cluster by cluster.
+        // The cluster holding d: its chain of close surfaces both ways.
         float anchor = d;
         while (true) {
             if (spent()) return;
@@ -165,21 +164,28 @@ void main() {
             if (below == kNone || anchor - below > tolerance) break;
             anchor = below;
         }
-        while (d - anchor > tolerance) {
+        float end = d;
+        while (true) {
             if (spent()) return;
-            anchor = surfaceAbove(block, anchor + tolerance);
+            float above = surfaceAbove(block, end);
+            if (above == kInfinity || above - end > tolerance) break;
+            end = above;
         }
-        float end = anchor + tolerance;
         if (productAt(block, end) == target) {
             // The result is P for an AND, !P for an OR; it is entered where it turns true.
             bool isOr = block.z != 0u;
             bool resultInside = startsTrue != isOr;
+            // The cluster's depths in order, P asked after each (evaluate.frag).
             startCluster();
-            for (uint j = 0u; j < n; ++j) {
-                Steps s = stepsOf(blockOperands[block.x + j].x);
-                int leaf = leafOfSlot(block, j);
-                if (s.first >= anchor && s.first <= end) considerSurface(s.firstTagged, leaf, resultInside);
-                if (s.second >= anchor && s.second <= end) considerSurface(s.secondTagged, leaf, resultInside);
+            for (float x = anchor; x <= end; x = surfaceAbove(block, x)) {
+                if (spent()) return;
+                for (uint j = 0u; j < n; ++j) {
+                    Steps s = stepsOf(blockOperands[block.x + j].x);
+                    int leaf = leafOfSlot(block, j);
+                    if (s.first == x) considerSurface(s.firstTagged, leaf, resultInside);
+                    if (s.second == x) considerSurface(s.secondTagged, leaf, resultInside);
+                }
+                noteResult(productAt(block, x) != isOr, resultInside);
             }
             writeChosenSurface(!resultInside);
             return;

@@ -9,16 +9,14 @@
 // An operand's inside bit follows its surfaces as the array form's walk
 // does: each surface of a cluster (evaluate.frag) toggles it, so a pair
 // within one cluster (its layers meet there, or a ray grazes its edge)
-// changes nothing. An operand whose first layer's near surface is a back
-// face starts inside.
+// changes nothing. An operand with an odd number of surfaces starts inside.
 //
 // blocks[b]: x first slot in blockOperands, y slot count, z the truth table
 // (bit m: the result when operand i is inside exactly for the bits i of m)
 // for 4 slots, or for 8 the index in blockNodes of its 256 bits (two uvec4,
 // bit m in word m / 32). blockOperands[x + i]: x the slot's layer in
-// uLayers, y its operand's bit in the table (kSlotOperandMask), with bit
-// kSlotFirstLayerBit set on the operand's first layer, z its tree leaf. The
-// vertex stage hands the fragments the slots packed (blocks.glsl).
+// uLayers, y its operand's bit in the table (kSlotOperandMask), z its tree
+// leaf. The vertex stage hands the fragments the slots packed (blocks.glsl).
 
 // Slot c of a bank (slot i of the block): its layer's near and far surface,
 // where the layer caught any.
@@ -31,16 +29,16 @@
         }                                                                                   \
     }
 
-// Slot c's next surface, where it lies in the cluster (depth <= `limit`):
-// it toggles its operand, is considered for the surface shown, and the slot
-// moves on to its far surface, or is done.
+// Slot c's next surface, where it lies at the nearest depth left (`depth`,
+// untagged): it toggles its operand, is considered for the surface shown,
+// and the slot moves on to its far surface, or is done.
 #define TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)                     \
-        if (head[c] != kInfinity && untagged(head[c]) <= limit) {                \
+        if (head[c] != kInfinity && untagged(head[c]) == depth) {                \
             toggled ^= bits[c];                                                  \
             considerSurface(head[c], leaf[c], inside);                           \
             head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
         }
-// Both of slot c's surfaces can lie in one cluster (a ray grazing its edge).
+// Both of slot c's surfaces can lie at one depth (a ray grazing its edge).
 #define TAKE_SLOT(head, nearSide, farSide, leaf, bits, c)    \
         TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c) \
         TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)
@@ -70,28 +68,38 @@ void main() {
     LOAD_SLOT(nearB, farB, vLayerB, 2, 6) LOAD_SLOT(nearB, farB, vLayerB, 3, 7)
 #endif
 
-    // An operand whose first surface is a back face is inside from the start
-    // (the near side of its first layer, flagged in the slot's info).
-    const uint kFirstLayerShift = kSlotLayerBits + kSlotFirstLayerBit;
-    uvec4 starts = bitA * (floatBitsToUint(nearA) & (vLayerA >> kFirstLayerShift) & 1u);
-    uint insideBits = starts.x | starts.y | starts.z | starts.w;
+    // An operand is inside from the start when an odd number of its
+    // surfaces lie ahead (evaluate.frag, "inside at the start").
+    uvec4 odd = bitA * ((uvec4(lessThan(nearA, vec4(kInfinity))) + uvec4(lessThan(farA, vec4(kInfinity)))) & 1u);
+    uint insideBits = odd.x ^ odd.y ^ odd.z ^ odd.w;
     vec4 headA = nearA;
 #if MAX_LIVE > 4
-    starts = bitB * (floatBitsToUint(nearB) & (vLayerB >> kFirstLayerShift) & 1u);
-    insideBits |= starts.x | starts.y | starts.z | starts.w;
+    odd = bitB * ((uvec4(lessThan(nearB, vec4(kInfinity))) + uvec4(lessThan(farB, vec4(kInfinity)))) & 1u);
+    insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
     vec4 headB = nearB;
 #endif
     bool inside = RESULT(insideBits);
+    // Surface by surface in depth order; a surface beyond the cluster's
+    // reach (the tolerance past its last surface) closes it, and the tree's
+    // answer after the whole cluster decides.
+    float reach = -kInfinity;
+    bool open = false;
     while (true) {
         float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
 #if MAX_LIVE > 4
         nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
 #endif
-        if (nearest == kInfinity) break;
-        float limit = untagged(nearest) + uCoincidence;
-        // Every surface of the cluster changes its operand's state before the
-        // tree is asked again.
-        startCluster();
+        if (nearest == kInfinity || untagged(nearest) > reach) {
+            if (open && RESULT(insideBits) != inside) {
+                writeChosenSurface(!inside);
+                return;
+            }
+            if (nearest == kInfinity) break;
+            startCluster();
+            open = true;
+        }
+        float depth = untagged(nearest);
+        reach = depth + uCoincidence;
         uint toggled = 0u;  // operand bits
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 2) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 3)
@@ -100,11 +108,7 @@ void main() {
         TAKE_SLOT(headB, nearB, farB, leafB, bitB, 2) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 3)
 #endif
         insideBits ^= toggled;
-        bool now = RESULT(insideBits);
-        if (now != inside) {
-            writeChosenSurface(now);
-            return;
-        }
+        noteResult(RESULT(insideBits), inside);
     }
     discard;
 }

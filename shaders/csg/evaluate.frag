@@ -95,53 +95,88 @@ int surfaceLeaf(int leaf, bool exit) {
 }
 #endif
 
-// Coincident surfaces (docs/algorithm.md): surfaces of any operands whose
-// untagged depths lie within uCoincidence of the first of them are one place
-// along the ray, a cluster: in depth order, the first surface not yet walked
-// opens a cluster that takes every surface up to its depth + uCoincidence.
-// Each surface of a cluster toggles its operand (a pair of one operand's
-// surfaces cancels: a sliver thinner than the tolerance is no solid), and
-// only then is the tree asked again. The CPU reference clusters the same way.
+// Inside at the start: an operand is inside where the ray starts when an
+// odd number of its surfaces lie ahead, as the reference counts crossings.
+// The facing of its first surface would say the same in exact arithmetic,
+// but where a ray grazes an operand's silhouette, rounding can put its exit
+// a hair before its entry, and the operand would then read as inside all
+// along: a pinhole through the surface in front of it.
+//
+// Coincident surfaces (docs/algorithm.md): surfaces of any operands that
+// follow each other along the ray with untagged depths no more than
+// uCoincidence apart are one place, a cluster (a chain: each surface within
+// the tolerance of the one before it, so two surfaces that rounding alone
+// parts are never split). Each surface of a cluster toggles its operand (a
+// pair of one operand's surfaces cancels: a sliver thinner than the
+// tolerance is no solid), and only then is the tree asked again. The CPU
+// reference clusters the same way.
 layout(location = kEvaluateCoincidence) uniform float uCoincidence;
 
-// The surface shown where the result changes, chosen among the cluster's:
-// one whose facing changes its operand as the result changes (the result's
-// own face), else one facing the other way (a subtracted face, flipped); of
-// those the lowest tree leaf, then the nearest. The reference's rule too: a
-// face that several leaves share shows the same leaf from every view.
+// The surface shown where the result changes, chosen among the cluster's.
+// Its surfaces are taken in depth order, the tree asked after each depth:
+// the first surface after which the result differs from its start is
+// where exact arithmetic would see it change (at the seam of two touching
+// blocks, the outer face; at the rim of an intersection, the member
+// entered last). Surfaces within a quarter of the tolerance of each other
+// are one face as far as rounding can tell (a chain again); of the face
+// holding that first change, the surface shown is one whose facing changes
+// its operand as the result changes (the result's own face), else one
+// facing the other way (a subtracted face, flipped); the lowest tree leaf,
+// then the nearest. So a face that several leaves share shows one leaf and
+// one colour from every view. The reference's rule too.
 const int kNoLeaf = 0x7fffffff;
-int sameLeaf, otherLeaf;
-float sameSurface, otherSurface;  // tagged depths
+bool changed;           // the result has differed from its start in this cluster
+bool chosen;            // the face of the first change has ended: pick is final
+float faceEnd;          // untagged depth of the current face's last surface
+int pickLeaf;           // the current face's best surface so far
+float pickSurface;      // its tagged depth
+bool pickSame;          // it changes its operand as the result changes
 
 void startCluster() {
-    sameLeaf = otherLeaf = kNoLeaf;
+    changed = false;
+    chosen = false;
+    faceEnd = -kInfinity;
+    pickLeaf = kNoLeaf;
 }
 
-// A surface of the cluster: `tagged` its tagged depth, `leaf` its operand's
-// tree leaf; `resultInside` the result's membership before the cluster.
+// A surface of the cluster, in depth order: `tagged` its tagged depth,
+// `leaf` its operand's tree leaf; `resultInside` the result's membership
+// before the cluster.
 void considerSurface(float tagged, int leaf, bool resultInside) {
-    if (isExit(tagged) == resultInside) {
-        if (leaf < sameLeaf || (leaf == sameLeaf && tagged < sameSurface)) {
-            sameLeaf = leaf;
-            sameSurface = tagged;
+    if (chosen) return;
+    float depth = untagged(tagged);
+    if (depth - faceEnd > uCoincidence * 0.25) {
+        if (changed) {  // the face of the first change is complete
+            chosen = true;
+            return;
         }
-    } else if (leaf < otherLeaf || (leaf == otherLeaf && tagged < otherSurface)) {
-        otherLeaf = leaf;
-        otherSurface = tagged;
+        pickLeaf = kNoLeaf;
+    }
+    faceEnd = depth;
+    bool same = isExit(tagged) == resultInside;
+    bool better = pickLeaf == kNoLeaf || (same && !pickSame) ||
+                  (same == pickSame && (leaf < pickLeaf || (leaf == pickLeaf && tagged < pickSurface)));
+    if (better) {
+        pickLeaf = leaf;
+        pickSurface = tagged;
+        pickSame = same;
     }
 }
 
-// Writes the chosen surface of the cluster where the result was entered
-// (`entered`) or left: its own tagged depth (the normal pass finds its
-// fragment by it) and its leaf code (leafCode in interface.glsl: flipped
-// where its operand changes against the result, as a subtracted one does).
+// After the surfaces at one depth: the result's membership now.
+void noteResult(bool now, bool resultInside) {
+    if (now != resultInside) changed = true;
+}
+
+// Writes the chosen surface where the result was entered (`entered`) or
+// left: its own tagged depth (the normal pass finds its fragment by it) and
+// its leaf code (leafCode in interface.glsl: flipped where its operand
+// changes against the result, as a subtracted one does).
 void writeChosenSurface(bool entered) {
-    bool same = sameLeaf != kNoLeaf;
-    float surface = same ? sameSurface : otherSurface;
-    bool exit = isExit(surface);
+    bool exit = isExit(pickSurface);
     bool flip = exit == entered;
-    int leaf = surfaceLeaf(same ? sameLeaf : otherLeaf, exit);
-    outDepth = surface;
+    int leaf = surfaceLeaf(pickLeaf, exit);
+    outDepth = pickSurface;
     outLeaf = leafCode(leaf, flip);
     int face = faceBit(exit, flip);
     atomicOr(shownFaces[leaf], 1u << face);

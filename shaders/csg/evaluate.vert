@@ -31,7 +31,7 @@ void main() {
     vRecord = blocks[block];
 #ifdef REGISTER_FORM
     // The register form's slots (unused ones are never read): the layer in
-    // the low kSlotLayerBits bits, the operand's bit and first-layer flag above.
+    // the low kSlotLayerBits bits, the operand's bit above.
     uvec4 slot;
 #define SLOT(layers, leaves, c, i)                                  \
     slot = blockOperands[vRecord.x + min(uint(i), vRecord.y - 1u)]; \

@@ -110,12 +110,10 @@ SHARED uint kNoMember = 0xffu;
 SHARED int kBlock = 16;  // pixels on a side of a block
 
 // The register form's slots: the layer in the low kSlotLayerBits bits, and
-// above them the slot's operand's bit in the truth table (kSlotOperandMask),
-// and bit kSlotFirstLayerBit set on the operand's first layer.
+// above them the slot's operand's bit in the truth table (kSlotOperandMask).
 SHARED uint kSlotLayerBits = 16u;
 SHARED uint kSlotLayerMask = (1u << kSlotLayerBits) - 1u;
 SHARED uint kSlotOperandMask = 7u;
-SHARED uint kSlotFirstLayerBit = 3u;
 
 // The array form's literals: y holds the operand's layer count below
 // kRunShift, and on an operand's first literal the number of its literals

@@ -115,8 +115,10 @@ void expectSameFrame(const render::Frame& fast, const render::Frame& general, co
         if (!same && ++differ <= 3) {
             ADD_FAILURE() << what << ", pixel " << p % static_cast<std::size_t>(fast.width) << ","
                           << p / static_cast<std::size_t>(fast.width) << ": fast form leaf " << fast.leaf[p]
-                          << " depth " << fast.depth[p] << ", array form leaf " << general.leaf[p] << " depth "
-                          << general.depth[p];
+                          << " depth " << fast.depth[p] << " normal " << fast.normal[p].x << "," << fast.normal[p].y
+                          << "," << fast.normal[p].z << ", array form leaf " << general.leaf[p] << " depth "
+                          << general.depth[p] << " normal " << general.normal[p].x << "," << general.normal[p].y << ","
+                          << general.normal[p].z << " form " << static_cast<int>(fast.blockForms[p]);
         }
     }
     EXPECT_EQ(differ, 0u) << what;
@@ -130,6 +132,7 @@ void expectSameFrame(const render::Frame& fast, const render::Frame& general, co
 std::pair<render::Frame, render::Frame> fastAndGeneral(render::Renderer& renderer, const render::Camera& camera) {
     render::RenderSettings settings;
     settings.groupConvexIntersections = false;
+    settings.keepBlockForms = true;
     render::Frame fast = renderer.render(camera, settings);
     settings.generalEvaluator = true;
     return {std::move(fast), renderer.render(camera, settings)};

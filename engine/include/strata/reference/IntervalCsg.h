@@ -105,6 +105,10 @@ public:
     // (size leafCount()); lists of leaves not in leaves() are not read.
     const IntervalList& evaluate(std::span<const IntervalList> leafLists, Workspace& workspace) const;
 
+    // Membership at one point: inside[i] says whether tree.leaves[i] holds
+    // it (size leafCount()). `stack` is scratch space.
+    bool contains(std::span<const char> inside, std::vector<char>& stack) const;
+
 private:
     enum class Op { Leaf, Empty, Union, Intersection, Difference };
     struct Instruction {
