@@ -2,7 +2,9 @@
 // by the GPU path and by the CPU reference, compared per pixel (Compare.h).
 //
 //   AccuracyGLTest.MatchesTheReference/<shot>
-//       auto layers: every bound must hold.
+//       auto layers: every bound must hold. Besides coverage, depth, normal
+//       and leaf, the cut bit is compared (shownCut(): the GPU's, read back
+//       from its shading), so a non-edge pixel shaded in the wrong colour fails.
 //   AccuracyOneLayerGLTest.FailsOnNonConvexStacks/<shot>
 //       one peel layer per operand, on the shots flagged nonconvex-stack: the
 //       bounds must FAIL, so the suite proves it can see the bug the original
@@ -22,12 +24,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "Compare.h"
 #include "DiffImages.h"
@@ -97,9 +102,49 @@ Scene load(const Shot& shot) {
     return s;
 }
 
+// The GPU frame's cut bit, which render::Frame does not carry, read back
+// from its shading: the frame's own depth, normals and leaves shaded once as
+// if no surface were cut and once as if every one were (Renderer::shade, the
+// same pass as render()'s), and each pixel takes the bit whose shading is its
+// colour. Where the two shadings are the same (the leaf's color() serves
+// both, or the scheme's face and cut-face colours are alike) the bit does not
+// show; there it is the reference's, so it cannot disagree.
+struct ShownCut {
+    std::vector<std::uint8_t> cut;  // W*H
+    std::size_t shown = 0;          // pixels where the bit changes the colour
+    std::size_t inexact = 0;        // of those, pixels whose colour is neither shading exactly
+};
+
+ShownCut shownCut(const render::Camera& camera, const render::Frame& frame, std::span<const std::uint8_t> referenceCut) {
+    const std::size_t n = frame.leaf.size();
+    const std::vector<std::uint8_t> none(n, 0), all(n, 1);
+    const render::RenderSettings settings;
+    const render::Frame uncut = gl().renderer.shade(camera, settings, {frame.depth, frame.normal, frame.leaf, none});
+    const render::Frame cut = gl().renderer.shade(camera, settings, {frame.depth, frame.normal, frame.leaf, all});
+    ShownCut out;
+    out.cut.assign(referenceCut.begin(), referenceCut.end());
+    for (std::size_t k = 0; k < n; ++k) {
+        if (frame.leaf[k] < 0) continue;
+        int toUncut = 0, toCut = 0;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const int v = frame.rgba[4 * k + c];
+            toUncut += std::abs(v - uncut.rgba[4 * k + c]);
+            toCut += std::abs(v - cut.rgba[4 * k + c]);
+        }
+        bool same = true;
+        for (std::size_t c = 0; c < 3; ++c) same = same && uncut.rgba[4 * k + c] == cut.rgba[4 * k + c];
+        if (same) continue;
+        ++out.shown;
+        if (toUncut != 0 && toCut != 0) ++out.inexact;
+        out.cut[k] = toCut < toUncut ? 1 : 0;
+    }
+    return out;
+}
+
 struct Outcome {
     render::Camera camera;
     render::Frame frame;
+    ShownCut gpuCut;
     reference::ReferenceImage reference;
     accuracy::CompareResult result;
     double referenceMs = 0.0;
@@ -121,7 +166,8 @@ Outcome run(const Shot& shot, const Scene& scene, const reference::ReferenceImag
         o.reference = reference::renderReference(scene.tree, scene.model, o.camera);
         o.referenceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
-    o.result = accuracy::compare(o.camera, accuracy::view(o.frame), accuracy::view(o.reference),
+    o.gpuCut = shownCut(o.camera, o.frame, o.reference.cut);
+    o.result = accuracy::compare(o.camera, accuracy::view(o.frame, o.gpuCut.cut), accuracy::view(o.reference),
                                  accuracy::optionsForScene(scene.model.bounds.diagonal()));
     return o;
 }
@@ -143,7 +189,7 @@ void removeStaleImages(const std::string& prefix) {
 // Writes the pictures of a comparison; returns a line naming them.
 std::string writeImages(const std::string& prefix, const Outcome& o) {
     const accuracy::ComparisonImages p = accuracy::writeComparisonImages(
-        prefix, o.camera, accuracy::view(o.frame), accuracy::view(o.reference), o.result);
+        prefix, o.camera, accuracy::view(o.frame, o.gpuCut.cut), accuracy::view(o.reference), o.result);
     const std::string shaded = prefix + "-shaded.png";
     io::writePng(shaded, o.frame.width, o.frame.height, o.frame.rgba);
     return "images: " + p.gpu + " " + p.reference + " " + p.diff + " " + p.strip + " " + shaded;
@@ -155,8 +201,9 @@ void appendReportRow(const Shot& shot, const std::string& layers, const Outcome&
     std::ofstream out(path, std::ios::app);
     if (fresh) {
         out << "shot\tscene\tfamily\tprojection\tsize\tlayers\tmax_layers\tpixels\tcovered\tedge_pixels\t"
-               "nonedge_coverage\tnonedge_depth\tnonedge_normal\tnonedge_normal_neighbour\tnonedge_leaf\t"
-               "agreement\tedge_disagree\tedge_disagree_fraction\tmax_dz_over_tol\tmax_normal_deg\tgpu_ms\treference_ms\tpassed\tflags\n";
+               "nonedge_coverage\tnonedge_depth\tnonedge_normal\tnonedge_normal_neighbour\tnonedge_leaf\tnonedge_cut\t"
+               "agreement\tedge_disagree\tedge_disagree_fraction\tmax_dz_over_tol\tmax_normal_deg\tcut_shown\tcut_inexact\t"
+               "gpu_ms\treference_ms\tpassed\tflags\n";
     }
     const accuracy::CompareResult& r = o.result;
     std::string flags;
@@ -164,14 +211,14 @@ void appendReportRow(const Shot& shot, const std::string& layers, const Outcome&
     char row[1024];
     std::snprintf(row, sizeof row,
                   "%s\t%s\t%s\t%s\t%dx%d\t%s\t%d\t%zu\t%zu\t%zu\t"
-                  "%zu\t%zu\t%zu\t%zu\t%zu\t%.6f\t%zu\t"
-                  "%.6f\t%.4g\t%.4g\t%.1f\t%.1f\t%s\t%s\n",
+                  "%zu\t%zu\t%zu\t%zu\t%zu\t%zu\t%.6f\t%zu\t"
+                  "%.6f\t%.4g\t%.4g\t%zu\t%zu\t%.1f\t%.1f\t%s\t%s\n",
                   shot.name.c_str(), shot.scene.c_str(), shot.family.c_str(),
                   o.camera.projection == render::Projection::Perspective ? "p" : "o", r.width, r.height,
                   layers.c_str(), maxLayers(o.frame), r.pixels, r.coveredReference, r.edgePixels,
-                  r.nonEdge.coverage, r.nonEdge.depth, r.nonEdge.normal, r.nonEdgeNeighbourNormal, r.nonEdge.leaf,
+                  r.nonEdge.coverage, r.nonEdge.depth, r.nonEdge.normal, r.nonEdgeNeighbourNormal, r.nonEdge.leaf, r.nonEdge.cut,
                   r.agreement(), r.edge.total(), r.edgeDisagreement(), r.maxDepthError / r.options.depthTolerance, r.maxNormalErrorDegrees,
-                  o.frame.stats.totalMs, o.referenceMs, r.passed() ? "yes" : "no", flags.c_str());
+                  o.gpuCut.shown, o.gpuCut.inexact, o.frame.stats.totalMs, o.referenceMs, r.passed() ? "yes" : "no", flags.c_str());
     out << row;
 }
 
@@ -181,7 +228,7 @@ void report(const Shot& shot, const std::string& layers, const Outcome& o) {
     const accuracy::RgbaImage images[3] = {
         accuracy::falseColour(o.camera, accuracy::view(o.frame)),
         accuracy::falseColour(o.camera, accuracy::view(o.reference)),
-        accuracy::heatMap(o.camera, accuracy::view(o.frame), accuracy::view(o.reference), o.result)};
+        accuracy::heatMap(o.camera, accuracy::view(o.frame, o.gpuCut.cut), accuracy::view(o.reference), o.result)};
     std::filesystem::create_directories(reportDir());
     std::ofstream(std::string(reportDir()) + "/renderer.txt") << gl().context.renderer() << "\n";
     accuracy::writePng(std::string(reportDir()) + "/" + shot.name + suffix + ".png", accuracy::sideBySide(images));
@@ -207,7 +254,8 @@ TEST_P(AccuracyGLTest, MatchesTheReference) {
     removeStaleImages(prefix);
     if (!o.result.passed()) {
         ADD_FAILURE() << where(shot) << " (" << shot.name << "), auto layers (at most " << maxLayers(o.frame)
-                      << " per operand): " << o.result.summary() << "\n"
+                      << " per operand): " << o.result.summary() << "; cut bit shown on " << o.gpuCut.shown
+                      << " pixels (" << o.gpuCut.inexact << " matching neither shading exactly)\n"
                       << writeImages(prefix, o);
     }
 }

@@ -108,7 +108,8 @@ void checkImage(const AovView& image, const render::Camera& camera, const char* 
                     std::to_string(image.height) + ", the camera's " + std::to_string(camera.width) + "x" +
                     std::to_string(camera.height));
     }
-    if (image.depth.size() != n || image.normal.size() != n || image.leaf.size() != n) {
+    if (image.depth.size() != n || image.normal.size() != n || image.leaf.size() != n ||
+        (!image.cut.empty() && image.cut.size() != n)) {
         throw Error(std::string("accuracy: the ") + what + " image's AOVs do not hold W*H pixels");
     }
 }
@@ -121,14 +122,15 @@ std::string percent(double fraction) {
 
 }  // namespace
 
-AovView view(const render::Frame& frame) {
-    return {frame.width, frame.height, frame.depth, frame.normal, frame.leaf};
+AovView view(const render::Frame& frame, std::span<const std::uint8_t> cut) {
+    return {frame.width, frame.height, frame.depth, frame.normal, frame.leaf, cut};
 }
 
 AovView view(const reference::ReferenceImage& image) {
     static_assert(sizeof(int) == sizeof(std::int32_t));
     return {image.width, image.height, image.depth, image.normal,
-            std::span<const std::int32_t>(reinterpret_cast<const std::int32_t*>(image.leaf.data()), image.leaf.size())};
+            std::span<const std::int32_t>(reinterpret_cast<const std::int32_t*>(image.leaf.data()), image.leaf.size()),
+            image.cut};
 }
 
 CompareOptions optionsForScene(double boundsDiagonal) {
@@ -144,6 +146,7 @@ const char* verdictName(Verdict v) {
         case Verdict::Depth: return "depth";
         case Verdict::Normal: return "normal";
         case Verdict::Leaf: return "leaf";
+        case Verdict::Cut: return "cut";
     }
     return "?";
 }
@@ -155,6 +158,7 @@ void DisagreementCounts::add(Verdict v) {
         case Verdict::Depth: ++depth; break;
         case Verdict::Normal: ++normal; break;
         case Verdict::Leaf: ++leaf; break;
+        case Verdict::Cut: ++cut; break;
     }
 }
 
@@ -171,11 +175,11 @@ std::string CompareResult::summary() const {
     char buf[640];
     std::snprintf(buf, sizeof buf,
                   "%dx%d: non-edge agreement %s of %zu pixels (bound >= %s; disagreeing: %zu coverage, %zu depth, "
-                  "%zu normal (%zu a neighbour's), %zu leaf); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s); "
+                  "%zu normal (%zu a neighbour's), %zu leaf, %zu cut); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s); "
                   "max non-edge |dz| %.3g (tolerance %.3g), max normal error %.3g deg; covered %zu gpu / %zu "
                   "reference",
                   width, height, percent(agreement()).c_str(), nonEdgePixels, percent(options.minAgreement).c_str(),
-                  nonEdge.coverage, nonEdge.depth, nonEdge.normal, nonEdgeNeighbourNormal, nonEdge.leaf, edgePixels, edge.total(),
+                  nonEdge.coverage, nonEdge.depth, nonEdge.normal, nonEdgeNeighbourNormal, nonEdge.leaf, nonEdge.cut, edgePixels, edge.total(),
                   percent(edgeDisagreement()).c_str(), percent(options.maxEdgeDisagreement).c_str(), maxDepthError,
                   options.depthTolerance, maxNormalErrorDegrees, coveredGpu, coveredReference);
     std::string s = buf;
@@ -205,6 +209,7 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
     r.verdict.assign(r.pixels, Verdict::Agree);
     r.edgeMask.assign(r.pixels, 0);
 
+    const bool compareCut = !gpu.cut.empty() && !reference.cut.empty();
     const Geometry geometry(camera);
     markEdges(reference, geometry, options, r.edgeMask);
     markEdges(gpu, geometry, options, r.edgeMask);
@@ -233,6 +238,8 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
                     v = Verdict::Normal;
                 } else if (gpu.leaf[k] != reference.leaf[k]) {
                     v = Verdict::Leaf;
+                } else if (compareCut && (gpu.cut[k] != 0) != (reference.cut[k] != 0)) {
+                    v = Verdict::Cut;
                 }
             }
         }

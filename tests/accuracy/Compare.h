@@ -7,9 +7,13 @@
 //   depth     |dz| <= depthTolerance (1e-4 of the scene's bounding-box
 //             diagonal); a miss must have depth +inf;
 //   normal    within normalToleranceDegrees (1 degree);
-//   leaf      the same leaf id.
-// A pixel AGREES when all four hold. The first that fails names its verdict,
-// in that order.
+//   leaf      the same leaf id;
+//   cut       the same cut bit (the leaf acts subtracted there and its face
+//             takes the cut-face colour), where both images carry one.
+// A pixel AGREES when all five hold. The first that fails names its verdict,
+// in that order. The shaded colour is a function of the normal, the leaf and
+// the cut bit (and of the neighbours' normals: the outline), so a pixel that
+// agrees in all five is shaded alike.
 //
 // Edge pixels are counted apart: a pixel is an edge pixel when, in EITHER
 // image, it and one of its 8 neighbours are separated by a silhouette or a
@@ -52,9 +56,14 @@ struct AovView {
     std::span<const float> depth;        // W*H; +inf on a miss
     std::span<const glm::vec3> normal;   // W*H; unit, world space
     std::span<const std::int32_t> leaf;  // W*H; -1 on a miss
+    // W*H; 1 where the visible leaf acts subtracted (its cut-face colour
+    // shows). Empty: not known, and the cut is not compared.
+    std::span<const std::uint8_t> cut;
 };
 
-AovView view(const render::Frame& frame);
+// A Frame carries no cut bit (shownCut() reads it back from the shading);
+// `cut`, when given, is W*H values for it.
+AovView view(const render::Frame& frame, std::span<const std::uint8_t> cut = {});
 AovView view(const reference::ReferenceImage& image);
 
 struct CompareOptions {
@@ -72,12 +81,12 @@ struct CompareOptions {
 // The accuracy suite's bounds for a scene: depth tolerance 1e-4 of the bounding-box diagonal.
 CompareOptions optionsForScene(double boundsDiagonal);
 
-enum class Verdict : std::uint8_t { Agree, Coverage, Depth, Normal, Leaf };
+enum class Verdict : std::uint8_t { Agree, Coverage, Depth, Normal, Leaf, Cut };
 const char* verdictName(Verdict v);
 
 struct DisagreementCounts {
-    std::size_t coverage = 0, depth = 0, normal = 0, leaf = 0;
-    std::size_t total() const { return coverage + depth + normal + leaf; }
+    std::size_t coverage = 0, depth = 0, normal = 0, leaf = 0, cut = 0;
+    std::size_t total() const { return coverage + depth + normal + leaf + cut; }
     void add(Verdict v);
 };
 

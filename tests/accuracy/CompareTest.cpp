@@ -40,6 +40,7 @@ struct Synth {
     std::vector<float> depth = std::vector<float>(kSize * kSize, kInf);
     std::vector<glm::vec3> normal = std::vector<glm::vec3>(kSize * kSize, glm::vec3(0.0f));
     std::vector<std::int32_t> leaf = std::vector<std::int32_t>(kSize * kSize, -1);
+    std::vector<std::uint8_t> cut;  // empty: not carried
 
     std::size_t at(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
     void set(int i, int j, float z, glm::vec3 n, int id) {
@@ -53,7 +54,7 @@ struct Synth {
             for (int i = i0; i < i1; ++i) set(i, j, z, n, id);
         return *this;
     }
-    AovView view() const { return {width, height, depth, normal, leaf}; }
+    AovView view() const { return {width, height, depth, normal, leaf, cut}; }
 };
 
 CompareOptions options() {
@@ -179,6 +180,31 @@ TEST(AccuracyCompare, LeafIdsMustMatch) {
     const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
     EXPECT_EQ(r.nonEdge.leaf, std::size_t(kSize * kSize));
     EXPECT_FALSE(r.passed());
+}
+
+TEST(AccuracyCompare, TheCutBitIsComparedWhereBothImagesCarryIt) {
+    Synth ref, gpu;
+    ref.square(0, kSize, 0, kSize, 10.0f, {0, 0, 1}, 2);
+    ref.cut.assign(kSize * kSize, 1);
+    gpu = ref;
+    // A 20x20 patch shown as the leaf's own face where the reference cuts it:
+    // the same depth, normal and leaf, another colour. No edge: all 400 count.
+    for (int j = 30; j < 50; ++j)
+        for (int i = 30; i < 50; ++i) gpu.cut[gpu.at(i, j)] = 0;
+    CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.cut, 400u);
+    EXPECT_EQ(r.nonEdge.total(), 400u);
+    EXPECT_EQ(r.verdict[gpu.at(40, 40)], Verdict::Cut);
+    EXPECT_EQ(r.edgePixels, 0u);
+    EXPECT_FALSE(r.passed());
+    // Either image without the bit: it is not compared.
+    gpu.cut.clear();
+    r = compare(topCamera(), gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.total(), 0u);
+    EXPECT_TRUE(r.passed()) << r.summary();
+    // A bit per pixel or none.
+    gpu.cut.assign(10, 0);
+    EXPECT_THROW(compare(topCamera(), gpu.view(), ref.view(), options()), Error);
 }
 
 TEST(AccuracyCompare, AMissMustHaveInfiniteDepth) {

@@ -2,8 +2,9 @@
 // family there, and the properties that make each scene hard for image-space
 // CSG measured on the scenes themselves, not taken from generate.py's word:
 // tree depth, n-ary fan-out, mirrored and sheared leaves, the depth complexity
-// of imported meshes and of the operand each non-convex stack subtracts, and
-// cameras inside the model.
+// of imported meshes and of the operand each non-convex stack subtracts,
+// cameras inside the model, and leaves that touch exactly in the coincident
+// family.
 
 #include <gtest/gtest.h>
 
@@ -114,9 +115,9 @@ TEST(AccuracyCorpus, HasThirtyScenesOfOneToThreeSmallShotsEach) {
     for (const Shot& s : shots()) {
         ++perScene[s.scene];
         EXPECT_GE(s.camera.width, 96) << s.name;
-        EXPECT_LE(s.camera.width, 128) << s.name;
+        EXPECT_LE(s.camera.width, 200) << s.name;
         EXPECT_GE(s.camera.height, 96) << s.name;
-        EXPECT_LE(s.camera.height, 128) << s.name;
+        EXPECT_LE(s.camera.height, 150) << s.name;
     }
     EXPECT_GE(perScene.size(), 30u);
     for (const auto& [scene, count] : perScene) {
@@ -145,7 +146,8 @@ TEST(AccuracyCorpus, CoversEveryFamilyAndBothProjections) {
         families.insert(s.family);
         (s.camera.projection == render::Projection::Perspective ? perspective : orthographic) = true;
     }
-    for (const char* f : {"stack", "deep", "nary", "nonconvex", "through", "thin", "near", "inside", "transform", "flat", "hull"}) {
+    for (const char* f : {"stack", "deep", "nary", "nonconvex", "through", "thin", "near", "inside", "transform", "flat", "hull",
+                          "coincident"}) {
         EXPECT_TRUE(families.count(f)) << "no scene of family " << f;
     }
     EXPECT_TRUE(perspective);
@@ -271,6 +273,53 @@ TEST(AccuracyCorpus, InsideShotsStartRaysInsideTheModel) {
         }
     }
     EXPECT_GE(count, 4);
+}
+
+// The coincident family's scenes coincide: a vertex of one leaf lies on a
+// triangle of another, in its plane within rounding (1e-9 of the scene's
+// size; turned copies of one plane lie a rounding apart). That holds for
+// faces in one plane, shared faces, identical solids and a ring of vertices
+// in a face; the near family's faces, 1e-3 apart, do not count.
+bool leavesTouch(const geometry::Model& model) {
+    const double tolerance = 1e-9 * model.bounds.diagonal();
+    for (std::size_t a = 0; a < model.leafMeshes.size(); ++a) {
+        for (std::size_t b = 0; b < model.leafMeshes.size(); ++b) {
+            if (a == b) continue;
+            const geometry::Mesh& on = model.leafMeshes[b];
+            for (const glm::dvec3& p : model.leafMeshes[a].positions) {
+                for (const auto& t : on.triangles) {
+                    const glm::dvec3 p0 = on.positions[t[0]], p1 = on.positions[t[1]], p2 = on.positions[t[2]];
+                    const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+                    const double area2 = glm::length(n);
+                    if (!(area2 > 0.0)) continue;
+                    if (std::abs(glm::dot(p - p0, n)) / area2 > tolerance) continue;
+                    // Inside (or on) the triangle: the sub-triangles' areas, signed along n.
+                    const double u = glm::dot(glm::cross(p1 - p, p2 - p), n) / (area2 * area2);
+                    const double v = glm::dot(glm::cross(p2 - p, p0 - p), n) / (area2 * area2);
+                    const double w = 1.0 - u - v;
+                    if (u >= -1e-9 && v >= -1e-9 && w >= -1e-9) return true;
+                }
+            }
+        }
+    }
+    return false;
+}
+
+TEST(AccuracyCorpus, CoincidentScenesHaveLeavesThatTouchExactly) {
+    int scenes = 0;
+    for (const std::string& file : sceneFiles()) {
+        const auto shot = std::find_if(shots().begin(), shots().end(), [&](const Shot& s) { return s.scene == file; });
+        if (shot->family != "coincident" && shot->family != "near") continue;
+        SCOPED_TRACE(file);
+        const geometry::Model model = geometry::buildModel(parse(file));
+        if (shot->family == "near") {
+            EXPECT_FALSE(leavesTouch(model)) << "the near family's faces lie 1e-3 of the size apart, never closer";
+            continue;
+        }
+        ++scenes;
+        EXPECT_TRUE(leavesTouch(model));
+    }
+    EXPECT_GE(scenes, 20);
 }
 
 TEST(AccuracyManifest, NamesTheLineAndColumnOfAMistake) {

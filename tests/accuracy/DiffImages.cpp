@@ -100,6 +100,7 @@ RgbaImage heatMap(const render::Camera& camera, const AovView& gpu, const AovVie
                 }
                 case Verdict::Normal: c = {0.0, 0.85, 1.0}; break;
                 case Verdict::Leaf: c = {0.25, 1.0, 0.25}; break;
+                case Verdict::Cut: c = {1.0, 0.3, 1.0}; break;
             }
             if (edge && result.verdict[k] != Verdict::Agree) c = {c.r * 0.55, c.g * 0.55, c.b * 0.55};
             put(out, k, c);

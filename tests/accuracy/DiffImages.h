@@ -11,6 +11,7 @@
 //   yellow   depth (orange at the tolerance to yellow at 1000x it)
 //   cyan     normal
 //   green    leaf id
+//   magenta  cut bit (the face colour against the cut-face colour)
 // at full strength off edges, at half strength on edge pixels.
 
 #include <cstdint>

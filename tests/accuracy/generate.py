@@ -11,11 +11,17 @@ Every scene is built to break image-space CSG: stacked subtractions
 along the view ray, deep trees, n-ary nodes of 50+ operands, non-convex
 operands (tori, imported meshes of depth complexity >= 6, several shells in one
 leaf), subtrahends through the front and the back, thin walls, near-coincident
-faces, the camera inside the model, mirrored and sheared leaves.
+faces, the camera inside the model, mirrored and sheared leaves, and
+(the coincident family) faces of different operands in one plane on purpose:
+flush pockets and holes, shared faces, identical solids, turned and scaled.
 
-Rules kept throughout, because the result is undefined otherwise:
+Rules kept throughout:
   * no two operands have overlapping faces in one plane (near-coincident
-    faces are offset by 1e-3 of the size or more, on purpose, never less);
+    faces are offset by 1e-3 of the size or more, on purpose, never less),
+    except in the coincident family, where such faces are the point: both
+    paths take surfaces within the coincidence tolerance along a ray as one
+    place (render::coincidenceTolerance), so the result is the exact one
+    (tests/data/coincident holds OpenSCAD's, for its models);
   * stack axes and camera axes are shifted off round numbers, so no pixel
     centre's ray runs exactly along a face or through a symmetric vertex.
 
@@ -960,6 +966,155 @@ scene("exact_results", "hull",
                                                     auto=(1, 1, 1))))),
       [orbit((1, 5, 0), 35.0, 40.0, 50.0), orbit((1, 5, 0), -120.0, -35.0, 50.0, projection="o", fov=35)],
       "a hull of a sphere cut flat and a cube, and a resized intersection: exact results of a difference and an intersection")
+
+
+# Coincident faces, on purpose: the models of tests/data/coincident (OpenSCAD's
+# exact results of them are there), where faces of different operands lie in
+# one plane, share edges or are the same. Both paths must treat surfaces within
+# the coincidence tolerance along a ray as one place
+# (render::coincidenceTolerance): a flush pocket opens cleanly, shared faces vanish,
+# A - A is empty. No color(): the scheme's face and cut-face colours show, so a
+# surface shown with the wrong cut bit is a shading disagreement. Each model
+# also comes rotated by odd angles (the coincident planes no longer axis
+# aligned, their copies a float rounding apart) and scaled by 1e-3 and 1e3
+# (the tolerance must scale with the view).
+
+def sdeg(d):
+    """sin and cos of d degrees, exact where they are at multiples of 30 (as OpenSCAD's sin_degrees)."""
+    h = math.sqrt(3.0) / 2.0
+    table = {0: (0.0, 1.0), 30: (0.5, h), 60: (h, 0.5), 90: (1.0, 0.0), 120: (h, -0.5), 150: (0.5, -h),
+             180: (0.0, -1.0), 210: (-0.5, -h), 240: (-h, -0.5), 270: (-1.0, 0.0), 300: (-h, 0.5), 330: (-0.5, h)}
+    if d % 30 == 0:
+        return table[d % 360]
+    return math.sin(math.radians(d)), math.cos(math.radians(d))
+
+
+def rot_axis(axis, d):
+    s_, c_ = sdeg(d)
+    m = identity()
+    i, j = {"x": (1, 2), "y": (2, 0), "z": (0, 1)}[axis]
+    m[i][i], m[i][j], m[j][i], m[j][j] = c_, -s_, s_, c_
+    return m
+
+
+def rotate_xyz(ax, ay, az):
+    """OpenSCAD's rotate([ax, ay, az]): about x, then y, then z."""
+    return chain(rot_axis("z", az), rot_axis("y", ay), rot_axis("x", ax))
+
+
+def box(x, y, z, sx, sy, sz):
+    """OpenSCAD's translate([x, y, z]) cube([sx, sy, sz]) (corner at the origin)."""
+    return at(x, y, z, cube((sx, sy, sz), center=False))
+
+
+def pocket_flush_top():
+    return difference(cube((20, 20, 20), center=False), box(4, 4, 10, 6, 6, 10))
+
+
+def through_holes():
+    # A square hole and a 13-sided round one ($fn = 0: $fa and $fs pick 13),
+    # each exactly as tall as its plate: both ends flush.
+    return union(difference(cube((20, 20, 10), center=False), box(6, 6, 0, 8, 8, 10)),
+                 at(24, 0, 0, difference(cube((20, 20, 4), center=False),
+                                         at(10, 10, 0, cylinder(4, 4, fn=0, center=False)))))
+
+
+def flush_slot():
+    return difference(cube((30, 20, 10), center=False), box(12, 0, 4, 6, 10, 10))
+
+
+def side_pockets():
+    # A pocket opening in the side x = 20; two pockets touching at x = 34 (a
+    # wall of no thickness, which vanishes).
+    return union(difference(cube((20, 20, 20), center=False), box(10, 5, 5, 10, 10, 10)),
+                 at(24, 0, 0, difference(cube((20, 20, 10), center=False), box(2, 2, 2, 8, 16, 10),
+                                         box(10, 2, 2, 8, 16, 10))))
+
+
+def shared_face_unions():
+    # Three blocks in an L (two shared faces) and five cubes stacked by their
+    # height (four shared faces).
+    return union(cube((10, 10, 10), center=False), box(10, 0, 0, 10, 10, 10), box(0, 10, 0, 10, 10, 10),
+                 *[box(24, 0, 10 * i, 10, 10, 10) for i in range(5)])
+
+
+def gear_ring():
+    teeth = [mm(rot_axis("z", 30 * i), box(14, -1.5, 0, 4, 3, 5)) for i in range(12)]
+    return union(difference(cylinder(5, 15, fn=48, center=False),
+                            at(0, 0, -1, cylinder(7, 10, fn=48, center=False))),
+                 group(*teeth))
+
+
+def shared_face_intersection():
+    return intersection(cube((20, 20, 20), center=False), box(10, 5, 0, 20, 10, 8))
+
+
+def identical_solids():
+    # A | A, A & A and A - A of one turned 12-sided cylinder: every face of one
+    # operand is a face of the other. The last is empty.
+    def a():
+        return mm(rotate_xyz(23, 37, 11), cylinder(10, 5, fn=12, center=False))
+    return union(union(a(), a()), at(16, 0, 0, intersection(a(), a())), at(32, 0, 0, difference(a(), a())))
+
+
+def sphere_cube_equator():
+    # $fn = 26 puts a ring of the sphere's vertices at z = 0, in the cube's top.
+    return union(sphere(10, 26), box(-15, -15, -15, 30, 30, 15))
+
+
+def corners(lo, hi):
+    return [(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+
+
+COINCIDENT = [
+    # name, model, its bounds (before the variant's transform), what coincides
+    ("flush_pocket", pocket_flush_top, ((0, 0, 0), (20, 20, 20)),
+     "a cube minus a pocket whose top lies in the cube's top face"),
+    ("through_holes", through_holes, ((0, 0, 0), (44, 20, 10)),
+     "a square and a 13-sided hole as tall as their plates: both ends flush"),
+    ("flush_slot", flush_slot, ((0, 0, 0), (30, 20, 14)),
+     "a slot whose front face lies in the block's front face"),
+    ("side_pockets", side_pockets, ((0, 0, 0), (44, 20, 20)),
+     "a pocket flush with a side face; two pockets touching (a wall of no thickness vanishes)"),
+    ("shared_unions", shared_face_unions, ((0, 0, 0), (34, 20, 50)),
+     "three blocks in an L and five stacked cubes: unions of shared faces"),
+    ("gear_ring", gear_ring, ((-18, -18, -1), (18, 18, 6)),
+     "a ring with 12 teeth whose tops and bottoms lie in the ring's"),
+    ("shared_intersection", shared_face_intersection, ((0, 0, 0), (30, 20, 20)),
+     "two boxes intersected whose bottoms lie in one plane"),
+    ("identical_solids", identical_solids, ((-8, -8, -6), (40, 8, 12)),
+     "A | A, A & A and A - A of one turned cylinder (the last is empty)"),
+    ("sphere_cube_equator", sphere_cube_equator, ((-15, -15, -15), (15, 15, 10)),
+     "a sphere on a cube whose top runs through the sphere's equator vertices"),
+]
+
+# The variants: the model as written, turned by odd angles, and turned another
+# way and scaled by 1e-3 and by 1e3.
+VARIANTS = [
+    ("", identity(), ""),
+    ("_turned", rotate_xyz(23, 37, 11), ", turned by [23, 37, 11]"),
+    ("_milli", chain(scale(1e-3, 1e-3, 1e-3), rotate_xyz(-31, 13, 47)), ", turned by [-31, 13, 47] and scaled by 1e-3"),
+    ("_kilo", chain(scale(1e3, 1e3, 1e3), rotate_xyz(17, -29, 71)), ", turned by [17, -29, 71] and scaled by 1e3"),
+]
+
+for k, (name, make, (lo, hi), note) in enumerate(COINCIDENT):
+    for v, (suffix, m, how) in enumerate(VARIANTS):
+        pts = [apply(m, c) for c in corners(lo, hi)]
+        c = tuple((min(p[i] for p in pts) + max(p[i] for p in pts)) / 2.0 for i in range(3))
+        diag = math.sqrt(sum((max(p[i] for p in pts) - min(p[i] for p in pts)) ** 2 for i in range(3)))
+        # Odd angles, different for every scene and variant; one view from below.
+        az = -58.3 + 47.9 * k + 83.1 * v
+        el = (27.7, 41.3, -22.9, 34.1)[(k + v) % 4]
+        big = (200, 150) if (k, v) in ((0, 0), (4, 0)) else (128, 96) if (k + v) % 3 == 2 else (96, 96)
+        if v == 0:
+            shots = [orbit(c, az, el, 2.1 * diag, size=big),
+                     orbit(c, az + 131.7, 52.9 - el, 2.1 * diag, projection="o", fov=40)]
+        elif v == 2:
+            shots = [orbit(c, az, el, 2.1 * diag, projection="o", fov=40, size=big)]
+        else:
+            shots = [orbit(c, az, el, 2.1 * diag, size=big)]
+        root = make() if v == 0 else mm(m, make())
+        scene("coincident_" + name + suffix, "coincident", root, shots, note + how)
 
 
 # ----------------------------------------------------------------------------
