@@ -137,6 +137,8 @@ void startCluster() {
     chosen = false;
     faceEnd = -kInfinity;
     pickLeaf = kNoLeaf;
+    pickSurface = kInfinity;
+    pickSame = false;
 }
 
 // A surface of the cluster, in depth order: `tagged` its tagged depth,
