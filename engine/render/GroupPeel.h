@@ -18,6 +18,15 @@
 // depths would give, and at equal depths the lowest member wins (members
 // are drawn in order, the tests are strict), as the CPU reference keeps the
 // first operand's surface.
+// Ties: rounding puts members that share a face (an intersection of solids
+// with a face in common) a hair apart, and the strict tests would name
+// whichever rounding put last. Two more passes over the members, the
+// winners copied aside, take every front face within a quarter of the
+// coincidence tolerance of the winning entry, and every back face within it
+// of the winning exit, and keep the lowest such member, with its own tagged
+// depth: the member the evaluator's rule names for the ungrouped operands
+// (evaluate.frag, "the surface shown"), and a depth the normal pass finds
+// in that member's faces.
 // A fullscreen pass over the group's rectangle, stencil-tested for "count =
 // members", then writes the group's layer as a convex operand with that
 // interval would hold it: (-entry, exit), or (-exit, exit) where no member
@@ -48,8 +57,8 @@ public:
     // Members are counted in the 8-bit stencil.
     static constexpr int kMostMembers = 255;
 
-    // Bytes per pixel of a tile for `groups` groups: scratch, depth-stencil, ids.
-    static std::size_t bytesPerPixel(int groups) { return 16 + 8 + 4 * static_cast<std::size_t>(groups); }
+    // Bytes per pixel of a tile for `groups` groups: scratch, its copy, depth-stencil, ids.
+    static std::size_t bytesPerPixel(int groups) { return 16 + 16 + 8 + 4 * static_cast<std::size_t>(groups); }
 
     // Makes room for `groups` groups in `tile`. Call before the tile's first peel().
     void begin(const ViewSetup& view, const PixelRect& tile, int groups);
@@ -70,10 +79,11 @@ public:
 
 private:
     gpu::Program draw_;     // peel.frag's GROUP: a member's faces, depth = order key
+    gpu::Program ties_;     // peel.frag's GROUP_TIE: the lowest member tying with a winner
     gpu::Program resolve_;  // group.frag: scratch to the layer and the ids
     gpu::Framebuffer target_;   // scratch + depth-stencil
     gpu::Framebuffer layerTarget_;  // a layer of the layers + depth-stencil (for its stencil)
-    gpu::Texture scratch_, depthStencil_, ids_;
+    gpu::Texture scratch_, winners_, depthStencil_, ids_;
 };
 
 }  // namespace strata::render
