@@ -7,8 +7,8 @@
 #include <deque>
 #include <limits>
 #include <span>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "AlphaPass.h"
 #include "EvaluatePass.h"
