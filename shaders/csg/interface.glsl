@@ -55,6 +55,16 @@ SHARED int kNormalFlip = 6;  // TRUST_MARKS only
 SHARED int kTranslucentColor = 3;
 SHARED int kTranslucentToLight = 5;
 
+// alpha.frag (the REAR variant after surface.vert's).
+SHARED int kAlphaCodes = 3;        // the leaf codes whose pixels this draw blends over
+SHARED int kAlphaColor = 4;        // the leaf's colour, straight alpha
+SHARED int kAlphaBackground = 5;   // the scheme's background
+SHARED int kAlphaRight = 6;        // REAR: the view, as shade.frag's
+SHARED int kAlphaUp = 7;
+SHARED int kAlphaHalfExtent = 8;
+SHARED int kAlphaOrthographic = 9;
+SHARED int kAlphaSize = 10;
+
 // shade.frag.
 SHARED int kShadeBackground = 0;
 SHARED int kShadeForward = 3;
@@ -83,7 +93,7 @@ SHARED int kTextureGroupIds = 3;      // evaluate: a group's entry and exit memb
 SHARED int kTextureGroupScratch = 0;  // group: the winning entry and exit
 SHARED int kTextureGroupWinners = 1;  // peel GROUP_TIE: a copy of the winning entry and exit
 SHARED int kTextureResultDepth = 0;   // normal, translucent: the evaluator's depth
-SHARED int kTextureResultLeaf = 1;    // normal: the evaluator's leaf code
+SHARED int kTextureResultLeaf = 1;    // normal, alpha: the evaluator's leaf code
 SHARED int kTextureNormal = 0;        // shade: normal and base colour
 
 // Image units.
