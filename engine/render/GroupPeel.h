@@ -20,7 +20,8 @@
 // first operand's surface.
 // Ties: rounding puts members that share a face (an intersection of solids
 // with a face in common) a hair apart, and the strict tests would name
-// whichever rounding put last. Two more passes over the members, the
+// whichever rounding put last. For a group whose members have faces in one
+// plane, two more passes over the members, the
 // winners copied aside, take every front face within a quarter of the
 // coincidence tolerance of the winning entry, and every back face within it
 // of the winning exit, and keep the lowest such member, with its own tagged
@@ -65,8 +66,10 @@ public:
     // Peels a group: `members` (leaves, ascending) inside `valid` (tile
     // pixels), into layer `layer` of `layers`, and its members into layer
     // `idsLayer` (0 .. groups - 1 of begin()) of ids().
+    // `ties`: look for ties (above); only members with faces in one plane
+    // have them (SceneBuffers::shareAPlane).
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-              const gpu::Texture& layers, int layer, int idsLayer);
+              const gpu::Texture& layers, int layer, int idsLayer, bool ties);
 
     // R32UI, a layer per group, tile pixels: entry member | exit member <<
     // shader::kMemberBits where the group has a surface (shader::kNoMember:
