@@ -182,29 +182,18 @@ void main() {
     startWalk(block);
 
     bool inside = block.y > 0u && nodeValue(0u);
-    // Surface by surface in depth order, the tree asked after each depth; a
-    // surface beyond the cluster's reach (the tolerance past its last
-    // surface) closes it, and the tree's answer after the whole cluster
-    // decides (evaluate.frag).
-    float reach = -kInfinity;
-    bool open = false;
+    // Depth by depth, the tree asked after each, in clusters (evaluate.frag:
+    // walkTo).
     while (true) {
         if (budget < 0) {
             writeUnresolved();
             return;
         }
         float nearest = heapSize > 0 ? heapDepth[0] : kInfinity;
-        if (nearest == kInfinity || untagged(nearest) > reach) {
-            if (open && nodeValue(0u) != inside) {
-                writeChosenSurface(!inside);
-                return;
-            }
-            if (nearest == kInfinity) break;
-            startCluster();
-            open = true;
-        }
+        int step = walkTo(nearest, clusterOpen && nodeValue(0u), inside);
+        if (step == kWalkWritten) return;
+        if (step == kWalkDone) break;
         float depth = untagged(nearest);
-        reach = depth + uCoincidence;
         while (heapSize > 0 && untagged(heapDepth[0]) == depth) {
             --budget;
             int s = heapSlot[0];
