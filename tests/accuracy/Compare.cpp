@@ -116,7 +116,7 @@ void checkImage(const AovView& image, const render::Camera& camera, const char* 
 
 std::string percent(double fraction) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3f%%", 100.0 * fraction);
+    std::snprintf(buf, sizeof buf, "%.4f%%", 100.0 * fraction);
     return buf;
 }
 
@@ -172,15 +172,17 @@ double CompareResult::edgeDisagreement() const {
 }
 
 std::string CompareResult::summary() const {
-    char buf[640];
+    char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "%dx%d: non-edge agreement %s of %zu pixels (bound >= %s; disagreeing: %zu coverage, %zu depth, "
-                  "%zu normal (%zu a neighbour's), %zu leaf, %zu cut); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s); "
+                  "%zu normal (%zu a neighbour's), %zu leaf, %zu cut); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s; "
+                  "%zu coverage, %zu depth, %zu normal (%zu a neighbour's), %zu leaf, %zu cut); "
                   "max non-edge |dz| %.3g (tolerance %.3g), max normal error %.3g deg; covered %zu gpu / %zu "
                   "reference",
                   width, height, percent(agreement()).c_str(), nonEdgePixels, percent(options.minAgreement).c_str(),
                   nonEdge.coverage, nonEdge.depth, nonEdge.normal, nonEdgeNeighbourNormal, nonEdge.leaf, nonEdge.cut, edgePixels, edge.total(),
-                  percent(edgeDisagreement()).c_str(), percent(options.maxEdgeDisagreement).c_str(), maxDepthError,
+                  percent(edgeDisagreement()).c_str(), percent(options.maxEdgeDisagreement).c_str(), edge.coverage,
+                  edge.depth, edge.normal, edgeNeighbourNormal, edge.leaf, edge.cut, maxDepthError,
                   options.depthTolerance, maxNormalErrorDegrees, coveredGpu, coveredReference);
     std::string s = buf;
     if (!agreementHolds()) s += " -- NON-EDGE AGREEMENT BELOW BOUND";
@@ -211,8 +213,9 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
 
     const bool compareCut = !gpu.cut.empty() && !reference.cut.empty();
     const Geometry geometry(camera);
+    // The reference's edges only: the GPU image's own discontinuities are
+    // what is being judged, and must not excuse themselves.
     markEdges(reference, geometry, options, r.edgeMask);
-    markEdges(gpu, geometry, options, r.edgeMask);
 
     for (std::size_t k = 0; k < r.pixels; ++k) {
         const bool edge = r.edgeMask[k] != 0;
@@ -244,7 +247,7 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
             }
         }
         r.verdict[k] = v;
-        if (v == Verdict::Normal && !edge) {
+        if (v == Verdict::Normal) {
             const int i = static_cast<int>(k % r.width), j = static_cast<int>(k / r.width);
             bool neighbour = false;
             for (int dj = -1; dj <= 1 && !neighbour; ++dj) {
@@ -256,7 +259,7 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
                                 angleDegrees(gpu.normal[k], reference.normal[q]) <= options.normalToleranceDegrees;
                 }
             }
-            if (neighbour) ++r.nonEdgeNeighbourNormal;
+            if (neighbour) ++(edge ? r.edgeNeighbourNormal : r.nonEdgeNeighbourNormal);
         }
         if (edge) {
             ++r.edgePixels;
