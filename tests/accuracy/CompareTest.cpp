@@ -189,9 +189,10 @@ TEST(AccuracyCompare, ASpeckledGpuImageFailsWhateverEdgesItMakes) {
     EXPECT_FALSE(r.agreementHolds()) << r.summary();
     EXPECT_FALSE(r.passed());
     // The GPU image's own edges would have covered the whole patch.
-    const std::vector<std::uint8_t> own = edgeMask(topCamera(), gpu.view(), options());
+    const std::vector<EdgeKind> own = edgeMask(topCamera(), gpu.view(), options());
     std::size_t hidden = 0;
-    for (std::size_t k = 0; k < own.size(); ++k) hidden += (own[k] != 0 && r.verdict[k] != Verdict::Agree) ? 1 : 0;
+    for (std::size_t k = 0; k < own.size(); ++k)
+        hidden += (own[k] == EdgeKind::Edge && r.verdict[k] != Verdict::Agree) ? 1 : 0;
     EXPECT_EQ(hidden, speckles);
 }
 
@@ -207,18 +208,50 @@ TEST(AccuracyCompare, AOnePixelFacetBoundarySwapIsAnEdgeAndPasses) {
     gpu.set(35, 31, 10.0f, tilted(-26.25 + 22.5));  // facet 2's last column takes facet 3's
     for (int j = 60; j < 64; ++j) gpu.set(72, j, 10.0f, tilted(-26.25 + 37.5));  // a run of four
     CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
-    // Every facet boundary is an edge: both columns beside each of the seven.
-    EXPECT_EQ(r.edgePixels, 7u * 2u * kSize);
+    // Both columns beside each of the seven facet boundaries are beside one;
+    // the six swapped pixels among them are edge pixels.
+    EXPECT_EQ(r.facetBoundaryPixels, 7u * 2u * kSize);
+    EXPECT_EQ(r.facetSwaps, 6u);
+    EXPECT_EQ(r.edgePixels, 6u);
     EXPECT_EQ(r.nonEdge.total(), 0u);
     EXPECT_EQ(r.edge.normal, 6u);
     EXPECT_EQ(r.edgeNeighbourNormal, 6u);
     EXPECT_TRUE(r.passed()) << r.summary();
     // The same wrong normal two columns from the boundary is no edge's: it fails.
-    gpu.set(14, 50, 10.0f, tilted(-26.25));
-    r = compare(topCamera(), gpu.view(), ref.view(), options());
+    Synth away = gpu;
+    away.set(14, 50, 10.0f, tilted(-26.25));
+    r = compare(topCamera(), away.view(), ref.view(), options());
     EXPECT_EQ(r.nonEdge.normal, 1u);
     EXPECT_EQ(r.nonEdgeNeighbourNormal, 0u);  // no neighbour of (14, 50) has facet 0's normal
     EXPECT_FALSE(r.passed()) << r.summary();
+    // A facet that no neighbouring pixel shows (a sliver, or a vertex where
+    // several facets meet), 12 degrees off, beside a boundary: a facet swap.
+    Synth sliver = gpu;
+    sliver.set(24, 80, 10.0f, tilted(-11.25 + 12.0));
+    r = compare(topCamera(), sliver.view(), ref.view(), options());
+    EXPECT_EQ(r.facetSwaps, 7u);
+    EXPECT_EQ(r.edgeNeighbourNormal, 6u);
+    EXPECT_TRUE(r.passed()) << r.summary();
+    // Beside a facet boundary only the facet may differ: a wrong depth, a
+    // normal further off than the crease angle (a face turned the wrong
+    // way), or the neighbouring facet's normal on another leaf counts as a
+    // non-edge disagreement.
+    struct Wrong {
+        float z;
+        glm::vec3 n;
+        int leaf;
+        Verdict verdict;
+    };
+    for (const Wrong& w : {Wrong{10.5f, tilted(-11.25), 0, Verdict::Depth}, Wrong{10.0f, tilted(60.0), 0, Verdict::Normal},
+                           Wrong{10.0f, -tilted(-11.25), 0, Verdict::Normal}, Wrong{10.0f, tilted(-18.75), 1, Verdict::Normal}}) {
+        Synth beside = gpu;
+        beside.set(24, 80, w.z, w.n, w.leaf);
+        r = compare(topCamera(), beside.view(), ref.view(), options());
+        EXPECT_EQ(r.verdict[beside.at(24, 80)], w.verdict);
+        EXPECT_EQ(r.nonEdge.total(), 1u);
+        EXPECT_EQ(r.facetSwaps, 6u);
+        EXPECT_FALSE(r.passed()) << r.summary();
+    }
 }
 
 TEST(AccuracyCompare, DepthIsJudgedAgainstTheTolerance) {
@@ -290,15 +323,15 @@ TEST(AccuracyCompare, ADepthStepOnOneLeafWithOneNormalIsAnEdge) {
     // step between columns 47 and 48.
     Synth a;
     a.square(0, 48, 0, kSize, 10.0f).square(48, kSize, 0, kSize, 12.0f);
-    const std::vector<std::uint8_t> mask = edgeMask(topCamera(), a.view(), options());
+    const std::vector<EdgeKind> mask = edgeMask(topCamera(), a.view(), options());
     for (int i = 0; i < kSize; ++i) {
-        EXPECT_EQ(mask[a.at(i, 50)], (i == 47 || i == 48) ? 1 : 0) << "column " << i;
+        EXPECT_EQ(mask[a.at(i, 50)], (i == 47 || i == 48) ? EdgeKind::Edge : EdgeKind::None) << "column " << i;
     }
 }
 
-TEST(AccuracyCompare, CreasesAreEdgesAboveTheNormalTolerance) {
-    // 22.5 degrees: the facet angle of a $fn = 16 curve, whose facet boundaries are edges.
-    for (double degrees : {0.5, 2.0, 22.5}) {
+TEST(AccuracyCompare, FacetBoundariesAboveTheNormalToleranceCreasesAboveThirtyDegrees) {
+    // 22.5 degrees: the facet angle of a $fn = 16 curve.
+    for (double degrees : {0.5, 2.0, 22.5, 40.0}) {
         Synth a;
         // Two planes meeting in the line x = 0 (between columns 47 and 48):
         // z = 0 for x < 0, z = x tan(a) for x > 0, with their normals.
@@ -312,10 +345,13 @@ TEST(AccuracyCompare, CreasesAreEdgesAboveTheNormalTolerance) {
                 a.set(i, j, static_cast<float>(10.0 - z), x > 0 ? tilted(-degrees) : glm::vec3(0, 0, 1), 0);
             }
         }
-        const std::vector<std::uint8_t> mask = edgeMask(cam, a.view(), options());
-        EXPECT_EQ(mask[a.at(47, 20)], degrees > 1.0 ? 1 : 0) << degrees;
-        EXPECT_EQ(mask[a.at(48, 20)], degrees > 1.0 ? 1 : 0) << degrees;
-        EXPECT_EQ(mask[a.at(30, 20)], 0) << degrees;
+        const std::vector<EdgeKind> mask = edgeMask(cam, a.view(), options());
+        const EdgeKind expected = degrees > 30.0 ? EdgeKind::Edge
+                                  : degrees > 1.0 ? EdgeKind::FacetBoundary
+                                                  : EdgeKind::None;
+        EXPECT_EQ(mask[a.at(47, 20)], expected) << degrees;
+        EXPECT_EQ(mask[a.at(48, 20)], expected) << degrees;
+        EXPECT_EQ(mask[a.at(30, 20)], EdgeKind::None) << degrees;
     }
 }
 
@@ -336,7 +372,7 @@ TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
             a.set(i, j, static_cast<float>(cam.viewDepth(ray.origin + t * ray.direction)), glm::vec3(n), 0);
         }
     }
-    const std::vector<std::uint8_t> mask = edgeMask(cam, a.view(), options());
+    const std::vector<EdgeKind> mask = edgeMask(cam, a.view(), options());
     std::size_t edges = 0, covered = 0;
     for (int j = 1; j + 1 < kSize; ++j) {
         for (int i = 1; i + 1 < kSize; ++i) {
@@ -346,7 +382,7 @@ TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
                 for (int di = -1; di <= 1; ++di) neighbourMiss |= a.leaf[a.at(i + di, j + dj)] < 0;
             if (coveredHere && !neighbourMiss) {
                 ++covered;
-                edges += mask[a.at(i, j)];
+                edges += mask[a.at(i, j)] != EdgeKind::None ? 1 : 0;
             }
         }
     }
@@ -366,7 +402,8 @@ TEST(AccuracyCompare, OptionsForASceneUseOneTenThousandthOfTheDiagonal) {
     const CompareOptions o = optionsForScene(34.6);
     EXPECT_DOUBLE_EQ(o.depthTolerance, 34.6e-4);
     EXPECT_EQ(o.normalToleranceDegrees, 1.0);
-    EXPECT_EQ(o.creaseDegrees, 1.0);
+    EXPECT_EQ(o.creaseDegrees, 30.0);
+    EXPECT_EQ(o.facetDegrees, 1.0);
     EXPECT_EQ(o.minAgreement, 0.9999);
     EXPECT_EQ(o.maxEdgeDisagreement, 0.01);
 }
