@@ -224,7 +224,7 @@ int PeelPass::peelGroups(const Job& job, const ViewSetup& view, std::vector<Oper
         out[k] = {used, 1, used};
         group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used);
         ++used;
-        passes_ += 2;
+        passes_ += 4;  // entries, exits, and their ties (GroupPeel.h)
     }
     glEnable(GL_BLEND);
     return used;
