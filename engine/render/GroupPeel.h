@@ -21,8 +21,9 @@
 // Ties: rounding puts members that share a face (an intersection of solids
 // with a face in common) a hair apart, and the strict tests would name
 // whichever rounding put last; so do members whose surfaces cross, on the
-// band of pixels where the two come within the tolerance. Two more passes
-// over the members, the winners copied aside, take every front face within
+// band of pixels where the two come within the tolerance. Where a group
+// wants them (tiesWanted), two more passes over the members, the winners
+// copied aside, take every front face within
 // a quarter of the coincidence tolerance of the winning entry, and every
 // back face within it of the winning exit, and keep the lowest such member,
 // with its own tagged depth: the member the evaluator's rule names for the ungrouped operands
@@ -66,8 +67,18 @@ public:
     // Peels a group: `members` (leaves, ascending) inside `valid` (tile
     // pixels), into layer `layer` of `layers`, and its members into layer
     // `idsLayer` (0 .. groups - 1 of begin()) of ids().
+    // `ties`: look for ties (above); whether a group needs to: tiesWanted.
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-              const gpu::Texture& layers, int layer, int idsLayer);
+              const gpu::Texture& layers, int layer, int idsLayer, bool ties);
+    // Whether to look for ties among `members`: where two have faces in one
+    // plane (SceneBuffers::shareAPlane), always; where their surfaces only
+    // cross, up to kMostTieMembers members. Ties cost two geometry passes
+    // over every member (the group's peel 2.5 times as long on llvmpipe);
+    // in a larger group of crossing surfaces, the pixels on the thin band
+    // where two come within the tolerance name the member rounding puts
+    // last instead of the lowest (the leaf and colour, not the depth).
+    static bool tiesWanted(const SceneBuffers& scene, const std::vector<int>& members);
+    static constexpr std::size_t kMostTieMembers = 8;
 
     // R32UI, a layer per group, tile pixels: entry member | exit member <<
     // shader::kMemberBits where the group has a surface (shader::kNoMember:
