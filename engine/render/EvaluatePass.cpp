@@ -107,7 +107,12 @@ void EvaluatePass::setTree(const csg::CompiledTree& tree, bool leafMarks) {
         const bool product = !tree.code.empty() && csg::countingTree(tree.code).nodes.size() == 1;  // one AND or OR
         if (product && operands > kRegisterSlots) programFor({BlockForm::Product, 0}, leafMarks);
         if (operands > 4) programFor({BlockForm::Register, kRegisterSlots}, leafMarks);
-        if (operands > kRegisterSlots) programFor({BlockForm::Array, capacityFor(operands)}, leafMarks);
+        // The array form only as large as most blocks need: a block with
+        // more live operands compiles its own variant when it comes. (The
+        // largest ones do not link on every driver: NVIDIA's refused 2048.)
+        if (operands > kRegisterSlots) {
+            programFor({BlockForm::Array, capacityFor(std::min(operands, kPrecompiledLive))}, leafMarks);
+        }
     }
 }
 

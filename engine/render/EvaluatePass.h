@@ -89,6 +89,8 @@ public:
     // The most slots of the register form (compiled for MAX_LIVE 4 and 8):
     // up to this many peeled layers of the block's operands.
     static constexpr int kRegisterSlots = 8;
+    // The array form's largest MAX_LIVE compiled with the tree (setTree).
+    static constexpr int kPrecompiledLive = 64;
     static constexpr int kBlock = shader::kBlock;
 
 private:

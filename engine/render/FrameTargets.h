@@ -6,7 +6,7 @@
 //   resultLeaf   R32I     shader::leafCode(leaf, flip), kLeafMiss on a miss          (evaluate)
 //   normal       RGBA32F  xyz the world-space outward normal of the result, w its     (normal)
 //                         base colour (ShadePass::packBaseColor); 0 on a miss
-//   color        RGBA8    the shaded image                                           (shade, translucent)
+//   color        RGBA8    the shaded image                                     (shade, alpha, translucent)
 //   marks        S8       stencil: mark(leaf, exit, flip) where the evaluator     (evaluate)
 //                         found a surface of that leaf, else 0
 //

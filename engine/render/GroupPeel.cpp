@@ -11,6 +11,8 @@ namespace strata::render {
 GroupPeel::GroupPeel()
     : draw_(gpu::Program::fromFiles("peel group", {"csg/surface.vert", "csg/peel.frag"},
                                     {{"PEEL_FIRST", ""}, {"GROUP", ""}})),
+      ties_(gpu::Program::fromFiles("peel group ties", {"csg/surface.vert", "csg/peel.frag"},
+                                    {{"PEEL_FIRST", ""}, {"GROUP_TIE", ""}})),
       resolve_(gpu::Program::fromFiles("peel group resolve", {"common/fullscreen.vert", "csg/group.frag"})),
       target_("peel group"),
       layerTarget_("peel group layer") {
@@ -19,7 +21,8 @@ GroupPeel::GroupPeel()
 }
 
 std::size_t GroupPeel::bytes() const {
-    return (scratch_.id() ? scratch_.byteSize() : 0) + (depthStencil_.id() ? depthStencil_.byteSize() : 0) +
+    return (scratch_.id() ? scratch_.byteSize() + winners_.byteSize() : 0) +
+           (depthStencil_.id() ? depthStencil_.byteSize() : 0) +
            (ids_.id() ? ids_.byteSize() : 0);
 }
 
@@ -30,6 +33,7 @@ void GroupPeel::release() {
     target_.detach(GL_DEPTH_STENCIL_ATTACHMENT);
     layerTarget_.detach(GL_DEPTH_STENCIL_ATTACHMENT);
     scratch_ = {};
+    winners_ = {};
     depthStencil_ = {};
     ids_ = {};
 }
@@ -37,6 +41,7 @@ void GroupPeel::release() {
 void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) {
     if (!scratch_.id() || scratch_.width() != tile.width || scratch_.height() != tile.height) {
         scratch_ = gpu::Texture::create2D("peel group scratch", GL_RGBA32F, tile.width, tile.height);
+        winners_ = gpu::Texture::create2D("peel group winners", GL_RGBA32F, tile.width, tile.height);
         depthStencil_ = gpu::Texture::create2D("peel group depth", GL_DEPTH32F_STENCIL8, tile.width, tile.height);
         target_.attachTexture(GL_COLOR_ATTACHMENT0, scratch_);
         target_.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, depthStencil_);
@@ -48,6 +53,8 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
     }
 
     setSurfaceView(draw_, view);
+    setSurfaceView(ties_, view);
+    ties_.setUniform(shader::kPeelTieTolerance, static_cast<float>(view.coincidence * 0.25));
     // Tagged depths from half the near plane's on map into [0, 1) in order
     // (peel.frag: orderKey); every fragment lies beyond the near plane.
     const float base = static_cast<float>(view.nearPlane * 0.5);
@@ -57,7 +64,7 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
 }
 
 void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-                     const gpu::Texture& layers, int layer, int idsLayer) {
+                     const gpu::Texture& layers, int layer, int idsLayer, bool ties) {
     glScissor(valid.x, valid.y, valid.width, valid.height);
     target_.bindForDraw();
     const float none[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
@@ -86,10 +93,29 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
             scene.drawLeaf(members[m]);
         }
     }
+    // Ties: the winners copied aside, the lowest member within the
+    // tolerance of each, front faces then back faces (GroupPeel.h).
+    glDisable(GL_STENCIL_TEST);
+    if (ties) {
+        glCopyImageSubData(scratch_.id(), GL_TEXTURE_2D, 0, valid.x, valid.y, 0, winners_.id(), GL_TEXTURE_2D, 0,
+                           valid.x, valid.y, 0, valid.width, valid.height, 1);
+        winners_.bindUnit(shader::kTextureGroupWinners);
+        ties_.use();
+        glDepthFunc(GL_LESS);
+    }
+    for (int exits = 0; ties && exits < 2; ++exits) {
+        target_.clearDepth(1.0f);
+        glCullFace(exits ? GL_FRONT : GL_BACK);
+        glColorMask(!exits, exits, !exits, exits);
+        for (std::size_t m = 0; m < members.size(); ++m) {
+            ties_.setUniform(shader::kPeelMember, static_cast<float>(m));
+            scene.drawLeaf(members[m]);
+        }
+    }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glEnable(GL_STENCIL_TEST);
 
     // Where every member was hit: the layer and the ids.
     layerTarget_.attachLayer(GL_COLOR_ATTACHMENT0, layers, layer);

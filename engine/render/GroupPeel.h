@@ -18,6 +18,16 @@
 // depths would give, and at equal depths the lowest member wins (members
 // are drawn in order, the tests are strict), as the CPU reference keeps the
 // first operand's surface.
+// Ties: rounding puts members that share a face (an intersection of solids
+// with a face in common) a hair apart, and the strict tests would name
+// whichever rounding put last. For a group whose members have faces in one
+// plane, two more passes over the members, the
+// winners copied aside, take every front face within a quarter of the
+// coincidence tolerance of the winning entry, and every back face within it
+// of the winning exit, and keep the lowest such member, with its own tagged
+// depth: the member the evaluator's rule names for the ungrouped operands
+// (evaluate.frag, "the surface shown"), and a depth the normal pass finds
+// in that member's faces.
 // A fullscreen pass over the group's rectangle, stencil-tested for "count =
 // members", then writes the group's layer as a convex operand with that
 // interval would hold it: (-entry, exit), or (-exit, exit) where no member
@@ -48,16 +58,18 @@ public:
     // Members are counted in the 8-bit stencil.
     static constexpr int kMostMembers = 255;
 
-    // Bytes per pixel of a tile for `groups` groups: scratch, depth-stencil, ids.
-    static std::size_t bytesPerPixel(int groups) { return 16 + 8 + 4 * static_cast<std::size_t>(groups); }
+    // Bytes per pixel of a tile for `groups` groups: scratch, its copy, depth-stencil, ids.
+    static std::size_t bytesPerPixel(int groups) { return 16 + 16 + 8 + 4 * static_cast<std::size_t>(groups); }
 
     // Makes room for `groups` groups in `tile`. Call before the tile's first peel().
     void begin(const ViewSetup& view, const PixelRect& tile, int groups);
     // Peels a group: `members` (leaves, ascending) inside `valid` (tile
     // pixels), into layer `layer` of `layers`, and its members into layer
     // `idsLayer` (0 .. groups - 1 of begin()) of ids().
+    // `ties`: look for ties (above); only members with faces in one plane
+    // have them (SceneBuffers::shareAPlane).
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-              const gpu::Texture& layers, int layer, int idsLayer);
+              const gpu::Texture& layers, int layer, int idsLayer, bool ties);
 
     // R32UI, a layer per group, tile pixels: entry member | exit member <<
     // shader::kMemberBits where the group has a surface (shader::kNoMember:
@@ -70,10 +82,11 @@ public:
 
 private:
     gpu::Program draw_;     // peel.frag's GROUP: a member's faces, depth = order key
+    gpu::Program ties_;     // peel.frag's GROUP_TIE: the lowest member tying with a winner
     gpu::Program resolve_;  // group.frag: scratch to the layer and the ids
     gpu::Framebuffer target_;   // scratch + depth-stencil
     gpu::Framebuffer layerTarget_;  // a layer of the layers + depth-stencil (for its stencil)
-    gpu::Texture scratch_, depthStencil_, ids_;
+    gpu::Texture scratch_, winners_, depthStencil_, ids_;
 };
 
 }  // namespace strata::render

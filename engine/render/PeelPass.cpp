@@ -222,9 +222,10 @@ int PeelPass::peelGroups(const Job& job, const ViewSetup& view, std::vector<Oper
         // The groups take the first layers, so a group's layer is also its
         // index among the tile's groups: its layer of the ids.
         out[k] = {used, 1, used};
-        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used);
+        const bool ties = job.scene.shareAPlane(job.request.groups[k]);
+        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used, ties);
         ++used;
-        passes_ += 2;
+        passes_ += ties ? 4 : 2;
     }
     glEnable(GL_BLEND);
     return used;

@@ -8,7 +8,9 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <utility>
 
+#include "AlphaPass.h"
 #include "EvaluatePass.h"
 #include "FrameTargets.h"
 #include "NormalPass.h"
@@ -71,6 +73,74 @@ std::vector<TranslucentLeaf> translucentLeaves(const scene::Tree& tree, const Sc
         } else if (leaf.display == scene::Display::Highlight) {
             out.push_back({static_cast<int>(i), kHighlightColor});
         }
+    }
+    return out;
+}
+
+// Leaves in the CSG whose color() is translucent (alpha below 1; an unset
+// alpha is 1), and which of them are alone in their OpenSCAD product: only
+// unions lead to them from the root, counting an intersection or difference
+// of which only one child has triangles as a union of that child (OpenSCAD
+// leaves a leaf without geometry out of a product).
+std::vector<AlphaLeaf> alphaLeaves(const scene::Tree& tree, const SceneBuffers& scene) {
+    std::vector<AlphaLeaf> out;
+    if (tree.root < 0) return out;
+    const std::size_t n = tree.nodes.size();
+    auto inRange = [n](int node) { return node >= 0 && static_cast<std::size_t>(node) < n; };
+    // Whether each node's subtree holds a leaf with triangles: children first,
+    // on an explicit stack (trees can be deep).
+    std::vector<char> solid(n, 0), state(n, 0);  // state: 0 new, 1 children pushed, 2 done
+    std::vector<int> stack{tree.root};
+    while (!stack.empty()) {
+        const int v = stack.back();
+        const auto i = static_cast<std::size_t>(v);
+        const scene::Node& node = tree.nodes[i];
+        if (state[i] == 0) {
+            state[i] = 1;
+            if (node.kind == scene::NodeKind::Leaf) continue;
+            for (int c : node.children)
+                if (inRange(c) && state[static_cast<std::size_t>(c)] == 0) stack.push_back(c);
+            continue;
+        }
+        stack.pop_back();
+        if (state[i] == 2) continue;
+        state[i] = 2;
+        if (node.kind == scene::NodeKind::Leaf) {
+            solid[i] = node.leaf >= 0 && static_cast<std::size_t>(node.leaf) < tree.leaves.size() &&
+                       scene.leaf(node.leaf).indexCount > 0;
+        } else {
+            for (int c : node.children) solid[i] = solid[i] || (inRange(c) && solid[static_cast<std::size_t>(c)]);
+        }
+    }
+    // Down from the root: whether only unions lead there.
+    std::vector<char> alone(tree.leaves.size(), 0), seen(n, 0);
+    std::vector<char> reached(tree.leaves.size(), 0);
+    std::vector<std::pair<int, bool>> walk{{tree.root, true}};
+    while (!walk.empty()) {
+        const auto [v, unionsOnly] = walk.back();
+        walk.pop_back();
+        const auto i = static_cast<std::size_t>(v);
+        if (seen[i] & (unionsOnly ? 2 : 1)) continue;
+        seen[i] |= unionsOnly ? 2 : 1;
+        const scene::Node& node = tree.nodes[i];
+        if (node.kind == scene::NodeKind::Leaf) {
+            if (node.leaf < 0 || static_cast<std::size_t>(node.leaf) >= tree.leaves.size()) continue;
+            reached[static_cast<std::size_t>(node.leaf)] = 1;
+            alone[static_cast<std::size_t>(node.leaf)] |= unionsOnly ? 1 : 0;
+            continue;
+        }
+        int solidChildren = 0;
+        for (int c : node.children) solidChildren += inRange(c) && solid[static_cast<std::size_t>(c)] ? 1 : 0;
+        const bool keeps = node.kind == scene::NodeKind::Union || solidChildren <= 1;
+        for (int c : node.children)
+            if (inRange(c)) walk.emplace_back(c, unionsOnly && keeps);
+    }
+    for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
+        const scene::Leaf& leaf = tree.leaves[i];
+        if (!reached[i] || !leaf.color || scene.leaf(static_cast<int>(i)).indexCount == 0) continue;
+        const glm::vec4 color(*leaf.color);
+        if (color.a < 0.0f || color.a >= 1.0f) continue;
+        out.push_back({static_cast<int>(i), color, alone[i] != 0});
     }
     return out;
 }
@@ -150,6 +220,7 @@ struct Renderer::Impl {
     EvaluatePass evaluate;
     NormalPass normals;
     ShadePass shade;
+    AlphaPass alpha;
     TranslucentPass translucent;
     FrameTargets targets;
     SceneBuffers scene;
@@ -163,6 +234,7 @@ struct Renderer::Impl {
     Compilation separate, grouped;
     const Compilation* current = nullptr;
     std::vector<TranslucentLeaf> translucentLeaves;
+    std::vector<AlphaLeaf> alphaLeaves;
     std::size_t leafCount = 0;
     std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
     bool hasScene = false;
@@ -208,7 +280,7 @@ struct Renderer::Impl {
     void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
-    // Shade and translucent passes over the G-buffer in `targets`.
+    // Shade, alpha and translucent passes over the G-buffer in `targets`.
     // `marked`: ShadePass::run's.
     void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const std::optional<PixelRect>& marked);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
@@ -218,6 +290,7 @@ struct Renderer::Impl {
 void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme,
                                 const std::optional<PixelRect>& marked) {
     shade.run(targets, view, scheme, marked);
+    alpha.run(targets, scene, view, scheme, alphaLeaves);
     translucent.run(targets, scene, view, translucentLeaves);
     glFinish();
 }
@@ -250,6 +323,7 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl.current = &impl.grouped;
     impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
     impl.translucentLeaves = translucentLeaves(tree, impl.scene);
+    impl.alphaLeaves = alphaLeaves(tree, impl.scene);
     impl.leafCount = tree.leaves.size();
     impl.hasScene = true;
     gpu::checkErrors();
@@ -538,7 +612,8 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     resetDrawState();
     targets.ensure(view.width, view.height);
     // A pixel around `drawn` for the shade pass's Sobel filter.
-    targets.clearResult(aovs || !translucentLeaves.empty(), drawn.grown(1));
+    // The translucent and alpha passes read the result beyond the marked pixels.
+    targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), drawn.grown(1));
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     if (copiedLeaves > 0) {
         stats.notes.push_back(std::to_string(copiedLeaves) +
@@ -584,6 +659,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     const std::vector<glm::vec2> bases = ShadePass::baseColors(impl.scene, scheme);
     std::vector<float> depth(result.depth.begin(), result.depth.end());
     std::vector<float> normal(n * 4, 0.0f);
+    std::vector<std::int32_t> codes(n, shader::kLeafMiss);
     for (std::size_t i = 0; i < n; ++i) {
         const int leaf = result.leaf[i];
         if (leaf < 0) continue;
@@ -594,11 +670,13 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
         normal[i * 4 + 1] = result.normal[i].y;
         normal[i * 4 + 2] = result.normal[i].z;
         normal[i * 4 + 3] = result.cut[i] ? base.y : base.x;
+        codes[i] = shader::leafCode(leaf, result.cut[i] != 0);
     }
     resetDrawState();
     impl.targets.ensure(w, h);
     impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, flipRows(depth, w, h, 1).data());
     impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, flipRows(normal, w, h, 4).data());
+    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, flipRows(codes, w, h, 1).data());
 
     Frame frame;
     frame.width = w;

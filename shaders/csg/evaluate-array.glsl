@@ -64,10 +64,28 @@ bool surfaceCountIsOdd(uvec4 literal) {
 uint trueChildren[MAX_LIVE];  // per inner node
 
 // Live operands: slot s holds an operand that still has surfaces ahead.
-int slotCursor[MAX_LIVE];     // its position in its surface list
-uint slotEntry[MAX_LIVE];     // its first literal in blockOperands
-uint slotLiterals[MAX_LIVE];  // its literals there, one after the other
-bool slotInside[MAX_LIVE];
+// Slot s's state, one word: its position in its surface list (kCursorMask),
+// the number of its literals (which follow each other from slotEntry[s]:
+// above kLiteralsShift) and whether its operand is inside (kInsideBit). Few
+// words per slot, so that drivers that keep these arrays in scarce storage
+// (NVIDIA's) take large MAX_LIVE.
+uint slotState[MAX_LIVE];
+uint slotEntry[MAX_LIVE];  // its first literal in blockOperands
+const uint kCursorMask = 0xffffu;
+const uint kLiteralsShift = 16u;
+const uint kInsideBit = 0x80000000u;
+
+int slotCursor(int s) {
+    return int(slotState[s] & kCursorMask);
+}
+
+uint slotLiterals(int s) {
+    return (slotState[s] & ~kInsideBit) >> kLiteralsShift;
+}
+
+bool slotInside(int s) {
+    return (slotState[s] & kInsideBit) != 0u;
+}
 
 // Min-heap of the slots' next surfaces (tagged depths), root at 0.
 float heapDepth[MAX_LIVE];
@@ -101,9 +119,9 @@ void literalChanged(uint literal, bool nowTrue) {
 
 // Sets slot s's operand inside or outside.
 void setInside(int s, bool inside) {
-    if (slotInside[s] == inside) return;
-    slotInside[s] = inside;
-    for (uint j = 0u; j < slotLiterals[s]; ++j) {
+    if (slotInside(s) == inside) return;
+    slotState[s] ^= kInsideBit;
+    for (uint j = 0u; j < slotLiterals(s); ++j) {
         uint literal = blockOperands[slotEntry[s] + j].w;
         literalChanged(literal, inside != ((literal & kNegate) != 0u));
     }
@@ -147,10 +165,8 @@ void startWalk(uvec4 block) {
         float d = nextSurface(literal, cursor);
         if (d == kInfinity) continue;
         int s = heapSize++;
-        slotCursor[s] = cursor;
+        slotState[s] = uint(cursor) | run << kLiteralsShift;
         slotEntry[s] = block.x + i;
-        slotLiterals[s] = run;
-        slotInside[s] = false;
         if (surfaceCountIsOdd(literal)) setInside(s, true);
         heapDepth[s] = d;
         heapSlot[s] = s;
@@ -166,38 +182,27 @@ void main() {
     startWalk(block);
 
     bool inside = block.y > 0u && nodeValue(0u);
-    // Surface by surface in depth order, the tree asked after each depth; a
-    // surface beyond the cluster's reach (the tolerance past its last
-    // surface) closes it, and the tree's answer after the whole cluster
-    // decides (evaluate.frag).
-    float reach = -kInfinity;
-    bool open = false;
+    // Depth by depth, the tree asked after each, in clusters (evaluate.frag:
+    // walkTo).
     while (true) {
         if (budget < 0) {
             writeUnresolved();
             return;
         }
         float nearest = heapSize > 0 ? heapDepth[0] : kInfinity;
-        if (nearest == kInfinity || untagged(nearest) > reach) {
-            if (open && nodeValue(0u) != inside) {
-                writeChosenSurface(!inside);
-                return;
-            }
-            if (nearest == kInfinity) break;
-            startCluster();
-            open = true;
-        }
+        int step = walkTo(nearest, clusterOpen && nodeValue(0u), inside);
+        if (step == kWalkWritten) return;
+        if (step == kWalkDone) break;
         float depth = untagged(nearest);
-        reach = depth + uCoincidence;
         while (heapSize > 0 && untagged(heapDepth[0]) == depth) {
             --budget;
             int s = heapSlot[0];
-            setInside(s, !slotInside[s]);
+            setInside(s, !slotInside(s));
             uvec4 literal = blockOperands[slotEntry[s]];
             considerSurface(heapDepth[0], int(literal.z), inside);
-            int cursor = slotCursor[s];
+            int cursor = slotCursor(s);
             float next = nextSurface(literal, cursor);
-            slotCursor[s] = cursor;
+            slotState[s] = (slotState[s] & ~kCursorMask) | uint(cursor);
             if (next == kInfinity) {  // operand done: the last entry takes its place
                 --heapSize;
                 heapDepth[0] = heapDepth[heapSize];

@@ -29,8 +29,10 @@
 //
 // Cost: n literal visits when the answer is the first surface, up to n per
 // move otherwise (the slots of one pixel that move d in slot order cost one
-// round in all: a stack of subtracted solids listed front to back), and
-// about six more rounds to place the cluster and choose its surface.
+// round in all: a stack of subtracted solids listed front to back), and one
+// more round for the surfaces next to the answer and at it: where none lies
+// within the tolerance (most pixels), the answer is a cluster of one depth.
+// A real cluster costs a few rounds more, to gather it and walk it.
 
 const float kNone = -kInfinity;  // d before every surface
 
@@ -115,66 +117,92 @@ int leafOfSlot(uvec4 block, uint slot) {
     return int(blockOperands[block.x + slot].z);
 }
 
+// The least depth >= from where P == target (+inf for none).
+float seekProduct(uvec4 block, float from, bool target) {
+    uint n = block.y;
+    float d = from;
+    if (target) {
+        // Visit the literals in turn; one that is not content at d moves d
+        // to its own first step after d where it would be.
+        uint content = 0u;  // literals content at d in a row
+        uint i = 0u;
+        while (content < n && d != kInfinity) {
+            if (--budget < 0) return kInfinity;
+            uvec4 literal = blockOperands[block.x + i];
+            float moved = seek(stepsOf(literal.x), d, literal.w != 0u);
+            if (moved != d) {
+                d = moved;
+                content = 1u;
+            } else {
+                ++content;
+            }
+            i = i + 1u == n ? 0u : i + 1u;
+        }
+        return d;
+    }
+    // The first literal to stop being content.
+    float least = kInfinity;
+    for (uint j = 0u; j < n; ++j) {
+        uvec4 literal = blockOperands[block.x + j];
+        least = min(least, seek(stepsOf(literal.x), d, literal.w == 0u));
+    }
+    return least;
+}
+
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     uvec4 block = vRecord;
     uint n = block.y;
     budget = uLoopBudget;
     float tolerance = uCoincidence;
+    bool isOr = block.z != 0u;
 
-    // P before every surface, and the value the answer's cluster must leave.
-    bool startsTrue = productAt(block, kNone);
+    // P before every surface: the seek for "P turns true" from before every
+    // surface stays there exactly when P is true there already.
+    float d = seekProduct(block, kNone, true);
+    bool startsTrue = d == kNone;
     bool target = !startsTrue;
-    float from = kNone;  // the seek's start: the first cluster not yet ruled out
+    if (startsTrue) d = seekProduct(block, kNone, false);
+    // The result is P for an AND, !P for an OR; it is entered where it turns true.
+    bool resultInside = startsTrue != isOr;
     while (true) {
-        // The least depth d >= from where P == target.
-        float d = from;
-        if (target) {
-            // Visit the literals in turn; one that is not content at d moves d
-            // to its own first step after d where it would be.
-            uint content = 0u;  // literals content at d in a row
-            uint i = 0u;
-            while (content < n && d != kInfinity) {
-                if (spent()) return;
-                uvec4 literal = blockOperands[block.x + i];
-                float moved = seek(stepsOf(literal.x), d, literal.w != 0u);
-                if (moved != d) {
-                    d = moved;
-                    content = 1u;
-                } else {
-                    ++content;
-                }
-                i = i + 1u == n ? 0u : i + 1u;
-            }
-        } else {
-            // The first literal to stop being content.
-            float least = kInfinity;
-            for (uint j = 0u; j < n; ++j) {
-                uvec4 literal = blockOperands[block.x + j];
-                least = min(least, seek(stepsOf(literal.x), d, literal.w == 0u));
-            }
-            d = least;
+        if (budget < 0) {
+            writeUnresolved();
+            return;
         }
         if (d == kInfinity) discard;
+        // One round: the surfaces next to d, and those at d for the surface shown.
+        startCluster();
+        float below = kNone, above = kInfinity;
+        for (uint j = 0u; j < n; ++j) {
+            Steps s = stepsOf(blockOperands[block.x + j].x);
+            int leaf = leafOfSlot(block, j);
+            if (s.first < d) below = max(below, s.first);
+            if (s.second < d && s.second != kInfinity) below = max(below, s.second);
+            if (s.first > d) above = min(above, s.first);
+            else if (s.second > d) above = min(above, s.second);
+            if (s.first == d) considerSurface(s.firstTagged, leaf, resultInside);
+            if (s.second == d) considerSurface(s.secondTagged, leaf, resultInside);
+        }
+        if ((below == kNone || d - below > tolerance) && (above == kInfinity || above - d > tolerance)) {
+            // A cluster of one depth, where P == target: the answer.
+            writeChosenSurface(!resultInside);
+            return;
+        }
         // The cluster holding d: its chain of close surfaces both ways.
         float anchor = d;
-        while (true) {
+        while (below != kNone && anchor - below <= tolerance) {
             if (spent()) return;
-            float below = surfaceBelow(block, anchor);
-            if (below == kNone || anchor - below > tolerance) break;
             anchor = below;
+            below = surfaceBelow(block, anchor);
         }
         float end = d;
-        while (true) {
+        while (above != kInfinity && above - end <= tolerance) {
             if (spent()) return;
-            float above = surfaceAbove(block, end);
-            if (above == kInfinity || above - end > tolerance) break;
             end = above;
+            above = surfaceAbove(block, end);
         }
         if (productAt(block, end) == target) {
-            // The result is P for an AND, !P for an OR; it is entered where it turns true.
-            bool isOr = block.z != 0u;
-            bool resultInside = startsTrue != isOr;
             // The cluster's depths in order, P asked after each (evaluate.frag).
             startCluster();
             for (float x = anchor; x <= end; x = surfaceAbove(block, x)) {
@@ -190,7 +218,7 @@ void main() {
             writeChosenSurface(!resultInside);
             return;
         }
-        from = surfaceAbove(block, end);
-        if (spent()) return;
+        // d lay on a sliver: seek on from the next cluster.
+        d = above == kInfinity ? kInfinity : seekProduct(block, above, target);
     }
 }

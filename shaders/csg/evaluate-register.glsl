@@ -79,27 +79,16 @@ void main() {
     vec4 headB = nearB;
 #endif
     bool inside = RESULT(insideBits);
-    // Surface by surface in depth order; a surface beyond the cluster's
-    // reach (the tolerance past its last surface) closes it, and the tree's
-    // answer after the whole cluster decides.
-    float reach = -kInfinity;
-    bool open = false;
+    // Depth by depth, in clusters (evaluate.frag: walkTo).
     while (true) {
         float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
 #if MAX_LIVE > 4
         nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
 #endif
-        if (nearest == kInfinity || untagged(nearest) > reach) {
-            if (open && RESULT(insideBits) != inside) {
-                writeChosenSurface(!inside);
-                return;
-            }
-            if (nearest == kInfinity) break;
-            startCluster();
-            open = true;
-        }
+        int step = walkTo(nearest, RESULT(insideBits), inside);
+        if (step == kWalkWritten) return;
+        if (step == kWalkDone) break;
         float depth = untagged(nearest);
-        reach = depth + uCoincidence;
         uint toggled = 0u;  // operand bits
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 2) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 3)

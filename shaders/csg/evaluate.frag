@@ -137,6 +137,8 @@ void startCluster() {
     chosen = false;
     faceEnd = -kInfinity;
     pickLeaf = kNoLeaf;
+    pickSurface = kInfinity;
+    pickSame = false;
 }
 
 // A surface of the cluster, in depth order: `tagged` its tagged depth,
@@ -183,6 +185,32 @@ void writeChosenSurface(bool entered) {
 #ifdef LEAF_MARKS
     gl_FragStencilRefARB = stencilMark(markSlots[leaf], face);
 #endif
+}
+
+// The walk's clusters, for the forms that take surfaces one depth at a time
+// (register and array): call with the nearest surface left (tagged, +inf
+// for none) and the result's membership now, before taking the surfaces at
+// that depth. A surface beyond the open cluster's reach (the tolerance past
+// its last surface) closes it; if the result then differs from `inside`
+// (its membership at the start), the chosen surface is written.
+const int kWalkOn = 0;       // take the surfaces at `nearest`
+const int kWalkWritten = 1;  // the surface is written: stop
+const int kWalkDone = 2;     // no surface left and no change: discard
+bool clusterOpen = false;
+float clusterReach = -kInfinity;
+
+int walkTo(float nearest, bool now, bool inside) {
+    if (nearest == kInfinity || untagged(nearest) > clusterReach) {
+        if (clusterOpen && now != inside) {
+            writeChosenSurface(!inside);
+            return kWalkWritten;
+        }
+        if (nearest == kInfinity) return kWalkDone;
+        startCluster();
+        clusterOpen = true;
+    }
+    clusterReach = untagged(nearest) + uCoincidence;
+    return kWalkOn;
 }
 
 #if defined(PRODUCT_FORM) || defined(ARRAY_FORM)

@@ -28,7 +28,8 @@ SHARED int kSurfaceForward = 2;  // the unit view direction f
 // peel.frag (after surface.vert's).
 SHARED int kPeelPreviousLayer = 3;  // the layer the next pass reads
 SHARED int kPeelKeyBase = 4;        // GROUP: the bits below every fragment's tagged depth
-SHARED int kPeelMember = 5;         // GROUP: the member's index in its group
+SHARED int kPeelMember = 5;         // GROUP, GROUP_TIE: the member's index in its group
+SHARED int kPeelTieTolerance = 6;   // GROUP_TIE: the depth within which a member ties with the winner
 
 // resolve.frag.
 SHARED int kResolveFirstLayer = 0;
@@ -53,6 +54,16 @@ SHARED int kNormalFlip = 6;  // TRUST_MARKS only
 // translucent.frag (after surface.vert's).
 SHARED int kTranslucentColor = 3;
 SHARED int kTranslucentToLight = 5;
+
+// alpha.frag (the REAR variant after surface.vert's).
+SHARED int kAlphaCodes = 3;        // the leaf codes whose pixels this draw blends over
+SHARED int kAlphaColor = 4;        // the leaf's colour, straight alpha
+SHARED int kAlphaBackground = 5;   // the scheme's background
+SHARED int kAlphaRight = 6;        // REAR: the view, as shade.frag's
+SHARED int kAlphaUp = 7;
+SHARED int kAlphaHalfExtent = 8;
+SHARED int kAlphaOrthographic = 9;
+SHARED int kAlphaSize = 10;
 
 // shade.frag.
 SHARED int kShadeBackground = 0;
@@ -80,8 +91,9 @@ SHARED int kBufferResolveStats = 7;   // resolve: the most layers, and overflow
 SHARED int kTextureLayers = 0;        // peel (the previous layer), evaluate: the peeled layers
 SHARED int kTextureGroupIds = 3;      // evaluate: a group's entry and exit members
 SHARED int kTextureGroupScratch = 0;  // group: the winning entry and exit
+SHARED int kTextureGroupWinners = 1;  // peel GROUP_TIE: a copy of the winning entry and exit
 SHARED int kTextureResultDepth = 0;   // normal, translucent: the evaluator's depth
-SHARED int kTextureResultLeaf = 1;    // normal: the evaluator's leaf code
+SHARED int kTextureResultLeaf = 1;    // normal, alpha: the evaluator's leaf code
 SHARED int kTextureNormal = 0;        // shade: normal and base colour
 
 // Image units.

@@ -10,7 +10,8 @@
 // GROUP (GroupPeel.h): a member of a group of convex operands, depth-tested
 // against the others. Writes (tagged depth, tagged depth, member, member),
 // of which the pass's colour mask keeps the entry or the exit half, and as
-// its depth an order key of the tagged depth.
+// its depth an order key of the tagged depth. GROUP_TIE: the members again,
+// where they tie with the winners (below).
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
@@ -36,6 +37,16 @@ float orderKey(float tagged) {
     uint offset = bits > uKeyBase ? min(bits - uKeyBase, 0x3f000000u) : 0u;
     return uintBitsToFloat(offset + 0x00800000u);
 }
+#elif defined(GROUP_TIE)
+// A member's faces once more (GroupPeel.h, "ties"): a front face within the
+// tolerance of the winning entry, or a back face within it of the winning
+// exit, is that surface as far as rounding can tell; the lowest such member
+// (its index as the depth, depth test LESS) writes its own tagged depth and
+// index, of which the pass's colour mask keeps the entry or the exit half.
+layout(location = kPeelMember) uniform float uMember;
+layout(location = kPeelTieTolerance) uniform float uTieTolerance;
+layout(binding = kTextureGroupWinners) uniform sampler2D uWinners;
+layout(location = 0) out vec4 outGroup;
 #else
 layout(location = 0) out vec2 outDepths;
 #endif
@@ -62,6 +73,15 @@ void main() {
     if (slot < uint(kCollectCapacity)) imageStore(uFragments, ivec3(pixel, int(slot)), vec4(t));
 #elif defined(GROUP)
     gl_FragDepth = orderKey(t);
+    outGroup = vec4(t, t, uMember, uMember);
+#elif defined(GROUP_TIE)
+    vec4 winners = texelFetch(uWinners, ivec2(gl_FragCoord.xy), 0);
+    if (gl_FrontFacing) {
+        if (winners.r < 0.0 || untagged(t) < untagged(winners.r) - uTieTolerance) discard;
+    } else if (winners.g < 0.0 || untagged(t) > untagged(winners.g) + uTieTolerance) {
+        discard;
+    }
+    gl_FragDepth = (uMember + 1.0) / 512.0;
     outGroup = vec4(t, t, uMember, uMember);
 #else
 #ifndef PEEL_FIRST

@@ -3,10 +3,11 @@
 // Colour: the base colour the normal pass stored in the normal's w (the
 // leaf's color() where it has one, else the scheme's face colour, or its
 // cut-face colour where the leaf acts subtracted: ShadePass::baseColors).
-// Light: Lambert from a light beside the eye, plus ambient. A Sobel filter on
+// Light: Lambert from a light beside the eye, plus ambient (light.glsl). A Sobel filter on
 // the normal buffer darkens creases and silhouettes (the look of the original
 // image-space CSG papers). Empty pixels get the scheme's background, opaque.
 #include "csg/interface.glsl"
+#include "csg/light.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -23,9 +24,6 @@ layout(location = kShadeHalfExtent) uniform vec2 uHalfExtent;  // tan(fov/2) * (
 layout(location = kShadeOrthographic) uniform int uOrthographic;
 layout(location = kShadeSize) uniform ivec2 uSize;
 
-const float kAmbient = 0.35;
-const float kDiffuse = 0.65;
-
 // The normal (dx, dy) pixels away, the edge pixel's beyond the frame. The
 // sampler's offset and clamp cost llvmpipe less than clamping the
 // coordinates for texelFetch.
@@ -40,16 +38,8 @@ void main() {
     uint bits = uint(centre.w) - 1u;
     vec3 base = vec3((uvec3(bits) >> uvec3(16u, 8u, 0u)) & 255u) / 255.0;
 
-    // The contract's ray through this pixel centre (GL rows count from the bottom).
-    vec2 ndc = 2.0 * gl_FragCoord.xy / vec2(uSize) - 1.0;
-    vec3 rayDir = uOrthographic != 0
-        ? uForward
-        : normalize(uForward + ndc.x * uHalfExtent.x * uRight + ndc.y * uHalfExtent.y * uUp);
-    // The light sits a little above and left of the eye, so faces square to
-    // the view are not all equally bright.
-    vec3 toLight = normalize(-rayDir + 0.25 * (uUp - uRight));
-    float lambert = max(dot(centre.xyz, toLight), 0.0);
-    vec3 color = base * (kAmbient + kDiffuse * lambert);
+    vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
+    vec3 color = lit(base, centre.xyz, rayDir, uRight, uUp);
 
     // Sobel on the normals: |G| is about 4 |dn| across a sharp crease, so
     // creases sharper than ~30 degrees (|dn| > 0.5) and silhouettes (|dn| = 1

@@ -96,7 +96,9 @@ TEST_P(ExactExport, IsOpenScadsSolidAndPassesCgalsChecks) {
     // (OpenSCAD after them), so faces flush only before a rotation are about
     // 1e-15 apart after it; the exact result keeps that sliver, and rounding
     // it to doubles makes it cross itself.
-    if (name != "pocket_flush_top_rotated") EXPECT_FALSE(PMP::does_self_intersect(ours));
+    if (name != "pocket_flush_top_rotated") {
+        EXPECT_FALSE(PMP::does_self_intersect(ours));
+    }
     // OpenSCAD prints six significant digits, of the .csg's numbers too.
     const double volume = PMP::volume(theirs);
     EXPECT_NEAR(PMP::volume(ours), volume, 2e-5 * std::fabs(volume)) << name;

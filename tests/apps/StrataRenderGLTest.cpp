@@ -309,3 +309,49 @@ TEST(StrataRenderGL, AnImageTooLargeForMemoryIsOneLine) {
     EXPECT_EQ(dir.files(), std::vector<std::string>{"cube.csg"});
 #endif
 }
+
+// A translucent color() against OpenSCAD 2021.01's own preview of the same
+// scene (tests/data/openscad-alpha/README.md): OpenSCAD lights surfaces
+// otherwise, so only what does not depend on the light is compared. The
+// leaves are pure red, so in the green and blue channels a pixel holds only
+// the background's share, (1 - a) over one layer, (1 - a)^2 over two.
+TEST(StrataRenderGL, TranslucentColoursLetTheBackgroundThroughAsOpenScadsPreview) {
+    const std::filesystem::path data = std::filesystem::path(STRATA_TEST_DIR) / "data" / "openscad-alpha";
+    auto readPng = [](const std::string& path, int& w, int& h) {
+        std::vector<unsigned char> rgb;
+        auto in = OIIO::ImageInput::open(path);
+        if (!in) return rgb;
+        w = in->spec().width;
+        h = in->spec().height;
+        rgb.resize(static_cast<std::size_t>(w) * h * 3);
+        in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data());
+        return rgb;
+    };
+    for (const char* name : {"lone", "in-front", "product", "cut"}) {
+        int ow = 0, oh = 0;
+        const std::vector<unsigned char> openscad = readPng(data / (std::string(name) + ".png"), ow, oh);
+        ASSERT_EQ(ow, 64) << name;
+        ASSERT_EQ(oh, 48) << name;
+        for (const bool reference : {false, true}) {
+            TempDir dir;
+            std::vector<std::string> argv{kExe, data / (std::string(name) + ".csg"), "-o", dir / "out.png",
+                                          "--imgsize", "64,48", "--projection", "o", "--camera", "0,-100,0,0,0,0"};
+            if (reference) argv.push_back("--reference");
+            const ProcessResult r = runProcess(argv);
+            ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+            int w = 0, h = 0;
+            const std::vector<unsigned char> strata = readPng(dir / "out.png", w, h);
+            ASSERT_EQ(w, 64);
+            ASSERT_EQ(h, 48);
+            // The 4 x 4 pixels around the centre, inside the red surface in both.
+            for (int j = 22; j < 26; ++j)
+                for (int i = 30; i < 34; ++i) {
+                    const std::size_t k = (static_cast<std::size_t>(j) * 64 + i) * 3;
+                    EXPECT_GT(openscad[k], 150) << name << " " << i << "," << j;  // red: the leaf is there
+                    for (int c : {1, 2})
+                        EXPECT_NEAR(int(strata[k + c]), int(openscad[k + c]), 2)
+                            << name << (reference ? " --reference " : " ") << i << "," << j << " channel " << c;
+                }
+        }
+    }
+}

@@ -1004,6 +1004,120 @@ TEST_F(RendererGLTest, BackgroundLeavesAreDrawnButNotInTheCsg) {
     EXPECT_EQ(f.stats.operands, 1);
 }
 
+// Translucent color()s, as OpenSCAD 2021.01's preview draws them
+// (docs/algorithm.md, "Translucent colours"): a surface of alpha a is lit as
+// any other (F) and blended over what OpenSCAD shows behind it (U):
+// a F + (1 - a) U. For a leaf alone in its product, U is its own back face
+// over the background, a B + (1 - a) background; else the background.
+// Seen from straight above, orthographic: the ray is -Z, right +X, up +Y, so
+// strata's light (light.glsl) gives a face of normal +Z, and a back face
+// seen from inside it, ambient 0.35 + 0.65 Lambert towards
+// normalize(+Z + 0.25 (up - right)).
+namespace {
+
+double topLight() {
+    const glm::dvec3 toLight = glm::normalize(glm::dvec3(-0.25, 0.25, 1.0));
+    return 0.35 + 0.65 * toLight.z;
+}
+
+// The centre pixel's colour, 0..255.
+glm::dvec3 centreColour(const render::Frame& f) {
+    const std::size_t c = at(f, kCentre, kCentre) * 4;
+    return {f.rgba[c + 0], f.rgba[c + 1], f.rgba[c + 2]};
+}
+
+void expectColour(const glm::dvec3& got, const glm::dvec3& want) {
+    // The lit colour is rounded to 8 bits before the blend.
+    EXPECT_NEAR(got.r, want.r, 2.0);
+    EXPECT_NEAR(got.g, want.g, 2.0);
+    EXPECT_NEAR(got.b, want.b, 2.0);
+}
+
+const glm::dvec3 kCornfield{255.0, 255.0, 229.0};
+
+}  // namespace
+
+TEST_F(RendererGLTest, ATranslucentLeafAloneShowsItsBackFacesOverTheBackground) {
+    const double a = 0.3, lit = topLight();
+    scene::Tree tree;
+    scene::Leaf red = cubeLeaf({-1, -1, -1}, {1, 1, 1});
+    red.color = glm::dvec4(1.0, 0.0, 0.0, a);
+    const int cube = tree.addLeaf(red);
+    tree.root = tree.addNode(NodeKind::Union, {cube});
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    // Back face (the bottom, lit as seen from inside) over the background,
+    // then the top face over that.
+    const glm::dvec3 top(255.0 * lit, 0.0, 0.0);
+    const glm::dvec3 under = a * top + (1.0 - a) * kCornfield;
+    expectColour(centreColour(f), a * top + (1.0 - a) * under);
+    EXPECT_EQ(f.rgba[at(f, kCentre, kCentre) * 4 + 3], 255);  // the image stays opaque
+    EXPECT_EQ(f.leaf[at(f, kCentre, kCentre)], 0);            // and the AOVs see the surface
+
+    // An opaque colour is drawn as before: lit, nothing behind it.
+    tree.leaves[0].color = glm::dvec4(1.0, 0.0, 0.0, 1.0);
+    expectColour(centreColour(draw(tree, topCamera(render::Projection::Orthographic))), top);
+
+    // What lies behind a translucent surface stays hidden, as in OpenSCAD
+    // where the translucent object is drawn first: a blue slab under the cube.
+    tree.leaves[0].color = glm::dvec4(1.0, 0.0, 0.0, a);
+    scene::Leaf blue = cubeLeaf({-3, -3, -3}, {3, 3, -2});
+    blue.color = glm::dvec4(0.0, 0.0, 1.0, 1.0);
+    const int slab = tree.addLeaf(blue);
+    tree.nodes[static_cast<std::size_t>(tree.root)].children.push_back(slab);
+    const render::Frame behind = draw(tree, topCamera(render::Projection::Orthographic));
+    expectColour(centreColour(behind), centreColour(f));
+    const std::size_t beside = at(behind, kCentre, 5) * 4;  // y ~ 1.8: the slab alone
+    EXPECT_EQ(behind.rgba[beside + 0], 0);
+    EXPECT_NEAR(behind.rgba[beside + 2], 255.0 * lit, 2.0);
+}
+
+TEST_F(RendererGLTest, ATranslucentLeafWithOthersShowsTheBackgroundOnce) {
+    // In a difference or an intersection the leaf is no product of its own:
+    // OpenSCAD draws only the visible surface, over the background.
+    const double a = 0.3, lit = topLight();
+    const glm::dvec3 want = a * glm::dvec3(255.0 * lit, 0.0, 0.0) + (1.0 - a) * kCornfield;
+    for (const NodeKind op : {NodeKind::Difference, NodeKind::Intersection}) {
+        scene::Tree tree;
+        scene::Leaf red = cubeLeaf({-1, -1, -1}, {1, 1, 1});
+        red.color = glm::dvec4(1.0, 0.0, 0.0, a);
+        const int cube = tree.addLeaf(red);
+        // A corner cut off, or a sphere that holds the cube's top centre.
+        const int other = tree.addLeaf(op == NodeKind::Difference ? cubeLeaf({0.8, 0.8, 0.8}, {1.5, 1.5, 1.5})
+                                                                  : sphereLeaf({0, 0, 0}, 1.6));
+        tree.root = tree.addNode(NodeKind::Union, {tree.addNode(op, {cube, other})});
+        const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+        ASSERT_EQ(f.leaf[at(f, kCentre, kCentre)], 0);
+        expectColour(centreColour(f), want);
+    }
+}
+
+TEST_F(RendererGLTest, ATranslucentSubtrahendsCutFacesShowTheBackgroundOnce) {
+    const double a = 0.4, lit = topLight();
+    scene::Tree tree = paperPair(NodeKind::Difference);
+    tree.leaves[1].color = glm::dvec4(0.0, 0.0, 1.0, a);
+    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    ASSERT_EQ(f.leaf[at(f, kCentre, kCentre)], 1);  // the sphere's inside, its normal flipped up
+    expectColour(centreColour(f), a * glm::dvec3(0.0, 0.0, 255.0 * lit) + (1.0 - a) * kCornfield);
+}
+
+TEST_F(RendererGLTest, ShadingAFramesOwnResultKeepsItsTranslucentColours) {
+    // strata-render --reference shades the reference's AOVs through shade():
+    // translucent leaves, alone and subtracted, must come out as render() draws them.
+    scene::Tree tree = paperPair(NodeKind::Difference);
+    tree.leaves[1].color = glm::dvec4(0.0, 0.0, 1.0, 0.4);
+    scene::Leaf alone = sphereLeaf({1.6, 1.6, 0}, 0.5);
+    alone.color = glm::dvec4(0.0, 1.0, 0.0, 0.6);
+    const int beside = tree.addLeaf(alone);
+    tree.nodes[static_cast<std::size_t>(tree.root)].children.push_back(beside);
+    const render::Camera camera = topCamera();
+    const render::Frame f = draw(tree, camera);
+    std::vector<std::uint8_t> cut(f.leaf.size());
+    for (std::size_t k = 0; k < cut.size(); ++k) cut[k] = f.leaf[k] == 1 ? 1 : 0;
+    ASSERT_GT(std::count(f.leaf.begin(), f.leaf.end(), 2), 20);
+    const render::Frame shaded = renderer_->shade(camera, {}, {f.depth, f.normal, f.leaf, cut});
+    EXPECT_EQ(shaded.rgba, f.rgba);
+}
+
 TEST_F(RendererGLTest, EmptyResultAndBadSettings) {
     scene::Tree tree;
     const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
@@ -1021,4 +1135,45 @@ TEST_F(RendererGLTest, EmptyResultAndBadSettings) {
     render::Camera zero = topCamera();
     zero.width = 0;
     EXPECT_THROW(renderer_->render(zero, {}), Error);
+}
+
+TEST_F(RendererGLTest, GroupedMembersSharingAFaceShowTheLowestLeafThere) {
+    // Two blocks with their tops in one plane, intersected, the whole turned
+    // by odd angles: rounding puts the two tops a hair apart on each pixel,
+    // this way or that. Grouped (one operand) or not, every pixel of the
+    // common top shows the lower leaf, as the evaluator's rule for
+    // coincident surfaces has it; and only a group whose members share a
+    // plane pays for the passes that look for such ties.
+    const glm::dmat4 turn = glm::rotate(glm::rotate(glm::dmat4(1.0), glm::radians(23.0), glm::dvec3(1, 0, 0)),
+                                        glm::radians(11.0), glm::dvec3(0, 1, 0));
+    auto turned = [&](scene::Leaf leaf) {
+        leaf.transform = turn * leaf.transform;
+        return leaf;
+    };
+    for (const bool shared : {true, false}) {
+        scene::Tree tree;
+        const int a = tree.addLeaf(turned(cubeLeaf({-2, -2, -2}, {2, 2, 1})));
+        const int b = tree.addLeaf(shared ? turned(cubeLeaf({-1, -1.5, -3}, {1.5, 1, 1}))
+                                          : turned(sphereLeaf({0.2, 0.1, 0.0}, 1.9)));
+        tree.root = tree.addNode(NodeKind::Intersection, {a, b});
+        render::RenderSettings separate;
+        separate.groupConvexIntersections = false;
+        const render::Camera camera = topCamera();
+        const render::Frame one = draw(tree, camera);
+        const render::Frame apart = renderer_->render(camera, separate);
+        EXPECT_EQ(one.stats.operands, 1);
+        EXPECT_EQ(one.stats.peelPasses, shared ? 4 : 2) << "shared " << shared;
+        if (!shared) continue;
+        std::size_t top = 0, lower = 0, lowerApart = 0;
+        const glm::vec3 up = glm::vec3(turn * glm::dvec4(0, 0, 1, 0));
+        for (std::size_t k = 0; k < one.leaf.size(); ++k) {
+            if (one.leaf[k] < 0 || glm::dot(one.normal[k], up) < 0.999f) continue;
+            ++top;
+            lower += one.leaf[k] == a;
+            lowerApart += apart.leaf[k] == a;
+        }
+        EXPECT_GT(top, static_cast<std::size_t>(kSize * kSize) / 10);
+        EXPECT_EQ(lower, top);
+        EXPECT_EQ(lowerApart, top);
+    }
 }
