@@ -64,7 +64,7 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
 }
 
 void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-                     const gpu::Texture& layers, int layer, int idsLayer, bool ties) {
+                     const gpu::Texture& layers, int layer, int idsLayer) {
     glScissor(valid.x, valid.y, valid.width, valid.height);
     target_.bindForDraw();
     const float none[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
@@ -96,14 +96,12 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
     // Ties: the winners copied aside, the lowest member within the
     // tolerance of each, front faces then back faces (GroupPeel.h).
     glDisable(GL_STENCIL_TEST);
-    if (ties) {
-        glCopyImageSubData(scratch_.id(), GL_TEXTURE_2D, 0, valid.x, valid.y, 0, winners_.id(), GL_TEXTURE_2D, 0,
-                           valid.x, valid.y, 0, valid.width, valid.height, 1);
-        winners_.bindUnit(shader::kTextureGroupWinners);
-        ties_.use();
-        glDepthFunc(GL_LESS);
-    }
-    for (int exits = 0; ties && exits < 2; ++exits) {
+    glCopyImageSubData(scratch_.id(), GL_TEXTURE_2D, 0, valid.x, valid.y, 0, winners_.id(), GL_TEXTURE_2D, 0,
+                       valid.x, valid.y, 0, valid.width, valid.height, 1);
+    winners_.bindUnit(shader::kTextureGroupWinners);
+    ties_.use();
+    glDepthFunc(GL_LESS);
+    for (int exits = 0; exits < 2; ++exits) {
         target_.clearDepth(1.0f);
         glCullFace(exits ? GL_FRONT : GL_BACK);
         glColorMask(!exits, exits, !exits, exits);

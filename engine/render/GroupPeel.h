@@ -20,12 +20,12 @@
 // first operand's surface.
 // Ties: rounding puts members that share a face (an intersection of solids
 // with a face in common) a hair apart, and the strict tests would name
-// whichever rounding put last. For a group whose members have faces in one
-// plane, two more passes over the members, the
-// winners copied aside, take every front face within a quarter of the
-// coincidence tolerance of the winning entry, and every back face within it
-// of the winning exit, and keep the lowest such member, with its own tagged
-// depth: the member the evaluator's rule names for the ungrouped operands
+// whichever rounding put last; so do members whose surfaces cross, on the
+// band of pixels where the two come within the tolerance. Two more passes
+// over the members, the winners copied aside, take every front face within
+// a quarter of the coincidence tolerance of the winning entry, and every
+// back face within it of the winning exit, and keep the lowest such member,
+// with its own tagged depth: the member the evaluator's rule names for the ungrouped operands
 // (evaluate.frag, "the surface shown"), and a depth the normal pass finds
 // in that member's faces.
 // A fullscreen pass over the group's rectangle, stencil-tested for "count =
@@ -66,10 +66,8 @@ public:
     // Peels a group: `members` (leaves, ascending) inside `valid` (tile
     // pixels), into layer `layer` of `layers`, and its members into layer
     // `idsLayer` (0 .. groups - 1 of begin()) of ids().
-    // `ties`: look for ties (above); only members with faces in one plane
-    // have them (SceneBuffers::shareAPlane).
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-              const gpu::Texture& layers, int layer, int idsLayer, bool ties);
+              const gpu::Texture& layers, int layer, int idsLayer);
 
     // R32UI, a layer per group, tile pixels: entry member | exit member <<
     // shader::kMemberBits where the group has a surface (shader::kNoMember:

@@ -222,10 +222,9 @@ int PeelPass::peelGroups(const Job& job, const ViewSetup& view, std::vector<Oper
         // The groups take the first layers, so a group's layer is also its
         // index among the tile's groups: its layer of the ids.
         out[k] = {used, 1, used};
-        const bool ties = job.scene.shareAPlane(job.request.groups[k]);
-        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used, ties);
+        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used);
         ++used;
-        passes_ += ties ? 4 : 2;
+        passes_ += 4;  // entries, exits, and their ties (GroupPeel.h)
     }
     glEnable(GL_BLEND);
     return used;

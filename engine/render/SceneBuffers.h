@@ -16,7 +16,6 @@
 // shaders/csg/surface.vert as its vertex stage (setSurfaceView).
 
 #include <cstddef>
-#include <map>
 #include <span>
 #include <vector>
 
@@ -57,10 +56,6 @@ public:
     const LeafRange& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
     // Of every leaf with triangles, background leaves included.
     const geometry::Bounds& bounds() const { return bounds_; }
-    // Whether two of the convex `leaves` have faces in one plane, facing the
-    // same way (to a billionth of the scene's size): where members of a
-    // group can tie (GroupPeel.h). Remembered per set of leaves.
-    bool shareAPlane(const std::vector<int>& leaves) const;
     // Leaf `leaf`'s vertices (world space, as uploaded), for screen rectangles.
     std::span<const glm::vec3> leafVertices(int leaf) const;
     std::size_t bytes() const;
@@ -73,8 +68,6 @@ private:
     gpu::VertexArray vertexArray_;
     gpu::VertexArray flatVertexArray_;
     std::vector<LeafRange> leaves_;
-    std::vector<std::vector<std::uint64_t>> planes_;  // per convex leaf: its faces' planes, hashed, sorted
-    mutable std::map<std::vector<int>, bool> sharing_;  // shareAPlane's answers
     std::vector<glm::vec4> leafColors_;
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_
     std::vector<std::size_t> firstVertex_;     // per leaf, and one past the last

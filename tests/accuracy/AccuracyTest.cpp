@@ -202,22 +202,22 @@ void appendReportRow(const Shot& shot, const std::string& layers, const Outcome&
     if (fresh) {
         out << "shot\tscene\tfamily\tprojection\tsize\tlayers\tmax_layers\tpixels\tcovered\tedge_pixels\t"
                "nonedge_coverage\tnonedge_depth\tnonedge_normal\tnonedge_normal_neighbour\tnonedge_leaf\tnonedge_cut\t"
-               "agreement\tedge_disagree\tedge_disagree_fraction\tmax_dz_over_tol\tmax_normal_deg\tcut_shown\tcut_inexact\t"
+               "agreement\tedge_disagree\tedge_disagree_fraction\tedge_normal\tedge_normal_neighbour\tmax_dz_over_tol\tmax_normal_deg\tcut_shown\tcut_inexact\t"
                "gpu_ms\treference_ms\tpassed\tflags\n";
     }
     const accuracy::CompareResult& r = o.result;
     std::string flags;
     for (const std::string& f : shot.flags) flags += (flags.empty() ? "" : ",") + f;
-    char row[1024];
+    char row[1280];
     std::snprintf(row, sizeof row,
                   "%s\t%s\t%s\t%s\t%dx%d\t%s\t%d\t%zu\t%zu\t%zu\t"
                   "%zu\t%zu\t%zu\t%zu\t%zu\t%zu\t%.6f\t%zu\t"
-                  "%.6f\t%.4g\t%.4g\t%zu\t%zu\t%.1f\t%.1f\t%s\t%s\n",
+                  "%.6f\t%zu\t%zu\t%.4g\t%.4g\t%zu\t%zu\t%.1f\t%.1f\t%s\t%s\n",
                   shot.name.c_str(), shot.scene.c_str(), shot.family.c_str(),
                   o.camera.projection == render::Projection::Perspective ? "p" : "o", r.width, r.height,
                   layers.c_str(), maxLayers(o.frame), r.pixels, r.coveredReference, r.edgePixels,
                   r.nonEdge.coverage, r.nonEdge.depth, r.nonEdge.normal, r.nonEdgeNeighbourNormal, r.nonEdge.leaf, r.nonEdge.cut,
-                  r.agreement(), r.edge.total(), r.edgeDisagreement(), r.maxDepthError / r.options.depthTolerance, r.maxNormalErrorDegrees,
+                  r.agreement(), r.edge.total(), r.edgeDisagreement(), r.edge.normal, r.edgeNeighbourNormal, r.maxDepthError / r.options.depthTolerance, r.maxNormalErrorDegrees,
                   o.gpuCut.shown, o.gpuCut.inexact, o.frame.stats.totalMs, o.referenceMs, r.passed() ? "yes" : "no", flags.c_str());
     out << row;
 }

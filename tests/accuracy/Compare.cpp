@@ -59,30 +59,33 @@ private:
     double orthoFootprint_ = 0.0;
 };
 
-// True when pixels p = (i, j) and q = (i2, j2) of one image are separated by
-// a silhouette or a crease.
-bool discontinuous(const AovView& image, const Geometry& geometry, const CompareOptions& options, int i, int j,
-                   int i2, int j2) {
+// What separates pixels p = (i, j) and q = (i2, j2) of one image: a
+// silhouette, leaf boundary, crease or depth step (EdgeKind::Edge), a facet
+// boundary (EdgeKind::FacetBoundary), or nothing.
+EdgeKind discontinuity(const AovView& image, const Geometry& geometry, const CompareOptions& options, int i, int j,
+                       int i2, int j2) {
     const std::size_t p = static_cast<std::size_t>(j) * image.width + i;
     const std::size_t q = static_cast<std::size_t>(j2) * image.width + i2;
     const bool hp = isHit(image, p), hq = isHit(image, q);
-    if (hp != hq) return true;
-    if (!hp) return false;
-    if (image.leaf[p] != image.leaf[q]) return true;
-    if (angleDegrees(image.normal[p], image.normal[q]) > options.creaseDegrees) return true;
+    if (hp != hq) return EdgeKind::Edge;
+    if (!hp) return EdgeKind::None;
+    if (image.leaf[p] != image.leaf[q]) return EdgeKind::Edge;
+    const double angle = angleDegrees(image.normal[p], image.normal[q]);
+    if (angle > options.creaseDegrees) return EdgeKind::Edge;
     const double zp = image.depth[p], zq = image.depth[q];
-    if (!std::isfinite(zp) || !std::isfinite(zq)) return true;
+    if (!std::isfinite(zp) || !std::isfinite(zq)) return EdgeKind::Edge;
     const glm::dvec3 P = geometry.point(i, j, zp), Q = geometry.point(i2, j2, zq);
     const glm::dvec3 np = glm::dvec3(image.normal[p]), nq = glm::dvec3(image.normal[q]);
     const double offPlane = std::max(std::abs(glm::dot(Q - P, glm::normalize(np))),
                                      std::abs(glm::dot(P - Q, glm::normalize(nq))));
     const double threshold =
         options.stepPixels * geometry.footprint(std::max(zp, zq)) + options.depthTolerance;
-    return !(offPlane <= threshold);
+    if (!(offPlane <= threshold)) return EdgeKind::Edge;
+    return angle > options.facetDegrees ? EdgeKind::FacetBoundary : EdgeKind::None;
 }
 
 void markEdges(const AovView& image, const Geometry& geometry, const CompareOptions& options,
-               std::vector<std::uint8_t>& mask) {
+               std::vector<EdgeKind>& mask) {
     const int w = image.width, h = image.height;
     // Each unordered neighbour pair once: right, down-left, down, down-right.
     constexpr int kDi[4] = {1, -1, 0, 1};
@@ -92,10 +95,12 @@ void markEdges(const AovView& image, const Geometry& geometry, const CompareOpti
             for (int n = 0; n < 4; ++n) {
                 const int i2 = i + kDi[n], j2 = j + kDj[n];
                 if (i2 < 0 || i2 >= w || j2 >= h) continue;
-                if (discontinuous(image, geometry, options, i, j, i2, j2)) {
-                    mask[static_cast<std::size_t>(j) * w + i] = 1;
-                    mask[static_cast<std::size_t>(j2) * w + i2] = 1;
-                }
+                const EdgeKind kind = discontinuity(image, geometry, options, i, j, i2, j2);
+                if (kind == EdgeKind::None) continue;
+                EdgeKind& a = mask[static_cast<std::size_t>(j) * w + i];
+                EdgeKind& b = mask[static_cast<std::size_t>(j2) * w + i2];
+                a = std::max(a, kind);
+                b = std::max(b, kind);
             }
         }
     }
@@ -116,7 +121,7 @@ void checkImage(const AovView& image, const render::Camera& camera, const char* 
 
 std::string percent(double fraction) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3f%%", 100.0 * fraction);
+    std::snprintf(buf, sizeof buf, "%.4f%%", 100.0 * fraction);
     return buf;
 }
 
@@ -172,15 +177,17 @@ double CompareResult::edgeDisagreement() const {
 }
 
 std::string CompareResult::summary() const {
-    char buf[640];
+    char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "%dx%d: non-edge agreement %s of %zu pixels (bound >= %s; disagreeing: %zu coverage, %zu depth, "
-                  "%zu normal (%zu a neighbour's), %zu leaf, %zu cut); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s); "
+                  "%zu normal (%zu a neighbour's), %zu leaf, %zu cut); edge pixels %zu, of which %zu disagree = %s of the image (bound <= %s; "
+                  "%zu coverage, %zu depth, %zu normal (%zu a neighbour's), %zu leaf, %zu cut); "
                   "max non-edge |dz| %.3g (tolerance %.3g), max normal error %.3g deg; covered %zu gpu / %zu "
                   "reference",
                   width, height, percent(agreement()).c_str(), nonEdgePixels, percent(options.minAgreement).c_str(),
                   nonEdge.coverage, nonEdge.depth, nonEdge.normal, nonEdgeNeighbourNormal, nonEdge.leaf, nonEdge.cut, edgePixels, edge.total(),
-                  percent(edgeDisagreement()).c_str(), percent(options.maxEdgeDisagreement).c_str(), maxDepthError,
+                  percent(edgeDisagreement()).c_str(), percent(options.maxEdgeDisagreement).c_str(), edge.coverage,
+                  edge.depth, edge.normal, edgeNeighbourNormal, edge.leaf, edge.cut, maxDepthError,
                   options.depthTolerance, maxNormalErrorDegrees, coveredGpu, coveredReference);
     std::string s = buf;
     if (!agreementHolds()) s += " -- NON-EDGE AGREEMENT BELOW BOUND";
@@ -188,9 +195,9 @@ std::string CompareResult::summary() const {
     return s;
 }
 
-std::vector<std::uint8_t> edgeMask(const render::Camera& camera, const AovView& image, const CompareOptions& options) {
+std::vector<EdgeKind> edgeMask(const render::Camera& camera, const AovView& image, const CompareOptions& options) {
     checkImage(image, camera, "given");
-    std::vector<std::uint8_t> mask(static_cast<std::size_t>(image.width) * image.height, 0);
+    std::vector<EdgeKind> mask(static_cast<std::size_t>(image.width) * image.height, EdgeKind::None);
     markEdges(image, Geometry(camera), options, mask);
     return mask;
 }
@@ -210,16 +217,18 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
     r.edgeMask.assign(r.pixels, 0);
 
     const bool compareCut = !gpu.cut.empty() && !reference.cut.empty();
-    const Geometry geometry(camera);
-    markEdges(reference, geometry, options, r.edgeMask);
-    markEdges(gpu, geometry, options, r.edgeMask);
+    // The reference's edges only: the GPU image's own discontinuities are
+    // what is being judged, and must not excuse themselves.
+    r.edgeKind.assign(r.pixels, EdgeKind::None);
+    markEdges(reference, Geometry(camera), options, r.edgeKind);
 
     for (std::size_t k = 0; k < r.pixels; ++k) {
-        const bool edge = r.edgeMask[k] != 0;
         const bool hg = isHit(gpu, k), hr = isHit(reference, k);
         r.coveredGpu += hg ? 1 : 0;
         r.coveredReference += hr ? 1 : 0;
         Verdict v = Verdict::Agree;
+        double depthError = 0.0, normalError = 0.0;
+        bool normalCompared = false;
         if (hg != hr) {
             v = Verdict::Coverage;
         } else if (!hg) {
@@ -227,14 +236,13 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
             if (!(std::isinf(gpu.depth[k]) && gpu.depth[k] > 0)) v = Verdict::Depth;
         } else {
             const double dz = std::abs(static_cast<double>(gpu.depth[k]) - static_cast<double>(reference.depth[k]));
-            const double error = std::isnan(dz) ? std::numeric_limits<double>::infinity() : dz;
-            if (!edge) r.maxDepthError = std::max(r.maxDepthError, error);
-            if (!(error <= options.depthTolerance)) {
+            depthError = std::isnan(dz) ? std::numeric_limits<double>::infinity() : dz;
+            if (!(depthError <= options.depthTolerance)) {
                 v = Verdict::Depth;
             } else {
-                const double angle = angleDegrees(gpu.normal[k], reference.normal[k]);
-                if (!edge) r.maxNormalErrorDegrees = std::max(r.maxNormalErrorDegrees, angle);
-                if (!(angle <= options.normalToleranceDegrees)) {
+                normalError = angleDegrees(gpu.normal[k], reference.normal[k]);
+                normalCompared = true;
+                if (!(normalError <= options.normalToleranceDegrees)) {
                     v = Verdict::Normal;
                 } else if (gpu.leaf[k] != reference.leaf[k]) {
                     v = Verdict::Leaf;
@@ -244,9 +252,9 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
             }
         }
         r.verdict[k] = v;
-        if (v == Verdict::Normal && !edge) {
+        bool neighbour = false;  // the GPU normal is a neighbouring reference pixel's, on the same leaf
+        if (v == Verdict::Normal) {
             const int i = static_cast<int>(k % r.width), j = static_cast<int>(k / r.width);
-            bool neighbour = false;
             for (int dj = -1; dj <= 1 && !neighbour; ++dj) {
                 for (int di = -1; di <= 1 && !neighbour; ++di) {
                     const int i2 = i + di, j2 = j + dj;
@@ -256,7 +264,24 @@ CompareResult compare(const render::Camera& camera, const AovView& gpu, const Ao
                                 angleDegrees(gpu.normal[k], reference.normal[q]) <= options.normalToleranceDegrees;
                 }
             }
-            if (neighbour) ++r.nonEdgeNeighbourNormal;
+        }
+        // Beside a facet boundary only the facet may differ: a normal within
+        // the crease angle (another facet of the same smooth surface) at the
+        // right depth (the verdict order has checked coverage and depth), on
+        // the right leaf with the right cut bit, is an edge disagreement;
+        // anything else counts.
+        const EdgeKind kind = r.edgeKind[k];
+        const bool facetSwap = kind == EdgeKind::FacetBoundary && v == Verdict::Normal &&
+                               normalError <= options.creaseDegrees && gpu.leaf[k] == reference.leaf[k] &&
+                               !(compareCut && (gpu.cut[k] != 0) != (reference.cut[k] != 0));
+        const bool edge = kind == EdgeKind::Edge || facetSwap;
+        r.edgeMask[k] = edge ? 1 : 0;
+        if (kind == EdgeKind::FacetBoundary) ++r.facetBoundaryPixels;
+        if (facetSwap) ++r.facetSwaps;
+        if (neighbour) ++(edge ? r.edgeNeighbourNormal : r.nonEdgeNeighbourNormal);
+        if (!edge) {
+            r.maxDepthError = std::max(r.maxDepthError, depthError);
+            if (normalCompared) r.maxNormalErrorDegrees = std::max(r.maxNormalErrorDegrees, normalError);
         }
         if (edge) {
             ++r.edgePixels;

@@ -1,6 +1,8 @@
 // The comparison on synthetic images whose right answer is worked out here:
-// which pixels are edge pixels, what each disagreement is counted as, and
-// where the bounds (99.9% of non-edge pixels, 1% of the image on edges) cut.
+// which pixels are edge pixels (the reference image's silhouettes, leaf
+// boundaries, creases and facet boundaries, and nothing of the GPU image's),
+// what each disagreement is counted as, and where the bounds (99.99% of
+// non-edge pixels, 1% of the image on edges) cut.
 
 #include <gtest/gtest.h>
 
@@ -24,26 +26,33 @@ constexpr int kSize = 96;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Orthographic, straight down -Z from z = 10: view depth = 10 - z.
-render::Camera topCamera(render::Projection projection = render::Projection::Orthographic) {
+render::Camera topCamera(render::Projection projection = render::Projection::Orthographic, int size = kSize) {
     render::Camera c;
     c.eye = {0.0, 0.0, 10.0};
     c.center = {0.0, 0.0, 0.0};
     c.projection = projection;
     c.fovDegrees = 30.0;
-    c.width = kSize;
-    c.height = kSize;
+    c.width = size;
+    c.height = size;
     return c;
 }
 
 struct Synth {
-    int width = kSize, height = kSize;
-    std::vector<float> depth = std::vector<float>(kSize * kSize, kInf);
-    std::vector<glm::vec3> normal = std::vector<glm::vec3>(kSize * kSize, glm::vec3(0.0f));
-    std::vector<std::int32_t> leaf = std::vector<std::int32_t>(kSize * kSize, -1);
+    int width, height;
+    std::vector<float> depth;
+    std::vector<glm::vec3> normal;
+    std::vector<std::int32_t> leaf;
     std::vector<std::uint8_t> cut;  // empty: not carried
 
+    explicit Synth(int size = kSize)
+        : width(size),
+          height(size),
+          depth(static_cast<std::size_t>(size) * size, kInf),
+          normal(static_cast<std::size_t>(size) * size, glm::vec3(0.0f)),
+          leaf(static_cast<std::size_t>(size) * size, -1) {}
+
     std::size_t at(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
-    void set(int i, int j, float z, glm::vec3 n, int id) {
+    void set(int i, int j, float z, glm::vec3 n, int id = 0) {
         depth[at(i, j)] = z;
         normal[at(i, j)] = n;
         leaf[at(i, j)] = id;
@@ -110,44 +119,139 @@ TEST(AccuracyCompare, AWrongRegionFailsByItsInteriorPixels) {
     ref.square(0, kSize, 0, kSize);
     gpu.square(0, kSize, 0, kSize).square(30, 50, 30, 50, 11.0f);  // a 20x20 patch one unit too deep
     const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
-    // The patch's outline is a depth step in the GPU image: its outer ring of
-    // pixels is edge; the 18x18 inside is not.
-    EXPECT_EQ(r.nonEdge.depth, 18u * 18u);
-    EXPECT_EQ(r.edge.depth, 20u * 20u - 18u * 18u);
+    // The patch's outline is a depth step in the GPU image only: edges are
+    // the reference's, so all 400 pixels count, its outline too.
+    EXPECT_EQ(r.edgePixels, 0u);
+    EXPECT_EQ(r.nonEdge.depth, 20u * 20u);
+    EXPECT_EQ(r.edge.depth, 0u);
     EXPECT_FALSE(r.agreementHolds());
     EXPECT_FALSE(r.passed());
     EXPECT_NEAR(r.maxDepthError, 1.0, 1e-6);
 }
 
-TEST(AccuracyCompare, NinePixelsOfNinetySixSquaredAreWithinTheAgreementBound) {
-    Synth ref, gpu;
-    ref.square(0, kSize, 0, kSize);
-    gpu.square(0, kSize, 0, kSize);
-    // Isolated single wrong pixels make their own edges (the depth steps around
-    // them) in the GPU image, so put them where they cannot: change only normals
-    // by less than the crease angle but more than the tolerance.
-    for (int k = 0; k < 9; ++k) gpu.set(5 + 10 * k, 40, 10.0f, tilted(3.0), 0);
-    CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
-    EXPECT_EQ(r.nonEdge.normal, 9u);
+TEST(AccuracyCompare, OnePixelInTenThousandIsTheAgreementBound) {
+    // 200x200: 40000 non-edge pixels, of which 4 may disagree (99.99%), 5 not.
+    constexpr int kBig = 200;
+    const render::Camera cam = topCamera(render::Projection::Orthographic, kBig);
+    Synth ref(kBig), gpu(kBig);
+    ref.square(0, kBig, 0, kBig);
+    gpu.square(0, kBig, 0, kBig);
+    // Normals off by less than the crease angle of a real edge but more than
+    // the tolerance, then depths off: single wrong pixels of the GPU image
+    // make no edges of their own.
+    for (int k = 0; k < 2; ++k) gpu.set(10 + 40 * k, 40, 10.0f, tilted(3.0), 0);
+    for (int k = 0; k < 2; ++k) gpu.set(10 + 40 * k, 120, 10.5f, {0, 0, 1}, 0);
+    CompareResult r = compare(cam, gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.edgePixels, 0u);
+    EXPECT_EQ(r.nonEdge.normal, 2u);
+    EXPECT_EQ(r.nonEdge.depth, 2u);
     EXPECT_EQ(r.nonEdgeNeighbourNormal, 0u);  // no neighbour has the tilted normal
-    EXPECT_TRUE(r.passed()) << r.summary();  // 9 of 9216 = 0.098%
-    gpu.set(5, 60, 10.0f, tilted(3.0), 0);
-    r = compare(topCamera(), gpu.view(), ref.view(), options());
-    EXPECT_EQ(r.nonEdge.normal, 10u);
-    EXPECT_FALSE(r.passed()) << r.summary();  // 0.109%
+    EXPECT_TRUE(r.passed()) << r.summary();  // 4 of 40000 = 0.010%
+    gpu.set(150, 150, 10.0f, tilted(3.0), 0);
+    r = compare(cam, gpu.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.normal, 3u);
+    EXPECT_FALSE(r.passed()) << r.summary();  // 0.0125%
+    // At 96x96 the bound leaves no disagreement at all.
+    Synth small, one;
+    small.square(0, kSize, 0, kSize);
+    one.square(0, kSize, 0, kSize).set(40, 40, 10.0f, tilted(3.0), 0);
+    EXPECT_FALSE(compare(topCamera(), one.view(), small.view(), options()).passed());
 }
 
-TEST(AccuracyCompare, ANormalFromTheNeighbouringFacetIsCountedAndNamed) {
-    // Two facets 20 degrees apart meeting between columns 47 and 48; the GPU
-    // gives pixel (48, 30) the left facet's normal.
+TEST(AccuracyCompare, ASpeckledGpuImageFailsWhateverEdgesItMakes) {
+    // Coincident faces of two leaves fought over by the GPU: every fifth
+    // pixel of a 30x30 patch shows the other leaf, a little deeper, with its
+    // normal turned 90 degrees, or nothing (a pinhole). In the GPU image each
+    // speckle is a silhouette, a leaf boundary, a crease and a depth step at
+    // once, so edges taken from either image would excuse every one of them
+    // and its neighbours; edges come from the reference, which has none here.
     Synth ref, gpu;
-    ref.square(0, 48, 0, kSize, 10.0f, tilted(10.0)).square(48, kSize, 0, kSize, 10.0f, tilted(-10.0));
+    ref.square(0, kSize, 0, kSize, 10.0f, {0, 0, 1}, 0);
     gpu = ref;
-    gpu.set(48, 30, 10.0f, tilted(10.0), 0);
-    gpu.set(70, 30, 10.0f, tilted(10.0), 0);  // far from the left facet: not a neighbour's normal
+    std::size_t speckles = 0;
+    for (int j = 30; j < 60; ++j) {
+        for (int i = 30; i < 60; ++i) {
+            if ((i + 2 * j) % 5 != 0) continue;
+            if (speckles % 3 == 2) {
+                gpu.set(i, j, kInf, glm::vec3(0.0f), -1);
+            } else {
+                gpu.set(i, j, 10.0f + (speckles % 3 == 0 ? 0.0f : 0.5f), speckles % 3 == 0 ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1), 1);
+            }
+            ++speckles;
+        }
+    }
     const CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
-    EXPECT_EQ(r.nonEdge.normal, 2u);
-    EXPECT_EQ(r.nonEdgeNeighbourNormal, 1u);
+    EXPECT_EQ(r.edgePixels, 0u);
+    EXPECT_EQ(r.nonEdge.total(), speckles);
+    EXPECT_GT(r.nonEdge.coverage, 0u);
+    EXPECT_GT(r.nonEdge.depth, 0u);
+    EXPECT_GT(r.nonEdge.normal, 0u);
+    EXPECT_FALSE(r.agreementHolds()) << r.summary();
+    EXPECT_FALSE(r.passed());
+    // The GPU image's own edges would have covered the whole patch.
+    const std::vector<EdgeKind> own = edgeMask(topCamera(), gpu.view(), options());
+    std::size_t hidden = 0;
+    for (std::size_t k = 0; k < own.size(); ++k)
+        hidden += (own[k] == EdgeKind::Edge && r.verdict[k] != Verdict::Agree) ? 1 : 0;
+    EXPECT_EQ(hidden, speckles);
+}
+
+TEST(AccuracyCompare, AOnePixelFacetBoundarySwapIsAnEdgeAndPasses) {
+    // A faceted cylinder seen from the side: eight facets of 12 columns, their
+    // normals 7.5 degrees apart. Where a pixel centre lies on a facet boundary
+    // the rasterizer may give it to one facet and the exact ray test to the
+    // other: the GPU shows a neighbouring facet's normal at a few such pixels.
+    Synth ref;
+    for (int f = 0; f < 8; ++f) ref.square(12 * f, 12 * f + 12, 0, kSize, 10.0f, tilted(-26.25 + 7.5 * f));
+    Synth gpu = ref;
+    gpu.set(12, 30, 10.0f, tilted(-26.25));       // facet 1's first column takes facet 0's normal
+    gpu.set(35, 31, 10.0f, tilted(-26.25 + 22.5));  // facet 2's last column takes facet 3's
+    for (int j = 60; j < 64; ++j) gpu.set(72, j, 10.0f, tilted(-26.25 + 37.5));  // a run of four
+    CompareResult r = compare(topCamera(), gpu.view(), ref.view(), options());
+    // Both columns beside each of the seven facet boundaries are beside one;
+    // the six swapped pixels among them are edge pixels.
+    EXPECT_EQ(r.facetBoundaryPixels, 7u * 2u * kSize);
+    EXPECT_EQ(r.facetSwaps, 6u);
+    EXPECT_EQ(r.edgePixels, 6u);
+    EXPECT_EQ(r.nonEdge.total(), 0u);
+    EXPECT_EQ(r.edge.normal, 6u);
+    EXPECT_EQ(r.edgeNeighbourNormal, 6u);
+    EXPECT_TRUE(r.passed()) << r.summary();
+    // The same wrong normal two columns from the boundary is no edge's: it fails.
+    Synth away = gpu;
+    away.set(14, 50, 10.0f, tilted(-26.25));
+    r = compare(topCamera(), away.view(), ref.view(), options());
+    EXPECT_EQ(r.nonEdge.normal, 1u);
+    EXPECT_EQ(r.nonEdgeNeighbourNormal, 0u);  // no neighbour of (14, 50) has facet 0's normal
+    EXPECT_FALSE(r.passed()) << r.summary();
+    // A facet that no neighbouring pixel shows (a sliver, or a vertex where
+    // several facets meet), 12 degrees off, beside a boundary: a facet swap.
+    Synth sliver = gpu;
+    sliver.set(24, 80, 10.0f, tilted(-11.25 + 12.0));
+    r = compare(topCamera(), sliver.view(), ref.view(), options());
+    EXPECT_EQ(r.facetSwaps, 7u);
+    EXPECT_EQ(r.edgeNeighbourNormal, 6u);
+    EXPECT_TRUE(r.passed()) << r.summary();
+    // Beside a facet boundary only the facet may differ: a wrong depth, a
+    // normal further off than the crease angle (a face turned the wrong
+    // way), or the neighbouring facet's normal on another leaf counts as a
+    // non-edge disagreement.
+    struct Wrong {
+        float z;
+        glm::vec3 n;
+        int leaf;
+        Verdict verdict;
+    };
+    for (const Wrong& w : {Wrong{10.5f, tilted(-11.25), 0, Verdict::Depth}, Wrong{10.0f, tilted(60.0), 0, Verdict::Normal},
+                           Wrong{10.0f, -tilted(-11.25), 0, Verdict::Normal}, Wrong{10.0f, tilted(-18.75), 1, Verdict::Normal}}) {
+        Synth beside = gpu;
+        beside.set(24, 80, w.z, w.n, w.leaf);
+        r = compare(topCamera(), beside.view(), ref.view(), options());
+        EXPECT_EQ(r.verdict[beside.at(24, 80)], w.verdict);
+        EXPECT_EQ(r.nonEdge.total(), 1u);
+        EXPECT_EQ(r.facetSwaps, 6u);
+        EXPECT_FALSE(r.passed()) << r.summary();
+    }
 }
 
 TEST(AccuracyCompare, DepthIsJudgedAgainstTheTolerance) {
@@ -219,14 +323,15 @@ TEST(AccuracyCompare, ADepthStepOnOneLeafWithOneNormalIsAnEdge) {
     // step between columns 47 and 48.
     Synth a;
     a.square(0, 48, 0, kSize, 10.0f).square(48, kSize, 0, kSize, 12.0f);
-    const std::vector<std::uint8_t> mask = edgeMask(topCamera(), a.view(), options());
+    const std::vector<EdgeKind> mask = edgeMask(topCamera(), a.view(), options());
     for (int i = 0; i < kSize; ++i) {
-        EXPECT_EQ(mask[a.at(i, 50)], (i == 47 || i == 48) ? 1 : 0) << "column " << i;
+        EXPECT_EQ(mask[a.at(i, 50)], (i == 47 || i == 48) ? EdgeKind::Edge : EdgeKind::None) << "column " << i;
     }
 }
 
-TEST(AccuracyCompare, CreasesAreEdgesOnlyAboveTheCreaseAngle) {
-    for (double degrees : {20.0, 40.0}) {
+TEST(AccuracyCompare, FacetBoundariesAboveTheNormalToleranceCreasesAboveThirtyDegrees) {
+    // 22.5 degrees: the facet angle of a $fn = 16 curve.
+    for (double degrees : {0.5, 2.0, 22.5, 40.0}) {
         Synth a;
         // Two planes meeting in the line x = 0 (between columns 47 and 48):
         // z = 0 for x < 0, z = x tan(a) for x > 0, with their normals.
@@ -240,10 +345,13 @@ TEST(AccuracyCompare, CreasesAreEdgesOnlyAboveTheCreaseAngle) {
                 a.set(i, j, static_cast<float>(10.0 - z), x > 0 ? tilted(-degrees) : glm::vec3(0, 0, 1), 0);
             }
         }
-        const std::vector<std::uint8_t> mask = edgeMask(cam, a.view(), options());
-        EXPECT_EQ(mask[a.at(47, 20)], degrees > 30.0 ? 1 : 0) << degrees;
-        EXPECT_EQ(mask[a.at(48, 20)], degrees > 30.0 ? 1 : 0) << degrees;
-        EXPECT_EQ(mask[a.at(30, 20)], 0) << degrees;
+        const std::vector<EdgeKind> mask = edgeMask(cam, a.view(), options());
+        const EdgeKind expected = degrees > 30.0 ? EdgeKind::Edge
+                                  : degrees > 1.0 ? EdgeKind::FacetBoundary
+                                                  : EdgeKind::None;
+        EXPECT_EQ(mask[a.at(47, 20)], expected) << degrees;
+        EXPECT_EQ(mask[a.at(48, 20)], expected) << degrees;
+        EXPECT_EQ(mask[a.at(30, 20)], EdgeKind::None) << degrees;
     }
 }
 
@@ -264,7 +372,7 @@ TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
             a.set(i, j, static_cast<float>(cam.viewDepth(ray.origin + t * ray.direction)), glm::vec3(n), 0);
         }
     }
-    const std::vector<std::uint8_t> mask = edgeMask(cam, a.view(), options());
+    const std::vector<EdgeKind> mask = edgeMask(cam, a.view(), options());
     std::size_t edges = 0, covered = 0;
     for (int j = 1; j + 1 < kSize; ++j) {
         for (int i = 1; i + 1 < kSize; ++i) {
@@ -274,7 +382,7 @@ TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
                 for (int di = -1; di <= 1; ++di) neighbourMiss |= a.leaf[a.at(i + di, j + dj)] < 0;
             if (coveredHere && !neighbourMiss) {
                 ++covered;
-                edges += mask[a.at(i, j)];
+                edges += mask[a.at(i, j)] != EdgeKind::None ? 1 : 0;
             }
         }
     }
@@ -294,7 +402,9 @@ TEST(AccuracyCompare, OptionsForASceneUseOneTenThousandthOfTheDiagonal) {
     const CompareOptions o = optionsForScene(34.6);
     EXPECT_DOUBLE_EQ(o.depthTolerance, 34.6e-4);
     EXPECT_EQ(o.normalToleranceDegrees, 1.0);
-    EXPECT_EQ(o.minAgreement, 0.999);
+    EXPECT_EQ(o.creaseDegrees, 30.0);
+    EXPECT_EQ(o.facetDegrees, 1.0);
+    EXPECT_EQ(o.minAgreement, 0.9999);
     EXPECT_EQ(o.maxEdgeDisagreement, 0.01);
 }
 
