@@ -11,9 +11,10 @@ coincident surfaces cost"). Prints one Markdown row per scene, K and size:
 the median over the runs of strata ms and of evaluate ms for each build,
 and new/old as the median of the run-by-run ratios (new run N over old run
 N, seconds apart), from which the host's slower swings of load cancel out.
-With --control, the same run-by-run medians instead for what the rule does
-not touch (the peel, normal and shade passes, and the plain draw): how far
-from 1.00 noise alone moves a ratio. Only the standard library.
+With --control, the same run-by-run medians instead for the other passes
+(normal, shade, the plain draw, and the peel, which the rule touches only
+where a scene has groups of convex operands): how far from 1.00 noise alone
+moves a ratio, and what the groups' tie passes cost. Only the standard library.
 """
 import json
 import os
