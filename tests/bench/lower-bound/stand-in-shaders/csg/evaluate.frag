@@ -16,13 +16,14 @@ layout(binding = kTextureLayers) uniform sampler2DArray uLayers;
 #include "csg/blocks.glsl"
 layout(location = kEvaluateTileOrigin) uniform ivec2 uTileOrigin;
 layout(location = kEvaluateLoopBudget) uniform int uLoopBudget;  // kept active: EvaluatePass sets it
+layout(location = kEvaluateCoincidence) uniform float uCoincidence;  // the same
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x & kSlotLayerMask), 0).rg;
-    if (layer.r <= -kClearedDepth || uLoopBudget < -5) discard;
+    if (layer.r <= -kClearedDepth || uLoopBudget < -5 || uCoincidence < 0.0) discard;
     outDepth = -layer.r;
     outLeaf = leafCode(0, false);
 #ifdef LEAF_MARKS
