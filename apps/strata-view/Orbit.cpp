@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
 #include "strata/core/Error.h"
 
@@ -34,12 +35,28 @@ constexpr std::array<PresetAngles, 7> kPresets{{
     {Preset::Diagonal, "diagonal", 55.0, 25.0},
 }};
 
+// The sine and cosine of an angle in degrees, exact within 1e-9 degrees of
+// a multiple of 90 (the preset views, and angles read back from them):
+// std::cos(pi / 2) is 6e-17, which would put noise such as 1e-14 into the
+// eye and the --camera text where OpenSCAD writes 0.
+glm::dvec2 sinCosDegrees(double angle) {
+    const double quarters = std::round(angle / 90.0);
+    if (std::abs(angle - 90.0 * quarters) < 1e-9) {
+        switch (((static_cast<long long>(quarters) % 4) + 4) % 4) {
+            case 0: return {0.0, 1.0};
+            case 1: return {1.0, 0.0};
+            case 2: return {0.0, -1.0};
+            default: return {-1.0, 0.0};
+        }
+    }
+    return {std::sin(radians(angle)), std::cos(radians(angle))};
+}
+
 // The eye offset from the centre for OpenSCAD's gimbal with no roll:
 // Rz(rz) * Rx(rx - 90) * (0, -d, 0), as render::cameraFromArguments places it.
 glm::dvec3 offsetFor(double tilt, double turn, double distance) {
-    const double st = std::sin(radians(tilt)), ct = std::cos(radians(tilt));
-    const double sz = std::sin(radians(turn)), cz = std::cos(radians(turn));
-    return distance * glm::dvec3(st * sz, -st * cz, ct);
+    const glm::dvec2 t = sinCosDegrees(tilt), z = sinCosDegrees(turn);
+    return distance * glm::dvec3(t.x * z.x, -t.x * z.y, t.y);
 }
 
 }  // namespace

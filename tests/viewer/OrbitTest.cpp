@@ -52,6 +52,31 @@ TEST(Orbit, PresetsMatchOpenScadGimbalAngles) {
     EXPECT_GT(orbit.eye.z, c.z + 9.9);
 }
 
+TEST(Orbit, PresetsPutTheEyeExactlyOnTheAxes) {
+    // No 1e-14 where OpenSCAD writes 0: the six axis views land on exact
+    // coordinates, and the --camera text has no exponent in it.
+    const glm::dvec3 c{1, 2, 3};
+    Orbit orbit{c + glm::dvec3(0, -10, 0), c};
+    const struct {
+        Preset preset;
+        glm::dvec3 offset;
+    } cases[] = {{Preset::Top, {0, 0, 10}},    {Preset::Bottom, {0, 0, -10}}, {Preset::Left, {-10, 0, 0}},
+                 {Preset::Right, {10, 0, 0}},  {Preset::Front, {0, -10, 0}},  {Preset::Back, {0, 10, 0}}};
+    for (const auto& k : cases) {
+        orbit.preset(k.preset);
+        EXPECT_EQ(orbit.eye, c + k.offset) << view::presetName(k.preset);
+        const std::string arg = view::cameraArgument(orbit.camera(render::Camera{}));
+        EXPECT_EQ(arg.find('e', 9), std::string::npos) << arg;
+        // Fitting the view keeps the angles read back from the eye exact too.
+        geometry::Bounds b;
+        b.extend(glm::dvec3(-1, -2, -3));
+        b.extend(glm::dvec3(5, 4, 3));
+        const Orbit all = view::viewAll(orbit, b, render::Camera{});
+        const glm::dvec3 direction = (all.eye - all.center) / all.distance();
+        EXPECT_EQ(direction, k.offset / 10.0) << view::presetName(k.preset);
+    }
+}
+
 TEST(Orbit, PresetNamesRoundTripAndUnknownIsAnError) {
     for (Preset p : {Preset::Top, Preset::Bottom, Preset::Left, Preset::Right, Preset::Front, Preset::Back,
                      Preset::Diagonal})
