@@ -13,6 +13,7 @@
 #include "AlphaPass.h"
 #include "EvaluatePass.h"
 #include "FrameTargets.h"
+#include "GroupPeel.h"
 #include "NormalPass.h"
 #include "PeelPass.h"
 #include "SceneBuffers.h"
@@ -319,6 +320,10 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
         convex[k] = impl.scene.leaf(impl.separate.tree.operandLeaf[k]).convex ? 1 : 0;
     }
     impl.grouped.tree = csg::groupConvexProducts(impl.separate.tree, convex, PeelRequest::kMostGroupMembers);
+    // The groups that ask whether their members share a plane (GroupPeel::tiesWanted).
+    for (const std::vector<int>& members : impl.grouped.tree.operandGroups) {
+        if (members.size() > GroupPeel::kMostTieMembers) impl.scene.hashPlanes(model, members);
+    }
     impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.tree, impl.scene);
     impl.current = &impl.grouped;
     impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);

@@ -77,30 +77,8 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
         const auto& c = tree.leaves[i].color;
         leafColors_.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     }
-    // The planes of the convex leaves' faces, for shareAPlane: unit normal and
-    // offset rounded to a billionth (of 1, and of the scene's size).
-    planes_.assign(leaves_.size(), {});
+    planes_.assign(leaves_.size(), {});  // hashed on demand: hashPlanes
     sharing_.clear();
-    const double unit = std::max(bounds_.empty() ? 1.0 : bounds_.diagonal(), 1e-300) * 1e-9;
-    for (std::size_t i = 0; i < leaves_.size(); ++i) {
-        if (!leaves_[i].convex) continue;
-        const geometry::Mesh& mesh = model.leafMeshes[i];
-        std::vector<std::uint64_t>& keys = planes_[i];
-        for (const auto& t : mesh.triangles) {
-            const glm::dvec3& a = mesh.positions[t[0]];
-            const glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
-            const double length = glm::length(n);
-            if (!(length > 0.0)) continue;
-            const glm::dvec3 u = n / length;
-            std::uint64_t key = 1469598103934665603ull;
-            for (double c : {u.x * 1e9, u.y * 1e9, u.z * 1e9, glm::dot(u, a) / unit}) {
-                key = (key ^ static_cast<std::uint64_t>(std::llround(c))) * 1099511628211ull;
-            }
-            keys.push_back(key);
-        }
-        std::sort(keys.begin(), keys.end());
-        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    }
     positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions), 0);
     indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices), 0);
     flatIndices_ = gpu::Buffer::fromSpan("scene indices, flat normals", std::span<const std::uint32_t>(flatIndices), 0);
@@ -122,6 +100,31 @@ void SceneBuffers::drawLeaf(int leaf) const {
     if (range.indexCount == 0) return;
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(range.indexCount), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(range.firstIndex * sizeof(std::uint32_t)));
+}
+
+void SceneBuffers::hashPlanes(const geometry::Model& model, const std::vector<int>& leaves) {
+    // Unit normal and offset rounded to a billionth (of 1, and of the scene's size).
+    const double unit = std::max(bounds_.empty() ? 1.0 : bounds_.diagonal(), 1e-300) * 1e-9;
+    for (int leaf : leaves) {
+        const auto i = static_cast<std::size_t>(leaf);
+        std::vector<std::uint64_t>& keys = planes_[i];
+        if (!leaves_[i].convex || !keys.empty()) continue;
+        const geometry::Mesh& mesh = model.leafMeshes[i];
+        for (const auto& t : mesh.triangles) {
+            const glm::dvec3& a = mesh.positions[t[0]];
+            const glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
+            const double length = glm::length(n);
+            if (!(length > 0.0)) continue;
+            const glm::dvec3 u = n / length;
+            std::uint64_t key = 1469598103934665603ull;
+            for (double c : {u.x * 1e9, u.y * 1e9, u.z * 1e9, glm::dot(u, a) / unit}) {
+                key = (key ^ static_cast<std::uint64_t>(std::llround(c))) * 1099511628211ull;
+            }
+            keys.push_back(key);
+        }
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    }
 }
 
 bool SceneBuffers::shareAPlane(const std::vector<int>& leaves) const {

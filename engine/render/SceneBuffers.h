@@ -57,6 +57,9 @@ public:
     const LeafRange& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
     // Of every leaf with triangles, background leaves included.
     const geometry::Bounds& bounds() const { return bounds_; }
+    // Hashes the face planes of the convex `leaves` (model as in upload),
+    // for shareAPlane; leaves not hashed have no planes there.
+    void hashPlanes(const geometry::Model& model, const std::vector<int>& leaves);
     // Whether two of the convex `leaves` have faces in one plane, facing the
     // same way (to a billionth of the scene's size): where members of a
     // group can tie (GroupPeel.h). Remembered per set of leaves.
@@ -73,7 +76,7 @@ private:
     gpu::VertexArray vertexArray_;
     gpu::VertexArray flatVertexArray_;
     std::vector<LeafRange> leaves_;
-    std::vector<std::vector<std::uint64_t>> planes_;  // per convex leaf: its faces' planes, hashed, sorted
+    std::vector<std::vector<std::uint64_t>> planes_;  // per leaf hashed: its faces' planes, sorted
     mutable std::map<std::vector<int>, bool> sharing_;  // shareAPlane's answers
     std::vector<glm::vec4> leafColors_;
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_
