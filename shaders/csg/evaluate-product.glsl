@@ -93,24 +93,33 @@ bool productAt(uvec4 block, float d) {
 
 // The least surface depth above d (+inf for none), or the greatest below
 // d (kNone for none), over every literal.
+// A literal's least surface above d (+inf for none) and greatest below d
+// (kNone for none).
+float stepAbove(Steps s, float d) {
+    return s.first > d ? s.first : (s.second > d ? s.second : kInfinity);
+}
+
+float stepBelow(Steps s, float d) {
+    return s.second < d && s.second != kInfinity ? s.second : (s.first < d ? s.first : kNone);
+}
+
+// The same over every literal.
 float surfaceAbove(uvec4 block, float d) {
     float best = kInfinity;
-    for (uint j = 0u; j < block.y; ++j) {
-        Steps s = stepsOf(blockOperands[block.x + j].x);
-        if (s.first > d) best = min(best, s.first);
-        else if (s.second > d) best = min(best, s.second);
-    }
+    for (uint j = 0u; j < block.y; ++j) best = min(best, stepAbove(stepsOf(blockOperands[block.x + j].x), d));
     return best;
 }
 
 float surfaceBelow(uvec4 block, float d) {
     float best = kNone;
-    for (uint j = 0u; j < block.y; ++j) {
-        Steps s = stepsOf(blockOperands[block.x + j].x);
-        if (s.second < d && s.second != kInfinity) best = max(best, s.second);
-        else if (s.first < d) best = max(best, s.first);
-    }
+    for (uint j = 0u; j < block.y; ++j) best = max(best, stepBelow(stepsOf(blockOperands[block.x + j].x), d));
     return best;
+}
+
+// A literal's surfaces at depth x, considered for the surface shown (evaluate.frag).
+void considerStepsAt(Steps s, int leaf, float x, bool resultInside) {
+    if (s.first == x) considerSurface(s.firstTagged, leaf, resultInside);
+    if (s.second == x) considerSurface(s.secondTagged, leaf, resultInside);
 }
 
 int leafOfSlot(uvec4 block, uint slot) {
@@ -176,13 +185,9 @@ void main() {
         float below = kNone, above = kInfinity;
         for (uint j = 0u; j < n; ++j) {
             Steps s = stepsOf(blockOperands[block.x + j].x);
-            int leaf = leafOfSlot(block, j);
-            if (s.first < d) below = max(below, s.first);
-            if (s.second < d && s.second != kInfinity) below = max(below, s.second);
-            if (s.first > d) above = min(above, s.first);
-            else if (s.second > d) above = min(above, s.second);
-            if (s.first == d) considerSurface(s.firstTagged, leaf, resultInside);
-            if (s.second == d) considerSurface(s.secondTagged, leaf, resultInside);
+            below = max(below, stepBelow(s, d));
+            above = min(above, stepAbove(s, d));
+            considerStepsAt(s, leafOfSlot(block, j), d, resultInside);
         }
         if ((below == kNone || d - below > tolerance) && (above == kInfinity || above - d > tolerance)) {
             // A cluster of one depth, where P == target: the answer.
@@ -208,10 +213,7 @@ void main() {
             for (float x = anchor; x <= end; x = surfaceAbove(block, x)) {
                 if (spent()) return;
                 for (uint j = 0u; j < n; ++j) {
-                    Steps s = stepsOf(blockOperands[block.x + j].x);
-                    int leaf = leafOfSlot(block, j);
-                    if (s.first == x) considerSurface(s.firstTagged, leaf, resultInside);
-                    if (s.second == x) considerSurface(s.secondTagged, leaf, resultInside);
+                    considerStepsAt(stepsOf(blockOperands[block.x + j].x), leafOfSlot(block, j), x, resultInside);
                 }
                 noteResult(productAt(block, x) != isOr, resultInside);
             }
