@@ -63,12 +63,13 @@ int EvaluatePass::capacityFor(int count) {
     return capacity;
 }
 
-gpu::Program& EvaluatePass::programFor(Variant variant, bool leafMarks) {
-    const ProgramKey key{variant, leafMarks, groups_};
+gpu::Program& EvaluatePass::programFor(Variant variant, bool leafMarks, bool resultPeel) {
+    const ProgramKey key{variant, leafMarks, groups_, resultPeel};
     auto it = variants_.find(key);
     if (it == variants_.end()) {
         std::vector<gpu::ShaderDefine> defines;
         if (leafMarks) defines.push_back({"LEAF_MARKS", "1"});
+        if (resultPeel) defines.push_back({"RESULT_PEEL", "1"});
         if (groups_) defines.push_back({"GROUPS", "1"});
         switch (variant.form) {
             case BlockForm::FirstSurface: defines.push_back({"FIRST_SURFACE_FORM", "1"}); break;
@@ -127,7 +128,7 @@ std::vector<std::uint32_t> EvaluatePass::shownFaces() const {
 
 EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& code,
                                               const std::vector<OperandLayers>& operandLayers, TreeData& data,
-                                              bool generalOnly) const {
+                                              Forms forms) const {
     // The operands the tree reads, each once, and their layers in all.
     std::vector<std::uint32_t> used;
     int slots = 0;
@@ -141,15 +142,16 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
         slotsReach = slotsReach && static_cast<unsigned>(operandLayers[operand].first + operandLayers[operand].count) <=
                                        shader::kSlotLayerMask + 1u;
     }
-    if (!generalOnly && code.size() == 1 && (code[0] & csg::kOpNegate) == 0 && slots == 1) {
+    // The first-surface and product forms stop at the first change.
+    if (forms == Forms::Any && code.size() == 1 && (code[0] & csg::kOpNegate) == 0 && slots == 1) {
         return firstSurfaceTree(used[0], operandLayers);
     }
-    if (!generalOnly && slots <= kRegisterSlots && slotsReach) {
+    if (forms != Forms::ArrayOnly && slots <= kRegisterSlots && slotsReach) {
         return registerTree(code, used, slots, operandLayers, data);
     }
     const csg::CountingTree tree = csg::countingTree(code);
     const bool onePassEach = slots == static_cast<int>(used.size());
-    if (onePassEach && !generalOnly && tree.nodes.size() == 1) return productTree(tree, operandLayers, data);
+    if (onePassEach && forms == Forms::Any && tree.nodes.size() == 1) return productTree(tree, operandLayers, data);
     return arrayTree(tree, used, operandLayers, data);
 }
 
@@ -277,7 +279,7 @@ std::vector<std::vector<std::uint32_t>> EvaluatePass::operandsPerBlock(
 EvaluatePass::BlockPlan EvaluatePass::planBlocks(const FrameTargets& targets, const PixelRect& tile,
                                                  const std::vector<OperandLayers>& operandLayers,
                                                  const std::vector<PixelRect>& rects,
-                                                 const std::vector<int>& groupTable, bool generalOnly) const {
+                                                 const std::vector<int>& groupTable, Forms forms) const {
     BlockPlan plan;
     plan.blocksX = (tile.width + kBlock - 1) / kBlock;
     const std::vector<std::vector<std::uint32_t>> operands = operandsPerBlock(tile, plan.blocksX, operandLayers, rects);
@@ -295,7 +297,7 @@ EvaluatePass::BlockPlan EvaluatePass::planBlocks(const FrameTargets& targets, co
             for (std::uint32_t k : list) present[k] = 0;
             it = trees.emplace(list, specialised.empty()
                                          ? BlockTree{}
-                                         : addTree(specialised, operandLayers, plan.data, generalOnly))
+                                         : addTree(specialised, operandLayers, plan.data, forms))
                      .first;
             // The first-surface form's mark, so its pixels need no lookup.
             BlockTree& tree = it->second;
@@ -342,7 +344,7 @@ EvaluatePass::BlockPlan EvaluatePass::planBlocks(const FrameTargets& targets, co
 
 void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                         const BlockPlan& plan, const std::vector<int>& groupTable, const gpu::Texture& groupIds,
-                        double coincidence, FrameStats& stats) {
+                        double coincidence, FrameStats& stats, const gpu::Texture* start) {
     gpu::Buffer::uploadGrowing(blocks_, "evaluate blocks", plan.blocks);
     gpu::Buffer::uploadGrowing(blockOperands_, "evaluate block literals", plan.data.literals);
     gpu::Buffer::uploadGrowing(blockNodes_, "evaluate block nodes", plan.data.nodes);
@@ -356,6 +358,7 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
     drawnBlocks_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferDrawnBlocks);
     groupTable_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferGroupTable);
     if (groupIds.id() != 0) groupIds.bindUnit(shader::kTextureGroupIds);
+    if (start != nullptr) start->bindUnit(shader::kTextureResultStart);
     if (!plan.shownBefore.empty()) shownFaces_.uploadSpan(std::span<const std::uint32_t>(plan.shownBefore));
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferShownFaces);
     if (targets.leafMarks) targets.markSlotBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferMarkSlots);
@@ -377,7 +380,7 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
             default: stats.arrayBlocks += list.size();
         }
         const auto runs = static_cast<int>(plan.runsOf.at(variant));
-        gpu::Program& program = programFor(variant, targets.leafMarks);
+        gpu::Program& program = programFor(variant, targets.leafMarks, start != nullptr);
         program.setUniform(shader::kEvaluateTileOrigin, glm::ivec2(tile.x, tile.y));
         if (variant.form == BlockForm::Product || variant.form == BlockForm::Array)
             program.setUniform(shader::kEvaluateLoopBudget, loopBudget);
@@ -398,7 +401,8 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
                        const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly,
                        double coincidence, FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
-    const BlockPlan plan = planBlocks(targets, tile, operandLayers, rects, groupTable, generalOnly);
+    const BlockPlan plan =
+        planBlocks(targets, tile, operandLayers, rects, groupTable, generalOnly ? Forms::ArrayOnly : Forms::Any);
     if (forms != nullptr) {
         forms->assign(plan.blocks.size(), BlockForm::None);
         for (const auto& [variant, list] : plan.blocksOf) {
@@ -406,6 +410,16 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
         }
     }
     draw(targets, layers, tile, plan, groupTable, groupIds, coincidence, stats);
+}
+
+void EvaluatePass::runResultRound(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
+                                  const std::vector<OperandLayers>& operandLayers,
+                                  const std::vector<PixelRect>& rects, const std::vector<int>& groupTable,
+                                  const gpu::Texture& groupIds, const gpu::Texture& start, bool samePlan,
+                                  double coincidence, FrameStats& stats) {
+    if (operandLeaf_.empty()) return;
+    if (!samePlan) roundPlan_ = planBlocks(targets, tile, operandLayers, rects, groupTable, Forms::WalkOn);
+    draw(targets, layers, tile, roundPlan_, groupTable, groupIds, coincidence, stats, &start);
 }
 
 }  // namespace strata::render

@@ -67,6 +67,18 @@ public:
              const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly, double coincidence,
              FrameStats& stats, std::vector<BlockForm>* forms = nullptr);
 
+    // One round of peeling the result (Renderer::sampleResult): as run(),
+    // but each pixel reports the first change of the result after the
+    // surface that `start` holds for it (a frame-sized R32F texture of
+    // tagged depths: -inf for the first round, +inf where a ray is done).
+    // Only the register and array forms walk on past a start. `samePlan`:
+    // the tile and its layers are those of the round before, whose block
+    // plan is reused.
+    void runResultRound(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
+                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
+                        const std::vector<int>& groupTable, const gpu::Texture& groupIds, const gpu::Texture& start,
+                        bool samePlan, double coincidence, FrameStats& stats);
+
     // The tile's groups of convex operands for run() (evaluate.frag:
     // groupTable): per tree leaf (`leafCount`) -1, or for a group's operand
     // leaf where its record starts: the group's layer of PeelPass::groupIds
@@ -128,22 +140,25 @@ private:
 
     // The tile's blocks: each one's tree, record and variant (the part of
     // run() that decides; draw() is the part that draws).
+    // `forms`: which forms a block may take.
+    enum class Forms { Any, WalkOn, ArrayOnly };
     BlockPlan planBlocks(const FrameTargets& targets, const PixelRect& tile,
                          const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                         const std::vector<int>& groupTable, bool generalOnly) const;
+                         const std::vector<int>& groupTable, Forms forms) const;
     // Per block of the tile (`blocksX` per row), the operands whose rectangle meets it.
     std::vector<std::vector<std::uint32_t>> operandsPerBlock(const PixelRect& tile, int blocksX,
                                                              const std::vector<OperandLayers>& operandLayers,
                                                              const std::vector<PixelRect>& rects) const;
     // Uploads `plan`, binds the pass's inputs and draws each variant's runs.
+    // `start`: the result peel's start texture (runResultRound), or null.
     void draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile, const BlockPlan& plan,
               const std::vector<int>& groupTable, const gpu::Texture& groupIds, double coincidence,
-              FrameStats& stats);
+              FrameStats& stats, const gpu::Texture* start = nullptr);
 
     // Appends the data of `code` (specialised code) to `data` in the
-    // cheapest form that holds it (the array form where `generalOnly`).
+    // cheapest of the `forms` that holds it.
     BlockTree addTree(const std::vector<std::uint32_t>& code, const std::vector<OperandLayers>& operandLayers,
-                      TreeData& data, bool generalOnly) const;
+                      TreeData& data, Forms forms) const;
     // One per form: the operands `used` that `code` reads, each once, of
     // `slots` layers in all.
     BlockTree firstSurfaceTree(std::uint32_t operand, const std::vector<OperandLayers>& operandLayers) const;
@@ -155,13 +170,14 @@ private:
                         const std::vector<OperandLayers>& operandLayers, TreeData& data) const;
 
     // The compiled variant; `leafMarks`: it writes FrameTargets::mark(leaf,
-    // exit, flip) to the stencil.
-    gpu::Program& programFor(Variant variant, bool leafMarks);
+    // exit, flip) to the stencil; `resultPeel`: it walks on past a start.
+    gpu::Program& programFor(Variant variant, bool leafMarks, bool resultPeel = false);
 
     struct ProgramKey {
         Variant variant;
         bool leafMarks = false;
         bool groups = false;
+        bool resultPeel = false;
         auto operator<=>(const ProgramKey&) const = default;
     };
     std::map<ProgramKey, gpu::Program> variants_;
@@ -176,6 +192,7 @@ private:
     std::size_t leafCount_ = 0;
     std::vector<int> operandLeaf_;
     gpu::VertexArray empty_;
+    BlockPlan roundPlan_;  // runResultRound's plan, kept for the rounds after the first
 };
 
 }  // namespace strata::render

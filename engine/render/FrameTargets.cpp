@@ -74,6 +74,22 @@ void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
     glDisable(GL_SCISSOR_TEST);
 }
 
+void FrameTargets::clearRegion(const PixelRect& region) {
+    const PixelRect r = region.intersection({0, 0, width_, height_});
+    if (r.empty()) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(r.x, r.y, r.width, r.height);
+    const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
+    const GLint leaf[4] = {shader::kLeafMiss, 0, 0, 0};
+    evaluateTarget.clearColor(0, depth);
+    evaluateTarget.clearColorInt(1, leaf);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    normalTarget.clearColor(0, zero);
+    const GLint noMark = 0;
+    glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);
+    glDisable(GL_SCISSOR_TEST);
+}
+
 namespace {
 
 // The greedy colouring below compares each operand with every one placed

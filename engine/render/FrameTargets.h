@@ -54,6 +54,9 @@ public:
     // pass that reads every pixel (translucent). Clearing the RGBA32F normals
     // of a whole 1024 x 768 frame costs llvmpipe about 3 ms of CPU.
     void clearResult(bool wholeFrame, const PixelRect& drawn);
+    // Every target of the evaluate and normal passes cleared inside `region`
+    // only (a round of the result peel over one tile).
+    void clearRegion(const PixelRect& region);
 
     int width() const { return width_; }
     int height() const { return height_; }

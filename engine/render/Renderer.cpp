@@ -240,6 +240,10 @@ struct Renderer::Impl {
     std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
     bool hasScene = false;
     GLint maxTextureSize = 0;
+    // sampleResult's: where each tile's rounds go (null in other frames),
+    // and each pixel's last change found (EvaluatePass::runResultRound).
+    const std::function<void(const ResultRound&)>* roundSink = nullptr;
+    gpu::Texture resultStart;
     bool canMarkLeaves = FrameTargets::canMarkLeaves();
 
     Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
@@ -274,6 +278,9 @@ struct Renderer::Impl {
     // Peels each tile of `grid`, then evaluates it and recovers its normals;
     // a tile whose auto peeling outgrows the budget is split in four.
     TileCounts runTiles(const TileInputs& in, const std::vector<PixelRect>& grid, Frame& frame);
+    // The result peel's rounds over one peeled tile (sampleResult).
+    void peelResultRounds(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                          Frame& frame);
     // The evaluate and normal passes over one peeled tile.
     void evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
                       Frame& frame);
@@ -346,7 +353,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
                         compiled.operandGroups};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).
-    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers) {
+    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers && roundSink == nullptr) {
         request.firstLayerOnly = current->unionsOnly;
     }
     const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request};
@@ -455,7 +462,11 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
             }
         }
         if (in.settings.keepPeelLayers) keepLayers(tile, operands, in.rects, layers, frame);
-        evaluateTile(in, tile, layers, frame);
+        if (roundSink != nullptr) {
+            peelResultRounds(in, tile, layers, frame);
+        } else {
+            evaluateTile(in, tile, layers, frame);
+        }
         ++counts.drawn;
     }
     return counts;
@@ -477,6 +488,66 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
     normals.run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
     glFinish();
     stats.normalMs += millisecondsSince(start);
+}
+
+void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& tile,
+                                      const std::vector<OperandLayers>& layers, Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int> groups = EvaluatePass::groupTable(leafCount, compiled, layers);
+    const float before = -std::numeric_limits<float>::infinity();
+    glClearTexSubImage(resultStart.id(), 0, tile.x, tile.y, 0, tile.width, tile.height, 1, GL_RED, GL_FLOAT, &before);
+    const std::size_t n = static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+    std::vector<float> depth(n), normal(n * 4);
+    std::vector<std::int32_t> leaf(n);
+    std::vector<glm::vec3> outward(n);
+    for (int round = 0;; ++round) {
+        auto start = Clock::now();
+        targets.clearRegion(tile);
+        evaluate.runResultRound(targets, peel.layers(), tile, layers, in.rects, groups, peel.groupIds(), resultStart,
+                                round > 0, in.view.coincidence, stats);
+        const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
+        stats.evaluateMs += millisecondsSince(start);
+        start = Clock::now();
+        normals.run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves,
+                    in.markRects);
+        glFinish();
+        stats.normalMs += millisecondsSince(start);
+
+        start = Clock::now();
+        targets.resultLeaf.downloadRegion(tile.x, tile.y, 0, tile.width, tile.height, 1, GL_RED_INTEGER, GL_INT,
+                                          std::as_writable_bytes(std::span(leaf)));
+        ResultRound out{round, tile.x, frame.height - (tile.y + tile.height), tile.width, tile.height, {}, {}, 0};
+        std::size_t found = 0;
+        for (std::int32_t code : leaf) {
+            found += code >= 0 ? 1 : 0;
+            out.unresolved += code == shader::kLeafUnresolved ? 1 : 0;
+        }
+        stats.unresolvedPixels += out.unresolved;
+        if (found == 0) {
+            stats.readbackMs += millisecondsSince(start);
+            return;
+        }
+        stats.coveredPixels += found;
+        targets.resultDepth.downloadRegion(tile.x, tile.y, 0, tile.width, tile.height, 1, GL_RED, GL_FLOAT,
+                                           std::as_writable_bytes(std::span(depth)));
+        targets.normal.downloadRegion(tile.x, tile.y, 0, tile.width, tile.height, 1, GL_RGBA, GL_FLOAT,
+                                      std::as_writable_bytes(std::span(normal)));
+        // The next round walks on from each pixel's change (+inf: none left).
+        glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, tile.x, tile.y, 0, resultStart.id(),
+                           GL_TEXTURE_2D, 0, tile.x, tile.y, 0, tile.width, tile.height, 1);
+        depth = flipRows(depth, tile.width, tile.height, 1);
+        normal = flipRows(normal, tile.width, tile.height, 4);
+        leaf = flipRows(leaf, tile.width, tile.height, 1);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (leaf[i] < 0) depth[i] = std::numeric_limits<float>::infinity();
+            outward[i] = {normal[i * 4], normal[i * 4 + 1], normal[i * 4 + 2]};
+        }
+        out.depth = depth;
+        out.normal = outward;
+        stats.readbackMs += millisecondsSince(start);
+        (*roundSink)(out);
+    }
 }
 
 void Renderer::Impl::keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame) {
@@ -632,9 +703,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                                                                         : "the CSG result is everything");
     }
 
-    const auto start = Clock::now();
-    shadeFrame(view, scheme, drawn);
-    stats.shadeMs = millisecondsSince(start);
+    if (roundSink == nullptr) {
+        const auto start = Clock::now();
+        shadeFrame(view, scheme, drawn);
+        stats.shadeMs = millisecondsSince(start);
+    }
     stats.totalMs = millisecondsSince(frameStart);
     return view;
 }
@@ -647,6 +720,29 @@ Frame Renderer::render(const Camera& camera, const RenderSettings& settings) {
     frame.stats.readbackMs = millisecondsSince(start);
     frame.stats.totalMs += frame.stats.readbackMs;
     return frame;
+}
+
+FrameStats Renderer::sampleResult(const Camera& camera, const RenderSettings& settings,
+                                  const std::function<void(const ResultRound&)>& onRound) {
+    Impl& impl = *impl_;
+    if (camera.width <= 0 || camera.height <= 0) throw Error("renderer: sampleResult() needs a positive image size");
+    if (impl.resultStart.id() == 0 || impl.resultStart.width() != camera.width ||
+        impl.resultStart.height() != camera.height) {
+        impl.resultStart = gpu::Texture::create2D("result peel start", GL_R32F, camera.width, camera.height);
+    }
+    RenderSettings peeled = settings;
+    peeled.keepPeelLayers = false;
+    peeled.keepBlockForms = false;
+    impl.roundSink = &onRound;
+    Frame frame;
+    try {
+        impl.drawFrame(camera, peeled, frame, true);
+    } catch (...) {
+        impl.roundSink = nullptr;
+        throw;
+    }
+    impl.roundSink = nullptr;
+    return frame.stats;
 }
 
 Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, const ExternalResult& result) {

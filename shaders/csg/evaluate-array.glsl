@@ -182,6 +182,9 @@ void main() {
     startWalk(block);
 
     bool inside = block.y > 0u && nodeValue(0u);
+#ifdef RESULT_PEEL
+    startSkipping();
+#endif
     // Depth by depth, the tree asked after each, in clusters (evaluate.frag:
     // walkTo).
     while (true) {
@@ -190,7 +193,11 @@ void main() {
             return;
         }
         float nearest = heapSize > 0 ? heapDepth[0] : kInfinity;
-        int step = walkTo(nearest, clusterOpen && nodeValue(0u), inside);
+        bool askTree = clusterOpen;
+#ifdef RESULT_PEEL
+        askTree = askTree || skipping;
+#endif
+        int step = walkTo(nearest, askTree && nodeValue(0u), inside);
         if (step == kWalkWritten) return;
         if (step == kWalkDone) break;
         float depth = untagged(nearest);

@@ -79,6 +79,9 @@ void main() {
     vec4 headB = nearB;
 #endif
     bool inside = RESULT(insideBits);
+#ifdef RESULT_PEEL
+    startSkipping();
+#endif
     // Depth by depth, in clusters (evaluate.frag: walkTo).
     while (true) {
         float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));

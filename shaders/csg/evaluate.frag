@@ -199,7 +199,38 @@ const int kWalkDone = 2;     // no surface left and no change: discard
 bool clusterOpen = false;
 float clusterReach = -kInfinity;
 
-int walkTo(float nearest, bool now, bool inside) {
+#ifdef RESULT_PEEL
+// Peeling the result (Renderer::sampleResult): each round reports the next
+// place along the ray where the result changes, after the one the round
+// before reported (uResultStart: its tagged depth; -inf before the first
+// round, +inf once a ray has no more). The surfaces up to it, and those
+// chained to it within the tolerance (the rest of its cluster), are taken
+// without a look; the result's membership after them is where the walk
+// starts, so the change found next is an entry or an exit of the result.
+layout(binding = kTextureResultStart) uniform sampler2D uResultStart;  // frame pixels
+bool skipping = true;
+float skipReach = -kInfinity;
+
+void startSkipping() {
+    skipReach = untagged(texelFetch(uResultStart, ivec2(gl_FragCoord.xy), 0).r);
+}
+#endif
+
+// `inside`: the result's membership at the walk's start (inout for the
+// result peel, which moves the start past the surfaces already reported).
+int walkTo(float nearest, bool now, inout bool inside) {
+#ifdef RESULT_PEEL
+    if (skipping) {
+        if (nearest == kInfinity) return kWalkDone;
+        float depth = untagged(nearest);
+        if (depth <= skipReach) {
+            skipReach = max(skipReach, depth + uCoincidence);
+            return kWalkOn;
+        }
+        skipping = false;
+        inside = now;
+    }
+#endif
     if (nearest == kInfinity || untagged(nearest) > clusterReach) {
         if (clusterOpen && now != inside) {
             writeChosenSurface(!inside);

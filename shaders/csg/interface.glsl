@@ -90,6 +90,7 @@ SHARED int kBufferResolveStats = 7;   // resolve: the most layers, and overflow
 // Texture units.
 SHARED int kTextureLayers = 0;        // peel (the previous layer), evaluate: the peeled layers
 SHARED int kTextureGroupIds = 3;      // evaluate: a group's entry and exit members
+SHARED int kTextureResultStart = 4;   // evaluate RESULT_PEEL: the surface the round before reported
 SHARED int kTextureGroupScratch = 0;  // group: the winning entry and exit
 SHARED int kTextureGroupWinners = 1;  // peel GROUP_TIE: a copy of the winning entry and exit
 SHARED int kTextureResultDepth = 0;   // normal, translucent: the evaluator's depth

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -115,6 +116,17 @@ struct Frame {
     FrameStats stats;
 };
 
+// One round of Renderer::sampleResult over one tile: the round-th place,
+// counted from 0, where each pixel's ray changes between outside and inside
+// the result.
+struct ResultRound {
+    int round = 0;
+    int x = 0, y = 0, width = 0, height = 0;  // the tile in frame pixels: column x from the left, row y from the top
+    std::span<const float> depth;             // tile pixels, rows top first: view depth; +inf where the ray has no such change
+    std::span<const glm::vec3> normal;        // world-space unit outward normal of the result there
+    std::size_t unresolved = 0;               // pixels the evaluator could not finish (llvmpipe's loop limit)
+};
+
 class Renderer {
 public:
     Renderer();
@@ -135,6 +147,18 @@ public:
     // (readbackMs covers the copy; coveredPixels is not counted).
     // Leaves that framebuffer bound for drawing.
     FrameStats renderInto(unsigned framebuffer, int x, int y, const Camera& camera, const RenderSettings& settings);
+
+    // Every place along each pixel's ray where the result's membership
+    // changes, front to back, by peeling the result: each tile's operands are
+    // peeled once (every layer), then each round evaluates the tree again,
+    // walking on from the change the round before found, until no ray of the
+    // tile has one more. `onRound` gets each tile's rounds in order; a ray
+    // whose changes end in one round has +inf in the rounds after. The rays
+    // start at the near plane: for every change to show, the camera should
+    // see the whole model from outside it (the export's orthographic views).
+    // Nothing is shaded. Returns the figures (coveredPixels: changes found).
+    FrameStats sampleResult(const Camera& camera, const RenderSettings& settings,
+                            const std::function<void(const ResultRound&)>& onRound);
 
     // Shades a result computed elsewhere (the CPU reference of strata-render
     // --reference) with the same shade and translucent passes as render(), and
