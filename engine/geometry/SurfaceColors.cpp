@@ -30,14 +30,14 @@ bool holds(const Face& f, const glm::dvec3& p, double tolerance) {
 }  // namespace
 
 std::vector<glm::vec4> surfaceColors(const Mesh& result, const scene::Tree& tree, const Model& model,
-                                     const glm::vec4& fallback) {
+                                     const glm::vec4& fallback, double reach) {
     const std::vector<int> leaves = tree.leavesUnder(tree.root);
     const bool anyColor = std::any_of(leaves.begin(), leaves.end(), [&](int l) {
         return tree.leaves[static_cast<std::size_t>(l)].color.has_value();
     });
     if (!anyColor) return {};
     Bounds box = boundsOf(result);
-    const double tolerance = 1e-9 * std::max(1.0, glm::length(box.max - box.min));
+    const double tolerance = std::max(reach, 1e-9 * std::max(1.0, glm::length(box.max - box.min)));
     std::vector<Face> faces;
     for (int l : leaves) {
         const Mesh& m = model.leafMeshes[static_cast<std::size_t>(l)];
@@ -77,9 +77,15 @@ std::vector<glm::vec4> surfaceColors(const Mesh& result, const scene::Tree& tree
     for (const auto& t : result.triangles) {
         const glm::dvec3 centroid = (result.positions[t[0]] + result.positions[t[1]] + result.positions[t[2]]) / 3.0;
         int leaf = -1;
+        double nearest = 0.0;
         for (int f : cells[index(cellOf(centroid))]) {
             const Face& face = faces[static_cast<std::size_t>(f)];
-            if (holds(face, centroid, tolerance) && (leaf < 0 || face.leaf < leaf)) leaf = face.leaf;
+            if (!holds(face, centroid, tolerance)) continue;
+            const double distance = reach > 0.0 ? std::fabs(glm::dot(centroid - face.a, face.normal)) : 0.0;
+            if (leaf < 0 || distance < nearest || (distance == nearest && face.leaf < leaf)) {
+                leaf = face.leaf;
+                nearest = distance;
+            }
         }
         const std::optional<glm::dvec4>& c = leaf >= 0 ? tree.leaves[static_cast<std::size_t>(leaf)].color : std::nullopt;
         colors.push_back(c ? glm::vec4(*c) : fallback);

@@ -18,7 +18,10 @@ namespace strata::geometry {
 // order) whose mesh has a face holding the triangle's centroid, `fallback`
 // for a leaf without color() or a triangle no leaf holds. Empty when no leaf
 // of the tree has a colour (nothing to write).
+// `reach` > 0: the result only approximates the leaves' faces (the image-space
+// export): a face holds a centroid within `reach` of it, and the nearest such
+// face decides.
 std::vector<glm::vec4> surfaceColors(const Mesh& result, const scene::Tree& tree, const Model& model,
-                                     const glm::vec4& fallback);
+                                     const glm::vec4& fallback, double reach = 0.0);
 
 }  // namespace strata::geometry
