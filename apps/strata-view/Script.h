@@ -21,7 +21,9 @@ enum class CommandKind {
     Fov,              // fov DEG
     Orbit,            // orbit DX DY         (left drag, pixels)
     Pan,              // pan DX DY           (right drag)
-    Zoom,             // zoom NOTCHES        (wheel; positive: closer)
+    MiddleDrag,       // middle-drag DX DY   (along the view axis; DX is ignored, as OpenSCAD does)
+    ZoomDrag,         // zoom-drag DY        (shift + right drag)
+    Zoom,             // zoom NOTCHES [X Y]  (wheel; positive: closer; towards pixel X, Y when given)
     Preset,           // preset top|bottom|left|right|front|back|diagonal
     ViewAll,          // view-all
     DoubleClick,      // double-click X Y    (re-centre on the surface at pixel X, Y; row 0 at the top)

@@ -91,7 +91,14 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         case CommandKind::Orbit: orbit_.orbit(c.numbers[0], c.numbers[1]); break;
         case CommandKind::Pan: orbit_.pan(c.numbers[0], c.numbers[1], camera().width, camera().height); break;
-        case CommandKind::Zoom: orbit_.zoom(c.numbers[0]); break;
+        case CommandKind::MiddleDrag: orbit_.moveAlongView(c.numbers[1], camera().height); break;
+        case CommandKind::ZoomDrag: orbit_.zoomDrag(c.numbers[0]); break;
+        case CommandKind::Zoom:
+            if (c.numbers.size() == 3)
+                orbit_.zoomAt(c.numbers[0], c.numbers[1], c.numbers[2], camera().width, camera().height, fov_);
+            else
+                orbit_.zoom(c.numbers[0]);
+            break;
         case CommandKind::Preset: orbit_.preset(presetFromName(c.words[0])); break;
         case CommandKind::ViewAll: viewAllNow(); return true;
         case CommandKind::DoubleClick:
