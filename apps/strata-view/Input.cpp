@@ -97,8 +97,10 @@ void Viewer::onKey(int key, int action, int mods) {
     if (action == GLFW_RELEASE) return;
     if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureKeyboard) return;
     const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
-    // OpenSCAD's View menu: Ctrl+4..9 and Ctrl+0; the plain digits work too.
+    // OpenSCAD's View menu: Ctrl+1, Ctrl+2, Ctrl+4..9 and Ctrl+0; the plain digits work too.
     switch (key) {
+    case GLFW_KEY_1: setShowEdges(!overlayOptions_.edges); return;  // OpenSCAD: Ctrl+1, Show Edges
+    case GLFW_KEY_2: setShowAxes(!overlayOptions_.axes); return;    // OpenSCAD: Ctrl+2, Show Axes
     case GLFW_KEY_4: orbit_.preset(Preset::Top); break;
     case GLFW_KEY_5: orbit_.preset(Preset::Bottom); break;
     case GLFW_KEY_6: orbit_.preset(Preset::Left); break;

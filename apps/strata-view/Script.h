@@ -32,10 +32,12 @@ enum class CommandKind {
     ColorScheme,      // colorscheme NAME...
     Debug,            // debug shaded|depth|normal|peel
     Panel,            // panel on|off
+    Show,             // show axes|scale|edges on|off
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
     Export,           // export PATH         (the exact result as a mesh; waits until written)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
+    Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
     Print,            // print camera|console|error|stats|title|tree
     Sleep,            // sleep MS

@@ -121,6 +121,13 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         }
         case CommandKind::Panel: showPanel_ = c.words[0] == "on"; return true;
+        case CommandKind::Show: {
+            const bool on = c.words[1] == "on";
+            if (c.words[0] == "axes") setShowAxes(on);
+            if (c.words[0] == "scale") setShowScale(on);
+            if (c.words[0] == "edges") setShowEdges(on);
+            return true;
+        }
         case CommandKind::Screenshot:
             saveScreenshot(path(0));
             if (!renderError_.empty()) throw Error(renderError_);
@@ -153,6 +160,11 @@ bool Viewer::runCommand(const Command& c) {
             glfwWaitEventsTimeout(0.02);
             return false;
         case CommandKind::Copy: replaceFile(path(0), path(1)); return true;
+        case CommandKind::Remove: {
+            std::error_code ec;
+            if (!std::filesystem::remove(path(0), ec)) throw Error("cannot remove '" + path(0) + "'" + (ec ? " (" + ec.message() + ")" : ""));
+            return true;
+        }
         case CommandKind::Print: {
             const std::string& what = c.words[0];
             if (what == "camera") std::cout << cameraLine() << std::endl;
