@@ -27,6 +27,7 @@ FileWatch::FileWatch(std::string path) : path_(std::move(path)), last_(stampOf(p
 
 bool FileWatch::changed() {
     const FileStamp now = stampOf(path_);
+    missingPolls_ = now.exists ? 0 : missingPolls_ + 1;
     if (!now.exists || now == last_) return false;
     last_ = now;
     return true;

@@ -32,11 +32,14 @@ public:
     // file is missing (between an editor's unlink and rename) nothing changes:
     // the file's return is the change.
     bool changed();
+    // How many calls of changed() in a row found no file: 0 while it is there.
+    int missingPolls() const { return missingPolls_; }
     const std::string& path() const { return path_; }
 
 private:
     std::string path_;
     FileStamp last_;
+    int missingPolls_ = 0;
 };
 
 }  // namespace strata::view

@@ -63,18 +63,33 @@ void Viewer::onCursor(double x, double y) {
     drag_.y = y;
     const bool shift = glfwGetKey(window_.window(), GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
                        glfwGetKey(window_.window(), GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    // The mouse moves in window units, the view is sized in framebuffer
+    // pixels; OpenSCAD divides by the widget's size in the mouse's units.
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.window(), &ww, &wh);
+    const double toWindow = double(std::max(ww, 1)) / std::max(window_.framebufferWidth(), 1);
+    const int viewWidth = static_cast<int>(std::lround(target_.width() * toWindow));
+    const int viewHeight = static_cast<int>(std::lround(target_.height() * toWindow));
     if (drag_.button == GLFW_MOUSE_BUTTON_LEFT)
         orbit_.orbit(dx, dy);
-    else if (drag_.button == GLFW_MOUSE_BUTTON_MIDDLE || shift)
-        orbit_.zoomDrag(dy);  // OpenSCAD: shift + right drag zooms as well
+    else if (shift)
+        orbit_.zoomDrag(dy);  // shift + right or middle drag
+    else if (drag_.button == GLFW_MOUSE_BUTTON_MIDDLE)
+        orbit_.moveAlongView(dy, viewHeight);
     else
-        orbit_.pan(dx, dy, target_.width(), target_.height());
+        orbit_.pan(dx, dy, viewWidth, viewHeight);
     viewDirty_ = true;
 }
 
 void Viewer::onScroll(double dy) {
     if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureMouse) return;
-    orbit_.zoom(dy);
+    // Towards the cursor, in the view's framebuffer pixels.
+    double x = 0, y = 0;
+    glfwGetCursorPos(window_.window(), &x, &y);
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.window(), &ww, &wh);
+    const double toPixels = window_.framebufferWidth() / double(std::max(ww, 1));
+    orbit_.zoomAt(dy, x * toPixels - viewLeft(), y * toPixels, target_.width(), target_.height(), fov_);
     viewDirty_ = true;
 }
 
@@ -82,8 +97,10 @@ void Viewer::onKey(int key, int action, int mods) {
     if (action == GLFW_RELEASE) return;
     if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureKeyboard) return;
     const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
-    // OpenSCAD's View menu: Ctrl+4..9 and Ctrl+0; the plain digits work too.
+    // OpenSCAD's View menu: Ctrl+1, Ctrl+2, Ctrl+4..9 and Ctrl+0; the plain digits work too.
     switch (key) {
+    case GLFW_KEY_1: setShowEdges(!overlayOptions_.edges); return;  // OpenSCAD: Ctrl+1, Show Edges
+    case GLFW_KEY_2: setShowAxes(!overlayOptions_.axes); return;    // OpenSCAD: Ctrl+2, Show Axes
     case GLFW_KEY_4: orbit_.preset(Preset::Top); break;
     case GLFW_KEY_5: orbit_.preset(Preset::Bottom); break;
     case GLFW_KEY_6: orbit_.preset(Preset::Left); break;

@@ -105,13 +105,36 @@ void Orbit::pan(double dx, double dy, int viewWidth, int viewHeight) {
     center += move;
 }
 
+void Orbit::moveAlongView(double dy, int viewHeight) {
+    const render::Camera c = camera(render::Camera{});
+    const glm::dvec3 move = c.forward() * (dy * kPanPerView * distance() / std::max(viewHeight, 1));
+    eye += move;
+    center += move;
+}
+
 void Orbit::zoom(double notches) {
     const double d = distance();
     const double scaled = std::max(d * std::pow(kZoomPerNotch, notches), kMinDistance);
     eye = center + (eye - center) * (scaled / d);
 }
 
-void Orbit::zoomDrag(double dy) { zoom(-dy / kPixelsPerZoomNotch); }
+void Orbit::zoomAt(double notches, double x, double y, int width, int height, double fovDegrees) {
+    const render::Camera c = camera(render::Camera{});
+    const double before = distance();
+    zoom(notches);
+    const double after = distance();
+    const double w = std::max(width, 1), h = std::max(height, 1);
+    const double ratio = before / after - 1.0;
+    const double screenX = 2.0 * (x + 0.5) / w - 1.0;  // -1..1, left to right
+    const double screenY = 1.0 - 2.0 * (y + 0.5) / h;  // -1..1, bottom to top
+    const double halfHeight = after * std::tan(radians(fovDegrees / 2.0));
+    const glm::dvec3 move =
+        c.right() * (ratio * screenX * (w / h) * halfHeight) + c.up() * (ratio * screenY * halfHeight);
+    eye += move;
+    center += move;
+}
+
+void Orbit::zoomDrag(double dy) { zoom(-dy * kNotchesPerZoomPixel); }
 
 void Orbit::preset(Preset preset) {
     for (const PresetAngles& p : kPresets)

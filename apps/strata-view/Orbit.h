@@ -25,13 +25,27 @@ const char* presetName(Preset preset);
 // Throws strata::Error("unknown view 'x' (valid: top, ...)").
 Preset presetFromName(std::string_view name);
 
-// OpenSCAD's mouse factors (QGLView::mouseMoveEvent, Camera::zoom): 0.7 degrees
-// per pixel of drag, one wheel notch scales the distance by 0.9, a zoom drag
-// of 10 pixels counts as one notch, a pan drag moves 3 * distance per view width.
-inline constexpr double kDegreesPerPixel = 0.7;
+// OpenSCAD's mouse rules (QGLView::mouseMoveEvent, QGLView::wheelEvent,
+// Camera::zoom in 2021.01). Every drag's pixels are first scaled by 0.7; then
+//   left drag          turns by 1 degree per scaled pixel (0.7 per pixel);
+//   right drag         pans by 3 * distance per view width (height) per scaled
+//                      pixel: 2.1 * distance per view width of mouse travel;
+//   middle drag        moves the centre (and the eye with it) along the view
+//                      axis by the same 2.1 * distance per view height of
+//                      vertical travel, the distance kept: down comes closer;
+//   shift + right or middle drag  zooms by -12 * scaled pixels in wheel units;
+//   wheel              scales the distance by 0.9 per 120 units (one notch),
+//                      towards the cursor (the "mouse centric zoom"
+//                      preference, on by default): the centre moves so the
+//                      point under the cursor in the centre's plane stays put.
+// So a zoom drag is 12 * 0.7 / 120 = 0.07 notches per pixel, down moving away.
+inline constexpr double kDragScale = 0.7;
+inline constexpr double kDegreesPerPixel = kDragScale;
 inline constexpr double kZoomPerNotch = 0.9;
-inline constexpr double kPixelsPerZoomNotch = 10.0;
-inline constexpr double kPanPerView = 3.0;
+inline constexpr double kWheelUnitsPerNotch = 120.0;
+inline constexpr double kZoomUnitsPerDrag = 12.0;
+inline constexpr double kNotchesPerZoomPixel = kZoomUnitsPerDrag * kDragScale / kWheelUnitsPerNotch;
+inline constexpr double kPanPerView = 3.0 * kDragScale;
 
 struct Orbit {
     glm::dvec3 eye{0.0, -140.0, 0.0};
@@ -48,9 +62,17 @@ struct Orbit {
     // Right drag by (dx, dy) pixels in a view of viewWidth x viewHeight: moves
     // eye and centre together so the model follows the mouse.
     void pan(double dx, double dy, int viewWidth, int viewHeight);
+    // Middle drag by dy pixels (y down) in a view viewHeight tall: moves eye and
+    // centre together along the view axis, forward when dragging down; the
+    // distance stays. OpenSCAD ignores the horizontal part of this drag.
+    void moveAlongView(double dy, int viewHeight);
     // Wheel notches (positive: closer); the centre stays.
     void zoom(double notches);
-    // Middle drag by dy pixels, y down: down moves away, as OpenSCAD's shift-drag does.
+    // Wheel notches with the cursor at pixel (x, y) (row 0 at the top) of a
+    // view width x height with vertical field of view fovDegrees: the zoom,
+    // then OpenSCAD's QGLView::zoomCursor shift of the centre in the view plane.
+    void zoomAt(double notches, double x, double y, int width, int height, double fovDegrees);
+    // Shift + right (or middle) drag by dy pixels, y down: down moves away.
     void zoomDrag(double dy);
     // One of OpenSCAD's View menu angles, keeping centre and distance.
     void preset(Preset preset);

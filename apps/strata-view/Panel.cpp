@@ -49,6 +49,12 @@ void Viewer::drawPanel() {
     } else {
         ImGui::TextDisabled("shown; reloads when the file changes (F5: now)");
     }
+    if (fileMissing_) {
+        ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+        ImGui::TextWrapped("the file is gone (deleted or moved)");
+        ImGui::PopStyleColor();
+        ImGui::TextDisabled("(showing the last good version)");
+    }
     if (!loadError_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
         ImGui::TextWrapped("%s", loadError_.c_str());
@@ -82,6 +88,11 @@ void Viewer::drawPanel() {
         if (ImGui::Checkbox("orthographic", &ortho)) toggleProjection();
         ImGui::SameLine();
         if (ImGui::Button("reset")) resetView();
+        bool axes = overlayOptions_.axes, scale = overlayOptions_.scale, edges = overlayOptions_.edges;
+        if (ImGui::Checkbox("axes (Ctrl+2)", &axes)) setShowAxes(axes);
+        ImGui::SameLine();
+        if (ImGui::Checkbox("scale markers", &scale)) setShowScale(scale);
+        if (ImGui::Checkbox("edges (Ctrl+1)", &edges)) setShowEdges(edges);
     }
 
     if (ImGui::CollapsingHeader("console", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -26,7 +26,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 25> kSyntax{{
+constexpr std::array<Syntax, 29> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -35,7 +35,9 @@ constexpr std::array<Syntax, 25> kSyntax{{
     {"fov", CommandKind::Fov, 1, 1},
     {"orbit", CommandKind::Orbit, 2, 2},
     {"pan", CommandKind::Pan, 2, 2},
-    {"zoom", CommandKind::Zoom, 1, 1},
+    {"middle-drag", CommandKind::MiddleDrag, 2, 2},
+    {"zoom-drag", CommandKind::ZoomDrag, 1, 1},
+    {"zoom", CommandKind::Zoom, 1, 3},
     {"preset", CommandKind::Preset, 1, 1},
     {"view-all", CommandKind::ViewAll, 0, 0},
     {"double-click", CommandKind::DoubleClick, 2, 2},
@@ -44,10 +46,12 @@ constexpr std::array<Syntax, 25> kSyntax{{
     {"colorscheme", CommandKind::ColorScheme, 1, -1},
     {"debug", CommandKind::Debug, 1, 1},
     {"panel", CommandKind::Panel, 1, 1},
+    {"show", CommandKind::Show, 2, 2},
     {"screenshot", CommandKind::Screenshot, 1, 1},
     {"screenshot-window", CommandKind::ScreenshotWindow, 1, 1},
     {"export", CommandKind::Export, 1, 1},
     {"copy", CommandKind::Copy, 2, 2},
+    {"remove", CommandKind::Remove, 1, 1},
     {"wait-reload", CommandKind::WaitReload, 0, 0},
     {"print", CommandKind::Print, 1, 1},
     {"sleep", CommandKind::Sleep, 1, 1},
@@ -151,10 +155,19 @@ void checkArguments(Command& c, std::string_view name) {
         break;
     case CommandKind::Orbit:
     case CommandKind::Pan:
+    case CommandKind::MiddleDrag:
         number(0, "pixels");
         number(1, "pixels");
         break;
-    case CommandKind::Zoom: number(0, "wheel notches"); break;
+    case CommandKind::ZoomDrag: number(0, "pixels"); break;
+    case CommandKind::Zoom:
+        number(0, "wheel notches");
+        if (c.words.size() == 2) throw fail("expected the cursor's X and Y after the notches, or neither", 1);
+        if (c.words.size() == 3) {
+            number(1, "pixels");
+            number(2, "pixels");
+        }
+        break;
     case CommandKind::Preset:
         try {
             presetFromName(c.words[0]);
@@ -179,6 +192,10 @@ void checkArguments(Command& c, std::string_view name) {
         break;
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
     case CommandKind::Panel: oneOf({"on", "off"}); break;
+    case CommandKind::Show:
+        oneOf({"axes", "scale", "edges"});
+        if (c.words[1] != "on" && c.words[1] != "off") throw fail("expected on or off, got '" + c.words[1] + "'", 1);
+        break;
     case CommandKind::Print: oneOf({"camera", "console", "error", "stats", "title", "tree"}); break;
     case CommandKind::Sleep: whole(0, 0, 600000, "milliseconds from 0 to 600000"); break;
     case CommandKind::Screenshot:

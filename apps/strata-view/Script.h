@@ -21,7 +21,9 @@ enum class CommandKind {
     Fov,              // fov DEG
     Orbit,            // orbit DX DY         (left drag, pixels)
     Pan,              // pan DX DY           (right drag)
-    Zoom,             // zoom NOTCHES        (wheel; positive: closer)
+    MiddleDrag,       // middle-drag DX DY   (along the view axis; DX is ignored, as OpenSCAD does)
+    ZoomDrag,         // zoom-drag DY        (shift + right drag)
+    Zoom,             // zoom NOTCHES [X Y]  (wheel; positive: closer; towards pixel X, Y when given)
     Preset,           // preset top|bottom|left|right|front|back|diagonal
     ViewAll,          // view-all
     DoubleClick,      // double-click X Y    (re-centre on the surface at pixel X, Y; row 0 at the top)
@@ -30,10 +32,12 @@ enum class CommandKind {
     ColorScheme,      // colorscheme NAME...
     Debug,            // debug shaded|depth|normal|peel
     Panel,            // panel on|off
+    Show,             // show axes|scale|edges on|off
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
     Export,           // export PATH         (the exact result as a mesh; waits until written)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
+    Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
     Print,            // print camera|console|error|stats|title|tree
     Sleep,            // sleep MS

@@ -91,7 +91,14 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         case CommandKind::Orbit: orbit_.orbit(c.numbers[0], c.numbers[1]); break;
         case CommandKind::Pan: orbit_.pan(c.numbers[0], c.numbers[1], camera().width, camera().height); break;
-        case CommandKind::Zoom: orbit_.zoom(c.numbers[0]); break;
+        case CommandKind::MiddleDrag: orbit_.moveAlongView(c.numbers[1], camera().height); break;
+        case CommandKind::ZoomDrag: orbit_.zoomDrag(c.numbers[0]); break;
+        case CommandKind::Zoom:
+            if (c.numbers.size() == 3)
+                orbit_.zoomAt(c.numbers[0], c.numbers[1], c.numbers[2], camera().width, camera().height, fov_);
+            else
+                orbit_.zoom(c.numbers[0]);
+            break;
         case CommandKind::Preset: orbit_.preset(presetFromName(c.words[0])); break;
         case CommandKind::ViewAll: viewAllNow(); return true;
         case CommandKind::DoubleClick:
@@ -114,6 +121,13 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         }
         case CommandKind::Panel: showPanel_ = c.words[0] == "on"; return true;
+        case CommandKind::Show: {
+            const bool on = c.words[1] == "on";
+            if (c.words[0] == "axes") setShowAxes(on);
+            if (c.words[0] == "scale") setShowScale(on);
+            if (c.words[0] == "edges") setShowEdges(on);
+            return true;
+        }
         case CommandKind::Screenshot:
             saveScreenshot(path(0));
             if (!renderError_.empty()) throw Error(renderError_);
@@ -146,6 +160,11 @@ bool Viewer::runCommand(const Command& c) {
             glfwWaitEventsTimeout(0.02);
             return false;
         case CommandKind::Copy: replaceFile(path(0), path(1)); return true;
+        case CommandKind::Remove: {
+            std::error_code ec;
+            if (!std::filesystem::remove(path(0), ec)) throw Error("cannot remove '" + path(0) + "'" + (ec ? " (" + ec.message() + ")" : ""));
+            return true;
+        }
         case CommandKind::Print: {
             const std::string& what = c.words[0];
             if (what == "camera") std::cout << cameraLine() << std::endl;

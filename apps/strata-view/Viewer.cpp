@@ -17,6 +17,7 @@
 #include "strata/io/ImageWriter.h"
 #include "strata/render/ColorScheme.h"
 #include "strata/camera/ViewBounds.h"
+#include "OverlayLines.h"
 
 namespace strata::view {
 namespace {
@@ -25,6 +26,9 @@ using Clock = std::chrono::steady_clock;
 
 // How often the scene file is stat()ed for changes.
 constexpr auto kReloadPoll = std::chrono::milliseconds(200);
+// The file counts as deleted once this many polls in a row missed it: an
+// editor's unlink-then-rename save is over well within one poll.
+constexpr int kMissingPolls = 2;
 
 }  // namespace
 
@@ -56,6 +60,7 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
     rows_ = treeRows(scene_.tree);
     installInput();
     imgui_ = std::make_unique<ImGuiSession>(window_);
+    overlay_ = std::make_unique<Overlay>();
     resetView();
     for (const Warning& w : scene_.tree.warnings) std::cerr << w.message << '\n';
     console_.add(ConsoleLine::Kind::Info, "loaded " + path_);
@@ -65,6 +70,7 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
 
 Viewer::~Viewer() {
     imgui_.reset();  // before the window's context goes
+    overlay_.reset();
 }
 
 render::Camera Viewer::camera() const {
@@ -100,14 +106,19 @@ void Viewer::step(bool waitForEvents) {
     if (std::optional<LoadResult> result = loader_.poll()) applyLoad(std::move(*result));
     pollExport();
     if (sceneDirty_) uploadScene();
+    if (fitTarget() && viewDirty_) renderView();
+    drawWindow();
+}
+
+bool Viewer::fitTarget() {
     const int w = fixedSize_ ? fixedSize_->first : window_.framebufferWidth() - viewLeft();
     const int h = fixedSize_ ? fixedSize_->second : window_.framebufferHeight();
-    if (w > 0 && h > 0 && (w != target_.width() || h != target_.height())) {
+    if (w <= 0 || h <= 0) return false;
+    if (w != target_.width() || h != target_.height()) {
         target_.resize(w, h);
         viewDirty_ = true;
     }
-    if (viewDirty_ && w > 0 && h > 0) renderView();
-    drawWindow();
+    return true;
 }
 
 void Viewer::pollReload() {
@@ -115,6 +126,17 @@ void Viewer::pollReload() {
     if (now - lastPoll_ < kReloadPoll) return;
     lastPoll_ = now;
     if (watch_.changed()) loader_.request(path_);
+    const bool missing = watch_.missingPolls() >= kMissingPolls;
+    if (missing == fileMissing_) return;
+    fileMissing_ = missing;
+    if (missing) {
+        const std::string note = path_ + ": the file is gone; showing the last good version";
+        std::cerr << note << '\n';
+        console_.add(ConsoleLine::Kind::Warning, note);
+    } else {
+        console_.add(ConsoleLine::Kind::Info, path_ + ": the file is back");
+    }
+    updateTitle();
 }
 
 void Viewer::applyLoad(LoadResult result) {
@@ -142,6 +164,7 @@ void Viewer::applyLoad(LoadResult result) {
     for (const Warning& w : result.scene->tree.warnings) std::cerr << w.message << '\n';
     const bool sameShape = result.scene->tree.nodes.size() == scene_.tree.nodes.size();
     scene_ = std::move(*result.scene);
+    edgesStale_ = true;
     rows_ = treeRows(scene_.tree);
     // Node numbers only mean the same nodes while the tree keeps its shape.
     if (!sameShape) edits_ = {};
@@ -169,7 +192,19 @@ void Viewer::renderView() {
     peelTiles_.clear();
     const render::Camera cam = camera();
     try {
-        if (debugView_ == DebugView::Shaded) {
+        if (debugView_ == DebugView::Shaded && overlayOptions_.any()) {
+            // The overlay is tested against the frame's depth and leaves, so they are read back.
+            const render::Frame frame = renderer_.render(cam, settings_);
+            stats_ = frame.stats;
+            target_.upload(frame.rgba);
+            if (overlayOptions_.edges && edgesStale_) {
+                overlay_->setScene(scene_.model);
+                edgesStale_ = false;
+            }
+            OverlayOptions options = overlayOptions_;
+            options.axesColor = axesColor(settings_.colorScheme);
+            overlay_->draw(target_.framebuffer(), cam, frame, options);
+        } else if (debugView_ == DebugView::Shaded) {
             stats_ = renderer_.renderInto(target_.framebuffer(), 0, 0, cam, settings_);
         } else {
             render::RenderSettings settings = settings_;
@@ -245,6 +280,21 @@ void Viewer::setDebugView(DebugView view) {
     viewDirty_ = true;
 }
 
+void Viewer::setShowAxes(bool on) {
+    overlayOptions_.axes = on;
+    viewDirty_ = true;
+}
+
+void Viewer::setShowScale(bool on) {
+    overlayOptions_.scale = on;
+    viewDirty_ = true;
+}
+
+void Viewer::setShowEdges(bool on) {
+    overlayOptions_.edges = on;
+    viewDirty_ = true;
+}
+
 void Viewer::resetView() {
     orbit_ = fittedOrbit(render::viewBounds(scene_.tree, scene_.model), camera());
     viewDirty_ = true;
@@ -283,10 +333,12 @@ void Viewer::toggleHighlight(int node) {
 }
 
 void Viewer::saveScreenshot(const std::string& path) {
-    if (viewDirty_ || sceneDirty_) {
-        if (sceneDirty_) uploadScene();
-        renderView();
-    }
+    // Drawn afresh at the view's present size, whatever the loop has drawn so
+    // far: a screenshot must not depend on how many frames the window has had.
+    if (sceneDirty_) uploadScene();
+    if (!fitTarget()) throw Error("the view has no size to take a screenshot of");
+    renderView();
+    glFinish();
     io::writePng(path, target_.width(), target_.height(), target_.read());
 }
 
@@ -321,7 +373,10 @@ int Viewer::viewLeft() const {
 // longer loads) a note that says so, visible with the panel hidden too.
 std::string Viewer::title() const {
     std::string t = "strata-view: " + path_;
-    if (!loadError_.empty()) t += "  [error: showing the last good version]";
+    if (fileMissing_)
+        t += "  [deleted: showing the last good version]";
+    else if (!loadError_.empty())
+        t += "  [error: showing the last good version]";
     return t;
 }
 
@@ -329,9 +384,10 @@ void Viewer::updateTitle() { glfwSetWindowTitle(window_.window(), title().c_str(
 
 // The stale model's badge over the view, drawn whether the panel shows or not.
 void Viewer::drawStaleBadge() {
-    if (loadError_.empty()) return;
+    if (loadError_.empty() && !fileMissing_) return;
     const ImGuiViewport* view = ImGui::GetMainViewport();
-    const std::string text = "error, showing the last good version: " + loadError_;
+    const std::string text = fileMissing_ ? "the file is gone, showing the last good version: " + path_
+                                          : "error, showing the last good version: " + loadError_;
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     const ImVec2 size = ImGui::CalcTextSize(text.c_str());
     const ImVec2 at(view->Pos.x + 8.0f, view->Pos.y + view->Size.y - size.y - 8.0f);

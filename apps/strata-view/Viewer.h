@@ -17,6 +17,7 @@
 #include "Exporter.h"
 #include "Loader.h"
 #include "Orbit.h"
+#include "Overlay.h"
 #include "Script.h"
 #include "TreeEdit.h"
 #include "ViewTarget.h"
@@ -71,12 +72,18 @@ private:
     void applyLoad(LoadResult result);
     void uploadScene();
     void renderView();
+    // Sizes the view's target to the window (or the script's size); false while it has no area.
+    bool fitTarget();
     void drawWindow();
     render::Camera camera() const;
     void setLayers(int layers);
     void changeLayers(int delta);
     void toggleProjection();
     void setDebugView(DebugView view);
+    // OpenSCAD's View menu toggles: Show Axes, Show Scale Markers, Show Edges.
+    void setShowAxes(bool on);
+    void setShowScale(bool on);
+    void setShowEdges(bool on);
     void resetView();
     void viewAllNow();
     void recenterAt(int i, int j);
@@ -115,6 +122,9 @@ private:
     std::unique_ptr<ImGuiSession> imgui_;
     render::Renderer renderer_;
     ViewTarget target_;
+    std::unique_ptr<Overlay> overlay_;
+    OverlayOptions overlayOptions_;
+    bool edgesStale_ = true;         // the overlay's edges are not those of scene_.model
     Loader loader_;
     Exporter exporter_;
     std::string exportPath_;         // the panel's export file name
@@ -128,6 +138,7 @@ private:
     std::vector<TreeRow> rows_;
     TreeEdits edits_;
     std::string loadError_;          // the last load's error; the previous scene stays on screen
+    bool fileMissing_ = false;       // the shown file was deleted (FileWatch::missingPolls)
     std::string renderError_;
     int loadsFinished_ = 0;
 

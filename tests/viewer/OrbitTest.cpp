@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -102,23 +103,79 @@ TEST(Orbit, TiltStopsAtThePoles) {
     EXPECT_NEAR(orbit.tiltDegrees(), 180, 1e-9);
 }
 
-TEST(Orbit, ZoomScalesTheDistanceByPointNinePerNotch) {
+// OpenSCAD 2021.01, QGLView::wheelEvent and Camera::zoom: one notch is 120
+// units of angleDelta, and distance *= 0.9^(units / 120).
+TEST(Orbit, WheelScalesTheDistanceByPointNinePerNotch) {
     Orbit orbit{{0, -100, 0}, {0, 0, 5}};
     const double d = orbit.distance();
     orbit.zoom(2);
-    EXPECT_NEAR(orbit.distance(), d * 0.81, 1e-9);
-    orbit.zoomDrag(20);  // 20 px down = 2 notches out
-    EXPECT_NEAR(orbit.distance(), d, 1e-9);
+    EXPECT_NEAR(orbit.distance(), d * std::pow(0.9, 240.0 / 120.0), 1e-9);
     expectNear(orbit.center, {0, 0, 5});
     orbit.zoom(1e6);  // never onto the centre
     EXPECT_GT(orbit.distance(), 0.0);
 }
 
-TEST(Orbit, PanMovesEyeAndCentreTogetherAcrossTheView) {
+// QGLView::zoomCursor: after the zoom, ratio = old / new - 1, sx = 2 (x +
+// 0.5) / w - 1, sy = 1 - 2 (y + 0.5) / h, half = new * tan(fov / 2); the object
+// moves by -(ratio sx aspect half) right and -(ratio sy half) up, so the centre
+// moves by as much the other way, and the point under the cursor in the
+// centre's plane stays where it was on the screen.
+TEST(Orbit, WheelZoomsTowardsTheCursor) {
+    Orbit orbit{{0, -100, 0}, {0, 0, 0}};
+    orbit.zoomAt(1, 299.5, 49.5, 400, 200, 22.5);  // one notch in at (+0.5, +0.5) of the view
+    const double after = 100 * 0.9, ratio = 100 / after - 1.0;
+    const double half = after * std::tan(22.5 / 2 * std::numbers::pi / 180);
+    expectNear(orbit.center, {ratio * 0.5 * 2.0 * half, 0, ratio * 0.5 * half});
+    EXPECT_NEAR(orbit.distance(), after, 1e-9);
+    // The centre-plane point at that pixel before, (0.5 * 2 * h0, 0, 0.5 * h0) with
+    // h0 = 100 tan(fov / 2), is still at (0.5, 0.5) of the view.
+    const double h0 = 100 * std::tan(22.5 / 2 * std::numbers::pi / 180);
+    const glm::dvec3 p{0.5 * 2.0 * h0, 0, 0.5 * h0};
+    EXPECT_NEAR((p.x - orbit.center.x) / (2.0 * half), 0.5, 1e-12);
+    EXPECT_NEAR((p.z - orbit.center.z) / half, 0.5, 1e-12);
+}
+
+// QGLView::mouseMoveEvent with shift held: dy_scaled = 0.7 * dy, then
+// Camera::zoom(-12 * dy_scaled): distance *= 0.9^(-12 * 0.7 * dy / 120).
+TEST(Orbit, ShiftDragZoomsAsOpenScad) {
+    Orbit orbit{{0, -100, 0}, {0, 0, 5}};
+    const double d = orbit.distance();
+    orbit.zoomDrag(100);  // 100 px down: 0.9^-7 = 2.09 times farther
+    EXPECT_NEAR(orbit.distance(), d * std::pow(0.9, -12.0 * 0.7 * 100 / 120.0), 1e-9);
+    EXPECT_NEAR(orbit.distance() / d, 2.0908, 1e-4);
+    expectNear(orbit.center, {0, 0, 5});
+    orbit.zoomDrag(-100);
+    EXPECT_NEAR(orbit.distance(), d, 1e-9);
+}
+
+// Right drag: mx = 0.7 * dx * 3 * distance / width along the view's right,
+// mz = -0.7 * dy * 3 * distance / height along its up, added to the object's
+// translation; the centre (minus that translation) moves the other way.
+TEST(Orbit, PanMovesEyeAndCentreAsOpenScad) {
     Orbit orbit{{0, -40, 0}, {0, 0, 0}};
     orbit.pan(100, 50, 400, 200);  // right and down: the model follows, the camera goes left and up
-    expectNear(orbit.center, {-100 * 3.0 * 40 / 400, 0, 50 * 3.0 * 40 / 200});
+    expectNear(orbit.center, {-0.7 * 100 * 3.0 * 40 / 400, 0, 0.7 * 50 * 3.0 * 40 / 200});
     expectNear(orbit.eye - orbit.center, {0, -40, 0});
+    // 2.1 distances per view width: a drag across the whole view.
+    Orbit across{{0, -10, 0}, {0, 0, 0}};
+    across.pan(640, 0, 640, 480);
+    expectNear(across.center, {-21, 0, 0});
+}
+
+// Middle drag: my = -0.7 * dy * 3 * distance / height along the view axis
+// (mx locked at 0), added to the object's translation: the centre moves
+// forward by 0.7 * dy * 3 * distance / height, the distance stays.
+TEST(Orbit, MiddleDragMovesTheCentreAlongTheViewAxis) {
+    Orbit orbit{{0, -40, 30}, {0, 0, 30}};
+    orbit.moveAlongView(60, 300);
+    const double step = 0.7 * 60 * 3.0 * 40 / 300;
+    expectNear(orbit.center, {0, step, 30});
+    expectNear(orbit.eye, {0, -40 + step, 30});
+    EXPECT_NEAR(orbit.distance(), 40, 1e-9);
+    Orbit tilted{{0, -30, 40}, {0, 0, 0}};  // distance 50
+    tilted.moveAlongView(-100, 500);         // up: back along the axis
+    expectNear(tilted.center, glm::dvec3(0, 30, -40) / 50.0 * (0.7 * -100 * 3.0 * 50 / 500));
+    EXPECT_NEAR(tilted.distance(), 50, 1e-9);
 }
 
 TEST(Orbit, RecentreKeepsDirectionAndDistance) {

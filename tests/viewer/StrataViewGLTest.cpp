@@ -8,6 +8,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -86,6 +87,16 @@ int differingPixels(const Image& a, const Image& b) {
         n += !std::equal(a.rgba.begin() + static_cast<std::ptrdiff_t>(k),
                          a.rgba.begin() + static_cast<std::ptrdiff_t>(k) + 4, b.rgba.begin() + static_cast<std::ptrdiff_t>(k));
     return n;
+}
+
+// The pixel at column x, row y (row 0 at the top).
+const unsigned char* pixelAt(const Image& image, int x, int y) {
+    return image.rgba.data() + (static_cast<std::size_t>(y) * image.width + x) * 4;
+}
+
+bool isRgb(const Image& image, int x, int y, int r, int g, int b) {
+    const unsigned char* p = pixelAt(image, x, y);
+    return p[0] == r && p[1] == g && p[2] == b;
 }
 
 // The "--camera=..." lines the script printed, in order.
@@ -363,6 +374,140 @@ TEST_F(StrataView, ConsoleShowsOpenscadsEchoAndAStaleModelSaysSoInTheTitle) {
     EXPECT_NE(r.out.find("strata-view: " + scad + "  [error: showing the last good version]\n"), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.rfind(scad + ":"), std::string::npos) << r.out;
+}
+
+// Seen from the top, orthographic, 100 away: 240 / (2 * 100 * tan(11.25 deg))
+// = 6.03 pixels per unit, the origin at the image's centre, X to the right,
+// Y up. A block at x, y in [5, 9] stays off the axes; one at x in [-2, 2],
+// y in [10, 14] lies over the Y axis.
+const std::string kAxesScene = R"(
+multmatrix([[1, 0, 0, 5], [0, 1, 0, 5], [0, 0, 1, 0], [0, 0, 0, 1]]) { cube(size = [4, 4, 4], center = false); }
+multmatrix([[1, 0, 0, -2], [0, 1, 0, 10], [0, 0, 1, 0], [0, 0, 0, 1]]) { cube(size = [4, 4, 4], center = false); }
+)";
+
+TEST_F(StrataView, AxesScaleMarkersAndTheCornerCrossAreDrawnOverTheModel) {
+    const std::string scene = dir.write("axes.csg", kAxesScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "screenshot off.png\n"
+                                 "show axes on\n"
+                                 "screenshot axes.png\n"
+                                 "show scale on\n"
+                                 "screenshot scale.png\n"
+                                 "show axes off\n"
+                                 "screenshot off-again.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image off = readPng(dir / "off.png"), axes = readPng(dir / "axes.png"), scale = readPng(dir / "scale.png");
+    ASSERT_EQ(axes.width, 320);
+    expectSameAsRender(off, render(scene, {"--camera=0,0,100,0,0,0", "--projection", "o"}));
+    EXPECT_EQ(differingPixels(off, readPng(dir / "off-again.png")), 0);  // off is off
+    // The positive X axis: the row through the centre, black (Cornfield's axes colour).
+    auto black = [](const Image& image, int x, int y) { return isRgb(image, x, y, 0, 0, 0); };
+    int onAxis = 0;
+    for (int x = 166; x < 316; ++x) onAxis += black(axes, x, 119) || black(axes, x, 120);
+    EXPECT_GE(onAxis, 148);
+    for (int x = 166; x < 316; ++x) EXPECT_FALSE(black(off, x, 119) || black(off, x, 120)) << x;
+    // The negative half is dashed: about half of it drawn.
+    int dashes = 0;
+    for (int x = 10; x < 150; ++x) dashes += black(axes, x, 119) || black(axes, x, 120);
+    EXPECT_GT(dashes, 40);
+    EXPECT_LT(dashes, 100);
+    // The Y axis shows below the second block and is hidden by it (y in [10, 14]: rows 36 to 60).
+    int visibleY = 0, hiddenY = 0;
+    for (int y = 70; y < 110; ++y) visibleY += black(axes, 159, y) || black(axes, 160, y);
+    for (int y = 40; y < 56; ++y) hiddenY += black(axes, 159, y) || black(axes, 160, y);
+    EXPECT_GE(visibleY, 38);
+    EXPECT_EQ(hiddenY, 0);
+    // A scale marker at x = 10 (every 10 at distance 100), 100 / 60 long towards -Y: down.
+    auto tickAt = [&](const Image& image) {
+        int n = 0;
+        for (int x = 218; x <= 223; ++x) n += black(image, x, 125);
+        return n;
+    };
+    EXPECT_GE(tickAt(scale), 1);
+    EXPECT_EQ(tickAt(axes), 0);
+    // The corner cross: its red X axis right of (32, 216).
+    int red = 0;
+    for (int x = 34; x < 44; ++x)
+        for (int y = 213; y < 219; ++y) red += isRgb(axes, x, y, 255, 0, 0);
+    EXPECT_GE(red, 8);
+    for (int x = 34; x < 44; ++x)
+        for (int y = 213; y < 219; ++y) EXPECT_FALSE(isRgb(off, x, y, 255, 0, 0));
+}
+
+TEST_F(StrataView, EdgesShowOnTheVisibleSurfacesOnly) {
+    const std::string scene = dir.write("cube.csg", "cube(size = [10, 10, 10], center = true);\n");
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "screenshot plain.png\n"
+                                 "show edges on\n"
+                                 "screenshot edges.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image plain = readPng(dir / "plain.png"), edges = readPng(dir / "edges.png");
+    ASSERT_EQ(plain.width, edges.width);
+    // Edge pixels: lighter than the face beneath, and only where the cube is.
+    int lighter = 0, onBackground = 0;
+    for (int y = 0; y < plain.height; ++y)
+        for (int x = 0; x < plain.width; ++x) {
+            const unsigned char *a = pixelAt(plain, x, y), *b = pixelAt(edges, x, y);
+            if (std::equal(a, a + 4, b)) continue;
+            if (std::equal(a, a + 4, plain.rgba.data())) ++onBackground;
+            else if (b[0] >= a[0] && b[1] >= a[1] && b[2] >= a[2]) ++lighter;
+        }
+    EXPECT_EQ(onBackground, 0);
+    // The three visible faces' sides and diagonals, some 9 segments of 50 to 100 pixels.
+    EXPECT_GT(lighter, 300);
+}
+
+TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
+    const std::string scene = dir.write("a.csg", kScene);
+    dir.write("b.csg", kNoCylinder);
+    // Each sleep lets the loop poll the file once more (every 200 ms).
+    const ProcessResult r = view(scene,
+                                 "size 160 120\n"
+                                 "screenshot before.png\n"
+                                 "remove a.csg\n"
+                                 "sleep 250\nsleep 250\nsleep 250\nsleep 250\n"
+                                 "print title\n"
+                                 "print console\n"
+                                 "screenshot gone.png\n"
+                                 "copy b.csg a.csg\n"
+                                 "wait-reload\n"
+                                 "print title\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("strata-view: " + scene + "  [deleted: showing the last good version]\n"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(scene + ": the file is gone; showing the last good version"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find(scene + ": the file is gone"), std::string::npos) << r.err;
+    // Back: reloaded, the title plain again.
+    EXPECT_TRUE(r.out.ends_with("strata-view: " + scene + "\n")) << r.out;
+    const Image before = readPng(dir / "before.png");
+    EXPECT_GT(drawnPixels(before), 1000);
+    EXPECT_EQ(differingPixels(before, readPng(dir / "gone.png")), 0);
+}
+
+// A screenshot as the very first command, window and all just made: never
+// an empty (black) image. Each run is a new process: only a session's first
+// frame can show it.
+TEST_F(StrataView, AFirstCommandScreenshotIsNeverBlack) {
+    const std::string scene = dir.write("a.csg", kScene);
+    constexpr int kRuns = 20;
+    int black = 0;
+    for (int run = 0; run < kRuns; ++run) {
+        const std::string shot = "first-" + std::to_string(run) + ".png";
+        const ProcessResult r = view(scene, "screenshot " + shot + "\n");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const Image image = readPng(dir / shot);
+        ASSERT_GT(image.width, 0);
+        bool allBlack = true;
+        for (std::size_t k = 0; k < image.rgba.size() && allBlack; k += 4)
+            allBlack = image.rgba[k] == 0 && image.rgba[k + 1] == 0 && image.rgba[k + 2] == 0;
+        black += allBlack;
+        EXPECT_GT(drawnPixels(image), 1000) << shot;
+    }
+    EXPECT_EQ(black, 0);
 }
 
 }  // namespace

@@ -1,0 +1,50 @@
+#pragma once
+// The lines strata-view draws over the CSG image in its own pass, into the
+// view's colour target after strata's image is in it: OpenSCAD's axes and
+// scale markers, its small axis cross in the lower-left corner, and "show
+// edges". The axes and edges are tested against the frame's depth and leaf
+// AOVs (shaders/view/overlay.frag), so a frame with any of them on is
+// rendered with Renderer::render (read back) instead of renderInto.
+
+#include <cstddef>
+
+#include <glm/vec3.hpp>
+
+#include "strata/camera/Camera.h"
+#include "strata/geometry/Model.h"
+#include "strata/gpu/Buffer.h"
+#include "strata/gpu/Program.h"
+#include "strata/gpu/Texture.h"
+#include "strata/gpu/VertexArray.h"
+#include "strata/render/Renderer.h"
+
+namespace strata::view {
+
+struct OverlayOptions {
+    bool axes = false;     // axes, and the axis cross in the corner (OpenSCAD: View > Show Axes)
+    bool scale = false;    // scale markers on the axes, with axes only (View > Show Scale Markers)
+    bool edges = false;    // the visible surfaces' triangle edges (View > Show Edges)
+    glm::vec3 axesColor{0.0f};
+
+    bool any() const { return axes || edges; }
+};
+
+class Overlay {
+public:
+    Overlay();  // needs a current GL context
+    // The leaves' edges, kept for every frame until the next scene.
+    void setScene(const geometry::Model& model);
+    // Draws into `framebuffer` (camera.width x camera.height), over the frame's
+    // image, tested against its depth and leaf AOVs.
+    void draw(unsigned framebuffer, const render::Camera& camera, const render::Frame& frame,
+              const OverlayOptions& options);
+
+private:
+    gpu::Program program_;
+    gpu::VertexArray edgeArray_, lineArray_;
+    gpu::Buffer edgeVertices_, lineVertices_;
+    std::size_t edgeCount_ = 0;  // vertices
+    gpu::Texture depth_, leaf_;
+};
+
+}  // namespace strata::view

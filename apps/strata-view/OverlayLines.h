@@ -1,0 +1,57 @@
+#pragma once
+// What the 3D view draws over the CSG image, as line segments, in pure math
+// (no GL) so the rules can be unit-tested: OpenSCAD's axes and scale markers
+// (GLView::showAxes, showScalemarkers), its small axis cross in the corner
+// (GLView::showSmallaxes), and the triangle edges of the leaves for
+// "show edges". Overlay.cpp draws them.
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "strata/camera/Camera.h"
+#include "strata/geometry/Mesh.h"
+
+namespace strata::view {
+
+// A segment in world space. OpenSCAD draws the negative half of each axis,
+// and its ticks, dashed (glLineStipple(3, 0xAAAA): 3 pixels on, 3 off).
+struct WorldSegment {
+    glm::dvec3 a, b;
+    bool dashed = false;
+};
+
+// The scale markers' spacing at camera distance `distance`: a tenth of the
+// power of ten at or below it, so it changes only when the view grows or
+// shrinks tenfold (OpenSCAD: pow(10, floor(log10(l))) / 10).
+double scaleTickSpacing(double distance);
+
+// The axes through the origin as long as the camera distance in each
+// direction, and with `ticks` OpenSCAD's scale markers on them: every
+// scaleTickSpacing from the origin out to the distance, distance / 60 long,
+// every tenth distance / 30; X's ticks point to -Y, Y's and Z's to -X.
+std::vector<WorldSegment> axisSegments(double distance, bool ticks);
+
+// A segment in the view's pixels (x right, y up from the bottom-left corner).
+struct ScreenSegment {
+    glm::dvec2 a, b;
+    glm::vec3 color;
+};
+
+// OpenSCAD's small axis cross: its origin a tenth of the view in from the
+// lower-left corner, each axis 1/18 of the view's height long in an
+// orthographic view turned as the camera, red X, green Y, blue Z, and the
+// letters X, Y, Z (6 pixels tall, in `labelColor`) just past their ends.
+std::vector<ScreenSegment> gizmoSegments(const render::Camera& camera, const glm::vec3& labelColor);
+
+// Each edge of the mesh's triangles once, as pairs of points.
+void appendMeshEdges(const geometry::Mesh& mesh, std::vector<glm::vec3>& points);
+
+// OpenSCAD's "axes-color" of a colour scheme (its color-schemes/render/*.json;
+// black for the built-in Cornfield).
+glm::vec3 axesColor(std::string_view scheme);
+
+}  // namespace strata::view
