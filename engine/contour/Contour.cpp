@@ -1,0 +1,306 @@
+#include "strata/contour/Contour.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "CellTopology.h"
+#include "ContourStats.h"
+#include "DexelImage.h"
+#include "Qef.h"
+#include "strata/core/Error.h"
+#include "strata/core/Progress.h"
+
+namespace strata::contour {
+namespace {
+
+constexpr const char* kProgressWhat = "contour";
+
+// Patch vertices stay this far (in cell sizes) inside their own cell. Four
+// points strictly inside the four cells around a grid edge cannot lie on one
+// line, so one of the quad's two diagonals always splits it into triangles of
+// non-zero area, and vertices of different cells never coincide. A corner of
+// the solid closer than this to a grid plane moves by at most the margin.
+constexpr double kInteriorMargin = 1e-6;
+
+// Twice a triangle's area over its longest edge squared: 0 for a degenerate
+// triangle, about 0.87 for an equilateral one. A diagonal whose thinner
+// triangle is below this is chosen only when the other is thinner still.
+constexpr double kMinTriangleShape = 1e-6;
+
+constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+
+// The four cells around a grid edge along axis a, as offsets in (u, v) from
+// the edge's low vertex, counter-clockwise seen from +a (u × v = a).
+constexpr std::array<std::array<int, 2>, 4> kCellsAroundEdge{{{-1, -1}, {0, -1}, {0, 0}, {-1, 0}}};
+
+// Slabs of cells are kept in rings: configurations for the slabs below, at
+// and above the current one (the flips look across z faces), vertices for
+// the current slab and the one below (quads of a z plane join both).
+constexpr int kConfigRing = 3;
+constexpr int kVertexRing = 2;
+constexpr int kPlaneRing = 2;
+
+double triangleShape(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const double longest = std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
+    const double twiceArea = glm::length(glm::cross(b - a, c - a));
+    return longest > 0.0 ? twiceArea / longest : 0.0;
+}
+
+glm::dvec3 unitNormal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double length = glm::length(n);
+    return length > 0.0 ? n / length : n;
+}
+
+class Contourer {
+public:
+    Contourer(DexelImage& image, ContourStats& stats);
+    geometry::Mesh run();
+
+private:
+    std::size_t cellSlot(int i, int j) const { return std::size_t(i) + std::size_t(j) * std::size_t(cells_.x); }
+    std::uint8_t configAt(const glm::ivec3& cell) const;
+    void computeConfigs(int slab);
+    void computeFlips(int slab);
+    void placeVertices(int slab);
+    void placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips);
+    glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p);
+    void emitQuads(int slab);
+    void emitQuad(const glm::ivec3& vertex, int axis, bool lowInside);
+    std::uint32_t vertexOf(const glm::ivec3& cell, int edge) const;
+    void addQuad(const std::array<std::uint32_t, 4>& q);
+
+    DexelImage& image_;
+    ContourStats& stats_;
+    glm::ivec3 vertices_;  // grid vertices per axis
+    glm::ivec3 cells_;     // cells per axis
+    std::array<std::vector<std::uint8_t>, kPlaneRing> planes_;
+    std::array<std::vector<std::uint8_t>, kConfigRing> configs_;
+    std::array<std::vector<std::uint8_t>, kVertexRing> flips_;
+    std::array<std::vector<std::uint32_t>, kVertexRing> firstVertex_;
+    geometry::Mesh mesh_;
+};
+
+Contourer::Contourer(DexelImage& image, ContourStats& stats)
+    : image_(image), stats_(stats), vertices_(image.grid().count), cells_(image.grid().count - 1) {
+    const std::size_t slabCells = std::size_t(cells_.x) * std::size_t(cells_.y);
+    for (auto& c : configs_) c.assign(slabCells, 0);
+    for (auto& f : flips_) f.assign(slabCells, 0);
+    for (auto& v : firstVertex_) v.assign(slabCells, kNoVertex);
+}
+
+geometry::Mesh Contourer::run() {
+    image_.signPlane(0, planes_[0]);
+    image_.signPlane(1, planes_[1]);
+    computeConfigs(0);
+    for (int k = 0; k < cells_.z; ++k) {
+        reportProgress(kProgressWhat, std::size_t(k), std::size_t(cells_.z));
+        if (k + 1 < cells_.z) {
+            image_.signPlane(k + 2, planes_[k % kPlaneRing]);  // plane k is no longer needed
+            computeConfigs(k + 1);
+        }
+        computeFlips(k);
+        placeVertices(k);
+        emitQuads(k);
+    }
+    reportProgress(kProgressWhat, std::size_t(cells_.z), std::size_t(cells_.z));
+    return std::move(mesh_);
+}
+
+// Cells outside the grid hold no surface: all outside.
+std::uint8_t Contourer::configAt(const glm::ivec3& cell) const {
+    if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= cells_.x || cell.y >= cells_.y || cell.z >= cells_.z) {
+        return 0;
+    }
+    return configs_[cell.z % kConfigRing][cellSlot(cell.x, cell.y)];
+}
+
+void Contourer::computeConfigs(int slab) {
+    const std::vector<std::uint8_t>& low = planes_[slab % kPlaneRing];
+    const std::vector<std::uint8_t>& high = planes_[(slab + 1) % kPlaneRing];
+    std::vector<std::uint8_t>& configs = configs_[slab % kConfigRing];
+    for (int j = 0; j < cells_.y; ++j) {
+        for (int i = 0; i < cells_.x; ++i) {
+            std::uint8_t config = 0;
+            for (int c = 0; c < kCellCorners; ++c) {
+                const glm::ivec3 o = cornerOffset(c);
+                const std::vector<std::uint8_t>& plane = o.z != 0 ? high : low;
+                const std::size_t slot = std::size_t(i + o.x) + std::size_t(j + o.y) * std::size_t(vertices_.x);
+                config |= std::uint8_t(plane[slot] << c);
+            }
+            configs[cellSlot(i, j)] = config;
+        }
+    }
+}
+
+// A face is flipped exactly when both its cells would join its two segments
+// in one patch (CellTopology.h): the same answer from either side.
+void Contourer::computeFlips(int slab) {
+    std::vector<std::uint8_t>& flips = flips_[slab % kVertexRing];
+    for (int j = 0; j < cells_.y; ++j) {
+        for (int i = 0; i < cells_.x; ++i) {
+            const glm::ivec3 cell(i, j, slab);
+            const std::uint8_t config = configAt(cell);
+            const std::uint8_t joined = facesJoinedInOnePatch(config);
+            std::uint8_t cellFlips = 0;
+            for (int f = 0; f < kCellFaces; ++f) {
+                if (((joined >> f) & 1) == 0) continue;
+                glm::ivec3 neighbour = cell;
+                neighbour[faceAxis(f)] += faceIsHigh(f) ? 1 : -1;
+                if ((facesJoinedInOnePatch(configAt(neighbour)) >> faceOpposite(f)) & 1) cellFlips |= 1 << f;
+            }
+            flips[cellSlot(i, j)] = cellFlips;
+            // Each face once: from the cell on its low side.
+            for (int f = 1; f < kCellFaces; f += 2) {
+                stats_.ambiguousFaces += ambiguousFace(config, f) ? 1 : 0;
+                stats_.flippedFaces += (cellFlips >> f) & 1;
+            }
+        }
+    }
+}
+
+void Contourer::placeVertices(int slab) {
+    std::vector<std::uint32_t>& first = firstVertex_[slab % kVertexRing];
+    const std::vector<std::uint8_t>& flips = flips_[slab % kVertexRing];
+    for (int j = 0; j < cells_.y; ++j) {
+        for (int i = 0; i < cells_.x; ++i) {
+            const glm::ivec3 cell(i, j, slab);
+            const std::uint8_t config = configAt(cell);
+            const std::size_t slot = cellSlot(i, j);
+            if (config == 0 || config == 0xff) {
+                first[slot] = kNoVertex;
+                continue;
+            }
+            if (mesh_.positions.size() >= kNoVertex) throw Error("contour: more vertices than a mesh can index");
+            first[slot] = std::uint32_t(mesh_.positions.size());
+            placeCellVertices(cell, config, flips[slot]);
+        }
+    }
+}
+
+// One vertex per patch, in patch order: patch p's vertex is first + p.
+void Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips) {
+    const CellPatches& patches = cellPatches(config, flips);
+    std::array<HermiteSample, kCellEdges> samples;
+    for (int e = 0; e < kCellEdges; ++e) {
+        if (patches.patchOfEdge[e] < 0) continue;
+        const glm::ivec3 start = edgeStart(e);
+        samples[e] = image_.edgeCrossing(cell + start, edgeAxis(e), ((config >> cornerAt(start)) & 1) != 0);
+    }
+    std::array<HermiteSample, kCellEdges> patch;
+    for (int p = 0; p < patches.count; ++p) {
+        std::size_t n = 0;
+        for (int e = 0; e < kCellEdges; ++e) {
+            if (patches.patchOfEdge[e] == p) patch[n++] = samples[e];
+        }
+        mesh_.positions.push_back(keptInCell(cell, minimizeQef(std::span(patch.data(), n))));
+    }
+}
+
+// A minimizer outside the cell is clamped to it (less the margin), not
+// replaced by the mass point: a sharp corner just across a cell face stays
+// next to where it belongs, on the cell's face, instead of jumping back.
+glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p) {
+    const double margin = kInteriorMargin * image_.grid().spacing;
+    bool clamped = false;
+    for (int a = 0; a < 3; ++a) {
+        const double low = image_.coordinate(a, cell[a]) + margin;
+        const double high = image_.coordinate(a, cell[a] + 1) - margin;
+        const double kept = std::isfinite(p[a]) ? std::clamp(p[a], low, high) : 0.5 * (low + high);
+        clamped = clamped || kept != p[a];
+        p[a] = kept;
+    }
+    stats_.clampedVertices += clamped ? 1 : 0;
+    return p;
+}
+
+// The quads of the grid edges whose four cells are all placed by now: the z
+// edges of this slab, and the x and y edges of its low plane (between this
+// slab and the one below). Edges on the grid's boundary never change sign.
+void Contourer::emitQuads(int slab) {
+    const std::vector<std::uint8_t>& configs = configs_[slab % kConfigRing];
+    auto inside = [](std::uint8_t config, int corner) { return ((config >> corner) & 1) != 0; };
+    const int cornerX = cornerAt({1, 0, 0});
+    const int cornerY = cornerAt({0, 1, 0});
+    const int cornerZ = cornerAt({0, 0, 1});
+    for (int j = 0; j < cells_.y; ++j) {
+        for (int i = 0; i < cells_.x; ++i) {
+            const std::uint8_t config = configs[cellSlot(i, j)];
+            const bool low = inside(config, 0);
+            const glm::ivec3 vertex(i, j, slab);
+            const bool interiorX = i > 0;
+            const bool interiorY = j > 0;
+            const bool interiorZ = slab > 0;
+            if (interiorX && interiorY && low != inside(config, cornerZ)) emitQuad(vertex, 2, low);
+            if (interiorY && interiorZ && low != inside(config, cornerX)) emitQuad(vertex, 0, low);
+            if (interiorX && interiorZ && low != inside(config, cornerY)) emitQuad(vertex, 1, low);
+        }
+    }
+}
+
+void Contourer::emitQuad(const glm::ivec3& vertex, int axis, bool lowInside) {
+    const int u = (axis + 1) % 3;
+    const int v = (axis + 2) % 3;
+    std::array<std::uint32_t, 4> quad{};
+    for (std::size_t n = 0; n < quad.size(); ++n) {
+        glm::ivec3 cell = vertex;
+        cell[u] += kCellsAroundEdge[n][0];
+        cell[v] += kCellsAroundEdge[n][1];
+        quad[n] = vertexOf(cell, edgeAt(axis, vertex - cell));
+    }
+    // Counter-clockwise about +axis faces +axis: outward when the low end is
+    // inside, the surface's normal there pointing from inside to outside.
+    if (!lowInside) std::reverse(quad.begin(), quad.end());
+    addQuad(quad);
+}
+
+std::uint32_t Contourer::vertexOf(const glm::ivec3& cell, int edge) const {
+    const std::size_t slot = cellSlot(cell.x, cell.y);
+    const int ring = cell.z % kVertexRing;
+    const CellPatches& patches = cellPatches(configAt(cell), flips_[ring][slot]);
+    return firstVertex_[ring][slot] + std::uint32_t(patches.patchOfEdge[edge]);
+}
+
+// Of the two diagonals, the one whose triangles agree best in normal (the
+// flatter fold, which follows a sharp edge rather than cutting across it),
+// unless it makes a sliver and the other does not.
+void Contourer::addQuad(const std::array<std::uint32_t, 4>& q) {
+    const auto& p = mesh_.positions;
+    const glm::dvec3 &a = p[q[0]], &b = p[q[1]], &c = p[q[2]], &d = p[q[3]];
+    const double shapeAC = std::min(triangleShape(a, b, c), triangleShape(a, c, d));
+    const double shapeBD = std::min(triangleShape(a, b, d), triangleShape(b, c, d));
+    bool splitAC = shapeAC >= shapeBD;
+    if (shapeAC >= kMinTriangleShape && shapeBD >= kMinTriangleShape) {
+        const double agreeAC = glm::dot(unitNormal(a, b, c), unitNormal(a, c, d));
+        const double agreeBD = glm::dot(unitNormal(a, b, d), unitNormal(b, c, d));
+        splitAC = agreeAC >= agreeBD;
+    }
+    if (splitAC) {
+        mesh_.triangles.push_back({q[0], q[1], q[2]});
+        mesh_.triangles.push_back({q[0], q[2], q[3]});
+    } else {
+        mesh_.triangles.push_back({q[0], q[1], q[3]});
+        mesh_.triangles.push_back({q[1], q[2], q[3]});
+    }
+}
+
+}  // namespace
+
+geometry::Mesh contourCounting(const Dexels& dexels, ContourStats& stats) {
+    DexelImage image(dexels);
+    if (image.empty()) return {};
+    return Contourer(image, stats).run();
+}
+
+geometry::Mesh contour(const Dexels& dexels) {
+    ContourStats stats;
+    return contourCounting(dexels, stats);
+}
+
+}  // namespace strata::contour

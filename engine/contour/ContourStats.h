@@ -1,0 +1,21 @@
+#pragma once
+// What one contouring met on the way, for tests that must know a rare case
+// was exercised (ambiguous faces, the flips that keep the mesh 2-manifold).
+
+#include <cstddef>
+
+#include "strata/contour/Dexels.h"
+#include "strata/geometry/Mesh.h"
+
+namespace strata::contour {
+
+struct ContourStats {
+    std::size_t ambiguousFaces = 0;   // cell faces with alternating corner signs, each counted once
+    std::size_t flippedFaces = 0;     // of those, the ones whose pairing was flipped (CellTopology.h)
+    std::size_t clampedVertices = 0;  // patch vertices whose QEF minimizer left their cell
+};
+
+// contour(), counting as it goes.
+geometry::Mesh contourCounting(const Dexels& dexels, ContourStats& stats);
+
+}  // namespace strata::contour
