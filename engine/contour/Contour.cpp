@@ -21,12 +21,24 @@ namespace {
 
 constexpr const char* kProgressWhat = "contour";
 
-// Patch vertices stay this far (in cell sizes) inside their own cell. Four
+// Patch vertices stay this far (in cell sizes) inside their own cell unless
+// they are a proven feature (below). Four
 // points strictly inside the four cells around a grid edge cannot lie on one
 // line, so one of the quad's two diagonals always splits it into triangles of
-// non-zero area, and vertices of different cells never coincide. A corner of
+// non-zero area, and vertices of different cells never coincide (a proven
+// feature point may meet another; the diagonal choice then still avoids a
+// zero-area triangle where it can). A corner of
 // the solid closer than this to a grid plane moves by at most the margin.
 constexpr double kInteriorMargin = 1e-6;
+
+// A sharp corner or edge often lies in a cell next to the one whose patch
+// sees its faces. Such a minimizer is kept, up to this far (in cells) outside
+// its cell, when the crossings prove it: more of them than the rank, all on
+// their planes through it to within this fraction of a cell (the planes of a
+// box meet in one point; those of a curved surface, sampled four times or
+// more, do not, and their meet outside the cell would fold the mesh).
+constexpr double kFeatureReach = 1.0;
+constexpr double kFeatureResidual = 1e-5;
 
 // Twice a triangle's area over its longest edge squared: 0 for a degenerate
 // triangle, about 0.87 for an equilateral one. A diagonal whose thinner
@@ -70,7 +82,7 @@ private:
     void computeFlips(int slab);
     void placeVertices(int slab);
     void placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips);
-    glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p);
+    glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p, double margin);
     void emitQuads(int slab);
     void emitQuad(const glm::ivec3& vertex, int axis, bool lowInside);
     std::uint32_t vertexOf(const glm::ivec3& cell, int edge) const;
@@ -199,15 +211,19 @@ void Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t config, s
         for (int e = 0; e < kCellEdges; ++e) {
             if (patches.patchOfEdge[e] == p) patch[n++] = samples[e];
         }
-        mesh_.positions.push_back(keptInCell(cell, minimizeQef(std::span(patch.data(), n))));
+        const QefSolution qef = minimizeQef(std::span(patch.data(), n));
+        const double tolerance = kFeatureResidual * image_.grid().spacing;
+        const bool proven = std::size_t(qef.rank) < n && qef.residual <= tolerance * tolerance * double(n);
+        mesh_.positions.push_back(keptInCell(cell, qef.point, proven ? -kFeatureReach : kInteriorMargin));
     }
 }
 
-// A minimizer outside the cell is clamped to it (less the margin), not
-// replaced by the mass point: a sharp corner just across a cell face stays
-// next to where it belongs, on the cell's face, instead of jumping back.
-glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p) {
-    const double margin = kInteriorMargin * image_.grid().spacing;
+// A minimizer outside the allowed box (the cell less the margin, or grown by
+// kFeatureReach for a proven feature) is clamped to it, not replaced by the
+// mass point: a sharp corner just across a cell face stays next to where it
+// belongs, on the cell's face, instead of jumping back into the middle.
+glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p, double marginInCells) {
+    const double margin = marginInCells * image_.grid().spacing;
     bool clamped = false;
     for (int a = 0; a < 3; ++a) {
         const double low = image_.coordinate(a, cell[a]) + margin;

@@ -64,7 +64,7 @@ SymmetricEigen symmetricEigen(const Matrix3& matrix) {
     return eigen;
 }
 
-glm::dvec3 minimizeQef(std::span<const HermiteSample> samples) {
+QefSolution minimizeQef(std::span<const HermiteSample> samples) {
     glm::dvec3 mass(0.0);
     for (const HermiteSample& s : samples) mass += s.point;
     mass /= double(samples.size());
@@ -82,12 +82,19 @@ glm::dvec3 minimizeQef(std::span<const HermiteSample> samples) {
     }
     const SymmetricEigen eigen = symmetricEigen(ata);
     const double largest = std::max({eigen.values[0], eigen.values[1], eigen.values[2]});
+    QefSolution solution;
     glm::dvec3 step(0.0);
     for (int i = 0; i < 3; ++i) {
         if (!(eigen.values[i] > kQefRelativeEigenvalueCutoff * largest)) continue;
         step += eigen.vectors[i] * (glm::dot(eigen.vectors[i], atb) / eigen.values[i]);
+        ++solution.rank;
     }
-    return mass + step;
+    solution.point = mass + step;
+    for (const HermiteSample& s : samples) {
+        const double d = glm::dot(s.normal, solution.point - s.point);
+        solution.residual += d * d;
+    }
+    return solution;
 }
 
 }  // namespace strata::contour

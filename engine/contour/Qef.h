@@ -27,11 +27,17 @@ struct HermiteSample {
 // keeps all three directions (1/12 > 0.01 for perpendicular faces).
 inline constexpr double kQefRelativeEigenvalueCutoff = 0.01;
 
+struct QefSolution {
+    glm::dvec3 point{0.0};  // the minimizer nearest the mass point
+    int rank = 0;           // eigenvalues kept: 1 flat, 2 an edge, 3 a corner
+    double residual = 0.0;  // sum of squared distances of `point` from the planes
+};
+
 // The minimizer of sum (n_i · (x - p_i))² nearest the samples' mass point:
 // the mass point moved by the truncated pseudo-inverse, so flat directions
 // stay at the mass point and sharp edges and corners come out exactly.
 // Samples must not be empty.
-glm::dvec3 minimizeQef(std::span<const HermiteSample> samples);
+QefSolution minimizeQef(std::span<const HermiteSample> samples);
 
 // Eigen-decomposition of a symmetric 3×3 matrix by cyclic Jacobi rotations:
 // values[i] belongs to the column vector vectors[i].

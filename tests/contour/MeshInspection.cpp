@@ -1,5 +1,6 @@
 #include "MeshInspection.h"
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <vector>
@@ -57,6 +58,8 @@ MeshInspection inspect(const geometry::Mesh& mesh, bool lookForSelfIntersections
     for (const auto f : sm.faces()) r.degenerate += PMP::is_degenerate_triangle_face(f, sm) ? 1 : 0;
     auto componentOf = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:component").first;
     r.components = PMP::connected_components(sm, componentOf);
+    // A fresh Surface_mesh numbers its faces in the soup's order.
+    for (const auto f : sm.faces()) r.componentOfTriangle.push_back(componentOf[f]);
     if (lookForSelfIntersections && r.degenerate == 0) r.selfIntersects = PMP::does_self_intersect(sm);
     if (r.closed) {
         // Every connected component outward, or inward where it lies inside

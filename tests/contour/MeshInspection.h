@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "strata/geometry/Mesh.h"
 
@@ -14,7 +15,9 @@ struct MeshInspection {
     bool soupIsManifold = false;  // PMP::is_polygon_soup_a_polygon_mesh: ≤ 2 triangles per edge, disk links, consistent
     bool valid = false;           // CGAL::is_valid_polygon_mesh
     bool closed = false;
-    bool outward = false;
+    bool outward = false;         // every component outward, or inward inside an odd number of others
+                                  // (CGAL's nesting: meaningful only without self-intersections)
+    std::vector<std::size_t> componentOfTriangle;  // by the mesh's triangle order
     bool selfIntersects = false;  // only looked for when asked
     std::size_t degenerate = 0;   // triangles of zero area (exact predicate)
     std::size_t components = 0;

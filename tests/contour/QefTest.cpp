@@ -40,7 +40,7 @@ TEST(ContourQef, ThreePlanesMeetAtTheirCorner) {
         {{0.0, corner.y, 0.0}, {0.0, 1.0, 0.0}},
         {{0.0, 0.0, corner.z}, {0.0, 0.0, -1.0}},
     };
-    const glm::dvec3 x = minimizeQef(samples);
+    const glm::dvec3 x = minimizeQef(samples).point;
     EXPECT_EQ(x, corner);
 }
 
@@ -51,7 +51,7 @@ TEST(ContourQef, AFlatPatchKeepsItsMassPoint) {
         {{1.0, 1.0, 0.5}, {0.0, 0.0, 1.0}},
         {{0.0, 0.75, 0.5}, {0.0, 0.0, 1.0}},
     };
-    const glm::dvec3 x = minimizeQef(samples);
+    const glm::dvec3 x = minimizeQef(samples).point;
     EXPECT_DOUBLE_EQ(x.x, 0.5);
     EXPECT_DOUBLE_EQ(x.y, 0.4375);
     EXPECT_DOUBLE_EQ(x.z, 0.5);
@@ -65,7 +65,7 @@ TEST(ContourQef, AnEdgeProjectsTheMassPointOntoIt) {
         {{0.0, 0.5, 0.0}, {0.0, 1.0, 0.0}},
         {{0.0, 0.5, 1.0}, {0.0, 1.0, 0.0}},
     };
-    const glm::dvec3 x = minimizeQef(samples);
+    const glm::dvec3 x = minimizeQef(samples).point;
     EXPECT_DOUBLE_EQ(x.x, 0.25);
     EXPECT_DOUBLE_EQ(x.y, 0.5);
     EXPECT_DOUBLE_EQ(x.z, 0.5);
