@@ -137,16 +137,17 @@ void Contourer::computeConfigs(int slab) {
     const std::vector<std::uint8_t>& low = planes_[slab % kPlaneRing];
     const std::vector<std::uint8_t>& high = planes_[(slab + 1) % kPlaneRing];
     std::vector<std::uint8_t>& configs = configs_[slab % kConfigRing];
+    // Corner c of a cell is at offset (c & 1, c >> 1 & 1, c >> 2 & 1)
+    // (cornerOffset), written out here: this loop visits every cell.
+    const std::size_t row = std::size_t(vertices_.x);
     for (int j = 0; j < cells_.y; ++j) {
+        const std::uint8_t* low0 = low.data() + std::size_t(j) * row;
+        const std::uint8_t* high0 = high.data() + std::size_t(j) * row;
         for (int i = 0; i < cells_.x; ++i) {
-            std::uint8_t config = 0;
-            for (int c = 0; c < kCellCorners; ++c) {
-                const glm::ivec3 o = cornerOffset(c);
-                const std::vector<std::uint8_t>& plane = o.z != 0 ? high : low;
-                const std::size_t slot = std::size_t(i + o.x) + std::size_t(j + o.y) * std::size_t(vertices_.x);
-                config |= std::uint8_t(plane[slot] << c);
-            }
-            configs[cellSlot(i, j)] = config;
+            const std::uint8_t* l = low0 + i;
+            const std::uint8_t* h = high0 + i;
+            configs[cellSlot(i, j)] = std::uint8_t(l[0] | l[1] << 1 | l[row] << 2 | l[row + 1] << 3 | h[0] << 4 |
+                                                   h[1] << 5 | h[row] << 6 | h[row + 1] << 7);
         }
     }
 }
@@ -159,6 +160,10 @@ void Contourer::computeFlips(int slab) {
         for (int i = 0; i < cells_.x; ++i) {
             const glm::ivec3 cell(i, j, slab);
             const std::uint8_t config = configAt(cell);
+            if (config == 0 || config == 0xff) {  // no surface: nothing to flip
+                flips[cellSlot(i, j)] = 0;
+                continue;
+            }
             const std::uint8_t joined = facesJoinedInOnePatch(config);
             std::uint8_t cellFlips = 0;
             for (int f = 0; f < kCellFaces; ++f) {
