@@ -14,6 +14,7 @@
 #include "CommandLine.h"
 #include "strata/core/Error.h"
 #include "strata/io/MeshWriter.h"
+#include "strata/remesh/Remesh.h"
 
 namespace strata::apps {
 namespace {
@@ -133,17 +134,13 @@ void checkOutputName(const std::string& option, const std::string& path, std::st
 
 bool sameFile(const std::string& a, const std::string& b);
 
-// --export FILE: a mesh format by its extension, and for now the exact path.
+// --export FILE: a mesh format by its extension.
 void checkExport(const RenderOptions& o) {
     if (o.exportPath.empty()) throw UsageError{"--export: expected a file name"};
     try {
         io::meshFormatOf(o.exportPath);
     } catch (const Error&) {
         throw UsageError{"--export: expected a .stl, .off, .obj or .3mf file name, got '" + o.exportPath + "'"};
-    }
-    if (!o.exportExact) {
-        throw UsageError{"--export: only the exact export exists so far; add --export-exact (CGAL's result, "
-                         "as OpenSCAD's render)"};
     }
     for (const std::string* other : {&o.png, &o.depth, &o.normal}) {
         if (!other->empty() && sameFile(*other, o.exportPath)) {
@@ -193,7 +190,12 @@ ParseResult parseOptions(int argc, char** argv) {
                    "without -o, --depth or --normal nothing is rendered")
         ->type_name("FILE");
     app.add_flag("--export-exact", o.exportExact,
-                 "export the exact result, evaluated by CGAL as OpenSCAD's render does (needed with --export)");
+                 "export the exact result, evaluated by CGAL as OpenSCAD's render does, instead of sampling "
+                 "the image-space result");
+    std::string exportResolution;
+    app.add_option("--export-resolution", exportResolution,
+                   "cells along the longest side of the result's box for --export (default 512, 8 to 4096)")
+        ->type_name("N");
 
     static_cast<CliOutcome&>(result) = parseCommandLine(app, argc, argv, "strata-render", [&] {
         if (!imgsize.empty() || app.count("--imgsize")) parseImageSize(imgsize, o);
@@ -210,6 +212,16 @@ ParseResult parseOptions(int argc, char** argv) {
         }
         if (app.count("--export")) checkExport(o);
         if (o.exportExact && o.exportPath.empty()) throw UsageError{"--export-exact: give --export FILE too"};
+        if (app.count("--export-resolution")) {
+            if (o.exportPath.empty()) throw UsageError{"--export-resolution: give --export FILE too"};
+            if (o.exportExact) throw UsageError{"--export-resolution: the exact export has no resolution"};
+            long long n = 0;
+            if (!parseInt(exportResolution, n) || n < remesh::kLeastResolution || n > remesh::kMostResolution)
+                throw UsageError{"--export-resolution: expected a whole number from " +
+                                 std::to_string(remesh::kLeastResolution) + " to " +
+                                 std::to_string(remesh::kMostResolution) + ", got '" + exportResolution + "'"};
+            o.exportResolution = static_cast<int>(n);
+        }
         if (app.count("--colorscheme")) o.colorScheme = checkedColorScheme(o.colorScheme);
     });
     return result;

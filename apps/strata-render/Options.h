@@ -26,6 +26,7 @@ struct RenderOptions {
     std::string colorScheme = "Cornfield";
     std::string exportPath;                 // --export FILE.stl|.off|.obj|.3mf; empty: none
     bool exportExact = false;               // --export-exact: CGAL's exact result of the tree
+    int exportResolution = 512;             // --export-resolution N: cells along the result's longest side
 };
 
 // What parsing decided: run with the options, or stop (CliOutcome).

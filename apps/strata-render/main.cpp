@@ -13,6 +13,7 @@
 
 #include "Options.h"
 #include "ExactExport.h"
+#include "ImageExport.h"
 #include "SceneLoad.h"
 #include "StderrProgress.h"
 #include "strata/core/Error.h"
@@ -144,12 +145,20 @@ int run(const apps::RenderOptions& options) {
     if (!options.exportPath.empty()) {
         t = Clock::now();
         const ProgressScope scope(&progress);
-        staged.push_back(apps::stageExactExport(tree, model, options.exportPath,
-                                                render::colorScheme(options.colorScheme).faceFront)
-                             .file);
+        const glm::vec4 faceColor = render::colorScheme(options.colorScheme).faceFront;
+        if (options.exportExact) {
+            staged.push_back(apps::stageExactExport(tree, model, options.exportPath, faceColor).file);
+        } else {
+            apps::ImageExportSettings settings;
+            settings.resolution = options.exportResolution;
+            settings.reference = options.reference;
+            settings.layers = options.layers;
+            staged.push_back(apps::stageImageExport(tree, model, options.exportPath, faceColor, settings).file);
+        }
         stats.exportMs = msSince(t);
     }
-    // With --export alone nothing is rendered (and no GL context made).
+    // With --export alone nothing is rendered (and, for the exact export,
+    // no GL context made).
     const bool images = !options.png.empty() || !options.depth.empty() || !options.normal.empty();
     if (images || options.exportPath.empty()) renderImages(options, tree, model, stats, staged);
     t = Clock::now();
