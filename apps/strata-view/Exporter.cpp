@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "ExactExport.h"
+#include "ImageExport.h"
 
 namespace strata::view {
 
@@ -12,14 +13,24 @@ Exporter::~Exporter() {
     if (running_.valid()) running_.wait();
 }
 
-bool Exporter::start(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor) {
+bool Exporter::start(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor, bool exact,
+                     int resolution) {
     if (busy()) return false;
     progress_ = std::make_shared<LoadProgress>();
-    running_ = std::async(std::launch::async, [scene, path, faceColor, progress = progress_] {
+    running_ = std::async(std::launch::async, [scene, path, faceColor, exact, resolution, progress = progress_] {
         ExportResult result;
         result.path = path;
         const WorkOutcome outcome = runReporting(*progress, path, "export cancelled", [&] {
-            apps::ExactExport exported = apps::stageExactExport(scene.tree, scene.model, path, faceColor);
+            if (exact) {
+                apps::ExactExport exported = apps::stageExactExport(scene.tree, scene.model, path, faceColor);
+                exported.file.commit();
+                result.triangles = exported.triangles;
+                return;
+            }
+            apps::ImageExportSettings settings;
+            settings.resolution = resolution;
+            settings.reference = true;
+            apps::ImageExport exported = apps::stageImageExport(scene.tree, scene.model, path, faceColor, settings);
             exported.file.commit();
             result.triangles = exported.triangles;
         });

@@ -1,8 +1,10 @@
 #pragma once
-// Exports the shown model's exact result (CGAL, as strata-render
-// --export-exact does) on a worker thread: it can take seconds, and the
-// window must keep answering, show where the work is and let it be
-// cancelled. One export at a time.
+// Exports the shown model on a worker thread, as strata-render's --export
+// does: sampled and contoured (the image-space export, its samples taken by
+// the CPU reference, so the window keeps its GL context to itself), or
+// exact (CGAL, --export-exact). Either can take seconds, and the window must
+// keep answering, show where the work is and let it be cancelled. One
+// export at a time.
 
 #include <future>
 #include <memory>
@@ -29,8 +31,10 @@ public:
     ~Exporter();  // cancels a running export and waits for it to stop at its next step
 
     // Starts exporting `scene` (copied) into `path` (.stl, .off, .obj or
-    // .3mf); false, with nothing started, while another export runs.
-    bool start(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor);
+    // .3mf): exact, or sampled at `resolution` cells along the result's
+    // longest side; false, with nothing started, while another export runs.
+    bool start(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor, bool exact,
+               int resolution);
     // The finished export, if one finished since the last call.
     std::optional<ExportResult> poll();
     bool busy() const { return running_.valid(); }

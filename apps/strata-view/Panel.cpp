@@ -121,10 +121,20 @@ void Viewer::drawPanel() {
         if (exporter_.busy()) {
             ImGui::TextWrapped("exporting... %s", exporter_.progressText().c_str());
             if (ImGui::SmallButton("cancel export")) exporter_.cancel();
-        } else if (ImGui::Button("export exact result (Ctrl+E)")) {
+        } else if (ImGui::Button("export (Ctrl+E)")) {
             startExport(exportPath_);
         }
-        ImGui::TextDisabled(".stl, .off, .obj or .3mf; evaluated by CGAL as OpenSCAD's render");
+        ImGui::Checkbox("exact (CGAL)", &exportExact_);
+        if (!exportExact_) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(-1);
+            if (ImGui::InputInt("cells", &exportResolution_, 64, 256)) {
+                exportResolution_ = std::clamp(exportResolution_, remesh::kLeastResolution, remesh::kMostResolution);
+            }
+        }
+        ImGui::TextDisabled(exportExact_ ? ".stl, .off, .obj or .3mf; evaluated by CGAL as OpenSCAD's render"
+                                         : ".stl, .off, .obj or .3mf; the result sampled on a grid of this many "
+                                           "cells along its longest side, sharp edges kept");
     }
 
     if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -35,7 +35,8 @@ enum class CommandKind {
     Show,             // show axes|scale|edges on|off
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
-    Export,           // export PATH         (the exact result as a mesh; waits until written)
+    Export,           // export PATH         (the result sampled and contoured, as strata-render --export; waits until written)
+    ExportExact,      // export-exact PATH   (the exact result, as --export-exact; waits until written)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)

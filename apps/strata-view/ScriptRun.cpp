@@ -144,10 +144,11 @@ bool Viewer::runCommand(const Command& c) {
             }
             return false;
         case CommandKind::Export:
+        case CommandKind::ExportExact:
             // Started once, then waited for; its error is the script's error.
             if (!waitingSince_) {
                 lastExport_.reset();
-                startExport(path(0));
+                startExport(path(0), c.kind == CommandKind::ExportExact);
                 waitingSince_ = Clock::now();
             }
             if (lastExport_ && !exporter_.busy()) {

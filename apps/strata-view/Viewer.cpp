@@ -403,7 +403,9 @@ std::string Viewer::defaultExportPath() const {
     return p.string();
 }
 
-void Viewer::startExport(const std::string& path) {
+void Viewer::startExport(const std::string& path) { startExport(path, exportExact_); }
+
+void Viewer::startExport(const std::string& path, bool exact) {
     if (exporter_.busy()) {
         message_ = "an export is running";
         return;
@@ -414,7 +416,7 @@ void Viewer::startExport(const std::string& path) {
         message_ = e.what();
         return;
     }
-    exporter_.start(scene_, path, render::colorScheme(settings_.colorScheme).faceFront);
+    exporter_.start(scene_, path, render::colorScheme(settings_.colorScheme).faceFront, exact, exportResolution_);
     message_ = "exporting " + path + "...";
 }
 

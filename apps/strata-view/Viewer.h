@@ -22,6 +22,7 @@
 #include "TreeEdit.h"
 #include "ViewTarget.h"
 #include "DebugImage.h"
+#include "strata/remesh/Remesh.h"
 #include "strata/gpu/WindowContext.h"
 #include "strata/render/Renderer.h"
 
@@ -92,7 +93,10 @@ private:
     void saveScreenshot(const std::string& path);
     void saveNumberedScreenshot();
     void copyCamera();
+    // The panel's choice of export (exact or sampled, exportExact_), or the
+    // one `exact` names.
     void startExport(const std::string& path);
+    void startExport(const std::string& path, bool exact);
     void updateTitle();
     std::string title() const;
     void drawStaleBadge();
@@ -128,6 +132,8 @@ private:
     Loader loader_;
     Exporter exporter_;
     std::string exportPath_;         // the panel's export file name
+    bool exportExact_ = false;       // the panel exports CGAL's exact result, not the sampled one
+    int exportResolution_ = remesh::kDefaultResolution;  // the sampled export's cells along the longest side
     Console console_;
     std::optional<ExportResult> lastExport_;  // the last finished export, for a waiting script
     FileWatch watch_;

@@ -300,10 +300,14 @@ TEST_F(StrataView, ScriptErrorsAtRunTimeNameTheCommand) {
 
 TEST_F(StrataView, ExportWritesWhatStrataRenderExports) {
     const std::string scene = dir.write("a.csg", kScene);
-    const ProcessResult r = view(scene, "size 64 64\nexport view.off\nquit\n");
+    const ProcessResult r =
+        view(scene, "size 64 64\nexport-exact view.off\nexport sampled.off\nquit\n");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const ProcessResult cli = runProcess({kRender, scene, "--export", dir / "render.off", "--export-exact"});
     ASSERT_EQ(cli.exitCode, 0) << cli.err;
+    // The viewer samples with the CPU reference: strata-render --reference.
+    const ProcessResult sampled = runProcess({kRender, scene, "--export", dir / "render-sampled.off", "--reference"});
+    ASSERT_EQ(sampled.exitCode, 0) << sampled.err;
     auto bytes = [](const std::string& path) {
         std::ifstream in(path, std::ios::binary);
         return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -311,6 +315,9 @@ TEST_F(StrataView, ExportWritesWhatStrataRenderExports) {
     const std::string viewed = bytes(dir / "view.off");
     EXPECT_GT(viewed.size(), 100u);
     EXPECT_EQ(viewed, bytes(dir / "render.off"));  // the same exact result, written the same way
+    const std::string viewedSampled = bytes(dir / "sampled.off");
+    EXPECT_GT(viewedSampled.size(), 100u);
+    EXPECT_EQ(viewedSampled, bytes(dir / "render-sampled.off"));
     // A bad name is the script's error, naming the command.
     const ProcessResult bad = view(scene, "size 64 64\nexport nowhere/x.stl\n");
     EXPECT_EQ(bad.exitCode, 1);
