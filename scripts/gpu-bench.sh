@@ -5,7 +5,8 @@
 #
 #   scripts/gpu-bench.sh [--bundle DIR] [--out DIR] [--quick] [--budget S]
 #                        [--frames N] [--warmup N] [--runs N] [--models DIR]
-#                        [--parts synthetic,files,first-image]
+#                        [--parts synthetic,files,first-image,export]
+#                        [--export-models FILE,...] [--export-resolutions N,...]
 #
 # Binaries: with --bundle, DIR/bin/strata-bench and strata-render run on
 # DIR/lib and DIR/fonts (scripts/gpu-bundle.py makes such a folder, for a
@@ -34,6 +35,12 @@
 #                each model: NVIDIA's and Mesa's on-disk caches would
 #                otherwise hold the shaders of earlier runs), peak RSS where
 #                GNU time is installed, and the --stats figures.
+#   export       strata-render MODEL --export x.off --export-resolution N
+#                --stats, once per model (--export-models, default
+#                examples/*.csg) and resolution (--export-resolutions,
+#                default 512): the whole process's wall time, peak RSS, the
+#                export's own milliseconds and the triangles written. Not in
+#                the default --parts.
 # --budget S (default 330) bounds the whole: a step gets at most the time
 # left, and steps that no longer fit are skipped and listed, so the run
 # ends within about six minutes. --quick: small images, K = 1 and 8,
@@ -47,6 +54,7 @@
 #   bench-synthetic.json  strata-bench --json of the synthetic steps, merged
 #   bench-files.json      the same for the models
 #   first-image.json      every run of strata-render, with its --stats
+#   export.json           every export run, with its --stats
 #   images.tar            the first-image PNGs, to check what the GPU drew
 #   report.md             the tables: scripts/bench-report.py (where python3
 #                         is installed) and per-pass and first-image tables
@@ -55,6 +63,7 @@ set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 [[ -f $root/scripts/bench-report.py ]] || root=$(pwd)
 bundle="" out=./gpu-bench-out quick=0 budget=330 frames="" warmup="" runs="" models="" parts=synthetic,files,first-image
+export_models="" export_resolutions=512
 while (($#)); do
   case $1 in
     --bundle) bundle=$2; shift 2 ;;
@@ -66,6 +75,8 @@ while (($#)); do
     --runs) runs=$2; shift 2 ;;
     --models) models=$2; shift 2 ;;
     --parts) parts=$2; shift 2 ;;
+    --export-models) export_models=$2; shift 2 ;;
+    --export-resolutions) export_resolutions=$2; shift 2 ;;
     -h|--help) sed -n '2,/^set -uo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "gpu-bench: unknown option $1 (--help)" >&2; exit 2 ;;
   esac
@@ -352,6 +363,53 @@ if has_part first-image; then
   (cd "$work/img" && ls ./*.png >/dev/null 2>&1 && tar -cf "$out/images.tar" ./*.png)
 fi
 
+# ---- export -------------------------------------------------------------------
+export_rows=()
+if has_part export; then
+  gnutime=$(command -v /usr/bin/time || true)
+  if [[ -n $export_models ]]; then IFS=, read -r -a emodels <<<"$export_models"; else emodels=(examples/*.csg); fi
+  IFS=, read -r -a eres <<<"$export_resolutions"
+  exports_json=()
+  for f in "${emodels[@]}"; do
+    n=$(basename "$f" .csg)
+    for res in "${eres[@]}"; do
+      t=$(step_time 120)
+      if ((t == 0)); then skipped+=("export $n $res"); continue; fi
+      rm -f "$work/stats.json" "$work/t" "$work/x.off"
+      s=$EPOCHREALTIME
+      if [[ -n $gnutime ]]; then
+        timeout -k 5 "$t" "$gnutime" -f "%M" -o "$work/t" env "${runenv[@]}" \
+          "$render" "$f" --export "$work/x.off" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
+      else
+        timeout -k 5 "$t" env "${runenv[@]}" \
+          "$render" "$f" --export "$work/x.off" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
+      fi
+      rc=$?
+      e=$EPOCHREALTIME
+      if ((rc != 0)); then
+        fail "export $n at $res: exit $rc: $(grep -v 'contour\|sampling\|meshing' "$work/err" | tail -2 | tr '\n' ' ')"
+        continue
+      fi
+      wall=$(awk -v s="$s" -v e="$e" 'BEGIN {printf "%.3f", e - s}')
+      rss=""; [[ -n $gnutime && -s $work/t ]] && rss=$(tail -1 "$work/t")
+      tris=$(sed -n '2p' "$work/x.off" | awk '{print $2}')
+      st=$(cat "$work/stats.json")
+      log "export $n at $res: $wall s, ${tris:-?} triangles${rss:+, peak RSS $rss KiB}"
+      export_rows+=("$(printf '| `%s` | %s | %.2f | %s | %s | %s |' "$n.csg" "$res" "$wall" \
+        "$(ms "$(fstat "$st" export)")" "$([[ -n $rss ]] && awk -v k="$rss" 'BEGIN {printf "%.0f", k / 1024}' || echo –)" \
+        "${tris:-–}")")
+      exports_json+=("$(printf '{"model": %s, "resolution": %s, "wall_s": %s, "max_rss_kib": %s, "triangles": %s,\n   "stats": %s}' \
+        "$(jstr "$f")" "$res" "$wall" "${rss:-null}" "${tris:-null}" "$st")")
+    done
+  done
+  {
+    printf '{"tool": "gpu-bench export", "renderer": %s,\n "exports": [\n  ' "$(jstr "$renderer")"
+    sep=""
+    for m in "${exports_json[@]}"; do printf '%s%s' "$sep" "$m"; sep=$',\n  '; done
+    printf '\n ]\n}\n'
+  } >"$out/export.json"
+fi
+
 # ---- the machine, after -------------------------------------------------------
 [[ -n $smi ]] && gpu_after=$(timeout 30 "$smi" --query-gpu=$gpu_query --format=csv 2>&1)
 {
@@ -407,6 +465,14 @@ py=$(command -v python3 || true)
     echo "| model | median s | first s | peak MiB | total ms | context ms | geometry ms | frame ms |"
     echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     printf '%s\n' "${first_rows[@]}"
+  fi
+  if ((${#export_rows[@]})); then
+    echo
+    echo "## Export: strata-render --export, whole process"
+    echo
+    echo "| model | cells | wall s | export ms | peak MiB | triangles |"
+    echo "| --- | ---: | ---: | ---: | ---: | ---: |"
+    printf '%s\n' "${export_rows[@]}"
   fi
   echo
   echo "## Failures and skipped steps"
