@@ -35,11 +35,12 @@
 #                each model: NVIDIA's and Mesa's on-disk caches would
 #                otherwise hold the shaders of earlier runs), peak RSS where
 #                GNU time is installed, and the --stats figures.
-#   export       strata-render MODEL --export x.off --export-resolution N
+#   export       strata-render MODEL --export x.stl --export-resolution N
 #                --stats, once per model (--export-models, default
 #                examples/*.csg) and resolution (--export-resolutions,
 #                default 512): the whole process's wall time, peak RSS, the
-#                export's own milliseconds and the triangles written. Not in
+#                export's own milliseconds (sampling and contouring apart)
+#                and the triangles written. Not in
 #                the default --parts.
 # --budget S (default 330) bounds the whole: a step gets at most the time
 # left, and steps that no longer fit are skipped and listed, so the run
@@ -375,14 +376,14 @@ if has_part export; then
     for res in "${eres[@]}"; do
       t=$(step_time 120)
       if ((t == 0)); then skipped+=("export $n $res"); continue; fi
-      rm -f "$work/stats.json" "$work/t" "$work/x.off"
+      rm -f "$work/stats.json" "$work/t" "$work/x.stl"
       s=$EPOCHREALTIME
       if [[ -n $gnutime ]]; then
         timeout -k 5 "$t" "$gnutime" -f "%M" -o "$work/t" env "${runenv[@]}" \
-          "$render" "$f" --export "$work/x.off" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
+          "$render" "$f" --export "$work/x.stl" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
       else
         timeout -k 5 "$t" env "${runenv[@]}" \
-          "$render" "$f" --export "$work/x.off" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
+          "$render" "$f" --export "$work/x.stl" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
       fi
       rc=$?
       e=$EPOCHREALTIME
@@ -392,11 +393,12 @@ if has_part export; then
       fi
       wall=$(awk -v s="$s" -v e="$e" 'BEGIN {printf "%.3f", e - s}')
       rss=""; [[ -n $gnutime && -s $work/t ]] && rss=$(tail -1 "$work/t")
-      tris=$(sed -n '2p' "$work/x.off" | awk '{print $2}')
+      tris=$(od -An -tu4 -j80 -N4 "$work/x.stl" 2>/dev/null | tr -d ' ')  # binary STL: the count after the header
       st=$(cat "$work/stats.json")
       log "export $n at $res: $wall s, ${tris:-?} triangles${rss:+, peak RSS $rss KiB}"
-      export_rows+=("$(printf '| `%s` | %s | %.2f | %s | %s | %s |' "$n.csg" "$res" "$wall" \
-        "$(ms "$(fstat "$st" export)")" "$([[ -n $rss ]] && awk -v k="$rss" 'BEGIN {printf "%.0f", k / 1024}' || echo –)" \
+      export_rows+=("$(printf '| `%s` | %s | %.2f | %s | %s | %s | %s | %s |' "$n.csg" "$res" "$wall" \
+        "$(ms "$(fstat "$st" export)")" "$(ms "$(fstat "$st" export_sample)")" "$(ms "$(fstat "$st" export_contour)")" \
+        "$([[ -n $rss ]] && awk -v k="$rss" 'BEGIN {printf "%.0f", k / 1024}' || echo –)" \
         "${tris:-–}")")
       exports_json+=("$(printf '{"model": %s, "resolution": %s, "wall_s": %s, "max_rss_kib": %s, "triangles": %s,\n   "stats": %s}' \
         "$(jstr "$f")" "$res" "$wall" "${rss:-null}" "${tris:-null}" "$st")")
@@ -470,8 +472,8 @@ py=$(command -v python3 || true)
     echo
     echo "## Export: strata-render --export, whole process"
     echo
-    echo "| model | cells | wall s | export ms | peak MiB | triangles |"
-    echo "| --- | ---: | ---: | ---: | ---: | ---: |"
+    echo "| model | cells | wall s | export ms | sampling ms | contouring ms | peak MiB | triangles |"
+    echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     printf '%s\n' "${export_rows[@]}"
   fi
   echo

@@ -153,7 +153,10 @@ int run(const apps::RenderOptions& options) {
             settings.resolution = options.exportResolution;
             settings.reference = options.reference;
             settings.layers = options.layers;
-            staged.push_back(apps::stageImageExport(tree, model, options.exportPath, faceColor, settings).file);
+            apps::ImageExport exported = apps::stageImageExport(tree, model, options.exportPath, faceColor, settings);
+            stats.exportSampleMs = exported.sampleMs;
+            stats.exportContourMs = exported.contourMs;
+            staged.push_back(std::move(exported.file));
         }
         stats.exportMs = msSince(t);
     }

@@ -36,6 +36,8 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("frame").value(ms(f.totalMs));
     json.key("write").value(ms(s.writeMs));
     if (s.exportMs >= 0) json.key("export").value(ms(s.exportMs));
+    if (s.exportSampleMs >= 0) json.key("export_sample").value(ms(s.exportSampleMs));
+    if (s.exportContourMs >= 0) json.key("export_contour").value(ms(s.exportContourMs));
     json.key("total").value(ms(s.totalMs));
     json.endObject();
 

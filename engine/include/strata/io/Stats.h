@@ -35,6 +35,9 @@ struct RunStats {
     std::string renderer;           // GL_RENDERER (or "reference")
     double parseMs = 0, geometryMs = 0, contextMs = 0, uploadMs = 0, writeMs = 0, totalMs = 0;
     double exportMs = -1;  // --export: evaluating and encoding the mesh; < 0: no export (not printed)
+    // The image-space export's parts: sampling the result (GL context
+    // included) and contouring; < 0: not that export (not printed).
+    double exportSampleMs = -1, exportContourMs = -1;
     int leaves = 0;                 // all tree leaves, background ones too
     int dimensions = 3;             // 2 when every leaf of the result is flat (scene::Tree::isFlat)
     std::size_t triangles = 0;      // over all leaf meshes
