@@ -1,6 +1,11 @@
 #include "ImageExport.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <vector>
 
 #include "strata/camera/ViewBounds.h"
@@ -33,6 +38,41 @@ contour::Dexels sample(const scene::Tree& tree, const geometry::Model& model, co
     return remesh::sampleOnGpu(renderer, grid, frame);
 }
 
+// Bytes a triangle of the export costs until the file is written: its share
+// of the vertices (24 bytes each, about half a vertex per triangle), its
+// indices (12), a colour where 3MF asks (16) and its encoding (50 in binary
+// STL, up to about 60 in OFF or OBJ text).
+constexpr double kBytesPerTriangle = 24.0 * 0.5 + 12.0 + 16.0 + 60.0;
+
+// The memory this process may still take: the smaller of the machine's
+// physical memory and its address-space limit (ulimit -v), halved for what
+// else lives in it.
+double memoryAtHand() {
+    double bytes = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+    struct rlimit limit {};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+        bytes = std::min(bytes, static_cast<double>(limit.rlim_cur));
+    return bytes * 0.5;
+}
+
+// Each grid edge that changes sign holds one crossing and gives one quad,
+// two triangles: the samples say how large the mesh will be before it is
+// built. Refuses, naming the resolution, a mesh that would not fit.
+void checkMeshFits(const contour::Dexels& dexels, int resolution, const SourceLocation& scene) {
+    std::size_t crossings = 0;
+    for (const contour::DexelRays& rays : dexels.axes) crossings += rays.crossings.size();
+    const double triangles = 2.0 * static_cast<double>(crossings);
+    const double bytes = triangles * kBytesPerTriangle;
+    if (bytes > memoryAtHand()) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "export at %d cells would make about %.0f million triangles (%.1f GiB); "
+                      "give a lower --export-resolution",
+                      resolution, triangles / 1e6, bytes / (1024.0 * 1024.0 * 1024.0));
+        throw Error(scene, text);
+    }
+}
+
 }  // namespace
 
 ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
@@ -46,6 +86,7 @@ ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& mod
     const contour::DexelGrid grid = remesh::gridFor(box, settings.resolution);
     const contour::Dexels dexels = sample(tree, model, grid, settings);
     out.sampleMs = msSince(t);
+    checkMeshFits(dexels, settings.resolution, scene);
     t = Clock::now();
     const geometry::Mesh result = contour::contour(dexels);
     out.contourMs = msSince(t);
