@@ -88,6 +88,17 @@ protected:
         return counts;
     }
 
+    // What the two samplers must agree on, over at least `leastCrossings`.
+    static void expectAgreement(const Counts& counts, std::size_t leastCrossings) {
+        EXPECT_GT(counts.crossings, leastCrossings);
+        EXPECT_EQ(counts.raysDiffering, 0u);
+        EXPECT_LT(counts.worstPlace, 1e-3);
+        EXPECT_LT(counts.worstNormal, 1e-6);
+        EXPECT_LT(counts.otherFacet, counts.crossings / 25) << counts.otherFacet;
+        std::printf("%zu crossings, worst place %.2e cells, %zu on another facet\n", counts.crossings,
+                    counts.worstPlace, counts.otherFacet);
+    }
+
     static std::unique_ptr<gpu::Context> context_;
 };
 
@@ -98,13 +109,7 @@ TEST_F(SamplingGLTest, CubeMinusSphereMatchesTheReference) {
         "difference() { cube(size = [10, 10, 10], center = true); "
         "sphere(r = 6.5, $fn = 24); }",
         32);
-    EXPECT_GT(counts.crossings, 1000u);
-    EXPECT_EQ(counts.raysDiffering, 0u);
-    EXPECT_LT(counts.worstPlace, 1e-3);
-    EXPECT_LT(counts.worstNormal, 1e-6);
-    EXPECT_LT(counts.otherFacet, counts.crossings / 25) << counts.otherFacet;
-    std::printf("%zu crossings, worst place %.2e cells, %zu on another facet\n", counts.crossings,
-                counts.worstPlace, counts.otherFacet);
+    expectAgreement(counts, 1000);
 }
 
 TEST_F(SamplingGLTest, NestedShellsGiveEveryChange) {
@@ -114,13 +119,7 @@ TEST_F(SamplingGLTest, NestedShellsGiveEveryChange) {
         " difference() { sphere(r = 6, $fn = 16); sphere(r = 4, $fn = 16); }"
         " sphere(r = 2, $fn = 16); }",
         24);
-    EXPECT_GT(counts.crossings, 1000u);
-    EXPECT_EQ(counts.raysDiffering, 0u);
-    EXPECT_LT(counts.worstPlace, 1e-3);
-    EXPECT_LT(counts.worstNormal, 1e-6);
-    EXPECT_LT(counts.otherFacet, counts.crossings / 25) << counts.otherFacet;
-    std::printf("%zu crossings, worst place %.2e cells, %zu on another facet\n", counts.crossings,
-                counts.worstPlace, counts.otherFacet);
+    expectAgreement(counts, 1000);
 }
 
 TEST_F(SamplingGLTest, ManyOperandsInTilesMatchTheReference) {
@@ -137,11 +136,7 @@ TEST_F(SamplingGLTest, ManyOperandsInTilesMatchTheReference) {
     render::RenderSettings settings;
     settings.memoryBudget = std::size_t(1) << 16;
     const Counts counts = compare(text, 40, settings);
-    EXPECT_GT(counts.crossings, 5000u);
-    EXPECT_EQ(counts.raysDiffering, 0u);
-    EXPECT_LT(counts.worstPlace, 1e-3);
-    EXPECT_LT(counts.worstNormal, 1e-6);
-    EXPECT_LT(counts.otherFacet, counts.crossings / 25) << counts.otherFacet;
+    expectAgreement(counts, 5000);
 }
 
 }  // namespace
