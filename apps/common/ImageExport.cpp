@@ -33,9 +33,9 @@ contour::Dexels sample(const scene::Tree& tree, const geometry::Model& model, co
     gpu::Context context;  // made first, destroyed last
     render::Renderer renderer;
     renderer.setScene(tree, model);
-    render::RenderSettings frame;
-    frame.layers = settings.layers;
-    return remesh::sampleOnGpu(renderer, grid, frame);
+    // Auto peeling, whatever --layers says: a ray missing a layer would
+    // lose changes of the result, and the mesh its surfaces.
+    return remesh::sampleOnGpu(renderer, grid, render::RenderSettings{});
 }
 
 // Bytes a triangle of the export costs until the file is written: its share

@@ -20,7 +20,6 @@ namespace strata::apps {
 struct ImageExportSettings {
     int resolution = remesh::kDefaultResolution;  // cells along the longest side of the result's box
     bool reference = false;                       // sample with the CPU reference instead of the GPU
-    int layers = 0;                               // the GPU's peel layers (0: auto)
 };
 
 struct ImageExport {

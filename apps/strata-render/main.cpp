@@ -152,7 +152,6 @@ int run(const apps::RenderOptions& options) {
             apps::ImageExportSettings settings;
             settings.resolution = options.exportResolution;
             settings.reference = options.reference;
-            settings.layers = options.layers;
             apps::ImageExport exported = apps::stageImageExport(tree, model, options.exportPath, faceColor, settings);
             stats.exportSampleMs = exported.sampleMs;
             stats.exportContourMs = exported.contourMs;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,12 +13,14 @@
 #include "CellTopology.h"
 #include "ContourStats.h"
 #include "DexelImage.h"
+#include "Parallel.h"
 #include "Qef.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
 
 namespace strata::contour {
 namespace {
+
 
 constexpr const char* kProgressWhat = "contour";
 
@@ -81,12 +84,13 @@ private:
     void computeConfigs(int slab);
     void computeFlips(int slab);
     void placeVertices(int slab);
-    void placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips);
-    glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p, double margin);
+    std::size_t placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips, std::size_t at,
+                                  std::size_t& clamped);
+    glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p, double margin, std::size_t& clamped) const;
     void emitQuads(int slab);
-    void emitQuad(const glm::ivec3& vertex, int axis, bool lowInside);
+    std::size_t emitQuad(const glm::ivec3& vertex, int axis, bool lowInside, std::size_t at);
     std::uint32_t vertexOf(const glm::ivec3& cell, int edge) const;
-    void addQuad(const std::array<std::uint32_t, 4>& q);
+    void addQuad(const std::array<std::uint32_t, 4>& q, std::size_t at);
 
     DexelImage& image_;
     ContourStats& stats_;
@@ -96,6 +100,7 @@ private:
     std::array<std::vector<std::uint8_t>, kConfigRing> configs_;
     std::array<std::vector<std::uint8_t>, kVertexRing> flips_;
     std::array<std::vector<std::uint32_t>, kVertexRing> firstVertex_;
+    std::vector<std::size_t> rowCount_;  // per row of a slab: its vertices or quads, then where they start
     geometry::Mesh mesh_;
 };
 
@@ -105,6 +110,7 @@ Contourer::Contourer(DexelImage& image, ContourStats& stats)
     for (auto& c : configs_) c.assign(slabCells, 0);
     for (auto& f : flips_) f.assign(slabCells, 0);
     for (auto& v : firstVertex_) v.assign(slabCells, kNoVertex);
+    rowCount_.assign(std::size_t(std::max(cells_.y, 0)), 0);
 }
 
 geometry::Mesh Contourer::run() {
@@ -140,6 +146,7 @@ void Contourer::computeConfigs(int slab) {
     // Corner c of a cell is at offset (c & 1, c >> 1 & 1, c >> 2 & 1)
     // (cornerOffset), written out here: this loop visits every cell.
     const std::size_t row = std::size_t(vertices_.x);
+    STRATA_FOR_ROWS
     for (int j = 0; j < cells_.y; ++j) {
         const std::uint8_t* low0 = low.data() + std::size_t(j) * row;
         const std::uint8_t* high0 = high.data() + std::size_t(j) * row;
@@ -156,6 +163,8 @@ void Contourer::computeConfigs(int slab) {
 // in one patch (CellTopology.h): the same answer from either side.
 void Contourer::computeFlips(int slab) {
     std::vector<std::uint8_t>& flips = flips_[slab % kVertexRing];
+    std::size_t ambiguous = 0, flipped = 0;
+    STRATA_FOR_ROWS_SUM(ambiguous, flipped)
     for (int j = 0; j < cells_.y; ++j) {
         for (int i = 0; i < cells_.x; ++i) {
             const glm::ivec3 cell(i, j, slab);
@@ -175,17 +184,40 @@ void Contourer::computeFlips(int slab) {
             flips[cellSlot(i, j)] = cellFlips;
             // Each face once: from the cell on its low side.
             for (int f = 1; f < kCellFaces; f += 2) {
-                stats_.ambiguousFaces += ambiguousFace(config, f) ? 1 : 0;
-                stats_.flippedFaces += (cellFlips >> f) & 1;
+                ambiguous += ambiguousFace(config, f) ? 1 : 0;
+                flipped += (cellFlips >> f) & 1;
             }
         }
     }
+    stats_.ambiguousFaces += ambiguous;
+    stats_.flippedFaces += flipped;
 }
 
 void Contourer::placeVertices(int slab) {
     std::vector<std::uint32_t>& first = firstVertex_[slab % kVertexRing];
     const std::vector<std::uint8_t>& flips = flips_[slab % kVertexRing];
+    // Each row's vertices, then where each row's start.
+    STRATA_FOR_ROWS
     for (int j = 0; j < cells_.y; ++j) {
+        std::size_t n = 0;
+        for (int i = 0; i < cells_.x; ++i) {
+            const std::size_t slot = cellSlot(i, j);
+            n += std::size_t(cellPatches(configAt({i, j, slab}), flips[slot]).count);
+        }
+        rowCount_[std::size_t(j)] = n;
+    }
+    std::size_t at = mesh_.positions.size();
+    for (std::size_t j = 0; j < rowCount_.size(); ++j) {
+        const std::size_t n = rowCount_[j];
+        rowCount_[j] = at;
+        at += n;
+    }
+    if (at >= kNoVertex) throw Error("contour: more vertices than a mesh can index");
+    mesh_.positions.resize(at);
+    std::size_t clamped = 0;
+    STRATA_FOR_ROWS_SUM(clamped)
+    for (int j = 0; j < cells_.y; ++j) {
+        std::size_t next = rowCount_[std::size_t(j)];
         for (int i = 0; i < cells_.x; ++i) {
             const glm::ivec3 cell(i, j, slab);
             const std::uint8_t config = configAt(cell);
@@ -194,15 +226,17 @@ void Contourer::placeVertices(int slab) {
                 first[slot] = kNoVertex;
                 continue;
             }
-            if (mesh_.positions.size() >= kNoVertex) throw Error("contour: more vertices than a mesh can index");
-            first[slot] = std::uint32_t(mesh_.positions.size());
-            placeCellVertices(cell, config, flips[slot]);
+            first[slot] = std::uint32_t(next);
+            next = placeCellVertices(cell, config, flips[slot], next, clamped);
         }
     }
+    stats_.clampedVertices += clamped;
 }
 
-// One vertex per patch, in patch order: patch p's vertex is first + p.
-void Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips) {
+// One vertex per patch, in patch order: patch p's vertex is first + p,
+// written from `at` on; returns the slot after the last.
+std::size_t Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips,
+                                         std::size_t at, std::size_t& clamped) {
     const CellPatches& patches = cellPatches(config, flips);
     std::array<HermiteSample, kCellEdges> samples;
     for (int e = 0; e < kCellEdges; ++e) {
@@ -219,15 +253,17 @@ void Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t config, s
         const QefSolution qef = minimizeQef(std::span(patch.data(), n));
         const double tolerance = kFeatureResidual * image_.grid().spacing;
         const bool proven = std::size_t(qef.rank) < n && qef.residual <= tolerance * tolerance * double(n);
-        mesh_.positions.push_back(keptInCell(cell, qef.point, proven ? -kFeatureReach : kInteriorMargin));
+        mesh_.positions[at++] = keptInCell(cell, qef.point, proven ? -kFeatureReach : kInteriorMargin, clamped);
     }
+    return at;
 }
 
 // A minimizer outside the allowed box (the cell less the margin, or grown by
 // kFeatureReach for a proven feature) is clamped to it, not replaced by the
 // mass point: a sharp corner just across a cell face stays next to where it
 // belongs, on the cell's face, instead of jumping back into the middle.
-glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p, double marginInCells) {
+glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p, double marginInCells,
+                                 std::size_t& clampedCount) const {
     const double margin = marginInCells * image_.grid().spacing;
     bool clamped = false;
     for (int a = 0; a < 3; ++a) {
@@ -237,7 +273,7 @@ glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p, double ma
         clamped = clamped || kept != p[a];
         p[a] = kept;
     }
-    stats_.clampedVertices += clamped ? 1 : 0;
+    clampedCount += clamped ? 1 : 0;
     return p;
 }
 
@@ -250,22 +286,46 @@ void Contourer::emitQuads(int slab) {
     const int cornerX = cornerAt({1, 0, 0});
     const int cornerY = cornerAt({0, 1, 0});
     const int cornerZ = cornerAt({0, 0, 1});
+    // The edges at a cell's low corner that give a quad: bit 2 (z), 0 (x), 1 (y).
+    auto edgesOf = [&](int i, int j) {
+        const std::uint8_t config = configs[cellSlot(i, j)];
+        const bool low = inside(config, 0);
+        const bool interiorX = i > 0, interiorY = j > 0, interiorZ = slab > 0;
+        int edges = 0;
+        if (interiorX && interiorY && low != inside(config, cornerZ)) edges |= 4;
+        if (interiorY && interiorZ && low != inside(config, cornerX)) edges |= 1;
+        if (interiorX && interiorZ && low != inside(config, cornerY)) edges |= 2;
+        return edges;
+    };
+    STRATA_FOR_ROWS
     for (int j = 0; j < cells_.y; ++j) {
+        std::size_t n = 0;
+        for (int i = 0; i < cells_.x; ++i) n += std::size_t(std::popcount(unsigned(edgesOf(i, j))));
+        rowCount_[std::size_t(j)] = n;
+    }
+    std::size_t at = mesh_.triangles.size();
+    for (std::size_t j = 0; j < rowCount_.size(); ++j) {
+        const std::size_t n = rowCount_[j];
+        rowCount_[j] = at;
+        at += 2 * n;
+    }
+    mesh_.triangles.resize(at);
+    STRATA_FOR_ROWS
+    for (int j = 0; j < cells_.y; ++j) {
+        std::size_t next = rowCount_[std::size_t(j)];
         for (int i = 0; i < cells_.x; ++i) {
-            const std::uint8_t config = configs[cellSlot(i, j)];
-            const bool low = inside(config, 0);
+            const int edges = edgesOf(i, j);
+            if (edges == 0) continue;
+            const bool low = inside(configs[cellSlot(i, j)], 0);
             const glm::ivec3 vertex(i, j, slab);
-            const bool interiorX = i > 0;
-            const bool interiorY = j > 0;
-            const bool interiorZ = slab > 0;
-            if (interiorX && interiorY && low != inside(config, cornerZ)) emitQuad(vertex, 2, low);
-            if (interiorY && interiorZ && low != inside(config, cornerX)) emitQuad(vertex, 0, low);
-            if (interiorX && interiorZ && low != inside(config, cornerY)) emitQuad(vertex, 1, low);
+            if (edges & 4) next = emitQuad(vertex, 2, low, next);
+            if (edges & 1) next = emitQuad(vertex, 0, low, next);
+            if (edges & 2) next = emitQuad(vertex, 1, low, next);
         }
     }
 }
 
-void Contourer::emitQuad(const glm::ivec3& vertex, int axis, bool lowInside) {
+std::size_t Contourer::emitQuad(const glm::ivec3& vertex, int axis, bool lowInside, std::size_t at) {
     const int u = (axis + 1) % 3;
     const int v = (axis + 2) % 3;
     std::array<std::uint32_t, 4> quad{};
@@ -278,7 +338,8 @@ void Contourer::emitQuad(const glm::ivec3& vertex, int axis, bool lowInside) {
     // Counter-clockwise about +axis faces +axis: outward when the low end is
     // inside, the surface's normal there pointing from inside to outside.
     if (!lowInside) std::reverse(quad.begin(), quad.end());
-    addQuad(quad);
+    addQuad(quad, at);
+    return at + 2;
 }
 
 std::uint32_t Contourer::vertexOf(const glm::ivec3& cell, int edge) const {
@@ -291,7 +352,7 @@ std::uint32_t Contourer::vertexOf(const glm::ivec3& cell, int edge) const {
 // Of the two diagonals, the one whose triangles agree best in normal (the
 // flatter fold, which follows a sharp edge rather than cutting across it),
 // unless it makes a sliver and the other does not.
-void Contourer::addQuad(const std::array<std::uint32_t, 4>& q) {
+void Contourer::addQuad(const std::array<std::uint32_t, 4>& q, std::size_t at) {
     const auto& p = mesh_.positions;
     const glm::dvec3 &a = p[q[0]], &b = p[q[1]], &c = p[q[2]], &d = p[q[3]];
     const double shapeAC = std::min(triangleShape(a, b, c), triangleShape(a, c, d));
@@ -303,11 +364,11 @@ void Contourer::addQuad(const std::array<std::uint32_t, 4>& q) {
         splitAC = agreeAC >= agreeBD;
     }
     if (splitAC) {
-        mesh_.triangles.push_back({q[0], q[1], q[2]});
-        mesh_.triangles.push_back({q[0], q[2], q[3]});
+        mesh_.triangles[at] = {q[0], q[1], q[2]};
+        mesh_.triangles[at + 1] = {q[0], q[2], q[3]};
     } else {
-        mesh_.triangles.push_back({q[0], q[1], q[3]});
-        mesh_.triangles.push_back({q[1], q[2], q[3]});
+        mesh_.triangles[at] = {q[0], q[1], q[3]};
+        mesh_.triangles[at + 1] = {q[1], q[2], q[3]};
     }
 }
 

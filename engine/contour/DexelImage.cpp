@@ -1,5 +1,7 @@
 #include "DexelImage.h"
 
+#include "Parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -105,11 +107,17 @@ void DexelImage::signPlane(int k, std::vector<std::uint8_t>& inside) {
     ++nextPlane_;
     inside.assign(std::size_t(n.x) * std::size_t(n.y), 0);
     // x rays through (j, k): u = y, v = z. y rays through (k, i): u = z, v = x.
+    // Each ray adds to its own row, column or slot: the rays run in parallel
+    // (Parallel.h), one direction after the other.
+    STRATA_FOR_ROWS
     for (int j = 0; j < n.y; ++j) addParities(0, rayIndex(0, j, k), j * n.x, 1, inside);
+    STRATA_FOR_ROWS
     for (int i = 0; i < n.x; ++i) addParities(1, rayIndex(1, k, i), i, n.x, inside);
     const double at = coordinate(2, k);
     const DexelRays& zRays = dexels_.axes[2];
-    for (std::size_t r = 0; r < zCursor_.size() && !zRays.first.empty(); ++r) {
+    const std::size_t zCount = zRays.first.empty() ? 0 : zCursor_.size();
+    STRATA_FOR_ROWS
+    for (std::size_t r = 0; r < zCount; ++r) {
         std::uint32_t& cursor = zCursor_[r];
         const std::uint32_t end = zRays.first[r + 1] - zRays.first[r];
         const Crossing* c = rayBegin(2, r);
@@ -118,6 +126,7 @@ void DexelImage::signPlane(int k, std::vector<std::uint8_t>& inside) {
     }
     // The grid's outer vertices are outside by contract; holding them so
     // keeps the mesh closed even where a solid touches the grid's box.
+    STRATA_FOR_ROWS
     for (int j = 0; j < n.y; ++j) {
         for (int i = 0; i < n.x; ++i) {
             std::uint8_t& s = inside[std::size_t(i) + std::size_t(j) * std::size_t(n.x)];
