@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cctype>
 #include <cstdint>
 #include <cstdio>
@@ -33,11 +34,13 @@ void putLittle(Bytes& out, T value) {
     out.insert(out.end(), raw, raw + sizeof(T));
 }
 
-// A double that reads back to the same double.
+// A double that reads back to the same double, in the fewest digits that do
+// (std::to_chars: several times faster than printf's %.17g, which mattered
+// for exports of millions of vertices).
 std::string exact(double x) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.17g", x);
-    return text;
+    const std::to_chars_result r = std::to_chars(text, text + sizeof text, x);
+    return std::string(text, r.ptr);
 }
 
 Bytes stl(const geometry::Mesh& mesh) {
