@@ -124,7 +124,7 @@ void Viewer::onKey(int key, int action, int mods) {
         if (ctrl) startExport(exportPath_.empty() ? defaultExportPath() : exportPath_);
         return;
     case GLFW_KEY_S:
-        if (ctrl) saveNumberedScreenshot();
+        if (ctrl) saveChosenScreenshot();
         return;
     case GLFW_KEY_F12: saveNumberedScreenshot(); return;
     case GLFW_KEY_Q:

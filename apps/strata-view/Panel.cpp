@@ -180,8 +180,13 @@ void Viewer::drawPanel() {
         const std::string line = cameraLine();
         ImGui::TextWrapped("%s", line.c_str());
         if (ImGui::Button("copy --camera=")) copyCamera();
-        ImGui::SameLine();
-        if (ImGui::Button("screenshot")) saveNumberedScreenshot();
+        // Where the screenshot goes: the name typed here, or the next
+        // strata-view-N.png in the current folder when it is left empty.
+        char shot[1024];
+        std::snprintf(shot, sizeof shot, "%s", screenshotPath_.c_str());
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::InputTextWithHint("##screenshot", "strata-view-N.png", shot, sizeof shot)) screenshotPath_ = shot;
+        if (ImGui::Button("screenshot (Ctrl+S)")) saveChosenScreenshot();
         if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
     }
 

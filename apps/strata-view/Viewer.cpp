@@ -342,6 +342,20 @@ void Viewer::saveScreenshot(const std::string& path) {
     io::writePng(path, target_.width(), target_.height(), target_.read());
 }
 
+void Viewer::saveChosenScreenshot() {
+    if (screenshotPath_.empty()) {
+        saveNumberedScreenshot();
+        return;
+    }
+    try {
+        if (!screenshotPath_.ends_with(".png")) throw Error("a screenshot is a .png file, not '" + screenshotPath_ + "'");
+        saveScreenshot(screenshotPath_);
+        message_ = "saved " + screenshotPath_;
+    } catch (const Error& e) {
+        message_ = e.what();
+    }
+}
+
 void Viewer::saveNumberedScreenshot() {
     const std::string path = "strata-view-" + std::to_string(++screenshotCount_) + ".png";
     try {

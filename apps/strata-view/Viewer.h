@@ -92,6 +92,7 @@ private:
     void toggleHighlight(int node);
     void saveScreenshot(const std::string& path);
     void saveNumberedScreenshot();
+    void saveChosenScreenshot();  // to the panel's file name, or numbered when it is empty
     void copyCamera();
     // The panel's choice of export (exact or sampled, exportExact_), or the
     // one `exact` names.
@@ -132,6 +133,7 @@ private:
     Loader loader_;
     Exporter exporter_;
     std::string exportPath_;         // the panel's export file name
+    std::string screenshotPath_;     // the panel's screenshot file name; empty: strata-view-N.png
     bool exportExact_ = false;       // the panel exports CGAL's exact result, not the sampled one
     int exportResolution_ = remesh::kDefaultResolution;  // the sampled export's cells along the longest side
     Console console_;
