@@ -52,7 +52,7 @@ measure() {
   cat "$work/t"
 }
 median() {
-  grep -v fail | sort -g | awk '{v[NR] = $1} END {if (NR == 0) print "-"; else print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'
+  { grep -v fail || true; } | sort -g | awk '{v[NR] = $1} END {if (NR == 0) print "-"; else print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'
 }
 fmt_s() { [[ $1 == - ]] && echo - || awk -v v="$1" 'BEGIN {printf "%.2f", v}'; }
 fmt_m() { [[ $1 == - ]] && echo - || awk -v v="$1" 'BEGIN {printf "%.0f", v / 1024}'; }
