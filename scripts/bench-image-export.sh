@@ -7,7 +7,8 @@
 # (wall seconds, peak resident memory) and, for the image-space result
 # against the exact one, the volume difference and the Hausdorff distance
 # (CGAL's, by build/tests/bench/strata_mesh_compare) in cells and in parts of
-# the box's diagonal. A cell is the exact result's longest side / R. An export that fails or runs past TIMEOUT seconds
+# the box's diagonal (against OpenSCAD's result, marked *, where strata's
+# exact export did not finish). A cell is the exact result's longest side / R. An export that fails or runs past TIMEOUT seconds
 # shows "-".
 #
 #   scripts/bench-image-export.sh [--runs N] [--resolution R] [--timeout S] [--no-openscad] FILE.csg...
@@ -71,13 +72,17 @@ for f in "${files[@]}"; do
   ot=$(cut -d' ' -f1 "$work/o" | median); om=$(cut -d' ' -f2 "$work/o" | median)
   ratio=-
   [[ $it != - && $ot != - ]] && ratio=$(awk -v a="$it" -v b="$ot" 'BEGIN {printf "%.2f", a / b}')
-  voff=- hcells=- hdiag=-
-  if [[ -f $work/i.off && -f $work/e.off ]] && read -r vi ve h side diag < <("$compare" "$work/i.off" "$work/e.off"); then
+  # Against strata's exact result, or OpenSCAD's where that one did not
+  # finish (marked *).
+  voff=- hcells=- hdiag=- ref=$work/e.off mark=""
+  [[ -f $ref ]] || { ref=$work/o.off; mark="*"; }
+  if [[ -f $work/i.off && -f $ref ]] && read -r vi ve h side diag < <("$compare" "$work/i.off" "$ref"); then
     # A cell: the exact result's longest side / R (the grid's box is the
     # leaves' that the result lies in, about that side).
     read -r voff hcells hdiag < <(awk -v vi="$vi" -v ve="$ve" -v h="$h" -v s="$side" -v d="$diag" -v n="$resolution" \
       'BEGIN {printf "%.2e %.2f %.1e\n", (vi - ve) / ve, h / (s / n), h / d}')
   fi
+  [[ $voff != - ]] && voff+=$mark
   echo "| \`$(basename "$f")\` | $(fmt_s "$it") | $(fmt_m "$im") | $(fmt_s "$et") | $(fmt_m "$em") | $(fmt_s "$ot") | $(fmt_m "$om") | $ratio | $voff | $hcells | $hdiag |"
   rm -f "$work/i.off" "$work/e.off" "$work/o.off"
 done

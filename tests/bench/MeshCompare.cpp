@@ -12,6 +12,8 @@
 // points sampled uniformly on it. An image-space export has millions of
 // triangles of a cell's size, so its vertices and centroids cover it; the
 // exact result's few large faces are covered by the samples.
+// STRATA_MESH_COMPARE_WHERE=1 in the environment prints, on stderr, where
+// each one-sided distance is reached.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
@@ -26,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iterator>
 #include <vector>
 
@@ -51,7 +54,16 @@ double oneSided(const Solid& from, const Solid& to) {
     PMP::sample_triangle_mesh(from, std::back_inserter(points),
                               CGAL::parameters::use_random_uniform_sampling(true).number_of_points_on_faces(200000));
     double farthest = 0.0;
-    for (const Kernel::Point_3& p : points) farthest = std::max(farthest, CGAL::squared_distance(p, tree.closest_point(p)));
+    Kernel::Point_3 where(0, 0, 0);
+    for (const Kernel::Point_3& p : points) {
+        const double d = CGAL::squared_distance(p, tree.closest_point(p));
+        if (d > farthest) {
+            farthest = d;
+            where = p;
+        }
+    }
+    if (std::getenv("STRATA_MESH_COMPARE_WHERE"))
+        std::fprintf(stderr, "farthest at %g %g %g: %g\n", where.x(), where.y(), where.z(), std::sqrt(farthest));
     return std::sqrt(farthest);
 }
 
