@@ -9,6 +9,9 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/convex_decomposition_3.h>
@@ -62,6 +65,28 @@ private:
         if (c == '\n') c = ' ';
     throw Error(where, what + why);
 }
+
+// The Nef polyhedron of a closed, outward solid that may have several
+// shells. CGAL's constructor takes each connected shell as the boundary of
+// a filled volume, so an inner shell (a void, whose faces point into it)
+// would come back filled. The shells of a solid do not cross, so a point
+// is in the solid exactly when an odd number of shells enclose it: the
+// solid is the symmetric difference of the volumes the shells enclose
+// (a void's shell turned the right way out first), which also keeps an
+// island inside a void.
+Nef nefOf(const ExactSolid& solid) {
+    std::vector<ExactSolid> shells;
+    CGAL::Polygon_mesh_processing::split_connected_components(solid, shells);
+    if (shells.size() <= 1) return Nef(solid);
+    Nef result;
+    for (ExactSolid& shell : shells) {
+        if (CGAL::Polygon_mesh_processing::volume(shell) < 0)
+            CGAL::Polygon_mesh_processing::reverse_face_orientations(shell);
+        result ^= Nef(shell);
+    }
+    return result;
+}
+
 
 }  // namespace
 
@@ -119,7 +144,7 @@ std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const Sourc
     const Solid solid = toExactSolid(closed, where, "minkowski's convex decomposition");
     std::vector<std::vector<glm::dvec3>> parts;
     try {
-        Nef nef(solid);
+        Nef nef = nefOf(solid);
         CGAL::convex_decomposition_3(nef);
         // The first volume is the unbounded outside; the marked ones are the parts.
         auto volume = nef.volumes_begin();
@@ -151,7 +176,7 @@ ExactSolid toExactSolid(const Mesh& mesh, const SourceLocation& where, const cha
 
 ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
     try {
-        const Nef nef(solid);
+        const Nef nef = nefOf(solid);
         ExactSolid out;
         CGAL::convert_nef_polyhedron_to_polygon_mesh(nef, out, /*triangulate_all_faces=*/true);
         return out;
@@ -162,8 +187,8 @@ ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
 
 ExactSolid nefBoolean(const ExactSolid& a, const ExactSolid& b, Boolean op, const SourceLocation& where) {
     try {
-        Nef left(a);
-        const Nef right(b);
+        Nef left = nefOf(a);
+        const Nef right = nefOf(b);
         if (op == Boolean::Union) left += right;
         else if (op == Boolean::Intersection) left *= right;
         else left -= right;

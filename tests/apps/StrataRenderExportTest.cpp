@@ -189,6 +189,29 @@ TEST(StrataRenderExport, ThreeMfColoursEachTriangleByItsLeaf) {
     }
 }
 
+// Voids: a ball cut out of a block's inside leaves a second shell, and a
+// ball left inside that void a third. The volumes must be the block's less
+// the void's plus the island's, each ball's measured on its own export.
+TEST(StrataRenderExport, ExactExportKeepsVoidsAndIslandsInThem) {
+    TempDir dir;
+    const std::string at5 = "multmatrix([[1, 0, 0, 5], [0, 1, 0, 5], [0, 0, 1, 5], [0, 0, 0, 1]]) ";
+    const std::string hole = at5 + "sphere($fn = 32, r = 3);\n";
+    const std::string island = at5 + "sphere($fn = 16, r = 1);\n";
+    auto volumeOf = [&](const std::string& name, const std::string& text) {
+        const std::string scene = dir.write(name + ".csg", text);
+        const ProcessResult r = runProcess({kExe, scene, "--export", dir / (name + ".off"), "--export-exact"});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        const Solid s = read(dir / (name + ".off"));
+        EXPECT_TRUE(CGAL::is_closed(s)) << name;
+        EXPECT_TRUE(PMP::is_outward_oriented(s)) << name;
+        return PMP::volume(s);
+    };
+    const double ball = volumeOf("hole", hole), small = volumeOf("island", island);
+    EXPECT_NEAR(volumeOf("void", "difference() { cube(size = 10); " + hole + "}\n"), 1000.0 - ball, 1e-9 * 1000.0);
+    EXPECT_NEAR(volumeOf("both", "difference() { cube(size = 10); " + hole + "}\n" + island),
+                1000.0 - ball + small, 1e-9 * 1000.0);
+}
+
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {
     TempDir dir;
     const std::string cube = dir.write("cube.csg", "cube(size = 1);\n");
