@@ -26,4 +26,14 @@ struct ExactExport {
 ExactExport stageExactExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
                              const glm::vec4& faceColor);
 
+// What every export shares (this one and ImageExport.h). Throws, naming the
+// scene, for a 2D model, which has no solid to export.
+void requireSolidModel(const scene::Tree& tree);
+// Throws, naming the scene, for an empty `result`; otherwise stages it for
+// `path`, each triangle coloured by its leaf when the format carries colours
+// (geometry::surfaceColors, with `reach` for a result that only
+// approximates the leaves' faces).
+io::StagedFile stageResultMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+                               const geometry::Mesh& result, const glm::vec4& faceColor, double reach = 0.0);
+
 }  // namespace strata::apps

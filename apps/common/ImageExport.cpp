@@ -1,5 +1,7 @@
 #include "ImageExport.h"
 
+#include "ExactExport.h"
+
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -11,9 +13,7 @@
 #include "strata/camera/ViewBounds.h"
 #include "strata/contour/Contour.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/SurfaceColors.h"
 #include "strata/gpu/Context.h"
-#include "strata/io/MeshWriter.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 
@@ -77,25 +77,24 @@ void checkMeshFits(const contour::Dexels& dexels, int resolution, const SourceLo
 
 ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
                              const glm::vec4& faceColor, const ImageExportSettings& settings) {
-    const SourceLocation scene{tree.source, 0, 0};
-    if (tree.isFlat()) throw Error(scene, "a 2D model has no solid to export (OpenSCAD exports it as DXF or SVG)");
+    requireSolidModel(tree);
     const geometry::Bounds box = render::viewBounds(tree, model);
-    if (tree.root < 0 || box.empty()) throw Error(scene, "the CSG result is empty: nothing to export");
     ImageExport out;
-    auto t = Clock::now();
-    const contour::DexelGrid grid = remesh::gridFor(box, settings.resolution);
-    const contour::Dexels dexels = sample(tree, model, grid, settings);
-    out.sampleMs = msSince(t);
-    checkMeshFits(dexels, settings.resolution, scene);
-    t = Clock::now();
-    const geometry::Mesh result = contour::contour(dexels);
-    out.contourMs = msSince(t);
-    if (result.triangles.empty()) throw Error(scene, "the CSG result is empty: nothing to export");
-    std::vector<glm::vec4> colors;
-    if (io::meshFormatOf(path) == io::MeshFormat::ThreeMf)
-        colors = geometry::surfaceColors(result, tree, model, faceColor, grid.spacing);
+    geometry::Mesh result;  // stays empty where there is nothing to sample
+    double reach = 0.0;
+    if (tree.root >= 0 && !box.empty()) {
+        auto t = Clock::now();
+        const contour::DexelGrid grid = remesh::gridFor(box, settings.resolution);
+        const contour::Dexels dexels = sample(tree, model, grid, settings);
+        out.sampleMs = msSince(t);
+        checkMeshFits(dexels, settings.resolution, SourceLocation{tree.source, 0, 0});
+        t = Clock::now();
+        result = contour::contour(dexels);
+        out.contourMs = msSince(t);
+        reach = grid.spacing;
+    }
+    out.file = stageResultMesh(tree, model, path, result, faceColor, reach);
     out.triangles = result.triangles.size();
-    out.file = io::stageMesh(path, result, colors);
     return out;
 }
 
