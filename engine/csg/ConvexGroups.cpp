@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <span>
 
 namespace strata::csg {
 
@@ -13,10 +14,12 @@ bool isLiteral(std::uint32_t instruction) {
     return (instruction & kOpMask) == kOpPush || !(instruction & kOpFromStack);
 }
 
-}  // namespace
+// The literals a group joins: an AND's plain literals and an OR's negated
+// ones for an intersection; an OR's plain literals for a union.
+enum class Join { Intersection, Union };
 
-CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
-                                 std::size_t mostMembers) {
+CompiledTree joinLiterals(const CompiledTree& compiled, const std::vector<char>& groupable, std::size_t mostMembers,
+                          Join join) {
     if (compiled.kind != CompiledTree::Kind::Code || mostMembers < 2) return compiled;
     const std::vector<std::uint32_t>& code = compiled.code;
     // Literal instructions in code order: countingTree's literals are the same, one for one.
@@ -29,13 +32,16 @@ CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector
     }
     const CountingTree tree = countingTree(code);
 
-    // Candidates per node, in code order: an AND's plain literals, an OR's
-    // negated ones (!a | !b is !(a & b)).
+    // Candidates per node, in code order: for an intersection an AND's plain
+    // literals and an OR's negated ones (!a | !b is !(a & b)); for a union
+    // an OR's plain literals. Operands that are groups already stay as they are.
     std::map<std::uint32_t, std::vector<std::size_t>> byNode;  // node -> literal indices
     for (std::size_t l = 0; l < tree.literals.size(); ++l) {
         const CountingTree::Literal& literal = tree.literals[l];
-        if (literal.negated == tree.nodes[literal.parent].isAnd) continue;
+        const bool inAnd = tree.nodes[literal.parent].isAnd;
+        if (join == Join::Intersection ? literal.negated == inAnd : inAnd || literal.negated) continue;
         if (literal.operand >= groupable.size() || !groupable[literal.operand] || uses[literal.operand] != 1) continue;
+        if (compiled.leavesOf(literal.operand).size() > 1) continue;
         byNode[literal.parent].push_back(l);
     }
 
@@ -45,7 +51,12 @@ CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector
     // literal), which leave the stack as it was.
     const std::size_t n = compiled.operandLeaf.size();
     std::vector<std::vector<int>> members(n);
-    for (std::size_t k = 0; k < n; ++k) members[k] = {compiled.operandLeaf[k]};
+    std::vector<char> unite(n, 0);  // a union group
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::span<const int> leaves = compiled.leavesOf(k);
+        members[k].assign(leaves.begin(), leaves.end());
+        unite[k] = compiled.isUnionGroup(k) ? 1 : 0;
+    }
     std::vector<char> deleted(code.size(), 0);
     bool any = false;
     for (const auto& [node, literals] : byNode) {
@@ -59,6 +70,7 @@ CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector
                 deleted[literalAt[literals[i]]] = 1;
             }
             std::sort(members[keeper].begin(), members[keeper].end());
+            unite[keeper] = join == Join::Union ? 1 : 0;
             any = true;
         }
     }
@@ -75,10 +87,13 @@ CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector
     out.kind = compiled.kind;
     out.stackDepth = compiled.stackDepth;
     out.operandGroups.resize(kept.size());
+    const bool anyUnion = std::any_of(kept.begin(), kept.end(), [&](std::size_t k) { return unite[k] != 0; });
+    if (anyUnion) out.unionGroups.assign(kept.size(), 0);
     for (std::size_t j = 0; j < kept.size(); ++j) {
         renumbered[kept[j]] = static_cast<std::uint32_t>(j);
         out.operandLeaf.push_back(members[kept[j]][0]);
-        if (members[kept[j]].size() > 1) out.operandGroups[j] = members[kept[j]];
+        if (members[kept[j]].size() > 1) out.operandGroups[j] = std::move(members[kept[j]]);
+        if (anyUnion) out.unionGroups[j] = unite[kept[j]];
     }
     for (std::size_t i = 0; i < code.size(); ++i) {
         if (deleted[i]) continue;
@@ -88,6 +103,18 @@ CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector
                                                   : instruction);
     }
     return out;
+}
+
+}  // namespace
+
+CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
+                                 std::size_t mostMembers) {
+    return joinLiterals(compiled, groupable, mostMembers, Join::Intersection);
+}
+
+CompiledTree groupUnionOperands(const CompiledTree& compiled, const std::vector<char>& groupable,
+                                std::size_t mostMembers) {
+    return joinLiterals(compiled, groupable, mostMembers, Join::Union);
 }
 
 }  // namespace strata::csg

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -612,4 +614,106 @@ TEST(ConvexGroups, ASubtractedIntersectionIsOneNegatedOperand) {
         const std::vector<bool> inside{(state & 1) != 0, (state & 2) != 0, (state & 4) != 0};
         EXPECT_EQ(csg::runCompiledTree(grouped, groupedStates(grouped, inside)), direct(tree, tree.root, inside, {}));
     }
+}
+
+// Operand states where an intersection group is inside where all its
+// members are, and a union group where any is.
+std::vector<bool> unitedStates(const csg::CompiledTree& compiled, const std::vector<bool>& leafInside) {
+    std::vector<bool> states = operandStates(compiled, leafInside);
+    for (std::size_t k = 0; k < compiled.operandGroups.size(); ++k) {
+        if (compiled.operandGroups[k].empty()) continue;
+        const bool unite = compiled.isUnionGroup(k);
+        bool state = !unite;
+        for (int member : compiled.operandGroups[k]) {
+            const bool in = leafInside[static_cast<std::size_t>(member)];
+            state = unite ? state || in : state && in;
+        }
+        states[k] = state;
+    }
+    return states;
+}
+
+TEST(UnionGroups, KeepTheTreesMeaningOnRandomTrees) {
+    // Random trees, intersections grouped first, then random operands
+    // joined in unions of at most 2 to 5: the tree's meaning is kept, every
+    // union group is groupable leaves joined by one OR, and intersection
+    // groups are left as they were.
+    std::mt19937 rng(20261126);
+    int united = 0;
+    for (int t = 0; t < 1500; ++t) {
+        Tree tree;
+        tree.root = randomNode(tree, rng, 5);
+        const std::vector<int> same = randomCopies(tree, rng, 5);
+        const csg::CompiledTree compiled = csg::compileTree(tree, {}, same);
+        std::vector<char> convex(compiled.operandLeaf.size());
+        for (char& g : convex) g = rng() % 2 != 0 ? 1 : 0;
+        const csg::CompiledTree groups = csg::groupConvexProducts(compiled, convex, 3);
+        std::vector<char> groupable(groups.operandLeaf.size());
+        for (char& g : groupable) g = rng() % 4 != 0 ? 1 : 0;
+        const std::size_t most = 2 + rng() % 4;
+        const csg::CompiledTree unions = csg::groupUnionOperands(groups, groupable, most);
+        ASSERT_EQ(unions.kind, groups.kind);
+        if (unions.kind != csg::CompiledTree::Kind::Code) continue;
+        if (unions.operandCount() < groups.operandCount()) ++united;
+        for (int s = 0; s < 64; ++s) {
+            const std::vector<bool> inside = randomStates(same, rng);
+            ASSERT_EQ(csg::runCompiledTree(unions, unitedStates(unions, inside)), direct(tree, tree.root, inside, {}))
+                << "tree " << t << ", state " << s << "\n" << csg::disassemble(groups) << "united:\n"
+                << csg::disassemble(unions);
+        }
+        for (std::size_t k = 0; k < unions.operandLeaf.size(); ++k) {
+            const std::span<const int> members = unions.leavesOf(k);
+            const auto at = std::find(groups.operandLeaf.begin(), groups.operandLeaf.end(), members.front());
+            ASSERT_NE(at, groups.operandLeaf.end());
+            const auto before = static_cast<std::size_t>(at - groups.operandLeaf.begin());
+            if (!unions.isUnionGroup(k)) {
+                // Unchanged: the same leaf, or the same intersection group.
+                const std::span<const int> was = groups.leavesOf(before);
+                EXPECT_TRUE(std::equal(members.begin(), members.end(), was.begin(), was.end()));
+                continue;
+            }
+            EXPECT_GE(members.size(), 2u);
+            EXPECT_LE(members.size(), most);
+            for (int member : members) {
+                const auto m = std::find(groups.operandLeaf.begin(), groups.operandLeaf.end(), member);
+                ASSERT_NE(m, groups.operandLeaf.end());
+                const auto j = static_cast<std::size_t>(m - groups.operandLeaf.begin());
+                EXPECT_TRUE(groupable[j]);
+                EXPECT_EQ(groups.leavesOf(j).size(), 1u) << "an intersection group joined a union";
+            }
+        }
+    }
+    EXPECT_GT(united, 50);
+}
+
+TEST(UnionGroups, AUnionOfSolidsIsOneOperandInRunsOfTheMost) {
+    Tree tree;
+    std::vector<int> children;
+    for (int i = 0; i < 10; ++i) children.push_back(leaf(tree));
+    tree.root = tree.addNode(NodeKind::Union, children);
+    const csg::CompiledTree compiled = csg::compileTree(tree);
+    const std::vector<char> all(10, 1);
+    const csg::CompiledTree one = csg::groupUnionOperands(compiled, all, 65535);
+    ASSERT_EQ(one.operandCount(), 1);
+    EXPECT_TRUE(one.isUnionGroup(0));
+    EXPECT_EQ(one.operandGroups[0], (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+    EXPECT_EQ(csg::disassemble(one), "PUSH 0\n");
+    const csg::CompiledTree runs = csg::groupUnionOperands(compiled, all, 4);
+    ASSERT_EQ(runs.operandCount(), 3);
+    std::vector<std::size_t> sizes;
+    for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_TRUE(runs.isUnionGroup(k));
+        sizes.push_back(runs.operandGroups[k].size());
+    }
+    std::sort(sizes.begin(), sizes.end());
+    EXPECT_EQ(sizes, (std::vector<std::size_t>{2, 4, 4}));
+    // An intersection's literals and a subtracted union's never join a union.
+    Tree other;
+    const int a = leaf(other), b = leaf(other), c = leaf(other), d = leaf(other);
+    other.root = other.addNode(NodeKind::Difference, {other.addNode(NodeKind::Intersection, {a, b}),
+                                                      other.addNode(NodeKind::Union, {c, d})});
+    const csg::CompiledTree product = csg::compileTree(other);
+    const csg::CompiledTree kept = csg::groupUnionOperands(product, std::vector<char>(4, 1), 65535);
+    EXPECT_EQ(kept.code, product.code);
+    EXPECT_TRUE(kept.unionGroups.empty());
 }

@@ -61,6 +61,10 @@ struct CompiledTree {
     // first is operandLeaf's). Empty for every other operand, and when no
     // operand is a group.
     std::vector<std::vector<int>> operandGroups;
+    // Per operand, where groupUnionOperands made it a group: 1, the group is
+    // the union of its members rather than their intersection. Empty when no
+    // group is a union.
+    std::vector<char> unionGroups;
     int stackDepth = 0;               // deepest stack the code reaches
 
     int operandCount() const { return static_cast<int>(operandLeaf.size()); }
@@ -69,6 +73,7 @@ struct CompiledTree {
         if (k < operandGroups.size() && !operandGroups[k].empty()) return operandGroups[k];
         return {&operandLeaf[k], 1};
     }
+    bool isUnionGroup(std::size_t k) const { return k < unionGroups.size() && unionGroups[k] != 0; }
 };
 
 // Compiles `tree` from tree.root. `leafIsEmpty[i]` marks leaf i as the empty set

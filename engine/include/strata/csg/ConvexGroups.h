@@ -32,4 +32,24 @@ namespace strata::csg {
 CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
                                  std::size_t mostMembers);
 
+// Unions of operands, peeled as one operand where only their nearest
+// surface matters.
+//
+// Where only unions lead from the result to an operand and every ray starts
+// outside every operand, the result is entered wherever the operand is, so
+// the first layer of the operand (its nearest entry and farthest exit) is
+// all the result can show of it (Renderer.cpp, reachedByUnionsOnly). The
+// same holds for the union of several such operands: from the nearest of
+// their entries to the farthest of their exits. So, in every OR of the
+// counting tree, the plain literals of the operands with groupable[k] != 0
+// that are each their operand's only literal and not a group already are
+// joined as groupConvexProducts joins an intersection's, in runs of at most
+// `mostMembers`, and the result marks them in unionGroups. A union of a
+// million cubes becomes sixteen operands of one layer each. The caller
+// guarantees the condition above: on a ray that starts inside a member, or
+// where surfaces past the first matter (the result peel), the group's one
+// interval is not the union.
+CompiledTree groupUnionOperands(const CompiledTree& compiled, const std::vector<char>& groupable,
+                                std::size_t mostMembers);
+
 }  // namespace strata::csg
