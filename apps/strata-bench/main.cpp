@@ -96,7 +96,7 @@ struct Options {
     bool openCsg = true;
     double openCsgCapMs = 2000;
     bool steadyHeap = true;
-    bool groups = true;  // RenderSettings::groupConvexIntersections
+    bool groups = true;  // RenderSettings::groupOperands
 };
 
 // llvmpipe bins each frame's triangles into blocks it mallocs and frees
@@ -172,7 +172,7 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
     host.checkComplete();
 
     render::RenderSettings settings;
-    settings.groupConvexIntersections = options.groups;
+    settings.groupOperands = options.groups;
     std::vector<double> frame, peel, evaluate, normal, shade;
     render::FrameStats last;
     for (int i = 0; i < options.warmup + options.frames; ++i) {

@@ -4,15 +4,26 @@
 #include <cstring>
 
 #include "ShaderInterface.h"
+#include "strata/gpu/ShaderSource.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
 
+namespace {
+
+gpu::Program tiesProgram(bool unite) {
+    std::vector<gpu::ShaderDefine> defines{{"PEEL_FIRST", ""}, {"GROUP_TIE", ""}, {"GROUP_MEMBERS", ""}};
+    if (unite) defines.push_back({"UNION", ""});
+    return gpu::Program::fromFiles(unite ? "peel union ties" : "peel group ties", {"csg/surface.vert", "csg/peel.frag"},
+                                   defines);
+}
+
+}  // namespace
+
 GroupPeel::GroupPeel()
     : draw_(gpu::Program::fromFiles("peel group", {"csg/surface.vert", "csg/peel.frag"},
-                                    {{"PEEL_FIRST", ""}, {"GROUP", ""}})),
-      ties_(gpu::Program::fromFiles("peel group ties", {"csg/surface.vert", "csg/peel.frag"},
-                                    {{"PEEL_FIRST", ""}, {"GROUP_TIE", ""}})),
+                                    {{"PEEL_FIRST", ""}, {"GROUP", ""}, {"GROUP_MEMBERS", ""}})),
+      ties_(tiesProgram(false)),
       resolve_(gpu::Program::fromFiles("peel group resolve", {"common/fullscreen.vert", "csg/group.frag"})),
       target_("peel group"),
       layerTarget_("peel group layer") {
@@ -52,9 +63,13 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
         ids_ = gpu::Texture::create2DArray("peel group ids", GL_R32UI, tile.width, tile.height, std::max(groups, 1));
     }
 
+    view_ = view;
     setSurfaceView(draw_, view);
-    setSurfaceView(ties_, view);
-    ties_.setUniform(shader::kPeelTieTolerance, static_cast<float>(view.coincidence * 0.25));
+    for (gpu::Program* ties : {&ties_, unionTies_ ? &*unionTies_ : nullptr}) {
+        if (ties == nullptr) continue;
+        setSurfaceView(*ties, view);
+        ties->setUniform(shader::kPeelTieTolerance, static_cast<float>(view.coincidence * 0.25));
+    }
     // Tagged depths from half the near plane's on map into [0, 1) in order
     // (peel.frag: orderKey); every fragment lies beyond the near plane.
     const float base = static_cast<float>(view.nearPlane * 0.5);
@@ -63,8 +78,25 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
     draw_.setUniform(shader::kPeelKeyBase, bits);
 }
 
+void GroupPeel::drawMembers() const {
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, drawCount_, 0);
+}
+
 void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-                     const gpu::Texture& layers, int layer, int idsLayer, bool ties) {
+                     const gpu::Texture& layers, int layer, int idsLayer, bool ties, bool unite) {
+    if (unite && !unionTies_) {
+        unionTies_ = tiesProgram(true);
+        setSurfaceView(*unionTies_, view_);
+        unionTies_->setUniform(shader::kPeelTieTolerance, static_cast<float>(view_.coincidence * 0.25));
+        unionResolve_ = gpu::Program::fromFiles("peel union resolve", {"common/fullscreen.vert", "csg/group.frag"},
+                                                {{"UNION", ""}});
+    }
+    const std::vector<DrawElementsIndirectCommand> commands = scene.memberCommands(members);
+    gpu::Buffer::uploadGrowing(commands_, "peel group commands", commands);
+    drawCount_ = static_cast<GLsizei>(commands.size());
+    scene.memberVertexArray().bind();
+    commands_.bind(GL_DRAW_INDIRECT_BUFFER);
+
     glScissor(valid.x, valid.y, valid.width, valid.height);
     target_.bindForDraw();
     const float none[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
@@ -76,11 +108,13 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     draw_.use();
-    // Entries: front faces, the farthest wins; then exits: back faces, the
-    // nearest wins, and each one counts its member.
+    // Entries: front faces, the farthest wins (a union's: the nearest); then
+    // exits: back faces, the nearest wins (a union's: the farthest), and each
+    // one counts its member.
     for (int exits = 0; exits < 2; ++exits) {
-        target_.clearDepth(exits ? 1.0f : 0.0f);
-        glDepthFunc(exits ? GL_LESS : GL_GREATER);
+        const bool farthest = exits == (unite ? 1 : 0);
+        target_.clearDepth(farthest ? 0.0f : 1.0f);
+        glDepthFunc(farthest ? GL_GREATER : GL_LESS);
         glCullFace(exits ? GL_FRONT : GL_BACK);
         glColorMask(!exits, exits, !exits, exits);
         if (exits) {
@@ -88,10 +122,7 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
             glStencilFunc(GL_ALWAYS, 0, 0xff);
             glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
         }
-        for (std::size_t m = 0; m < members.size(); ++m) {
-            draw_.setUniform(shader::kPeelMember, static_cast<float>(m));
-            scene.drawLeaf(members[m]);
-        }
+        drawMembers();
     }
     // Ties: the winners copied aside, the lowest member within the
     // tolerance of each, front faces then back faces (GroupPeel.h).
@@ -100,31 +131,35 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
         glCopyImageSubData(scratch_.id(), GL_TEXTURE_2D, 0, valid.x, valid.y, 0, winners_.id(), GL_TEXTURE_2D, 0,
                            valid.x, valid.y, 0, valid.width, valid.height, 1);
         winners_.bindUnit(shader::kTextureGroupWinners);
-        ties_.use();
+        (unite ? *unionTies_ : ties_).use();
+        glDepthFunc(GL_LESS);
     }
     for (int exits = 0; ties && exits < 2; ++exits) {
         target_.clearDepth(1.0f);
         glCullFace(exits ? GL_FRONT : GL_BACK);
         glColorMask(!exits, exits, !exits, exits);
-        for (std::size_t m = 0; m < members.size(); ++m) {
-            ties_.setUniform(shader::kPeelMember, static_cast<float>(m));
-            scene.drawLeaf(members[m]);
-        }
+        drawMembers();
     }
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    scene.vertexArray().bind();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
-    glEnable(GL_STENCIL_TEST);
 
-    // Where every member was hit: the layer and the ids.
+    // Where every member was hit (an intersection), or some member was
+    // entered (a union): the layer and the ids.
     layerTarget_.attachLayer(GL_COLOR_ATTACHMENT0, layers, layer);
     layerTarget_.bindForDraw();
-    glStencilFunc(GL_EQUAL, static_cast<GLint>(members.size()), 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    if (!unite) {
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_EQUAL, static_cast<GLint>(members.size()), 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
     scratch_.bindUnit(shader::kTextureGroupScratch);
     ids_.bindImage(shader::kImageGroupIds, GL_WRITE_ONLY);
-    resolve_.use();
-    resolve_.setUniform(shader::kGroupIdsLayer, idsLayer);
+    gpu::Program& resolve = unite ? *unionResolve_ : resolve_;
+    resolve.use();
+    resolve.setUniform(shader::kGroupIdsLayer, idsLayer);
     glDrawArrays(GL_TRIANGLES, 0, 3);  // reads no attribute: any vertex array does
     glDisable(GL_STENCIL_TEST);
     // The evaluator samples the layer and the ids.

@@ -1,6 +1,7 @@
 #pragma once
-// The peel of a group of convex operands (ConvexGroups.h): one layer for an
-// intersection of convex leaves, and which member makes each of its surfaces.
+// The peel of a group (ConvexGroups.h): one layer for an intersection of
+// convex leaves, or for a union of leaves whose first layer is all that
+// matters, and which member makes each of its surfaces.
 //
 // On a ray through all members the group's interval runs from the farthest
 // entry to the nearest exit. Two depth-tested passes over the members find
@@ -37,15 +38,29 @@
 // pixel in the group's layer of `ids()`, from which the evaluator writes the
 // member that makes the surface it chooses (evaluate.frag: surfaceLeaf).
 //
+// A union (groupUnionOperands) runs the same passes with the tests turned:
+// front faces with LESS (the nearest entry), back faces with GREATER (the
+// farthest exit), ties within the tolerance beyond the nearest entry and
+// before the farthest exit, and a resolve without the stencil test that
+// writes (-entry, exit) wherever some member was entered. Every ray starts
+// outside every member there, so a pixel with a back face has a front face.
+//
+// Each pass draws all members in one multi-draw over
+// SceneBuffers::memberVertexArray, in order, so a union of 65 535 members
+// costs as many calls as one of two.
+//
 // GL state: sets the viewport's framebuffer, depth, stencil and cull state
 // and colour masks, and leaves depth test, stencil test and culling off,
-// colour masks all on; expects blending off.
+// colour masks all on; expects blending off. Leaves the scene's
+// vertexArray() bound.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "SceneBuffers.h"
 #include "ViewSetup.h"
+#include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
@@ -56,8 +71,10 @@ class GroupPeel {
 public:
     GroupPeel();  // compiles the shaders; needs a current context
 
-    // Members are counted in the 8-bit stencil.
+    // An intersection's members are counted in the 8-bit stencil.
     static constexpr int kMostMembers = 255;
+    // A union's are not counted; member numbers below shader::kNoMember.
+    static constexpr int kMostUnionMembers = 65535;
 
     // Bytes per pixel of a tile for `groups` groups: scratch, its copy, depth-stencil, ids.
     static std::size_t bytesPerPixel(int groups) { return 16 + 16 + 8 + 4 * static_cast<std::size_t>(groups); }
@@ -68,11 +85,15 @@ public:
     // pixels), into layer `layer` of `layers`, and its members into layer
     // `idsLayer` (0 .. groups - 1 of begin()) of ids().
     // `ties`: look for ties (above); whether a group needs to: tiesWanted.
+    // `unite`: the group is the union of its members, not their intersection.
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
-              const gpu::Texture& layers, int layer, int idsLayer, bool ties);
-    // Whether to look for ties among `members`: where two have faces in one
-    // plane (SceneBuffers::shareAPlane), always; where their surfaces only
-    // cross, up to kMostTieMembers members. Ties cost two geometry passes
+              const gpu::Texture& layers, int layer, int idsLayer, bool ties, bool unite);
+    // Whether to look for ties among the members of an intersection: where
+    // two have faces in one plane (SceneBuffers::shareAPlane), always; where
+    // their surfaces only cross, up to kMostTieMembers members. A union
+    // always looks: its members are often parts that stand flush (a grid of
+    // blocks, parts on a plate), and hashing the planes of a million members
+    // would cost more memory than the two passes cost time. Ties cost two geometry passes
     // over every member (the group's peel 2.5 times as long on llvmpipe);
     // in a larger group of crossing surfaces, the pixels on the thin band
     // where two come within the tolerance name the member rounding puts
@@ -93,6 +114,12 @@ private:
     gpu::Program draw_;     // peel.frag's GROUP: a member's faces, depth = order key
     gpu::Program ties_;     // peel.frag's GROUP_TIE: the lowest member tying with a winner
     gpu::Program resolve_;  // group.frag: scratch to the layer and the ids
+    // The UNION variants of ties_ and resolve_, compiled when a union comes.
+    std::optional<gpu::Program> unionTies_, unionResolve_;
+    gpu::Buffer commands_;  // the members' multi-draw (SceneBuffers::memberCommands)
+    GLsizei drawCount_ = 0;
+    ViewSetup view_;  // begin()'s, for the union programs compiled later
+    void drawMembers() const;
     gpu::Framebuffer target_;   // scratch + depth-stencil
     gpu::Framebuffer layerTarget_;  // a layer of the layers + depth-stencil (for its stencil)
     gpu::Texture scratch_, winners_, depthStencil_, ids_;

@@ -16,11 +16,6 @@ bool canBatch() {
            epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array");
 }
 
-// glMultiDrawElementsIndirect's record.
-struct DrawElementsIndirectCommand {
-    GLuint count, instanceCount, firstIndex, baseVertex, baseInstance;
-};
-
 }  // namespace
 
 PeelPass::PeelPass()
@@ -48,7 +43,7 @@ PeelPass::PeelPass()
 
 namespace {
 
-// Whether operand k is a group of convex operands.
+// Whether operand k is a group (of convex operands, or a union).
 bool isGroup(const PeelRequest& request, std::size_t k) {
     return k < request.groups.size() && request.groups[k].size() > 1;
 }
@@ -222,8 +217,9 @@ int PeelPass::peelGroups(const Job& job, const ViewSetup& view, std::vector<Oper
         // The groups take the first layers, so a group's layer is also its
         // index among the tile's groups: its layer of the ids.
         out[k] = {used, 1, used};
-        const bool ties = GroupPeel::tiesWanted(job.scene, job.request.groups[k]);
-        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used, ties);
+        const bool unite = k < job.request.unionGroups.size() && job.request.unionGroups[k];
+        const bool ties = unite || GroupPeel::tiesWanted(job.scene, job.request.groups[k]);
+        group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used, ties, unite);
         ++used;
         passes_ += ties ? 4 : 2;  // entries, exits, and their ties (GroupPeel.h)
     }

@@ -28,9 +28,10 @@
 // are dropped and the operand is peeled pass by pass as above. The layers are
 // the same either way, bit for bit (tests compare them).
 //
-// A group of convex operands (ConvexGroups.h) is one operand of one layer,
-// the one a convex operand with the group's interval would have, peeled
-// first by GroupPeel (two depth-tested passes over its members and a
+// A group (ConvexGroups.h: an intersection of convex operands, or a union
+// of operands of which only the first layer matters) is one operand of one
+// layer, the one a convex operand with the group's interval would have,
+// peeled first by GroupPeel (two depth-tested passes over its members and a
 // resolve), which also keeps which member makes each surface.
 //
 // Convex operands need one pass each and no previous layer: where the driver
@@ -80,8 +81,12 @@ struct PeelRequest {
     int listTriangles = 0;
     // Per operand (empty: none): the member leaves of a group, else empty.
     std::span<const std::vector<int>> groups;
-    // The most members a group may have: its count must fit the stencil.
+    // Per operand (empty: none): 1 where its group is a union (csg::CompiledTree::unionGroups).
+    std::span<const char> unionGroups;
+    // The most members a group may have: an intersection's count must fit
+    // the stencil, a union's numbers the ids.
     static constexpr std::size_t kMostGroupMembers = GroupPeel::kMostMembers;
+    static constexpr std::size_t kMostUnionMembers = GroupPeel::kMostUnionMembers;
 };
 
 class PeelPass {

@@ -225,14 +225,16 @@ struct Renderer::Impl {
     TranslucentPass translucent;
     FrameTargets targets;
     SceneBuffers scene;
-    // The tree compiled with every operand its own (`separate`) and with
-    // convex intersections grouped (ConvexGroups.h), each with its
-    // reachedByUnionsOnly; `current` is the one the evaluator holds.
+    // The tree compiled with every operand its own (`separate`), with
+    // convex intersections grouped (ConvexGroups.h), and with those and the
+    // operands that only unions lead to grouped (for views where every ray
+    // starts outside), each with its reachedByUnionsOnly; `current` is the
+    // one the evaluator holds.
     struct Compilation {
         csg::CompiledTree tree;
         std::vector<char> unionsOnly;
     };
-    Compilation separate, grouped;
+    Compilation separate, grouped, unionGrouped;
     const Compilation* current = nullptr;
     std::vector<TranslucentLeaf> translucentLeaves;
     std::vector<AlphaLeaf> alphaLeaves;
@@ -332,6 +334,15 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
         if (members.size() > GroupPeel::kMostTieMembers) impl.scene.hashPlanes(model, members);
     }
     impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.tree, impl.scene);
+    // Of those, the ones that only unions lead to, a group per run
+    // (groupUnionOperands): right only where every ray starts outside.
+    std::vector<char> unitable(impl.grouped.unionsOnly);
+    for (std::size_t k = 0; k < unitable.size(); ++k) {
+        if (impl.grouped.tree.leavesOf(k).size() > 1) unitable[k] = 0;
+    }
+    impl.unionGrouped.tree =
+        csg::groupUnionOperands(impl.grouped.tree, unitable, PeelRequest::kMostUnionMembers);
+    impl.unionGrouped.unionsOnly = reachedByUnionsOnly(impl.unionGrouped.tree, impl.scene);
     impl.current = &impl.grouped;
     impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
     impl.translucentLeaves = translucentLeaves(tree, impl.scene);
@@ -350,7 +361,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     const std::vector<int>& operands = compiled.operandLeaf;
     if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
-                        compiled.operandGroups};
+                        compiled.operandGroups, compiled.unionGroups};
     // Every ray starts outside every operand: those that only unions lead to
     // need their first layer alone (the debug views show every layer).
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers && roundSink == nullptr) {
@@ -653,8 +664,13 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         frame.blockForms.assign(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height),
                                 BlockForm::None);
     }
-    // Debug views show each operand's own layers: no groups there.
-    const Compilation& chosen = settings.groupConvexIntersections && !settings.keepPeelLayers ? grouped : separate;
+    // Debug views show each operand's own layers: no groups there. Unions
+    // group where every ray starts outside, as the first layer does
+    // (peelAndEvaluate), and not for the result peel, which walks past it.
+    const bool unions = beyondNearPlane(view, scene.bounds()) && roundSink == nullptr;
+    const Compilation& chosen = !settings.groupOperands || settings.keepPeelLayers ? separate
+                                : unions                                            ? unionGrouped
+                                                                                    : grouped;
     if (current != &chosen) {
         evaluate.setTree(chosen.tree, canMarkLeaves);
         current = &chosen;
@@ -673,11 +689,13 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     if (compiled.kind == csg::CompiledTree::Kind::Code) {
         rects.resize(compiled.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
-            // A group's surfaces lie where all its members' do.
+            // An intersection's surfaces lie where all its members' do, a
+            // union's where any member's does.
             const std::span<const int> leaves = compiled.leavesOf(k);
+            const bool unite = compiled.isUnionGroup(k);
             for (std::size_t i = 0; i < leaves.size(); ++i) {
                 const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
-                rects[k] = i == 0 ? own : rects[k].intersection(own);
+                rects[k] = i == 0 ? own : unite ? rects[k].bounding(own) : rects[k].intersection(own);
                 markLeaves.push_back(leaves[i]);
                 markRects.push_back(own);
             }

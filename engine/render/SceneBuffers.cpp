@@ -28,61 +28,87 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
     }
     // Each triangle ends on a vertex of its own (lastCornerLayout), which
     // carries its face normal: the provoking vertex of a flat varying.
-    std::vector<float> positions;         // by 3, the layouts' vertices
-    std::vector<float> normals;           // by 3, per layout vertex; a triangle's on its last corner
+    // First the ranges and sizes, then the buffers, filled a slice of leaves
+    // at a time: a million leaves never hold all four arrays twice over.
     vertices_.clear();
+    std::size_t meshVertices = 0;
+    for (const geometry::Mesh& mesh : model.leafMeshes) meshVertices += mesh.positions.size();
+    vertices_.reserve(meshVertices);
     firstVertex_.assign(1, 0);
-    std::vector<std::uint32_t> indices;      // #F by 3, absolute, as the mesh has them
-    std::vector<std::uint32_t> flatIndices;  // the same triangles in the layout
+    firstVertex_.reserve(model.leafMeshes.size() + 1);
     leaves_.assign(model.leafMeshes.size(), {});
     leafColors_.clear();
     bounds_ = {};
+    std::vector<std::uint32_t> layoutStart(model.leafMeshes.size() + 1, 0);  // per leaf, into the layouts' vertices
+    std::size_t layoutVertices = 0, indexCount = 0;
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
         const geometry::Mesh& mesh = model.leafMeshes[i];
-        const geometry::LastCornerLayout layout = geometry::lastCornerLayout(mesh);
-        const std::size_t firstVertex = positions.size() / 3;
-        if (firstVertex + layout.source.size() > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
+        const std::size_t copies = geometry::lastCornerLayout(mesh).source.size();
+        if (layoutVertices + copies > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
+        layoutStart[i] = static_cast<std::uint32_t>(layoutVertices);
+        layoutVertices += copies;
         LeafRange& range = leaves_[i];
-        range.firstIndex = indices.size();
+        range.firstIndex = indexCount;
+        range.indexCount = 3 * mesh.triangles.size();
+        indexCount += range.indexCount;
         for (const glm::dvec3& p : mesh.positions) {
             vertices_.emplace_back(p);
             range.bounds.extend(p);
         }
         firstVertex_.push_back(vertices_.size());
-        for (std::uint32_t v : layout.source) {
-            const glm::dvec3& p = mesh.positions[v];
-            for (double c : {p.x, p.y, p.z}) positions.push_back(static_cast<float>(c));
-        }
-        normals.resize(positions.size(), 0.0f);
-        for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-            const auto& t = mesh.triangles[f];
-            // The layout starts with the mesh's vertices, so both index the same positions.
-            for (std::uint32_t v : t) indices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
-            for (std::uint32_t v : layout.triangles[f]) {
-                flatIndices.push_back(static_cast<std::uint32_t>(firstVertex) + v);
-            }
-            const glm::dvec3& a = mesh.positions[t[0]];
-            glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
-            const double length = glm::length(n);
-            n = length > 0.0 ? n / length : glm::dvec3(0.0);
-            const std::size_t last = 3 * (firstVertex + layout.triangles[f][2]);
-            normals[last] = static_cast<float>(n.x);
-            normals[last + 1] = static_cast<float>(n.y);
-            normals[last + 2] = static_cast<float>(n.z);
-        }
-        range.indexCount = indices.size() - range.firstIndex;
         range.convex = range.indexCount > 0 && isConvexLeaf(tree.leaves[i].primitive, mesh);
         range.solidShells = range.convex || everyShellHasVolume(mesh);
         if (range.indexCount > 0) bounds_.extend(range.bounds);
         const auto& c = tree.leaves[i].color;
         leafColors_.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     }
+    layoutStart.back() = static_cast<std::uint32_t>(layoutVertices);
+
+    positions_ = gpu::Buffer("scene positions", layoutVertices * 3 * sizeof(float));
+    faceNormals_ = gpu::Buffer("scene face normals", layoutVertices * 3 * sizeof(float));
+    indices_ = gpu::Buffer("scene indices", indexCount * sizeof(std::uint32_t));
+    std::vector<float> positions;         // by 3, the layouts' vertices
+    std::vector<float> normals;           // by 3, per layout vertex; a triangle's on its last corner
+    std::vector<std::uint32_t> indices;  // #F by 3, absolute, in the layout
+    std::size_t vertexOffset = 0, indexOffset = 0;  // where the slice goes, in vertices and indices
+    auto flush = [&] {
+        positions_.uploadSpan(std::span<const float>(positions), vertexOffset * 3 * sizeof(float));
+        faceNormals_.uploadSpan(std::span<const float>(normals), vertexOffset * 3 * sizeof(float));
+        indices_.uploadSpan(std::span<const std::uint32_t>(indices), indexOffset * sizeof(std::uint32_t));
+        vertexOffset += positions.size() / 3;
+        indexOffset += indices.size();
+        positions.clear();
+        normals.clear();
+        indices.clear();
+    };
+    constexpr std::size_t kSliceVertices = 1 << 20;
+    for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const geometry::LastCornerLayout layout = geometry::lastCornerLayout(mesh);
+        const std::uint32_t firstVertex = layoutStart[i];
+        for (std::uint32_t v : layout.source) {
+            const glm::dvec3& p = mesh.positions[v];
+            for (double c : {p.x, p.y, p.z}) positions.push_back(static_cast<float>(c));
+        }
+        const std::size_t sliceFirst = 3 * (firstVertex - vertexOffset);  // this leaf's first normal in the slice
+        normals.resize(positions.size(), 0.0f);
+        for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+            const auto& t = mesh.triangles[f];
+            for (std::uint32_t v : layout.triangles[f]) indices.push_back(firstVertex + v);
+            const glm::dvec3& a = mesh.positions[t[0]];
+            glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
+            const double length = glm::length(n);
+            n = length > 0.0 ? n / length : glm::dvec3(0.0);
+            const std::size_t last = sliceFirst + 3 * layout.triangles[f][2];
+            normals[last] = static_cast<float>(n.x);
+            normals[last + 1] = static_cast<float>(n.y);
+            normals[last + 2] = static_cast<float>(n.z);
+        }
+        if (positions.size() / 3 >= kSliceVertices) flush();
+    }
+    flush();
     planes_.assign(leaves_.size(), {});  // hashed on demand: hashPlanes
     sharing_.clear();
-    positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions), 0);
-    indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices), 0);
-    flatIndices_ = gpu::Buffer::fromSpan("scene indices, flat normals", std::span<const std::uint32_t>(flatIndices), 0);
-    faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const float>(normals), 0);
     vertexArray_ = gpu::VertexArray("scene");
     vertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
     vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
@@ -92,7 +118,31 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
     flatVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
     flatVertexArray_.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
     flatVertexArray_.setAttribute(1, 1, 3, GL_FLOAT, 0);
-    flatVertexArray_.setElementBuffer(flatIndices_);
+    flatVertexArray_.setElementBuffer(indices_);
+    if (!memberNumbers_.id()) {
+        std::vector<float> numbers(kMostMembers);
+        for (std::size_t m = 0; m < numbers.size(); ++m) numbers[m] = static_cast<float>(m);
+        memberNumbers_ = gpu::Buffer::fromSpan("scene member numbers", std::span<const float>(numbers), 0);
+    }
+    memberVertexArray_ = gpu::VertexArray("scene with member numbers");
+    memberVertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
+    memberVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    memberVertexArray_.setVertexBuffer(1, memberNumbers_, 0, sizeof(float));
+    memberVertexArray_.setBindingDivisor(1, 1);
+    memberVertexArray_.setAttribute(2, 1, 1, GL_FLOAT, 0);
+    memberVertexArray_.setElementBuffer(indices_);
+}
+
+std::vector<DrawElementsIndirectCommand> SceneBuffers::memberCommands(std::span<const int> leaves) const {
+    if (leaves.size() > kMostMembers) throw Error("renderer: a group of more than 65536 members");
+    std::vector<DrawElementsIndirectCommand> commands;
+    commands.reserve(leaves.size());
+    for (std::size_t m = 0; m < leaves.size(); ++m) {
+        const LeafRange& range = leaves_[static_cast<std::size_t>(leaves[m])];
+        commands.push_back({static_cast<GLuint>(range.indexCount), 1, static_cast<GLuint>(range.firstIndex), 0,
+                            static_cast<GLuint>(m)});
+    }
+    return commands;
 }
 
 void SceneBuffers::drawLeaf(int leaf) const {
@@ -108,7 +158,7 @@ void SceneBuffers::hashPlanes(const geometry::Model& model, const std::vector<in
     for (int leaf : leaves) {
         const auto i = static_cast<std::size_t>(leaf);
         std::vector<std::uint64_t>& keys = planes_[i];
-        if (!leaves_[i].convex || !keys.empty()) continue;
+        if (!keys.empty()) continue;
         const geometry::Mesh& mesh = model.leafMeshes[i];
         for (const auto& t : mesh.triangles) {
             const glm::dvec3& a = mesh.positions[t[0]];
@@ -147,7 +197,7 @@ std::span<const glm::vec3> SceneBuffers::leafVertices(int leaf) const {
 }
 
 std::size_t SceneBuffers::bytes() const {
-    return positions_.size() + indices_.size() + flatIndices_.size() + faceNormals_.size();
+    return positions_.size() + indices_.size() + faceNormals_.size();
 }
 
 }  // namespace strata::render

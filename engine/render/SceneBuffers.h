@@ -2,17 +2,20 @@
 // The scene on the GPU: every leaf's world-space triangles in one vertex
 // buffer, with per-leaf ranges, and two vertex arrays over it, shared by
 // every pass that draws leaves:
-// - vertexArray(): positions (attribute 0), the triangles as the meshes
-//   have them; each mesh vertex once, so the passes that need no normal
-//   (peel, counts) shade each vertex once.
-// - flatVertexArray(): the same triangles in geometry::lastCornerLayout
-//   (each ends on a vertex of its own, copied where needed) and attribute 1,
-//   the face normal of the triangle that ends on the vertex: a flat varying
-//   takes it from there (the provoking vertex), so the normal and
-//   translucent passes need no lookup by gl_PrimitiveID. Corners keep
-//   their order, and copies their position, so a triangle is set up and
-//   rasterized exactly as in the other array.
-// A leaf's range indexes both alike. Every pass that draws them does so with
+// - vertexArray(): positions (attribute 0), the triangles in
+//   geometry::lastCornerLayout: each ends on a vertex of its own, copied
+//   where needed. Corners keep the mesh's order, and copies their position,
+//   so a triangle is set up and rasterized exactly as the mesh has it.
+// - flatVertexArray(): the same, and attribute 1, the face normal of the
+//   triangle that ends on the vertex: a flat varying takes it from there
+//   (the provoking vertex), so the normal and translucent passes need no
+//   lookup by gl_PrimitiveID.
+// One index buffer serves all three.
+// - memberVertexArray(): positions, and per instance its number (attribute
+//   2, a float): drawn by a multi-draw whose draw m has base instance m, as
+//   memberCommands makes it, each draw's vertices carry m (surface.vert's
+//   GROUP_MEMBERS), so a group's members go in one call.
+// A leaf's range indexes all alike. Every pass that draws them does so with
 // shaders/csg/surface.vert as its vertex stage (setSurfaceView).
 
 #include <cstddef>
@@ -31,6 +34,11 @@
 #include "strata/scene/Tree.h"
 
 namespace strata::render {
+
+// glMultiDrawElementsIndirect's record.
+struct DrawElementsIndirectCommand {
+    GLuint count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
 
 struct LeafRange {
     std::size_t firstIndex = 0;     // into the index buffer
@@ -51,18 +59,24 @@ public:
 
     const gpu::VertexArray& vertexArray() const { return vertexArray_; }
     const gpu::VertexArray& flatVertexArray() const { return flatVertexArray_; }
+    const gpu::VertexArray& memberVertexArray() const { return memberVertexArray_; }
+    // The most draws one multi-draw over memberVertexArray() can number.
+    static constexpr std::size_t kMostMembers = 65536;
+    // A multi-draw's records for `leaves` (at most kMostMembers), in order:
+    // draw m draws leaves[m] with base instance m.
+    std::vector<DrawElementsIndirectCommand> memberCommands(std::span<const int> leaves) const;
     // Per leaf: its color() in rgba, a = -1 when it has none.
     const std::vector<glm::vec4>& leafColors() const { return leafColors_; }
     const std::vector<LeafRange>& leaves() const { return leaves_; }
     const LeafRange& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
     // Of every leaf with triangles, background leaves included.
     const geometry::Bounds& bounds() const { return bounds_; }
-    // Hashes the face planes of the convex `leaves` (model as in upload),
-    // for shareAPlane; leaves not hashed have no planes there.
+    // Hashes the face planes of `leaves` (model as in upload), for
+    // shareAPlane; leaves not hashed have no planes there.
     void hashPlanes(const geometry::Model& model, const std::vector<int>& leaves);
-    // Whether two of the convex `leaves` have faces in one plane, facing the
-    // same way (to a billionth of the scene's size): where members of a
-    // group can tie (GroupPeel.h). Remembered per set of leaves.
+    // Whether two of `leaves` have faces in one plane, facing the same way
+    // (to a billionth of the scene's size): where members of a group can tie
+    // (GroupPeel.h). Remembered per set of leaves.
     bool shareAPlane(const std::vector<int>& leaves) const;
     // Leaf `leaf`'s vertices (world space, as uploaded), for screen rectangles.
     std::span<const glm::vec3> leafVertices(int leaf) const;
@@ -70,11 +84,12 @@ public:
 
 private:
     gpu::Buffer positions_;
-    gpu::Buffer indices_;
-    gpu::Buffer flatIndices_;
+    gpu::Buffer indices_;  // the layout's triangles
     gpu::Buffer faceNormals_;  // attribute 1
     gpu::VertexArray vertexArray_;
     gpu::VertexArray flatVertexArray_;
+    gpu::Buffer memberNumbers_;  // 0, 1, 2, ... as floats: attribute 2 of memberVertexArray_
+    gpu::VertexArray memberVertexArray_;
     std::vector<LeafRange> leaves_;
     std::vector<std::vector<std::uint64_t>> planes_;  // per leaf hashed: its faces' planes, sorted
     mutable std::map<std::vector<int>, bool> sharing_;  // shareAPlane's answers

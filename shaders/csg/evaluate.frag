@@ -142,10 +142,12 @@ void startCluster() {
 }
 
 // A surface of the cluster, in depth order: `tagged` its tagged depth,
-// `leaf` its operand's tree leaf; `resultInside` the result's membership
-// before the cluster.
+// `leaf` its operand's tree leaf (a group's: the member that makes the
+// surface is the leaf compared and kept); `resultInside` the result's
+// membership before the cluster.
 void considerSurface(float tagged, int leaf, bool resultInside) {
     if (chosen) return;
+    leaf = surfaceLeaf(leaf, isExit(tagged));
     float depth = untagged(tagged);
     if (depth - faceEnd > uCoincidence * 0.25) {
         if (changed) {  // the face of the first change is complete
@@ -177,7 +179,7 @@ void noteResult(bool now, bool resultInside) {
 void writeChosenSurface(bool entered) {
     bool exit = isExit(pickSurface);
     bool flip = exit == entered;
-    int leaf = surfaceLeaf(pickLeaf, exit);
+    int leaf = pickLeaf;
     outDepth = pickSurface;
     outLeaf = leafCode(leaf, flip);
     int face = faceBit(exit, flip);

@@ -11,6 +11,10 @@
 // untagged, as the evaluator does: an entry and an exit at one depth leave
 // the ray outside. Where the group has a surface, the two members are kept
 // in the group's layer of the ids.
+//
+// UNION: the group is a union of its members (the nearest entry, the
+// farthest exit); it runs without the stencil test, and has an interval
+// only where some member was entered (every ray starts outside).
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
@@ -29,6 +33,10 @@ void main() {
     float exit = winners.g;
     int exitMember = int(winners.a);
     int entryMember = int(kNoMember);
+#ifdef UNION
+    // A union (no stencil test): an interval wherever a member was entered.
+    if (entry < 0.0 || exit < 0.0) discard;
+#endif
     if (entry < 0.0) {
         outDepths = vec2(-exit, exit);
     } else if (untagged(entry) < untagged(exit)) {

@@ -28,7 +28,6 @@ SHARED int kSurfaceForward = 2;  // the unit view direction f
 // peel.frag (after surface.vert's).
 SHARED int kPeelPreviousLayer = 3;  // the layer the next pass reads
 SHARED int kPeelKeyBase = 4;        // GROUP: the bits below every fragment's tagged depth
-SHARED int kPeelMember = 5;         // GROUP, GROUP_TIE: the member's index in its group
 SHARED int kPeelTieTolerance = 6;   // GROUP_TIE: the depth within which a member ties with the winner
 
 // resolve.frag.
@@ -115,8 +114,8 @@ SHARED int kCollectCapacity = 8;
 
 // A group's ids (GroupPeel.h): entry member | exit member << kMemberBits,
 // kNoMember in the entry where no member had one.
-SHARED uint kMemberBits = 8u;
-SHARED uint kNoMember = 0xffu;
+SHARED uint kMemberBits = 16u;
+SHARED uint kNoMember = 0xffffu;
 
 // --- The evaluator's blocks (blocks.glsl) ---
 

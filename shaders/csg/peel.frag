@@ -7,11 +7,12 @@
 // layer and keep only what lies strictly between its nearest and farthest,
 // i.e. what no earlier pass has peeled. No depth test, no culling.
 //
-// GROUP (GroupPeel.h): a member of a group of convex operands, depth-tested
-// against the others. Writes (tagged depth, tagged depth, member, member),
-// of which the pass's colour mask keeps the entry or the exit half, and as
-// its depth an order key of the tagged depth. GROUP_TIE: the members again,
-// where they tie with the winners (below).
+// GROUP (GroupPeel.h): the members of a group, depth-tested against each
+// other. Writes (tagged depth, tagged depth, member, member), of which the
+// pass's colour mask keeps the entry or the exit half, and as its depth an
+// order key of the tagged depth. GROUP_TIE: the members again, where they
+// tie with the winners (below); UNION: the group is a union, whose winners
+// are the nearest entry and the farthest exit.
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
@@ -24,7 +25,7 @@ layout(binding = kImageFragmentCounts, r32ui) uniform coherent uimage2D uFragmen
 layout(binding = kImageFragments, r32f) uniform writeonly image2DArray uFragments;
 #elif defined(GROUP)
 layout(location = kPeelKeyBase) uniform uint uKeyBase;  // bits of a depth before every fragment's
-layout(location = kPeelMember) uniform float uMember;   // the member's index in its group
+layout(location = 2) flat in float vMember;             // the member's index in its group
 layout(location = 0) out vec4 outGroup;
 
 // The tagged depth's bit pattern, from uKeyBase's on, as a normal float in
@@ -43,7 +44,10 @@ float orderKey(float tagged) {
 // exit, is that surface as far as rounding can tell; the lowest such member
 // (its index as the depth, depth test LESS) writes its own tagged depth and
 // index, of which the pass's colour mask keeps the entry or the exit half.
-layout(location = kPeelMember) uniform float uMember;
+// An intersection's winners are the farthest entry and the nearest exit, a
+// union's (UNION) the nearest entry and the farthest exit: the tolerance
+// reaches from the winner toward the others.
+layout(location = 2) flat in float vMember;
 layout(location = kPeelTieTolerance) uniform float uTieTolerance;
 layout(binding = kTextureGroupWinners) uniform sampler2D uWinners;
 layout(location = 0) out vec4 outGroup;
@@ -73,16 +77,25 @@ void main() {
     if (slot < uint(kCollectCapacity)) imageStore(uFragments, ivec3(pixel, int(slot)), vec4(t));
 #elif defined(GROUP)
     gl_FragDepth = orderKey(t);
-    outGroup = vec4(t, t, uMember, uMember);
+    outGroup = vec4(t, t, vMember, vMember);
 #elif defined(GROUP_TIE)
     vec4 winners = texelFetch(uWinners, ivec2(gl_FragCoord.xy), 0);
+#ifdef UNION
+    if (gl_FrontFacing) {
+        if (winners.r < 0.0 || untagged(t) > untagged(winners.r) + uTieTolerance) discard;
+    } else if (winners.g < 0.0 || untagged(t) < untagged(winners.g) - uTieTolerance) {
+        discard;
+    }
+#else
     if (gl_FrontFacing) {
         if (winners.r < 0.0 || untagged(t) < untagged(winners.r) - uTieTolerance) discard;
     } else if (winners.g < 0.0 || untagged(t) > untagged(winners.g) + uTieTolerance) {
         discard;
     }
-    gl_FragDepth = (uMember + 1.0) / 512.0;
-    outGroup = vec4(t, t, uMember, uMember);
+#endif
+    // Members number fewer than 2^16: the depth stays below 1, exactly.
+    gl_FragDepth = (vMember + 1.0) / 131072.0;
+    outGroup = vec4(t, t, vMember, vMember);
 #else
 #ifndef PEEL_FIRST
     vec2 previous = texelFetch(uLayers, ivec3(gl_FragCoord.xy, uPreviousLayer), 0).rg;

@@ -10,6 +10,11 @@
 // lookup by gl_PrimitiveID.
 // Uniforms: the view-projection matrix, the eye and the unit view direction f.
 //
+// GROUP_MEMBERS (GroupPeel's passes: one multi-draw over a group's members,
+// SceneBuffers::memberVertexArray): each draw's one instance carries the
+// member's index in its group (attribute 2, per instance; draw m has base
+// instance m), handed on flat.
+//
 // LAYERED (the peel pass's batch of convex operands, one multi-draw with one
 // draw per operand): each draw's triangles go to the array layer
 // drawLayers[gl_DrawID] of a layered framebuffer.
@@ -30,6 +35,10 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aFaceNormal;
 layout(location = 1) flat out vec3 vFaceNormal;
 #endif
+#ifdef GROUP_MEMBERS
+layout(location = 2) in float aMember;
+layout(location = 2) flat out float vMember;
+#endif
 
 layout(location = kSurfaceViewProjection) uniform mat4 uViewProjection;
 layout(location = kSurfaceEye) uniform vec3 uEye;
@@ -43,6 +52,9 @@ void main() {
     vViewDepth = dot(aPosition - uEye, uForward);
 #ifdef FACE_NORMAL
     vFaceNormal = aFaceNormal;
+#endif
+#ifdef GROUP_MEMBERS
+    vMember = aMember;
 #endif
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
 #ifdef LAYERED

@@ -131,7 +131,7 @@ void expectSameFrame(const render::Frame& fast, const render::Frame& general, co
 // convex solids would be one operand and one form (ConvexGroups.h).
 std::pair<render::Frame, render::Frame> fastAndGeneral(render::Renderer& renderer, const render::Camera& camera) {
     render::RenderSettings settings;
-    settings.groupConvexIntersections = false;
+    settings.groupOperands = false;
     settings.keepBlockForms = true;
     render::Frame fast = renderer.render(camera, settings);
     settings.generalEvaluator = true;
@@ -241,10 +241,10 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
         }
         // Coverage, depth and normal must match exactly; the leaf named at a
         // tie may differ (each form names the first operand it meets). So
-        // for the intersection as one group (ConvexGroups.h), which names the
-        // lowest leaf: cube 0.
+        // for the intersection and the union as one group (ConvexGroups.h),
+        // and the intersection's group names the lowest leaf: cube 0.
         const render::Frame grouped = renderer.render(camera, {});
-        EXPECT_EQ(grouped.stats.operands, kind == NodeKind::Intersection ? 1 : 12);
+        EXPECT_EQ(grouped.stats.operands, kind == NodeKind::Difference ? 12 : 1);
         for (const render::Frame* other : {&general, &grouped}) {
             for (std::size_t p = 0; p < fast.leaf.size(); ++p) {
                 ASSERT_EQ(fast.leaf[p] >= 0, other->leaf[p] >= 0) << scene::kindName(kind) << " pixel " << p;

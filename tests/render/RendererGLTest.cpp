@@ -419,10 +419,12 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
     const int shells = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
     const int cube = tree.addLeaf(cubeLeaf({1, 1, -1}, {1.8, 1.8, 0.5}));
     tree.root = tree.addNode(NodeKind::Union, {tree.addNode(NodeKind::Union, {shells}), cube});
-    render::RenderSettings everyLayer;
+    // Both as operands of their own and as one union group (ConvexGroups.h).
+    render::RenderSettings everyLayer, apart;
     everyLayer.keepPeelLayers = true;
+    apart.groupOperands = false;
     for (render::Projection p : kProjections) {
-        const render::Frame once = draw(tree, topCamera(p));
+        const render::Frame once = draw(tree, topCamera(p), apart);
         EXPECT_EQ(once.stats.layersPerLeaf[0], 1);
         EXPECT_EQ(once.stats.peelPasses, 2);  // one batch draw each
         expectCentre(once, kEyeHeight - capHeight(1.0, 0.4, +1), 0, {0, 0, 1});
@@ -430,6 +432,11 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
         EXPECT_EQ(all.stats.layersPerLeaf[0], 3);
         EXPECT_EQ(pixelsDiffering(once, all), 0u);
         EXPECT_EQ(once.rgba, all.rgba);
+        const render::Frame united = renderer_->render(topCamera(p), render::RenderSettings{});
+        EXPECT_EQ(united.stats.operands, 1);
+        EXPECT_EQ(united.stats.layersPerLeaf[0], 1);
+        EXPECT_EQ(pixelsDiffering(united, all), 0u);
+        EXPECT_EQ(united.rgba, all.rgba);
     }
     // From inside the model's box the near plane may cut operands, and the
     // union can start inside one: then every layer counts again. Here, just
@@ -742,7 +749,7 @@ TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
                                                           coloured(cubeLeaf({-0.5, -0.7, -0.5}, {1.2, 0.7, 2}))});
     tree.root = tree.addNode(NodeKind::Difference, {tree.addNode(NodeKind::Intersection, lens), cut});
     render::RenderSettings grouped, separate, tiled;
-    separate.groupConvexIntersections = false;
+    separate.groupOperands = false;
     tiled.memoryBudget = 30 * 30 * 8 * 3;
     for (render::Projection projection : kProjections) {
         for (double height : {kEyeHeight, 0.0}) {
@@ -767,7 +774,7 @@ TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
             // Tiles name the same leaves. (Their shifted viewports round
             // depths near the eye differently from the whole frame's.)
             render::RenderSettings tiledApart = tiled;
-            tiledApart.groupConvexIntersections = false;
+            tiledApart.groupOperands = false;
             const render::Frame tiles = renderer_->render(camera, tiled);
             const render::Frame tilesApart = renderer_->render(camera, tiledApart);
             EXPECT_GT(tiles.stats.tiles, 1);
@@ -926,7 +933,9 @@ TEST_F(RendererGLTest, ManyOperandsUseALargerEvaluator) {
         leaves.push_back(tree.addLeaf(cubeLeaf({-0.5, -0.5, z}, {0.5, 0.5, z + 0.05})));
     }
     tree.root = tree.addNode(NodeKind::Union, leaves);
-    const render::Frame f = draw(tree, topCamera());
+    render::RenderSettings apart;  // grouped, the union would be one operand
+    apart.groupOperands = false;
+    const render::Frame f = draw(tree, topCamera(), apart);
     // Highest slab: k = 39, top at -2 + 3.9 + 0.05; leaf index i with 17 i = 39 mod 40 -> i = 7.
     expectCentre(f, kEyeHeight - (-2.0 + 3.9 + 0.05), 7, {0, 0, 1});
     EXPECT_EQ(f.stats.operands, 40);
@@ -1160,7 +1169,7 @@ TEST_F(RendererGLTest, GroupedMembersSharingAFaceShowTheLowestLeafThere) {
         }
         tree.root = tree.addNode(NodeKind::Intersection, blocks);
         render::RenderSettings separate;
-        separate.groupConvexIntersections = false;
+        separate.groupOperands = false;
         const render::Camera camera = topCamera();
         const render::Frame one = draw(tree, camera);
         const render::Frame apart = renderer_->render(camera, separate);
@@ -1177,5 +1186,108 @@ TEST_F(RendererGLTest, GroupedMembersSharingAFaceShowTheLowestLeafThere) {
         EXPECT_GT(top, static_cast<std::size_t>(kSize * kSize) / 10) << count << " members";
         EXPECT_EQ(lowest, top) << count << " members";
         EXPECT_EQ(lowestApart, top) << count << " members";
+    }
+}
+
+TEST_F(RendererGLTest, UnitedMembersSharingAFaceShowTheLowestLeafThere) {
+    // The union of a block and smaller blocks standing in it with their
+    // tops in its top's plane, turned by odd angles: rounding puts the tops
+    // a hair apart, this way or that. As one union group or as operands of
+    // their own, every pixel of the common top shows the lowest leaf, and
+    // the frames agree to the bit; in a group of two, and in one of more
+    // than GroupPeel::kMostTieMembers, which looks for ties because its
+    // members share a plane.
+    const glm::dmat4 turn = glm::rotate(glm::rotate(glm::dmat4(1.0), glm::radians(23.0), glm::dvec3(1, 0, 0)),
+                                        glm::radians(11.0), glm::dvec3(0, 1, 0));
+    auto turned = [&](scene::Leaf leaf, int k) {
+        leaf.transform = turn * leaf.transform;
+        leaf.color = glm::dvec4(0.2 + 0.07 * k, 0.5, 0.9 - 0.05 * k, 1.0);
+        return leaf;
+    };
+    for (const int count : {2, 10}) {
+        scene::Tree tree;
+        std::vector<int> blocks{tree.addLeaf(turned(cubeLeaf({-2, -2, -2}, {2, 2, 1}), 0))};
+        for (int k = 1; k < count; ++k) {
+            const double grow = 0.03 * k;
+            blocks.push_back(
+                tree.addLeaf(turned(cubeLeaf({-1.5 - grow, -0.5 - grow, -3}, {0.5 + grow, 1.5, 1}), k)));
+        }
+        tree.root = tree.addNode(NodeKind::Union, blocks);
+        render::RenderSettings separate;
+        separate.groupOperands = false;
+        const render::Camera camera = topCamera();
+        const render::Frame one = draw(tree, camera);
+        const render::Frame apart = renderer_->render(camera, separate);
+        EXPECT_EQ(one.stats.operands, 1);
+        EXPECT_EQ(apart.stats.operands, count);
+        EXPECT_EQ(one.stats.peelPasses, 4) << count << " members";  // entries, exits and their ties
+        // The top is the first block's, with every other block's in it.
+        std::size_t top = 0, lowest = 0;
+        const glm::vec3 up = glm::vec3(turn * glm::dvec4(0, 0, 1, 0));
+        for (std::size_t k = 0; k < one.leaf.size(); ++k) {
+            if (one.leaf[k] < 0 || glm::dot(one.normal[k], up) < 0.999f) continue;
+            ++top;
+            lowest += one.leaf[k] == blocks[0];
+        }
+        EXPECT_GT(top, static_cast<std::size_t>(kSize * kSize) / 10) << count << " members";
+        EXPECT_EQ(lowest, top) << count << " members";
+        EXPECT_EQ(pixelsDiffering(one, apart), 0u) << count << " members";
+        EXPECT_EQ(one.rgba, apart.rgba) << count << " members";
+    }
+}
+
+TEST_F(RendererGLTest, UnitedOperandsChangeNoSurface) {
+    // A union of 60 coloured spheres, blocks and sets of shells (non-convex),
+    // overlapping, and beside them a block minus a ball whose top lies in the
+    // plane of a united block's top (a cluster of a group's surface and
+    // another operand's). Outside the model the united leaves are one
+    // operand (one layer), else their own; either way the frames agree with
+    // the ungrouped ones to the bit: surfaces, normals, leaves and colours,
+    // whole and in tiles. From inside the model's box nothing is united.
+    scene::Tree tree;
+    std::mt19937 rng(7719);
+    std::uniform_real_distribution<double> at(-1.6, 1.6), size(0.15, 0.5), hue(0.2, 1.0);
+    auto coloured = [&](scene::Leaf leaf) {
+        leaf.color = glm::dvec4(hue(rng), hue(rng), hue(rng), 1.0);
+        return tree.addLeaf(leaf);
+    };
+    std::vector<int> parts;
+    for (int i = 0; i < 60; ++i) {
+        const glm::dvec3 c(at(rng), at(rng), 0.5 * at(rng));
+        const double r = size(rng);
+        if (i % 5 == 4) {
+            parts.push_back(coloured(shellsLeaf({c + glm::dvec3(0, 0, 0.6), c, c - glm::dvec3(0, 0, 0.6)}, r * 0.6)));
+        } else if (i % 2 == 0) {
+            parts.push_back(coloured(sphereLeaf(c, r)));
+        } else {
+            parts.push_back(coloured(cubeLeaf(c - glm::dvec3(r), c + glm::dvec3(r, r, 0.8 - c.z))));
+        }
+    }
+    const int block = coloured(cubeLeaf({1.0, -2.4, -1.0}, {2.2, -1.2, 0.8}));
+    parts.push_back(tree.addNode(NodeKind::Difference, {block, coloured(sphereLeaf({1.6, -1.8, 0.8}, 0.4))}));
+    parts.push_back(coloured(cubeLeaf({0.4, -2.0, -0.5}, {1.4, -1.0, 0.8})));  // its top in the block's plane
+    tree.root = tree.addNode(NodeKind::Union, parts);
+    render::RenderSettings separate, tiled, tiledApart;
+    separate.groupOperands = false;
+    tiled.memoryBudget = tiledApart.memoryBudget = 40 * 40 * 8 * 6;
+    tiledApart.groupOperands = false;
+    for (render::Projection projection : kProjections) {
+        for (double height : {kEyeHeight, 0.0}) {
+            render::Camera camera = topCamera(projection, height);
+            if (height == 0.0) camera.fovDegrees = projection == render::Projection::Perspective ? 90.0 : 60.0;
+            const render::Frame one = draw(tree, camera);
+            const render::Frame apart = renderer_->render(camera, separate);
+            const bool outside = height == kEyeHeight;
+            EXPECT_EQ(one.stats.operands, outside ? 3 : apart.stats.operands);
+            ASSERT_GT(one.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / (outside ? 4 : 20));
+            EXPECT_EQ(pixelsDiffering(one, apart), 0u) << "projection " << static_cast<int>(projection)
+                                                       << ", eye at " << height;
+            EXPECT_EQ(one.rgba, apart.rgba);
+            if (!outside) continue;
+            const render::Frame tiles = renderer_->render(camera, tiled);
+            const render::Frame tilesApart = renderer_->render(camera, tiledApart);
+            EXPECT_GT(tiles.stats.tiles, 1);
+            EXPECT_EQ(pixelsDiffering(tiles, tilesApart), 0u);
+        }
     }
 }

@@ -57,12 +57,15 @@ struct RenderSettings {
     // 0: every non-convex operand; -1: none. The layers are the same either
     // way (tests compare them).
     int fragmentListTriangles = 4096;
-    // Peel the convex operands that one intersection joins as one operand
-    // (ConvexGroups.h): one layer holding their common interval, drawn in
-    // one pass, and one operand for the evaluator where there were many.
-    // false: each its own operand. The images are the same either way (tests
-    // compare them). Frames with keepPeelLayers never group.
-    bool groupConvexIntersections = true;
+    // Peel as one operand (ConvexGroups.h): the convex operands that one
+    // intersection joins, and, where every ray starts outside the scene,
+    // the operands that only unions lead to, up to 65,535 a group. Each
+    // group is one layer holding its interval, drawn in one multi-draw, and
+    // one operand for the evaluator where there were many. false: each its
+    // own operand. The images are the same either way (tests compare them).
+    // Frames with keepPeelLayers, and the result peel, group no unions; the
+    // first never groups.
+    bool groupOperands = true;
 };
 
 struct FrameStats {
