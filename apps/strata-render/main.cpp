@@ -9,6 +9,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "Options.h"
@@ -50,7 +51,9 @@ void checkOutputFolder(const std::string& path) {
 
 // The frame: camera, GL context, renderer (or the CPU reference), and the
 // images staged into `staged`.
-void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, const geometry::Model& model,
+// The model's meshes are let go once the renderer holds them, unless the
+// CPU reference needs them (a million cubes: about 400 MB).
+void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, geometry::Model model,
                   io::RunStats& stats, std::vector<io::StagedFile>& staged) {
     render::Camera base;
     base.width = options.width;
@@ -82,6 +85,7 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, c
         t = Clock::now();
         renderer.setScene(tree, model);
         stats.uploadMs = msSince(t);
+        if (!options.reference) model = {};
         if (options.reference) {
             // The CPU oracle finds the surfaces; the GPU only shades them, so
             // both paths' images differ only where their surfaces do.
@@ -162,7 +166,7 @@ int run(const apps::RenderOptions& options) {
     // With --export alone nothing is rendered (and, for the exact export,
     // no GL context made).
     const bool images = !options.png.empty() || !options.depth.empty() || !options.normal.empty();
-    if (images || options.exportPath.empty()) renderImages(options, tree, model, stats, staged);
+    if (images || options.exportPath.empty()) renderImages(options, tree, std::move(model), stats, staged);
     t = Clock::now();
     for (io::StagedFile& file : staged) file.commit();
     stats.writeMs += msSince(t);

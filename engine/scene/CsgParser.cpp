@@ -1,5 +1,6 @@
 #include "strata/scene/CsgParser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/common.hpp>
 #include <filesystem>
@@ -1573,7 +1574,6 @@ Leaf Parser::leafAt(const Context& ctx, const SourceLocation& where) const {
 void Parser::compact() {
     std::vector<int> remap(tree_.nodes.size(), -1);
     std::vector<Node> kept;
-    kept.reserve(tree_.nodes.size());
     std::vector<int> order;
     std::vector<int> todo;
     auto visit = [&](int start) {
@@ -1590,6 +1590,9 @@ void Parser::compact() {
     };
     if (tree_.root >= 0) visit(tree_.root);
     for (int b : tree_.background) visit(b);
+    // Exactly as many as are kept: a million leaves under their own
+    // multmatrix() leave half the nodes behind.
+    kept.reserve(order.size());
     for (int n : order) {
         Node node = std::move(tree_.nodes[static_cast<std::size_t>(n)]);
         for (int& c : node.children) c = remap[static_cast<std::size_t>(c)];
@@ -1598,6 +1601,8 @@ void Parser::compact() {
     // Leaves no node refers to (e.g. under a later '!' root) are dropped too.
     std::vector<int> leafRemap(tree_.leaves.size(), -1);
     std::vector<Leaf> leaves;
+    leaves.reserve(static_cast<std::size_t>(
+        std::count_if(kept.begin(), kept.end(), [](const Node& node) { return node.kind == NodeKind::Leaf; })));
     for (Node& node : kept) {
         if (node.kind != NodeKind::Leaf) continue;
         int& mapped = leafRemap[static_cast<std::size_t>(node.leaf)];
