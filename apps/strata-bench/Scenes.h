@@ -15,7 +15,7 @@
 //                 leaf, as an imported mesh would be) minus K spheres along it
 //   blowup        K unions of two overlapping spheres, intersected: for
 //                 OpenCSG, a sum of 2^K products of K spheres (past
-//                 OpenSCAD's 200,000-element limit from K = 15 or so)
+//                 OpenSCAD's 200,000-element limit from K = 12)
 
 #include <cstdint>
 #include <optional>

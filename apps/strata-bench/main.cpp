@@ -282,16 +282,19 @@ void printHeader() {
 // with every setting.
 void printOpenCsg(const bench::OpenCsgResult& o) {
     // The sum of products OpenSCAD would hand OpenCSG.
-    const std::string sum = o.gaveUp ? "gave up at " + std::to_string(o.elements) + " elements"
+    const std::string sum = o.gaveUp ? "normalization stopped at " + std::to_string(o.elements) + " elements"
                                      : std::to_string(o.products) + " products, " + std::to_string(o.primitives) +
                                            " primitives, " + std::to_string(o.elements) + " elements";
     if (o.best < 0) {
         std::printf(" %10s %-16s %7s\n", "n/a", "", "");
-        if (!o.unavailable.empty()) std::printf("    opencsg: %s (%s)\n", o.unavailable.c_str(), sum.c_str());
+    } else {
+        const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
+        std::printf(" %10.2f %-16s %7.2f\n", best.ms, best.name.c_str(), 100.0 * best.agreement.coveredFraction());
+    }
+    if (!o.unavailable.empty()) {
+        std::printf("    opencsg: %s (%s)\n", o.unavailable.c_str(), sum.c_str());
         return;
     }
-    const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
-    std::printf(" %10.2f %-16s %7.2f\n", best.ms, best.name.c_str(), 100.0 * best.agreement.coveredFraction());
     std::printf("    opencsg:");
     for (const bench::OpenCsgSettingResult& s : o.settings) {
         if (!s.skipped.empty())
