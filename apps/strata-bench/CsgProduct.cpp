@@ -72,7 +72,7 @@ unsigned openScadConvexity(const scene::Leaf& leaf) {
     return convexityOf(leaf, sources);
 }
 
-CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, std::size_t limit) {
+CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, std::size_t renderingLimit) {
     CsgProducts out;
     std::vector<std::optional<LeafBox>> boxes(tree.leaves.size());
     for (std::size_t i = 0; i < tree.leaves.size() && i < model.leafMeshes.size(); ++i) {
@@ -81,7 +81,7 @@ CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, s
         const geometry::Bounds b = geometry::boundsOf(mesh);
         boxes[i] = LeafBox{b.min, b.max};
     }
-    out.sum = sumOfProducts(tree, boxes, limit);
+    out.sum = sumOfProducts(tree, boxes, 2 * renderingLimit);
     if (out.sum.gaveUp) {
         out.unavailable = "gave up: the normalized tree grew past " + std::to_string(out.sum.limit) +
                           " elements (OpenSCAD aborts normalization and draws nothing)";
@@ -89,6 +89,12 @@ CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, s
     }
     if (out.sum.products.empty()) {
         out.unavailable = "empty scene: nothing left after normalization";
+        return out;
+    }
+    if (out.sum.primitives() > renderingLimit) {
+        out.unavailable = "OpenCSG off: the normalized tree has " + std::to_string(out.sum.primitives()) +
+                          " primitives, over " + std::to_string(renderingLimit) +
+                          " (OpenSCAD disables OpenCSG rendering)";
         return out;
     }
 

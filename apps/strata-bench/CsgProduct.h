@@ -2,8 +2,12 @@
 // A scene in the form OpenCSG takes it, as OpenSCAD 2021.01's preview hands
 // it over: its CSG tree normalized into a sum of products (SumOfProducts.h),
 // each leaf one triangle list with the convexity OpenSCAD would give it.
-// A tree whose normalization goes past the element limit has no products
-// and says so, as OpenSCAD draws nothing then.
+// A tree whose normalization goes past the element limit (twice the
+// rendering limit) has no products and says so, as OpenSCAD draws nothing
+// then; a sum of more primitives than the rendering limit keeps its
+// products but says it would not be drawn, as OpenSCAD turns OpenCSG off
+// then ("Normalized tree has N elements! OpenCSG rendering has been
+// disabled.").
 
 #include <cstddef>
 #include <string>
@@ -27,11 +31,12 @@ struct CsgProducts {
     std::vector<ProductLeaf> leaves;  // one per Tree::leaves, from the same geometry::Model strata draws
     SumOfProducts sum;                // products of indices into `leaves`
     geometry::Bounds bounds;          // of the leaves in any product
-    std::string unavailable;          // non-empty: nothing to draw, and why (the limit, or an empty result)
+    std::string unavailable;          // non-empty: OpenSCAD would draw nothing with OpenCSG, and why
 };
 
+// `renderingLimit`: OpenSCAD's "Turn off rendering at ... elements".
 CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model,
-                        std::size_t limit = kOpenScadNormalizeLimit);
+                        std::size_t renderingLimit = kOpenScadRenderingLimit);
 
 // OpenSCAD's convexity of `leaf` (ProductLeaf::convexity); reads the leaf's
 // line from the file its SourceLocation names, where there is one.

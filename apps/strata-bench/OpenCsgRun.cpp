@@ -69,7 +69,7 @@ OpenCsgResult runOpenCsg(OpenCsgComparator& comparator, gpu::Context& strata, co
                          const std::vector<std::uint8_t>& strataCoverage, const OpenCsgRunOptions& options,
                          const std::string& caseKey, int k, OpenCsgCaps& caps) {
     OpenCsgResult out;
-    const CsgProducts products = csgProducts(tree, model, options.normalizeLimit);
+    const CsgProducts products = csgProducts(tree, model, options.renderingLimit);
     out.products = products.sum.products.size();
     out.primitives = products.sum.primitives();
     out.elements = products.sum.elements;

@@ -41,7 +41,7 @@ struct OpenCsgRunOptions {
     int frames = 10, warmup = 2;
     double capMs = 2000;            // one frame over this stops the setting, and skips it for larger K
     ConvexityMode convexity = ConvexityMode::OpenScad;
-    std::size_t normalizeLimit = kOpenScadNormalizeLimit;
+    std::size_t renderingLimit = kOpenScadRenderingLimit;  // OpenSCAD's "Turn off rendering at"
 };
 
 // Settings that went over the cap, by "scene size setting", with the K they did it at.

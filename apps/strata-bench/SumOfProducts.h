@@ -19,8 +19,9 @@
 //    A rewritten subtree is shared, not copied, by the terms that use it, as
 //    in OpenSCAD, so rewriting it once rewrites it everywhere.
 //  * Every visit of an operation counts one element; past the limit
-//    (OpenSCAD's default 200,000) the rewriting stops and nothing is drawn
-//    (OpenSCAD: "Normalized tree is growing past 200000 elements. Aborting
+//    (twice OpenSCAD's "Turn off rendering at" preference: 200,000 by
+//    default) the rewriting stops and nothing is drawn (OpenSCAD:
+//    "Normalized tree is growing past 200000 elements. Aborting
 //    normalization.", then "CSG normalization resulted in an empty tree").
 //  * The normalized tree is read left to right into products: a leaf under
 //    a union starts a new product once the current one has an intersected
@@ -41,8 +42,11 @@
 
 namespace strata::bench {
 
-// OpenSCAD's default "Turn off rendering at ... elements" preference.
-constexpr std::size_t kOpenScadNormalizeLimit = 200000;
+// OpenSCAD's "Turn off rendering at ... elements" preference, by default:
+// a sum of more primitives than this is not drawn with OpenCSG
+// (CsgProduct.h), and the normalization stops at twice as many elements.
+constexpr std::size_t kOpenScadRenderingLimit = 100000;
+constexpr std::size_t kOpenScadNormalizeLimit = 2 * kOpenScadRenderingLimit;
 
 struct LeafBox {
     glm::dvec3 min, max;  // world space

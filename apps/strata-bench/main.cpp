@@ -11,7 +11,7 @@
 //                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
 //                [--glibc-heap] [--no-groups] [--opencsg-convexity openscad|measured]
-//                [--opencsg-limit 200000]
+//                [--opencsg-limit 100000]
 
 #include <algorithm>
 #include <chrono>
@@ -97,7 +97,7 @@ struct Options {
     bool openCsg = true;
     double openCsgCapMs = 2000;
     std::string openCsgConvexity = "openscad";
-    std::size_t openCsgLimit = bench::kOpenScadNormalizeLimit;
+    std::size_t openCsgLimit = bench::kOpenScadRenderingLimit;
     bool steadyHeap = true;
     bool groups = true;  // RenderSettings::groupConvexIntersections
 };
@@ -261,7 +261,7 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     runOptions.capMs = options.openCsgCapMs;
     runOptions.convexity =
         options.openCsgConvexity == "measured" ? bench::ConvexityMode::Measured : bench::ConvexityMode::OpenScad;
-    runOptions.normalizeLimit = options.openCsgLimit;
+    runOptions.renderingLimit = options.openCsgLimit;
     const std::string key = name + " " + std::to_string(size.width) + "x" + std::to_string(size.height);
     result.openCsg = bench::runOpenCsg(*openCsg.comparator, context, benchScene.tree, model, camera,
                                        coverageOf(frameForCoverage), runOptions, key, k, openCsg.caps);
@@ -385,7 +385,8 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     else
         json.key("opencsg_unavailable").value(openCsg.unavailable);
     json.key("opencsg_cap_ms").value(options.openCsgCapMs);
-    json.key("opencsg_normalize_limit").value(static_cast<unsigned long long>(options.openCsgLimit));
+    json.key("opencsg_limit").value(static_cast<unsigned long long>(options.openCsgLimit));
+    json.key("opencsg_normalize_limit").value(static_cast<unsigned long long>(2 * options.openCsgLimit));
     json.key("frames").value(options.frames);
     json.key("warmup").value(options.warmup);
     json.key("steady_heap").value(options.steadyHeap);
@@ -458,7 +459,8 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
                    "OpenSCAD passes it) or measured (counted in the view for each non-convex leaf)")
         ->check(CLI::IsMember({"openscad", "measured"}));
     app.add_option("--opencsg-limit", options.openCsgLimit,
-                   "elements the CSG normalization may reach before it gives up (OpenSCAD's default 200000)")
+                   "OpenSCAD's \"Turn off rendering at\" elements: a sum of more primitives is not drawn with "
+                   "OpenCSG, and the normalization gives up at twice as many elements")
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
     app.add_flag("!--glibc-heap", options.steadyHeap,
                  "leave glibc's adaptive malloc thresholds as they are (frame times on llvmpipe may then jump "

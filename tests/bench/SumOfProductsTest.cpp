@@ -198,3 +198,46 @@ TEST(SumOfProducts, ConvexityFromTheCsgLine) {
     EXPECT_EQ(bench::convexityOnLine("import(file = \"a.stl\", myconvexity = 5);"), 1u);
     EXPECT_EQ(bench::convexityOnLine("cube(size = [1, 1, 1], center = false);"), 1u);
 }
+
+TEST(SumOfProducts, RenderingLimitAndTwiceItForTheNormalization) {
+    // OpenSCAD's "Turn off rendering at N elements": more than N primitives
+    // over all products turn OpenCSG off; the normalization stops past 2N.
+    auto cubes = [](scene::NodeKind kind, int n) {
+        scene::Tree tree;
+        std::vector<int> leaves;
+        for (int i = 0; i < n; ++i) {
+            scene::Leaf leaf;
+            leaf.primitive = scene::Cube{};
+            leaves.push_back(tree.addLeaf(std::move(leaf)));
+        }
+        tree.root = tree.addNode(kind, leaves);
+        return tree;
+    };
+    {
+        // difference() of 12 cubes: one product of 12, after 11 elements.
+        const scene::Tree tree = cubes(K::Difference, 12);
+        const geometry::Model model = geometry::buildModel(tree);
+        const bench::CsgProducts over = bench::csgProducts(tree, model, 11);
+        EXPECT_FALSE(over.sum.gaveUp);
+        EXPECT_EQ(over.sum.elements, 11u);
+        EXPECT_EQ(over.sum.primitives(), 12u);
+        EXPECT_NE(over.unavailable.find("OpenCSG off"), std::string::npos) << over.unavailable;
+        const bench::CsgProducts at = bench::csgProducts(tree, model, 12);
+        EXPECT_TRUE(at.unavailable.empty()) << at.unavailable;
+        EXPECT_EQ(at.sum.products.size(), 1u);
+    }
+    {
+        // union() of n cubes: n - 1 elements; with N = 5 the normalization
+        // stops past 10, so 11 cubes normalize (and are too many to draw)
+        // and 12 give up.
+        const scene::Tree eleven = cubes(K::Union, 11), twelve = cubes(K::Union, 12);
+        const bench::CsgProducts a = bench::csgProducts(eleven, geometry::buildModel(eleven), 5);
+        EXPECT_FALSE(a.sum.gaveUp);
+        EXPECT_EQ(a.sum.elements, 10u);
+        EXPECT_NE(a.unavailable.find("OpenCSG off"), std::string::npos) << a.unavailable;
+        const bench::CsgProducts b = bench::csgProducts(twelve, geometry::buildModel(twelve), 5);
+        EXPECT_TRUE(b.sum.gaveUp);
+        EXPECT_EQ(b.sum.elements, 11u);
+        EXPECT_NE(b.unavailable.find("gave up"), std::string::npos) << b.unavailable;
+    }
+}
