@@ -80,28 +80,56 @@ private:
         return int(terms_.size() - 1);
     }
 
-    // The scene's node as a binary term, each operation folded from the left.
-    int fromNode(int nodeIndex) {
-        const scene::Node& node = tree_.nodes[std::size_t(nodeIndex)];
-        if (node.kind == scene::NodeKind::Leaf) {
-            const std::size_t leaf = std::size_t(node.leaf);
-            if (node.leaf < 0 || leaf >= boxes_.size() || !boxes_[leaf]) return emptySet();
-            Term term;
-            term.leaf = node.leaf;
-            term.box = *boxes_[leaf];
-            terms_.push_back(term);
-            return int(terms_.size() - 1);
+    int leafTerm(const scene::Node& node) {
+        const std::size_t leaf = std::size_t(node.leaf);
+        if (node.leaf < 0 || leaf >= boxes_.size() || !boxes_[leaf]) return emptySet();
+        Term term;
+        term.leaf = node.leaf;
+        term.box = *boxes_[leaf];
+        terms_.push_back(term);
+        return int(terms_.size() - 1);
+    }
+
+    static Op opOf(scene::NodeKind kind) {
+        return kind == scene::NodeKind::Union          ? Op::Union
+               : kind == scene::NodeKind::Intersection ? Op::Intersection
+                                                       : Op::Difference;
+    }
+
+    // The scene's node as a binary term, each operation folded from the left
+    // over its children in order; depth first with a stack of its own, as
+    // scene trees can nest many thousand deep.
+    int fromNode(int root) {
+        struct Frame {
+            int node;
+            std::size_t next = 0;  // the child to fold in next
+            int folded = kNone;
+        };
+        std::vector<Frame> stack{{root}};
+        int done = kNone;  // the term of the node finished last
+        bool returning = false;
+        while (!stack.empty()) {
+            Frame& frame = stack.back();
+            const scene::Node& node = tree_.nodes[std::size_t(frame.node)];
+            if (returning) {
+                frame.folded = frame.folded == kNone ? done : combine(opOf(node.kind), frame.folded, done);
+                ++frame.next;
+                returning = false;
+            }
+            if (node.kind == scene::NodeKind::Leaf) {
+                done = leafTerm(node);
+            } else if (node.children.empty()) {
+                done = emptySet();
+            } else if (frame.next < node.children.size()) {
+                stack.push_back({node.children[frame.next]});
+                continue;
+            } else {
+                done = frame.folded;
+            }
+            stack.pop_back();
+            returning = true;
         }
-        if (node.children.empty()) return emptySet();
-        const Op op = node.kind == scene::NodeKind::Union          ? Op::Union
-                      : node.kind == scene::NodeKind::Intersection ? Op::Intersection
-                                                                   : Op::Difference;
-        int folded = kNone;
-        for (int child : node.children) {
-            const int term = fromNode(child);
-            folded = folded == kNone ? term : combine(op, folded, term);
-        }
-        return folded;
+        return done;
     }
 
     // One rewrite at the top of `t`, if a rule matches; `t` becomes the new term.

@@ -163,6 +163,16 @@ TEST(SumOfProducts, ElementCountOfAUnionChainAndTheLimit) {
     EXPECT_EQ(past.elements, 11u);
     EXPECT_TRUE(past.products.empty());
     EXPECT_EQ(chain(1000, bench::kOpenScadNormalizeLimit).elements, 999u);
+
+    // The same as nested union() nodes of two children each, 50,000 deep:
+    // the same count, and no recursion as deep as the tree.
+    Builder b;
+    int node = b.leaf();
+    for (int i = 1; i < 50000; ++i) node = b.add(K::Union, {node, b.leaf()});
+    const bench::SumOfProducts nested = b.sum(node);
+    EXPECT_FALSE(nested.gaveUp);
+    EXPECT_EQ(nested.elements, 49999u);
+    EXPECT_EQ(nested.products.size(), 50000u);
 }
 
 TEST(SumOfProducts, BlowupSceneGrowsAsTwoToTheK) {
