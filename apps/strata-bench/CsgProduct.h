@@ -1,29 +1,49 @@
 #pragma once
-// A scene whose tree is one CSG product (one intersection or difference of
-// leaves, or a single leaf), in the form OpenCSG takes it: one triangle list
-// per leaf, marked intersected or subtracted. Scenes with unions are not
-// products (OpenCSG would need them normalised first) and say so.
+// A scene in the form OpenCSG takes it, as OpenSCAD 2021.01's preview hands
+// it over: its CSG tree normalized into a sum of products (SumOfProducts.h),
+// each leaf one triangle list with the convexity OpenSCAD would give it.
+// A tree whose normalization goes past the element limit (twice the
+// rendering limit) has no products and says so, as OpenSCAD draws nothing
+// then; a sum of more primitives than the rendering limit keeps its
+// products but says it would not be drawn, as OpenSCAD turns OpenCSG off
+// then ("Normalized tree has N elements! OpenCSG rendering has been
+// disabled.").
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
+#include "SumOfProducts.h"
 #include "strata/geometry/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {
 
-struct ProductOperand {
-    std::vector<float> positions;  // world space, x y z per vertex, 3 vertices per triangle
-    bool subtract = false;
-    bool convex = true;            // cube, sphere, cylinder; polyhedra and imports count as non-convex
+struct ProductLeaf {
+    std::vector<float> positions;  // world space, x y z per vertex, 3 vertices per triangle; empty if in no product
+    bool convex = true;            // cube, sphere, cylinder, hull; polyhedra, extrusions and imports count as non-convex
+    // OpenSCAD's: 1 for cube, sphere, cylinder and hull; for the others the
+    // `convexity = N` written on the leaf's line of the .csg, else 1.
+    unsigned convexity = 1;
 };
 
-struct CsgProduct {
-    std::vector<ProductOperand> operands;  // the leaves' meshes from the same geometry::Model strata draws
-    geometry::Bounds bounds;               // of every operand's vertices
-    std::string notProduct;                // non-empty: why the tree is no product, and operands is empty
+struct CsgProducts {
+    std::vector<ProductLeaf> leaves;  // one per Tree::leaves, from the same geometry::Model strata draws
+    SumOfProducts sum;                // products of indices into `leaves`
+    geometry::Bounds bounds;          // of the leaves in any product
+    std::string unavailable;          // non-empty: OpenSCAD would draw nothing with OpenCSG, and why
 };
 
-CsgProduct csgProduct(const scene::Tree& tree, const geometry::Model& model);
+// `renderingLimit`: OpenSCAD's "Turn off rendering at ... elements".
+CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model,
+                        std::size_t renderingLimit = kOpenScadRenderingLimit);
+
+// OpenSCAD's convexity of `leaf` (ProductLeaf::convexity); reads the leaf's
+// line from the file its SourceLocation names, where there is one.
+unsigned openScadConvexity(const scene::Leaf& leaf);
+
+// The `convexity = N` argument on one line of a .csg, else 1 (OpenSCAD's
+// default; values below 1 become 1, as OpenSCAD makes them).
+unsigned convexityOnLine(const std::string& line);
 
 }  // namespace strata::bench

@@ -10,6 +10,7 @@
 #include "OpenCsgComparator.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 
@@ -85,18 +86,15 @@ private:
     GLsizei count_;
 };
 
-// Screen bounding box in normalized device coordinates, as
-// OpenCSG::Primitive::setBoundingBox wants; the whole screen when a vertex
-// lies behind the eye.
-void setScreenBounds(MeshPrimitive& primitive, const float* xyz, std::size_t vertices, const glm::dmat4& viewProjection) {
+// Screen bounding box in normalized device coordinates (min x y z, max x y
+// z), as OpenCSG::Primitive::setBoundingBox wants; the whole screen when a
+// vertex lies behind the eye.
+std::array<float, 6> screenBounds(const float* xyz, std::size_t vertices, const glm::dmat4& viewProjection) {
     glm::dvec3 lo(1.0), hi(-1.0);
     bool first = true;
     for (std::size_t v = 0; v < vertices; ++v) {
         const glm::dvec4 clip = viewProjection * glm::dvec4(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], 1.0);
-        if (clip.w <= 1e-9) {
-            primitive.setBoundingBox(-1, -1, -1, 1, 1, 1);
-            return;
-        }
+        if (clip.w <= 1e-9) return {-1, -1, -1, 1, 1, 1};
         const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
         lo = first ? ndc : glm::min(lo, ndc);
         hi = first ? ndc : glm::max(hi, ndc);
@@ -104,8 +102,14 @@ void setScreenBounds(MeshPrimitive& primitive, const float* xyz, std::size_t ver
     }
     lo = glm::clamp(lo, -1.0, 1.0);
     hi = glm::clamp(hi, -1.0, 1.0);
-    primitive.setBoundingBox(float(lo.x), float(lo.y), float(lo.z), float(hi.x), float(hi.y), float(hi.z));
+    return {float(lo.x), float(lo.y), float(lo.z), float(hi.x), float(hi.y), float(hi.z)};
 }
+
+// One product's primitives, in OpenSCAD's order: intersected, then subtracted.
+struct ProductList {
+    std::vector<OpenCSG::Primitive*> all;  // what OpenCSG::render takes
+    std::vector<OpenCSG::Primitive*> intersections, subtractions;
+};
 
 // What one setScene() made; replaced whole by the next.
 struct Scene {
@@ -114,8 +118,8 @@ struct Scene {
     GlBuffer vertices;
     GlRenderbuffer color, depthStencil;
     GlFramebuffer target;
-    std::vector<std::unique_ptr<MeshPrimitive>> primitives;
-    std::vector<OpenCSG::Primitive*> list;  // what OpenCSG::render takes
+    std::vector<std::unique_ptr<MeshPrimitive>> primitives;  // every product's, owned here
+    std::vector<ProductList> products;
     unsigned maxConvexity = 1;
     std::size_t bytes = 0;
 };
@@ -169,16 +173,24 @@ public:
 
     void release() override { glfwMakeContextCurrent(nullptr); }
 
-    void setScene(const CsgProduct& product, int width, int height, const ViewMatrices& matrices) override {
+    void setScene(const CsgProducts& products, int width, int height, const ViewMatrices& matrices,
+                  ConvexityMode mode) override {
         scene_.reset();
         auto scene = std::make_unique<Scene>();
         scene->width = width;
         scene->height = height;
         scene->matrices = matrices;
 
+        // Each leaf's range of the one vertex buffer; leaves in no product have none.
+        std::vector<GLint> first(products.leaves.size(), 0);
+        std::vector<GLsizei> count(products.leaves.size(), 0);
         std::vector<float> all;
-        for (const ProductOperand& operand : product.operands)
-            all.insert(all.end(), operand.positions.begin(), operand.positions.end());
+        for (std::size_t i = 0; i < products.leaves.size(); ++i) {
+            const ProductLeaf& leaf = products.leaves[i];
+            first[i] = GLint(all.size() / 3);
+            count[i] = GLsizei(leaf.positions.size() / 3);
+            all.insert(all.end(), leaf.positions.begin(), leaf.positions.end());
+        }
         glBindBuffer(GL_ARRAY_BUFFER, scene->vertices.id);
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(all.size() * sizeof(float)), all.data(), GL_STATIC_DRAW);
         glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -195,18 +207,36 @@ public:
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw Error("OpenCSG comparator: its target framebuffer is incomplete");
 
+        // Per leaf, once: its convexity and its screen box.
         const glm::dmat4 viewProjection = matrices.projection * matrices.view;
-        GLint first = 0;
-        for (const ProductOperand& operand : product.operands) {
-            const GLsizei count = GLsizei(operand.positions.size() / 3);
-            auto primitive = std::make_unique<MeshPrimitive>(
-                operand.subtract ? OpenCSG::Subtraction : OpenCSG::Intersection, scene->vertices.id, first, count);
-            setScreenBounds(*primitive, operand.positions.data(), std::size_t(count), viewProjection);
-            if (!operand.convex) primitive->setConvexity(measureConvexity(*scene, *primitive));
-            scene->maxConvexity = std::max(scene->maxConvexity, primitive->getConvexity());
-            scene->list.push_back(primitive.get());
+        std::vector<unsigned> convexity(products.leaves.size(), 1);
+        std::vector<std::array<float, 6>> box(products.leaves.size());
+        for (std::size_t i = 0; i < products.leaves.size(); ++i) {
+            if (count[i] == 0) continue;
+            const ProductLeaf& leaf = products.leaves[i];
+            MeshPrimitive probe(OpenCSG::Intersection, scene->vertices.id, first[i], count[i]);
+            box[i] = screenBounds(leaf.positions.data(), std::size_t(count[i]), viewProjection);
+            convexity[i] = mode == ConvexityMode::OpenScad ? std::max(1u, leaf.convexity)
+                           : leaf.convex                   ? 1u
+                                                           : measureConvexity(*scene, probe);
+            scene->maxConvexity = std::max(scene->maxConvexity, convexity[i]);
+        }
+        auto add = [&](ProductList& list, int leafIndex, OpenCSG::Operation operation) {
+            const std::size_t i = std::size_t(leafIndex);
+            if (count[i] == 0) return;  // no triangles: OpenSCAD leaves a leaf without geometry out
+            auto primitive = std::make_unique<MeshPrimitive>(operation, scene->vertices.id, first[i], count[i]);
+            primitive->setConvexity(convexity[i]);
+            const std::array<float, 6>& b = box[i];
+            primitive->setBoundingBox(b[0], b[1], b[2], b[3], b[4], b[5]);
+            (operation == OpenCSG::Intersection ? list.intersections : list.subtractions).push_back(primitive.get());
+            list.all.push_back(primitive.get());
             scene->primitives.push_back(std::move(primitive));
-            first += count;
+        };
+        for (const NormalizedProduct& product : products.sum.products) {
+            ProductList list;
+            for (int leaf : product.intersections) add(list, leaf, OpenCSG::Intersection);
+            for (int leaf : product.subtractions) add(list, leaf, OpenCSG::Subtraction);
+            if (!list.all.empty()) scene->products.push_back(std::move(list));
         }
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         // Target and OpenCSG's offscreen buffer: RGBA8 + depth-stencil each.
@@ -236,18 +266,27 @@ public:
         glDepthMask(GL_TRUE);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        OpenCSG::render(scene.list);
-        checkGl("OpenCSG::render");
-        // OpenCSG leaves the product's depth in the target; shade what matches it, as OpenSCAD does.
-        bindTarget(scene);
-        glDepthFunc(GL_EQUAL);
-        for (const auto& primitive : scene.primitives) {
-            if (primitive->getOperation() == OpenCSG::Subtraction)
-                glColor3f(0.62f, 0.81f, 0.39f);
-            else
-                glColor3f(0.98f, 0.84f, 0.18f);
-            primitive->render();
+        glDepthFunc(GL_LEQUAL);  // OpenSCAD's between products
+        for (const ProductList& product : scene.products) {
+            if (product.all.size() > 1) {
+                OpenCSG::render(product.all);
+                checkGl("OpenCSG::render");
+                // OpenCSG has merged the product's depth into the target's;
+                // shade what matches it, as OpenSCAD does.
+                bindTarget(scene);
+                glEnable(GL_DEPTH_TEST);
+                glDepthFunc(GL_EQUAL);
+            }
+            glColor3f(0.98f, 0.84f, 0.18f);
+            for (OpenCSG::Primitive* primitive : product.intersections) primitive->render();
+            // A subtracted primitive shows where it cut: its back faces only.
+            glColor3f(0.62f, 0.81f, 0.39f);
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_FRONT);
+            for (OpenCSG::Primitive* primitive : product.subtractions) primitive->render();
+            glDisable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+            glDepthFunc(GL_LEQUAL);
         }
         glDepthFunc(GL_LESS);
         glFinish();

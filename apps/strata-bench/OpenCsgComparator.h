@@ -1,6 +1,7 @@
 #pragma once
-// OpenCSG (Goldfeather and SCS) drawing a CSG product, as OpenSCAD's preview
-// does, for the bench to time against strata in the same process.
+// OpenCSG (Goldfeather and SCS) drawing a scene's sum of products
+// (CsgProduct.h), as OpenSCAD 2021.01's preview does, for the bench to time
+// against strata in the same process.
 //
 // OpenCSG reaches GL through GLEW, which Debian builds for GLX, and draws
 // with the fixed-function pipeline: it needs a GLX compatibility context. So
@@ -36,6 +37,13 @@ struct OpenCsgSetting {
 // Every setting the bench times, in that order.
 const std::vector<OpenCsgSetting>& openCsgSettings();
 
+// Where each primitive's convexity (OpenCSG's bound on its front faces on
+// one pixel) comes from.
+enum class ConvexityMode {
+    OpenScad,  // what OpenSCAD passes: ProductLeaf::convexity (the file's, else 1)
+    Measured,  // counted in this view for each non-convex leaf: always enough, never more
+};
+
 class OpenCsgComparator {
 public:
     virtual ~OpenCsgComparator() = default;
@@ -44,23 +52,28 @@ public:
     virtual void makeCurrent() = 0;            // releases the thread's EGL context first
     virtual void release() = 0;                // leaves no context current
 
-    // Needs makeCurrent(). Uploads the operands into one vertex buffer, makes
-    // a width x height target (RGBA8, depth 24 + stencil 8), sets each
-    // primitive's screen bounding box from its vertices through `matrices`,
-    // and measures each non-convex operand's convexity (its most front faces
-    // on one pixel) for this view. Throws strata::Error on a GL error.
-    virtual void setScene(const CsgProduct& product, int width, int height, const ViewMatrices& matrices) = 0;
+    // Needs makeCurrent(). Uploads the leaves in any product into one vertex
+    // buffer (each once), makes a width x height target (RGBA8, depth 24 +
+    // stencil 8), sets each primitive's screen bounding box from its vertices
+    // through `matrices`, and gives each its convexity by `mode`. Throws
+    // strata::Error on a GL error.
+    virtual void setScene(const CsgProducts& products, int width, int height, const ViewMatrices& matrices,
+                          ConvexityMode mode) = 0;
 
-    // One frame: clear, OpenCSG::render() with `setting` (offscreen type:
-    // frame buffer object), then every primitive shaded with
-    // glDepthFunc(GL_EQUAL), glFinish. Returns wall-clock milliseconds.
+    // One frame as OpenSCAD's OpenCSGRenderer draws one: clear, then for each
+    // product in turn, OpenCSG::render() of its primitives with `setting`
+    // (offscreen type: frame buffer object) where it has more than one, and
+    // its intersected primitives shaded with glDepthFunc(GL_EQUAL), its
+    // subtracted ones' back faces too; a product of one primitive is drawn
+    // plainly with GL_LEQUAL. All products share the colour and depth buffer,
+    // so they merge by depth. glFinish. Returns wall-clock milliseconds.
     virtual double drawFrame(const OpenCsgSetting& setting) = 0;
 
-    // Reads the last frame's depth: 1 where the CSG product covers the pixel,
+    // Reads the last frame's colour: 1 where a product covers the pixel,
     // rows top first (as strata's Frame). Throws strata::Error on a GL error.
     virtual std::vector<std::uint8_t> coverage() = 0;
 
-    virtual unsigned maxConvexity() const = 0;  // over the scene's operands
+    virtual unsigned maxConvexity() const = 0;  // over the scene's primitives
     // GPU memory the scene takes: vertex buffer, target, and OpenCSG's own
     // offscreen buffer (RGBA8 + depth-stencil, assumed the target's size).
     virtual std::size_t bufferBytes() const = 0;

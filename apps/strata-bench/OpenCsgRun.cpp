@@ -69,16 +69,22 @@ OpenCsgResult runOpenCsg(OpenCsgComparator& comparator, gpu::Context& strata, co
                          const std::vector<std::uint8_t>& strataCoverage, const OpenCsgRunOptions& options,
                          const std::string& caseKey, int k, OpenCsgCaps& caps) {
     OpenCsgResult out;
-    const CsgProduct product = csgProduct(tree, model);
-    if (!product.notProduct.empty()) {
-        out.unavailable = product.notProduct;
+    const CsgProducts products = csgProducts(tree, model, options.renderingLimit);
+    out.products = products.sum.products.size();
+    out.primitives = products.sum.primitives();
+    out.elements = products.sum.elements;
+    out.gaveUp = products.sum.gaveUp;
+    out.convexity = options.convexity;
+    if (!products.unavailable.empty()) {
+        out.unavailable = products.unavailable;
         return out;
     }
-    const bool allConvex = std::all_of(product.operands.begin(), product.operands.end(),
-                                       [](const ProductOperand& o) { return o.convex; });
+    const bool allConvex = std::all_of(products.leaves.begin(), products.leaves.end(),
+                                       [](const ProductLeaf& l) { return l.positions.empty() || l.convex; });
 
     CompatScope scope(comparator, strata);
-    comparator.setScene(product, camera.width, camera.height, fittedView(camera, product.bounds));
+    comparator.setScene(products, camera.width, camera.height, fittedView(camera, products.bounds),
+                        options.convexity);
     out.maxConvexity = comparator.maxConvexity();
     out.bufferBytes = comparator.bufferBytes();
     for (const OpenCsgSetting& setting : openCsgSettings()) {

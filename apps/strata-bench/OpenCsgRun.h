@@ -26,6 +26,11 @@ struct OpenCsgSettingResult {
 
 struct OpenCsgResult {
     std::string unavailable;        // non-empty: no OpenCSG figures for this case, and why
+    // The scene's sum of products (SumOfProducts.h); filled also when the
+    // normalization gave up (gaveUp, with the element count it reached).
+    std::size_t products = 0, primitives = 0, elements = 0;
+    bool gaveUp = false;
+    ConvexityMode convexity = ConvexityMode::OpenScad;
     std::vector<OpenCsgSettingResult> settings;
     int best = -1;                  // index of the fastest setting run
     unsigned maxConvexity = 1;
@@ -35,6 +40,8 @@ struct OpenCsgResult {
 struct OpenCsgRunOptions {
     int frames = 10, warmup = 2;
     double capMs = 2000;            // one frame over this stops the setting, and skips it for larger K
+    ConvexityMode convexity = ConvexityMode::OpenScad;
+    std::size_t renderingLimit = kOpenScadRenderingLimit;  // OpenSCAD's "Turn off rendering at"
 };
 
 // Settings that went over the cap, by "scene size setting", with the K they did it at.
@@ -42,7 +49,8 @@ using OpenCsgCaps = std::map<std::string, int>;
 
 // Makes the comparator's context current for the run and strata's again
 // after. `strataCoverage`: W*H, rows top first, non-zero where strata's frame
-// has a surface. SCS is skipped for non-convex operands (it is only correct
+// has a surface. The tree is normalized as OpenSCAD does (CsgProduct.h).
+// SCS is skipped for non-convex operands (it is only correct
 // for convex ones); settings are skipped above the K where they went over the cap.
 OpenCsgResult runOpenCsg(OpenCsgComparator& comparator, gpu::Context& strata, const scene::Tree& tree,
                          const geometry::Model& model, const render::Camera& camera,

@@ -157,10 +157,29 @@ Tree mesh(int k, std::mt19937& rng) {
     return tree;
 }
 
+// K unions of two spheres of radius 5, intersected. The spheres' centres lie
+// 1 unit either side of a point within 0.5 of the origin, along a random
+// direction, so every box overlaps every other and no product is pruned:
+// the sum of products is 2^K products of K spheres each.
+Tree blowup(int k, std::mt19937& rng) {
+    Tree tree;
+    std::uniform_real_distribution<double> offset(-0.5, 0.5), direction(-1.0, 1.0);
+    std::vector<int> unions;
+    for (int i = 0; i < k; ++i) {
+        const glm::dvec3 c{offset(rng), offset(rng), offset(rng)};
+        glm::dvec3 d{direction(rng), direction(rng), direction(rng)};
+        if (glm::length(d) < 1e-3) d = {0, 0, 1};
+        d = glm::normalize(d);
+        unions.push_back(tree.addNode(NodeKind::Union, {addSphere(tree, c - d, 5.0), addSphere(tree, c + d, 5.0)}));
+    }
+    tree.root = tree.addNode(NodeKind::Intersection, std::move(unions));
+    return tree;
+}
+
 }  // namespace
 
 const std::vector<std::string>& sceneNames() {
-    static const std::vector<std::string> names{"cheese", "stack", "intersection", "deep", "tori", "mesh"};
+    static const std::vector<std::string> names{"cheese", "stack", "intersection", "deep", "tori", "mesh", "blowup"};
     return names;
 }
 
@@ -183,9 +202,11 @@ BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const ren
         out.tree = tori(k, rng);
     else if (name == "mesh")
         out.tree = mesh(k, rng);
+    else if (name == "blowup")
+        out.tree = blowup(k, rng);
     else
         throw Error("strata-bench: unknown scene '" + std::string(name) +
-                    "' (expected cheese, stack, intersection, deep, tori or mesh)");
+                    "' (expected cheese, stack, intersection, deep, tori, mesh or blowup)");
     out.tree.source = std::string(name) + "-" + std::to_string(k);
     return out;
 }

@@ -13,6 +13,9 @@
 //                 up to 4 surfaces on a ray) at random positions and angles
 //   mesh          a trefoil-knot tube of 131072 triangles (one polyhedron
 //                 leaf, as an imported mesh would be) minus K spheres along it
+//   blowup        K unions of two overlapping spheres, intersected: for
+//                 OpenCSG, a sum of 2^K products of K spheres (past
+//                 OpenSCAD's 200,000-element limit from K = 12)
 
 #include <cstdint>
 #include <optional>

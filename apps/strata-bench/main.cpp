@@ -10,7 +10,8 @@
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
 //                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
-//                [--glibc-heap] [--no-groups]
+//                [--glibc-heap] [--no-groups] [--opencsg-convexity openscad|measured]
+//                [--opencsg-limit 100000]
 
 #include <algorithm>
 #include <chrono>
@@ -95,6 +96,8 @@ struct Options {
     std::string json;
     bool openCsg = true;
     double openCsgCapMs = 2000;
+    std::string openCsgConvexity = "openscad";
+    std::size_t openCsgLimit = bench::kOpenScadRenderingLimit;
     bool steadyHeap = true;
     bool groups = true;  // RenderSettings::groupOperands
 };
@@ -256,6 +259,9 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     runOptions.frames = options.frames;
     runOptions.warmup = options.warmup;
     runOptions.capMs = options.openCsgCapMs;
+    runOptions.convexity =
+        options.openCsgConvexity == "measured" ? bench::ConvexityMode::Measured : bench::ConvexityMode::OpenScad;
+    runOptions.renderingLimit = options.openCsgLimit;
     const std::string key = name + " " + std::to_string(size.width) + "x" + std::to_string(size.height);
     result.openCsg = bench::runOpenCsg(*openCsg.comparator, context, benchScene.tree, model, camera,
                                        coverageOf(frameForCoverage), runOptions, key, k, openCsg.caps);
@@ -275,13 +281,20 @@ void printHeader() {
 // with strata (covered pixels away from edges, Coverage.h); then one line
 // with every setting.
 void printOpenCsg(const bench::OpenCsgResult& o) {
+    // The sum of products OpenSCAD would hand OpenCSG.
+    const std::string sum = o.gaveUp ? "normalization stopped at " + std::to_string(o.elements) + " elements"
+                                     : std::to_string(o.products) + " products, " + std::to_string(o.primitives) +
+                                           " primitives, " + std::to_string(o.elements) + " elements";
     if (o.best < 0) {
         std::printf(" %10s %-16s %7s\n", "n/a", "", "");
-        if (!o.unavailable.empty()) std::printf("    opencsg: %s\n", o.unavailable.c_str());
+    } else {
+        const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
+        std::printf(" %10.2f %-16s %7.2f\n", best.ms, best.name.c_str(), 100.0 * best.agreement.coveredFraction());
+    }
+    if (!o.unavailable.empty()) {
+        std::printf("    opencsg: %s (%s)\n", o.unavailable.c_str(), sum.c_str());
         return;
     }
-    const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
-    std::printf(" %10.2f %-16s %7.2f\n", best.ms, best.name.c_str(), 100.0 * best.agreement.coveredFraction());
     std::printf("    opencsg:");
     for (const bench::OpenCsgSettingResult& s : o.settings) {
         if (!s.skipped.empty())
@@ -290,7 +303,8 @@ void printOpenCsg(const bench::OpenCsgResult& o) {
             std::printf(" %s %.2f%s (%.2f%%);", s.name.c_str(), s.ms, s.overCap ? " over cap" : "",
                         100.0 * s.agreement.coveredFraction());
     }
-    std::printf(" convexity %u\n", o.maxConvexity);
+    std::printf(" %s; convexity %s, max %u\n", sum.c_str(),
+                o.convexity == bench::ConvexityMode::Measured ? "measured" : "OpenSCAD's", o.maxConvexity);
 }
 
 void printRow(const Result& r) {
@@ -325,6 +339,11 @@ void writeAgreement(io::JsonWriter& json, const bench::Agreement& a) {
 void writeOpenCsg(io::JsonWriter& json, const bench::OpenCsgResult& o) {
     json.key("opencsg").beginObject();
     if (!o.unavailable.empty()) json.key("unavailable").value(o.unavailable);
+    json.key("products").value(static_cast<unsigned long long>(o.products));
+    json.key("primitives").value(static_cast<unsigned long long>(o.primitives));
+    json.key("normalize_elements").value(static_cast<unsigned long long>(o.elements));
+    json.key("normalize_gave_up").value(o.gaveUp);
+    json.key("convexity").value(o.convexity == bench::ConvexityMode::Measured ? "measured" : "openscad");
     if (o.best >= 0) {
         const bench::OpenCsgSettingResult& best = o.settings[std::size_t(o.best)];
         json.key("best").value(best.name);
@@ -366,6 +385,8 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     else
         json.key("opencsg_unavailable").value(openCsg.unavailable);
     json.key("opencsg_cap_ms").value(options.openCsgCapMs);
+    json.key("opencsg_limit").value(static_cast<unsigned long long>(options.openCsgLimit));
+    json.key("opencsg_normalize_limit").value(static_cast<unsigned long long>(2 * options.openCsgLimit));
     json.key("frames").value(options.frames);
     json.key("warmup").value(options.warmup);
     json.key("steady_heap").value(options.steadyHeap);
@@ -416,7 +437,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
 // whether it was given.
 CLI::Option* addOptions(CLI::App& app, Options& options) {
     CLI::Option* scenes =
-        app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep, tori, mesh")
+        app.add_option("--scenes", options.scenes, "scenes: cheese, stack, intersection, deep, tori, mesh, blowup")
             ->delimiter(',')
             ->check(CLI::IsMember(bench::sceneNames()));
     app.add_option("--files", options.files,
@@ -433,6 +454,14 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
     app.add_option("--opencsg-cap-ms", options.openCsgCapMs,
                    "an OpenCSG setting with a frame over this many ms is skipped for larger K")
         ->check(CLI::PositiveNumber);
+    app.add_option("--opencsg-convexity", options.openCsgConvexity,
+                   "OpenCSG's convexity of each primitive: openscad (the file's convexity argument, else 1, as "
+                   "OpenSCAD passes it) or measured (counted in the view for each non-convex leaf)")
+        ->check(CLI::IsMember({"openscad", "measured"}));
+    app.add_option("--opencsg-limit", options.openCsgLimit,
+                   "OpenSCAD's \"Turn off rendering at\" elements: a sum of more primitives is not drawn with "
+                   "OpenCSG, and the normalization gives up at twice as many elements")
+        ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
     app.add_flag("!--glibc-heap", options.steadyHeap,
                  "leave glibc's adaptive malloc thresholds as they are (frame times on llvmpipe may then jump "
                  "between runs)");

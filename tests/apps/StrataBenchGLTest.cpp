@@ -1,7 +1,8 @@
 // strata-bench on a user's own scene file (--files): the file is timed like
 // the built-in scenes, its row named after it with K its number of leaves,
 // and a file it cannot load stops the run before any frame, with the file
-// named and no JSON left behind.
+// named and no JSON left behind; OpenCSG gets every tree as a sum of
+// products, or the note that OpenSCAD would give up on it.
 
 #include <gtest/gtest.h>
 
@@ -60,4 +61,36 @@ TEST(StrataBenchGL, AFileItCannotLoadStopsTheRunFirst) {
     EXPECT_NE(r.err.find("broken.csg:3:"), std::string::npos) << r.err;  // file and line
     EXPECT_EQ(r.out.find("cheese"), std::string::npos) << "no frame before the error:\n" << r.out;
     EXPECT_FALSE(std::filesystem::exists(json));
+}
+
+// OpenCSG on trees that are no single product: OpenSCAD's CSG example is a
+// union of a union, an intersection and a difference of a cube and a sphere,
+// by hand 4 products (cube; sphere; cube * sphere; cube - sphere) of 6
+// primitives after 5 visited operations. The blowup scene at K = 12 goes past
+// the 200,000-element limit: reported, with no OpenCSG figure, not drawn.
+TEST(StrataBenchGL, OpenCsgTimesSumsOfProductsAndReportsTheLimit) {
+    TempDir dir;
+    const std::string json = dir / "bench.json";
+    const ProcessResult r =
+        runProcess({kExe, "--files", examplePath("openscad_CSG.csg"), "--scenes", "blowup", "--k", "12", "--size",
+                    "64x48", "--frames", "1", "--warmup", "0", "--json", json});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string data = readFile(json);
+    if (data.find(R"("opencsg_unavailable")") != std::string::npos) GTEST_SKIP() << "no OpenCSG comparator:\n" << r.out;
+    const std::size_t file = data.find(R"("scene": "openscad_CSG.csg")");
+    const std::size_t blowup = data.find(R"("scene": "blowup")");
+    ASSERT_NE(file, std::string::npos) << data;
+    ASSERT_NE(blowup, std::string::npos) << data;
+    // Rows are written in run order: the scenes first, then the files.
+    ASSERT_LT(blowup, file);
+    const std::string blowupRow = data.substr(blowup, file - blowup);
+    const std::string fileRow = data.substr(file);
+    EXPECT_NE(fileRow.find(R"("products": 4,)"), std::string::npos) << fileRow;
+    EXPECT_NE(fileRow.find(R"("primitives": 6,)"), std::string::npos) << fileRow;
+    EXPECT_NE(fileRow.find(R"("normalize_elements": 5,)"), std::string::npos) << fileRow;
+    EXPECT_NE(fileRow.find(R"("best":)"), std::string::npos) << "an OpenCSG figure for the file:\n" << fileRow;
+    EXPECT_NE(blowupRow.find(R"("normalize_gave_up": true)"), std::string::npos) << blowupRow;
+    EXPECT_NE(blowupRow.find(R"("normalize_elements": 200001,)"), std::string::npos) << blowupRow;
+    EXPECT_EQ(blowupRow.find(R"("best":)"), std::string::npos) << "no OpenCSG figure past the limit:\n" << blowupRow;
+    EXPECT_NE(r.out.find("gave up"), std::string::npos) << r.out;
 }
