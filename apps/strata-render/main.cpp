@@ -83,9 +83,12 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
     {
         render::Renderer renderer;
         t = Clock::now();
-        renderer.setScene(tree, model);
+        if (options.reference) {
+            renderer.setScene(tree, model);
+        } else {
+            renderer.setScene(tree, std::move(model));
+        }
         stats.uploadMs = msSince(t);
-        if (!options.reference) model = {};
         if (options.reference) {
             // The CPU oracle finds the surfaces; the GPU only shades them, so
             // both paths' images differ only where their surfaces do.

@@ -250,6 +250,10 @@ struct Renderer::Impl {
 
     Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
 
+    // Renderer::setScene's; `release` (`model` itself, or null): let the
+    // meshes go as they reach the GPU.
+    void setScene(const scene::Tree& tree, const geometry::Model& model, geometry::Model* release);
+
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
@@ -315,10 +319,19 @@ Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
 void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
-    impl_->scene.upload(tree, model);
+    impl_->setScene(tree, model, nullptr);
+}
+
+void Renderer::setScene(const scene::Tree& tree, geometry::Model&& model) {
+    impl_->setScene(tree, model, &model);
+    model = {};
+}
+
+void Renderer::Impl::setScene(const scene::Tree& tree, const geometry::Model& model, geometry::Model* release) {
+    Impl& impl = *this;
+    impl.scene.describe(tree, model);
     std::vector<bool> empty(model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = model.leafMeshes[i].triangles.empty();
-    Impl& impl = *impl_;
     const std::vector<int> same = csg::identicalLeaves(tree, model);
     impl.copiedLeaves = 0;
     for (std::size_t i = 0; i < same.size(); ++i) impl.copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
@@ -343,10 +356,12 @@ void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
     impl.unionGrouped.tree =
         csg::groupUnionOperands(impl.grouped.tree, unitable, PeelRequest::kMostUnionMembers);
     impl.unionGrouped.unionsOnly = reachedByUnionsOnly(impl.unionGrouped.tree, impl.scene);
+    // Last, once nothing above needs the meshes any more.
+    impl.scene.fill(model, release);
     impl.current = &impl.grouped;
     impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
-    impl.translucentLeaves = translucentLeaves(tree, impl.scene);
-    impl.alphaLeaves = alphaLeaves(tree, impl.scene);
+    impl.translucentLeaves = render::translucentLeaves(tree, impl.scene);
+    impl.alphaLeaves = render::alphaLeaves(tree, impl.scene);
     impl.leafCount = tree.leaves.size();
     impl.hasScene = true;
     gpu::checkErrors();

@@ -5,6 +5,10 @@
 #include <cstdint>
 #include <span>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -21,15 +25,11 @@ void setSurfaceView(gpu::Program& program, const ViewSetup& view) {
     program.setUniform(shader::kSurfaceForward, view.forward);
 }
 
-void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model) {
+void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& model) {
     if (model.leafMeshes.size() != tree.leaves.size()) {
         throw Error("renderer: the model has " + std::to_string(model.leafMeshes.size()) +
                     " leaf meshes for a tree of " + std::to_string(tree.leaves.size()) + " leaves");
     }
-    // Each triangle ends on a vertex of its own (lastCornerLayout), which
-    // carries its face normal: the provoking vertex of a flat varying.
-    // First the ranges and sizes, then the buffers, filled a slice of leaves
-    // at a time: a million leaves never hold all four arrays twice over.
     vertices_.clear();
     std::size_t meshVertices = 0;
     for (const geometry::Mesh& mesh : model.leafMeshes) meshVertices += mesh.positions.size();
@@ -39,13 +39,13 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
     leaves_.assign(model.leafMeshes.size(), {});
     leafColors_.clear();
     bounds_ = {};
-    std::vector<std::uint32_t> layoutStart(model.leafMeshes.size() + 1, 0);  // per leaf, into the layouts' vertices
+    layoutStart_.assign(model.leafMeshes.size() + 1, 0);
     std::size_t layoutVertices = 0, indexCount = 0;
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
         const geometry::Mesh& mesh = model.leafMeshes[i];
         const std::size_t copies = geometry::lastCornerLayout(mesh).source.size();
         if (layoutVertices + copies > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
-        layoutStart[i] = static_cast<std::uint32_t>(layoutVertices);
+        layoutStart_[i] = static_cast<std::uint32_t>(layoutVertices);
         layoutVertices += copies;
         LeafRange& range = leaves_[i];
         range.firstIndex = indexCount;
@@ -62,35 +62,30 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
         const auto& c = tree.leaves[i].color;
         leafColors_.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     }
-    layoutStart.back() = static_cast<std::uint32_t>(layoutVertices);
+    layoutStart_.back() = static_cast<std::uint32_t>(layoutVertices);
+    indexCount_ = indexCount;
+    planes_.assign(leaves_.size(), {});  // hashed on demand: hashPlanes
+    sharing_.clear();
+}
 
-    positions_ = gpu::Buffer("scene positions", layoutVertices * 3 * sizeof(float));
-    faceNormals_ = gpu::Buffer("scene face normals", layoutVertices * 3 * sizeof(float));
-    indices_ = gpu::Buffer("scene indices", indexCount * sizeof(std::uint32_t));
-    std::vector<float> positions;         // by 3, the layouts' vertices
-    std::vector<float> normals;           // by 3, per layout vertex; a triangle's on its last corner
+void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) {
+    // Each triangle ends on a vertex of its own (lastCornerLayout), which
+    // carries its face normal: the provoking vertex of a flat varying.
+    const std::size_t layoutVertices = layoutStart_.back(), indexCount = indexCount_;
+    std::vector<float> positions;        // by 3, the layouts' vertices
+    std::vector<float> normals;          // by 3, per layout vertex; a triangle's on its last corner
     std::vector<std::uint32_t> indices;  // #F by 3, absolute, in the layout
-    std::size_t vertexOffset = 0, indexOffset = 0;  // where the slice goes, in vertices and indices
-    auto flush = [&] {
-        positions_.uploadSpan(std::span<const float>(positions), vertexOffset * 3 * sizeof(float));
-        faceNormals_.uploadSpan(std::span<const float>(normals), vertexOffset * 3 * sizeof(float));
-        indices_.uploadSpan(std::span<const std::uint32_t>(indices), indexOffset * sizeof(std::uint32_t));
-        vertexOffset += positions.size() / 3;
-        indexOffset += indices.size();
-        positions.clear();
-        normals.clear();
-        indices.clear();
-    };
-    constexpr std::size_t kSliceVertices = 1 << 20;
-    for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+    // Leaf i's vertices, normals and triangles onto the arrays, which start
+    // at layout vertex `base`.
+    auto append = [&](std::size_t i, std::size_t base) {
         const geometry::Mesh& mesh = model.leafMeshes[i];
         const geometry::LastCornerLayout layout = geometry::lastCornerLayout(mesh);
-        const std::uint32_t firstVertex = layoutStart[i];
+        const std::uint32_t firstVertex = layoutStart_[i];
         for (std::uint32_t v : layout.source) {
             const glm::dvec3& p = mesh.positions[v];
             for (double c : {p.x, p.y, p.z}) positions.push_back(static_cast<float>(c));
         }
-        const std::size_t sliceFirst = 3 * (firstVertex - vertexOffset);  // this leaf's first normal in the slice
+        const std::size_t first = 3 * (firstVertex - base);  // this leaf's first normal in the arrays
         normals.resize(positions.size(), 0.0f);
         for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
             const auto& t = mesh.triangles[f];
@@ -99,16 +94,59 @@ void SceneBuffers::upload(const scene::Tree& tree, const geometry::Model& model)
             glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
             const double length = glm::length(n);
             n = length > 0.0 ? n / length : glm::dvec3(0.0);
-            const std::size_t last = sliceFirst + 3 * layout.triangles[f][2];
+            const std::size_t last = first + 3 * layout.triangles[f][2];
             normals[last] = static_cast<float>(n.x);
             normals[last + 1] = static_cast<float>(n.y);
             normals[last + 2] = static_cast<float>(n.z);
         }
-        if (positions.size() / 3 >= kSliceVertices) flush();
+    };
+    if (release != nullptr) {
+        // The whole arrays, each mesh let go once appended (and its memory
+        // handed back now and then: glibc would keep it), then a buffer at a
+        // time from them: GL storage is made whole at once, so made before
+        // the meshes were gone it would hold both.
+        positions.reserve(3 * layoutVertices);
+        normals.reserve(3 * layoutVertices);
+        indices.reserve(indexCount);
+        for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+            append(i, 0);
+            release->leafMeshes[i] = {};  // read no more
+#ifdef __GLIBC__
+            if ((i + 1) % 65536 == 0) malloc_trim(0);
+#endif
+        }
+#ifdef __GLIBC__
+        malloc_trim(0);
+#endif
+        positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions));
+        positions = std::vector<float>();  // (= {} would keep the storage)
+        faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const float>(normals));
+        normals = std::vector<float>();  // (= {} would keep the storage)
+        indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices));
+        indices = std::vector<std::uint32_t>();  // (= {} would keep the storage)
+    } else {
+        // A slice of leaves at a time: the arrays never stand whole beside the buffers.
+        positions_ = gpu::Buffer("scene positions", layoutVertices * 3 * sizeof(float));
+        faceNormals_ = gpu::Buffer("scene face normals", layoutVertices * 3 * sizeof(float));
+        indices_ = gpu::Buffer("scene indices", indexCount * sizeof(std::uint32_t));
+        std::size_t vertexOffset = 0, indexOffset = 0;  // where the slice goes, in vertices and indices
+        auto flush = [&] {
+            positions_.uploadSpan(std::span<const float>(positions), vertexOffset * 3 * sizeof(float));
+            faceNormals_.uploadSpan(std::span<const float>(normals), vertexOffset * 3 * sizeof(float));
+            indices_.uploadSpan(std::span<const std::uint32_t>(indices), indexOffset * sizeof(std::uint32_t));
+            vertexOffset += positions.size() / 3;
+            indexOffset += indices.size();
+            positions.clear();
+            normals.clear();
+            indices.clear();
+        };
+        constexpr std::size_t kSliceVertices = 1 << 20;
+        for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+            append(i, vertexOffset);
+            if (positions.size() / 3 >= kSliceVertices) flush();
+        }
+        flush();
     }
-    flush();
-    planes_.assign(leaves_.size(), {});  // hashed on demand: hashPlanes
-    sharing_.clear();
     vertexArray_ = gpu::VertexArray("scene");
     vertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
     vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);

@@ -50,9 +50,16 @@ struct LeafRange {
 
 class SceneBuffers {
 public:
-    // Replaces the buffers with `model`'s meshes (tree.leaves[i] is
-    // model.leafMeshes[i]). Leaf colours are tree.leaves[i].color.
-    void upload(const scene::Tree& tree, const geometry::Model& model);
+    // Replaces the scene with `model`'s meshes (tree.leaves[i] is
+    // model.leafMeshes[i]), in two steps: describe() takes the leaves'
+    // ranges, boxes, convexity and colours (tree.leaves[i].color), which
+    // leaf() and the rest answer from then on; fill() then writes the
+    // buffers, a slice of leaves at a time. `release` (`model` itself, or
+    // null): let each mesh go (release->leafMeshes[i] left empty) as it is
+    // read, and hand the freed memory back to the system, so that a million
+    // leaves never hold their meshes and their buffers at once.
+    void describe(const scene::Tree& tree, const geometry::Model& model);
+    void fill(const geometry::Model& model, geometry::Model* release);
 
     // glDrawElements of leaf `leaf`'s triangles; either vertex array must be bound.
     void drawLeaf(int leaf) const;
@@ -96,6 +103,8 @@ private:
     std::vector<glm::vec4> leafColors_;
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_
     std::vector<std::size_t> firstVertex_;     // per leaf, and one past the last
+    std::vector<std::uint32_t> layoutStart_;   // per leaf, and one past the last: into the layouts' vertices
+    std::size_t indexCount_ = 0;               // of every leaf
     geometry::Bounds bounds_;
 };
 

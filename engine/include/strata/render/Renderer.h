@@ -139,6 +139,10 @@ public:
 
     // Uploads the leaf meshes and compiles the tree. Call again after an edit.
     void setScene(const scene::Tree& tree, const geometry::Model& model);
+    // The same, letting each leaf's mesh go as soon as it is on the GPU and
+    // handing the memory back: for a caller that needs the meshes no more
+    // (a million cubes then peak about 400 MB lower). `model` is left empty.
+    void setScene(const scene::Tree& tree, geometry::Model&& model);
 
     // Renders and reads everything back.
     Frame render(const Camera& camera, const RenderSettings& settings);
