@@ -1291,3 +1291,27 @@ TEST_F(RendererGLTest, UnitedOperandsChangeNoSurface) {
         }
     }
 }
+
+TEST_F(RendererGLTest, ASceneWhoseMeshesAreLetGoRendersTheSame) {
+    // setScene with the model handed over lets each mesh go as it reaches
+    // the GPU; the frame must be the one of a kept model, to the bit, and
+    // the model is left empty. A union of spheres and blocks minus a block.
+    scene::Tree tree;
+    std::vector<int> parts;
+    for (int i = 0; i < 40; ++i) {
+        const double x = -1.8 + 0.09 * i;
+        parts.push_back(tree.addLeaf(i % 2 ? sphereLeaf({x, 0.3 * std::sin(i), 0}, 0.35)
+                                           : cubeLeaf({x - 0.2, -0.9, -0.4}, {x + 0.2, 0.9, 0.3})));
+    }
+    tree.root = tree.addNode(NodeKind::Difference,
+                             {tree.addNode(NodeKind::Union, parts), tree.addLeaf(cubeLeaf({-1, -1, 0.1}, {1, 0, 1}))});
+    const render::Camera camera = topCamera();
+    const render::Frame kept = draw(tree, camera);
+    geometry::Model model = geometry::buildModel(tree);
+    renderer_->setScene(tree, std::move(model));
+    EXPECT_TRUE(model.leafMeshes.empty());  // NOLINT(bugprone-use-after-move): the contract says so
+    const render::Frame released = renderer_->render(camera, {});
+    ASSERT_GT(kept.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 10);
+    EXPECT_EQ(pixelsDiffering(kept, released), 0u);
+    EXPECT_EQ(kept.rgba, released.rgba);
+}
