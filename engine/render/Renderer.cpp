@@ -235,6 +235,7 @@ struct Renderer::Impl {
         std::vector<char> unionsOnly;
     };
     Compilation separate, grouped, unionGrouped;
+    std::size_t unionOnlyOperands = 0;  // the operands groupUnionOperands may join (RenderSettings::unionGroupFrom)
     const Compilation* current = nullptr;
     std::vector<TranslucentLeaf> translucentLeaves;
     std::vector<AlphaLeaf> alphaLeaves;
@@ -350,8 +351,10 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const geometry::Model& mo
     // Of those, the ones that only unions lead to, a group per run
     // (groupUnionOperands): right only where every ray starts outside.
     std::vector<char> unitable(impl.grouped.unionsOnly);
+    impl.unionOnlyOperands = 0;
     for (std::size_t k = 0; k < unitable.size(); ++k) {
         if (impl.grouped.tree.leavesOf(k).size() > 1) unitable[k] = 0;
+        impl.unionOnlyOperands += unitable[k] ? 1 : 0;
     }
     impl.unionGrouped.tree =
         csg::groupUnionOperands(impl.grouped.tree, unitable, PeelRequest::kMostUnionMembers);
@@ -682,7 +685,8 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // Debug views show each operand's own layers: no groups there. Unions
     // group where every ray starts outside, as the first layer does
     // (peelAndEvaluate), and not for the result peel, which walks past it.
-    const bool unions = beyondNearPlane(view, scene.bounds()) && roundSink == nullptr;
+    const bool unions = beyondNearPlane(view, scene.bounds()) && roundSink == nullptr &&
+                        unionOnlyOperands >= static_cast<std::size_t>(std::max(settings.unionGroupFrom, 2));
     const Compilation& chosen = !settings.groupOperands || settings.keepPeelLayers ? separate
                                 : unions                                            ? unionGrouped
                                                                                     : grouped;

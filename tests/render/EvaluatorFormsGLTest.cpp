@@ -243,7 +243,9 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
         // tie may differ (each form names the first operand it meets). So
         // for the intersection and the union as one group (ConvexGroups.h),
         // and the intersection's group names the lowest leaf: cube 0.
-        const render::Frame grouped = renderer.render(camera, {});
+        render::RenderSettings unite;
+        unite.unionGroupFrom = 2;
+        const render::Frame grouped = renderer.render(camera, unite);
         EXPECT_EQ(grouped.stats.operands, kind == NodeKind::Difference ? 12 : 1);
         for (const render::Frame* other : {&general, &grouped}) {
             for (std::size_t p = 0; p < fast.leaf.size(); ++p) {

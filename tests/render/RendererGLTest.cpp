@@ -432,7 +432,9 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
         EXPECT_EQ(all.stats.layersPerLeaf[0], 3);
         EXPECT_EQ(pixelsDiffering(once, all), 0u);
         EXPECT_EQ(once.rgba, all.rgba);
-        const render::Frame united = renderer_->render(topCamera(p), render::RenderSettings{});
+        render::RenderSettings unite;
+        unite.unionGroupFrom = 2;
+        const render::Frame united = renderer_->render(topCamera(p), unite);
         EXPECT_EQ(united.stats.operands, 1);
         EXPECT_EQ(united.stats.layersPerLeaf[0], 1);
         EXPECT_EQ(pixelsDiffering(united, all), 0u);
@@ -933,9 +935,8 @@ TEST_F(RendererGLTest, ManyOperandsUseALargerEvaluator) {
         leaves.push_back(tree.addLeaf(cubeLeaf({-0.5, -0.5, z}, {0.5, 0.5, z + 0.05})));
     }
     tree.root = tree.addNode(NodeKind::Union, leaves);
-    render::RenderSettings apart;  // grouped, the union would be one operand
-    apart.groupOperands = false;
-    const render::Frame f = draw(tree, topCamera(), apart);
+    // Fewer than RenderSettings::unionGroupFrom: no union group.
+    const render::Frame f = draw(tree, topCamera());
     // Highest slab: k = 39, top at -2 + 3.9 + 0.05; leaf index i with 17 i = 39 mod 40 -> i = 7.
     expectCentre(f, kEyeHeight - (-2.0 + 3.9 + 0.05), 7, {0, 0, 1});
     EXPECT_EQ(f.stats.operands, 40);
@@ -1213,10 +1214,11 @@ TEST_F(RendererGLTest, UnitedMembersSharingAFaceShowTheLowestLeafThere) {
                 tree.addLeaf(turned(cubeLeaf({-1.5 - grow, -0.5 - grow, -3}, {0.5 + grow, 1.5, 1}), k)));
         }
         tree.root = tree.addNode(NodeKind::Union, blocks);
-        render::RenderSettings separate;
+        render::RenderSettings separate, unite;
         separate.groupOperands = false;
+        unite.unionGroupFrom = 2;
         const render::Camera camera = topCamera();
-        const render::Frame one = draw(tree, camera);
+        const render::Frame one = draw(tree, camera, unite);
         const render::Frame apart = renderer_->render(camera, separate);
         EXPECT_EQ(one.stats.operands, 1);
         EXPECT_EQ(apart.stats.operands, count);
@@ -1267,7 +1269,8 @@ TEST_F(RendererGLTest, UnitedOperandsChangeNoSurface) {
     parts.push_back(tree.addNode(NodeKind::Difference, {block, coloured(sphereLeaf({1.6, -1.8, 0.8}, 0.4))}));
     parts.push_back(coloured(cubeLeaf({0.4, -2.0, -0.5}, {1.4, -1.0, 0.8})));  // its top in the block's plane
     tree.root = tree.addNode(NodeKind::Union, parts);
-    render::RenderSettings separate, tiled, tiledApart;
+    render::RenderSettings unite, separate, tiled, tiledApart;
+    unite.unionGroupFrom = tiled.unionGroupFrom = 2;  // 61 united leaves: fewer than the default asks
     separate.groupOperands = false;
     tiled.memoryBudget = tiledApart.memoryBudget = 40 * 40 * 8 * 6;
     tiledApart.groupOperands = false;
@@ -1275,7 +1278,7 @@ TEST_F(RendererGLTest, UnitedOperandsChangeNoSurface) {
         for (double height : {kEyeHeight, 0.0}) {
             render::Camera camera = topCamera(projection, height);
             if (height == 0.0) camera.fovDegrees = projection == render::Projection::Perspective ? 90.0 : 60.0;
-            const render::Frame one = draw(tree, camera);
+            const render::Frame one = draw(tree, camera, unite);
             const render::Frame apart = renderer_->render(camera, separate);
             const bool outside = height == kEyeHeight;
             EXPECT_EQ(one.stats.operands, outside ? 3 : apart.stats.operands);
