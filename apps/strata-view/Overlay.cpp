@@ -120,6 +120,11 @@ void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const ren
             world.push_back({glm::vec3(s.a), options.axesColor, kind});
             world.push_back({glm::vec3(s.b), options.axesColor, kind});
         }
+        if (options.scale)
+            for (const WorldSegment& s : scaleLabelSegments(d)) {
+                world.push_back({glm::vec3(s.a), options.axesColor, kSolid});
+                world.push_back({glm::vec3(s.b), options.axesColor, kSolid});
+            }
         for (const ScreenSegment& s : gizmoSegments(camera, options.axesColor)) {
             screen.push_back({glm::vec3(s.a, 0.0), s.color, kSolid});
             screen.push_back({glm::vec3(s.b, 0.0), s.color, kSolid});

@@ -1,10 +1,10 @@
 #pragma once
 // The lines strata-view draws over the CSG image in its own pass, into the
 // view's colour target after strata's image is in it: OpenSCAD's axes and
-// scale markers, its small axis cross in the lower-left corner, and "show
-// edges". The axes and edges are tested against the frame's depth and leaf
-// AOVs (shaders/view/overlay.frag), so a frame with any of them on is
-// rendered with Renderer::render (read back) instead of renderInto.
+// scale markers with their numbers, its small axis cross in the lower-left
+// corner, and "show edges". The axes and edges are tested against the
+// frame's depth and leaf AOVs (shaders/view/overlay.frag), so a frame with
+// any of them on is rendered with Renderer::render (read back) instead of renderInto.
 
 #include <cstddef>
 
@@ -22,7 +22,7 @@ namespace strata::view {
 
 struct OverlayOptions {
     bool axes = false;     // axes, and the axis cross in the corner (OpenSCAD: View > Show Axes)
-    bool scale = false;    // scale markers on the axes, with axes only (View > Show Scale Markers)
+    bool scale = false;    // scale markers and their numbers, with axes only (View > Show Scale Markers)
     bool edges = false;    // the visible surfaces' triangle edges (View > Show Edges)
     glm::vec3 axesColor{0.0f};
 

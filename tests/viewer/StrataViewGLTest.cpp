@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -442,6 +443,51 @@ TEST_F(StrataView, AxesScaleMarkersAndTheCornerCrossAreDrawnOverTheModel) {
     EXPECT_GE(red, 8);
     for (int x = 34; x < 44; ++x)
         for (int y = 213; y < 219; ++y) EXPECT_FALSE(isRgb(off, x, y, 255, 0, 0));
+}
+
+// The numbers beside the scale markers, found where a closed-form projection
+// of their ticks puts them. Seen from the top at distance 100: ticks every 10,
+// and as 100 is under three times 10^2, every second tick numbered: 20, 40,
+// ... The characters are u / 2 wide on a pitch of 3u / 4 and lie u / 4 to 5u / 4
+// from the axis, u = 100 / 60: X's on the +Y side (up in the image), the
+// first character from the origin centred on its tick.
+TEST_F(StrataView, ScaleNumbersStandBesideTheirTicks) {
+    const std::string scene = dir.write("axes.csg", kAxesScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "show axes on\n"
+                                 "screenshot axes.png\n"
+                                 "show scale on\n"
+                                 "screenshot scale.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image axes = readPng(dir / "axes.png"), scale = readPng(dir / "scale.png");
+    ASSERT_EQ(scale.width, 320);
+    const double pixelsPerUnit = 240.0 / (2.0 * 100.0 * std::tan(11.25 * 3.14159265358979323846 / 180.0));
+    const double u = 100.0 / 60.0;
+    // Black pixels in the image of x in [x0, x1], y in [u / 4, 5u / 4], one pixel of slack around.
+    auto blackIn = [&](const Image& image, double x0, double x1) {
+        const int c0 = static_cast<int>(std::floor(160.0 + x0 * pixelsPerUnit)) - 1;
+        const int c1 = static_cast<int>(std::floor(160.0 + x1 * pixelsPerUnit)) + 1;
+        const int r0 = static_cast<int>(std::floor(120.0 - 1.25 * u * pixelsPerUnit)) - 1;
+        const int r1 = static_cast<int>(std::floor(120.0 - 0.25 * u * pixelsPerUnit)) + 1;
+        EXPECT_LT(r1, 119);  // clear of the axis itself
+        int n = 0;
+        for (int y = r0; y <= r1; ++y)
+            for (int x = c0; x <= c1; ++x) n += isRgb(image, x, y, 0, 0, 0);
+        return n;
+    };
+    // "20": '2' centred on x = 20, '0' on 20 + 3u / 4.
+    const double twentyFrom = 20.0 - u / 4.0, twentyTo = 20.0 + 0.75 * u + u / 4.0;
+    EXPECT_GE(blackIn(scale, twentyFrom, twentyTo), 20);
+    EXPECT_EQ(blackIn(axes, twentyFrom, twentyTo), 0);
+    // "-20" reads along +X: "0" on x = -20, then "2" and "-" further out.
+    const double minusFrom = -20.0 - 1.5 * u - u / 4.0, minusTo = -20.0 + u / 4.0;
+    EXPECT_GE(blackIn(scale, minusFrom, minusTo), 25);
+    EXPECT_EQ(blackIn(axes, minusFrom, minusTo), 0);
+    // No number at 10, an odd tick.
+    EXPECT_EQ(blackIn(scale, 10.0 - u / 4.0, 10.0 + 0.75 * u + u / 4.0), 0);
 }
 
 TEST_F(StrataView, EdgesShowOnTheVisibleSurfacesOnly) {
