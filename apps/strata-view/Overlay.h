@@ -7,6 +7,8 @@
 // any of them on is rendered with Renderer::render (read back) instead of renderInto.
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -34,17 +36,18 @@ public:
     Overlay();  // needs a current GL context
     // The leaves' edges, kept for every frame until the next scene.
     void setScene(const geometry::Model& model);
-    // Draws into `framebuffer` (camera.width x camera.height), over the frame's
-    // image, tested against its depth and leaf AOVs.
+    // Draws into `framebuffer` (camera.width x camera.height), over `image`
+    // (RGBA8, row 0 at the top: the frame's own, or a debug view's), which
+    // is already in it; tested against the frame's depth and leaf AOVs.
     void draw(unsigned framebuffer, const render::Camera& camera, const render::Frame& frame,
-              const OverlayOptions& options);
+              const std::vector<std::uint8_t>& image, const OverlayOptions& options);
 
 private:
     gpu::Program program_;
     gpu::VertexArray edgeArray_, lineArray_;
     gpu::Buffer edgeVertices_, lineVertices_;
     std::size_t edgeCount_ = 0;  // vertices
-    gpu::Texture depth_, leaf_;
+    gpu::Texture depth_, leaf_, color_;
 };
 
 }  // namespace strata::view

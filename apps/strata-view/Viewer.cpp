@@ -203,7 +203,7 @@ void Viewer::renderView() {
             }
             OverlayOptions options = overlayOptions_;
             options.axesColor = axesColor(settings_.colorScheme);
-            overlay_->draw(target_.framebuffer(), cam, frame, options);
+            overlay_->draw(target_.framebuffer(), cam, frame, frame.rgba, options);
         } else if (debugView_ == DebugView::Shaded) {
             stats_ = renderer_.renderInto(target_.framebuffer(), 0, 0, cam, settings_);
         } else {

@@ -500,18 +500,85 @@ TEST_F(StrataView, EdgesShowOnTheVisibleSurfacesOnly) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Image plain = readPng(dir / "plain.png"), edges = readPng(dir / "edges.png");
     ASSERT_EQ(plain.width, edges.width);
-    // Edge pixels: lighter than the face beneath, and only where the cube is.
-    int lighter = 0, onBackground = 0;
+    // Edge pixels: lighter than the face beneath, and only where the cube is
+    // or right beside it (a silhouette's edge drawn whole).
+    auto background = [&](int x, int y) {
+        const unsigned char* p = pixelAt(plain, x, y);
+        return std::equal(p, p + 4, plain.rgba.data());
+    };
+    int lighter = 0, awayFromTheCube = 0;
     for (int y = 0; y < plain.height; ++y)
         for (int x = 0; x < plain.width; ++x) {
             const unsigned char *a = pixelAt(plain, x, y), *b = pixelAt(edges, x, y);
             if (std::equal(a, a + 4, b)) continue;
-            if (std::equal(a, a + 4, plain.rgba.data())) ++onBackground;
-            else if (b[0] >= a[0] && b[1] >= a[1] && b[2] >= a[2]) ++lighter;
+            if (background(x, y)) {
+                bool besideTheCube = false;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int nx = std::clamp(x + dx, 0, plain.width - 1), ny = std::clamp(y + dy, 0, plain.height - 1);
+                        besideTheCube = besideTheCube || !background(nx, ny);
+                    }
+                awayFromTheCube += !besideTheCube;
+            } else if (b[0] >= a[0] && b[1] >= a[1] && b[2] >= a[2]) {
+                ++lighter;
+            }
         }
-    EXPECT_EQ(onBackground, 0);
+    EXPECT_EQ(awayFromTheCube, 0);
     // The three visible faces' sides and diagonals, some 9 segments of 50 to 100 pixels.
     EXPECT_GT(lighter, 300);
+}
+
+// A cube turned 30 degrees about Z, seen from the top (orthographic, 100
+// away, 240 / (2 * 100 * tan(11.25 deg)) pixels per unit): the outline of its
+// top face is its silhouette. Each column along the two shallow sides (slope
+// tan 30 deg, one pixel per column) has an edge pixel within a row of where
+// the side's closed-form projection crosses it, whichever side of the
+// silhouette that pixel's centre falls on.
+TEST_F(StrataView, EdgesAtASilhouetteAreDrawnWhole) {
+    const std::string scene =
+        dir.write("turned.csg",
+                  "multmatrix([[0.8660254037844387, -0.5, 0, 0], [0.5, 0.8660254037844387, 0, 0], "
+                  "[0, 0, 1, 0], [0, 0, 0, 1]]) { cube(size = [10, 10, 10], center = true); }\n");
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "screenshot plain.png\n"
+                                 "show edges on\n"
+                                 "screenshot edges.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image plain = readPng(dir / "plain.png"), edges = readPng(dir / "edges.png");
+    ASSERT_EQ(plain.width, 320);
+    ASSERT_EQ(edges.width, 320);
+    const double pixelsPerUnit = 240.0 / (2.0 * 100.0 * std::tan(11.25 * 3.14159265358979323846 / 180.0));
+    const double c = std::sqrt(3.0) / 2.0, s = 0.5;
+    // The top corner (x, y) turned, in pixels: column and row coordinates (rows from the top).
+    auto corner = [&](double x, double y) {
+        return std::pair<double, double>(160.0 + (c * x - s * y) * pixelsPerUnit, 120.0 - (s * x + c * y) * pixelsPerUnit);
+    };
+    auto changed = [&](int x, int y) {
+        const unsigned char *a = pixelAt(plain, x, y), *b = pixelAt(edges, x, y);
+        return !std::equal(a, a + 4, b);
+    };
+    int columns = 0, missing = 0, outside = 0;
+    for (const auto& [from, to] : {std::pair(corner(-5, 5), corner(5, 5)), std::pair(corner(-5, -5), corner(5, -5))}) {
+        for (int x = static_cast<int>(std::ceil(from.first)) + 3; x <= static_cast<int>(std::floor(to.first)) - 3; ++x) {
+            const double t = (x + 0.5 - from.first) / (to.first - from.first);
+            const int row = static_cast<int>(std::floor(from.second + t * (to.second - from.second)));
+            bool found = false;
+            for (int y = row - 1; y <= row + 1; ++y) {
+                found = found || changed(x, y);
+                const unsigned char* p = pixelAt(plain, x, y);
+                outside += changed(x, y) && std::equal(p, p + 4, plain.rgba.data());
+            }
+            ++columns;
+            missing += !found;
+        }
+    }
+    EXPECT_GT(columns, 70);
+    EXPECT_EQ(missing, 0);
+    // Some of them lie just outside, on the background.
+    EXPECT_GT(outside, 10);
 }
 
 TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
