@@ -581,6 +581,66 @@ TEST_F(StrataView, EdgesAtASilhouetteAreDrawnWhole) {
     EXPECT_GT(outside, 10);
 }
 
+// The debug views that show the camera's view (depth, normal, forms) get the
+// lines too; the depth and normal views, black where nothing is hit, draw
+// the axes light grey. The peel grid's small images get none.
+TEST_F(StrataView, DebugViewsShowTheAxesAndEdges) {
+    const std::string scene = dir.write("axes.csg", kAxesScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "debug normal\n"
+                                 "screenshot normal.png\n"
+                                 "debug depth\n"
+                                 "screenshot depth.png\n"
+                                 "show axes on\n"
+                                 "screenshot depth-axes.png\n"
+                                 "debug normal\n"
+                                 "screenshot normal-axes.png\n"
+                                 "debug forms\n"
+                                 "screenshot forms-axes.png\n"
+                                 "show axes off\n"
+                                 "debug peel\n"
+                                 "screenshot peel.png\n"
+                                 "show axes on\n"
+                                 "show edges on\n"
+                                 "screenshot peel-lines.png\n"
+                                 "debug normal\n"
+                                 "show axes off\n"
+                                 "screenshot normal-edges.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image depth = readPng(dir / "depth.png");
+    ASSERT_EQ(depth.width, 320);
+    // The positive X axis, the row through the centre (see kAxesScene).
+    auto onXAxis = [](const Image& image, int r, int g, int b) {
+        int n = 0;
+        for (int x = 166; x < 316; ++x) n += isRgb(image, x, 119, r, g, b) || isRgb(image, x, 120, r, g, b);
+        return n;
+    };
+    EXPECT_EQ(onXAxis(depth, 0xe5, 0xe5, 0xe5), 0);
+    EXPECT_GE(onXAxis(readPng(dir / "depth-axes.png"), 0xe5, 0xe5, 0xe5), 148);
+    EXPECT_GE(onXAxis(readPng(dir / "normal-axes.png"), 0xe5, 0xe5, 0xe5), 148);
+    EXPECT_GE(onXAxis(readPng(dir / "forms-axes.png"), 0, 0, 0), 148);  // the scheme's (Cornfield: black)
+    EXPECT_EQ(differingPixels(readPng(dir / "peel.png"), readPng(dir / "peel-lines.png")), 0);
+    // Edges over the normal view (the tops: (0.5, 0.5, 1)): lighter, on the
+    // blocks only (x, y in [5, 9]: columns 190 to 214, rows 66 to 90; x in
+    // [-2, 2], y in [10, 14]: columns 148 to 172, rows 36 to 60), a pixel of slack.
+    const Image normal = readPng(dir / "normal.png"), edges = readPng(dir / "normal-edges.png");
+    ASSERT_EQ(normal.width, 320);
+    int lighter = 0, elsewhere = 0;
+    for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x) {
+            const unsigned char *a = pixelAt(normal, x, y), *b = pixelAt(edges, x, y);
+            if (std::equal(a, a + 4, b)) continue;
+            const bool onBlock = (x >= 188 && x <= 216 && y >= 64 && y <= 92) || (x >= 145 && x <= 175 && y >= 34 && y <= 62);
+            if (!onBlock) ++elsewhere;
+            else if (b[0] > a[0]) ++lighter;
+        }
+    EXPECT_EQ(elsewhere, 0);
+    EXPECT_GT(lighter, 50);
+}
+
 TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
     const std::string scene = dir.write("a.csg", kScene);
     dir.write("b.csg", kNoCylinder);
@@ -606,6 +666,34 @@ TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
     const Image before = readPng(dir / "before.png");
     EXPECT_GT(drawnPixels(before), 1000);
     EXPECT_EQ(differingPixels(before, readPng(dir / "gone.png")), 0);
+}
+
+// The red line of a stale model lies over the debug views as over the shaded
+// one: the window's bottom rows hold its red text (255, 90, 90).
+TEST_F(StrataView, AStaleModelsRedLineShowsOverTheDebugViews) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "panel off\n"
+                                 "debug depth\n"
+                                 "screenshot-window fresh.png\n"
+                                 "remove a.csg\n"
+                                 "sleep 250\nsleep 250\nsleep 250\nsleep 250\n"
+                                 "screenshot-window depth.png\n"
+                                 "debug peel\n"
+                                 "screenshot-window peel.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto redInTheBottomRows = [](const Image& image) {
+        int n = 0;
+        for (int y = std::max(0, image.height - 30); y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) n += isRgb(image, x, y, 255, 90, 90);
+        return n;
+    };
+    const Image fresh = readPng(dir / "fresh.png");
+    ASSERT_EQ(fresh.width, 320);
+    EXPECT_EQ(redInTheBottomRows(fresh), 0);
+    EXPECT_GT(redInTheBottomRows(readPng(dir / "depth.png")), 30);
+    EXPECT_GT(redInTheBottomRows(readPng(dir / "peel.png")), 30);
 }
 
 // A screenshot as the very first command, window and all just made: never
