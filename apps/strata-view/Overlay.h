@@ -4,7 +4,8 @@
 // scale markers with their numbers, its small axis cross in the lower-left
 // corner, and "show edges". The axes and edges are tested against the
 // frame's depth and leaf AOVs (shaders/view/overlay.frag), so a frame with
-// any of them on is rendered with Renderer::render (read back) instead of renderInto.
+// any of them on is rendered with Renderer::render (read back) instead of
+// renderInto; so are the debug views they are drawn over.
 
 #include <cstddef>
 #include <cstdint>
