@@ -55,12 +55,13 @@ void Overlay::setScene(const geometry::Model& model) {
 }
 
 void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const render::Frame& frame,
-                   const OverlayOptions& options) {
+                   const std::vector<std::uint8_t>& image, const OverlayOptions& options) {
     const int w = camera.width, h = camera.height;
     if (depth_.id() == 0 || depth_.width() != w || depth_.height() != h) {
         depth_ = gpu::Texture::create2D("strata-view overlay depth", GL_R32F, w, h);
         leaf_ = gpu::Texture::create2D("strata-view overlay leaf", GL_R32I, w, h);
-        for (const gpu::Texture* t : {&depth_, &leaf_}) {
+        color_ = gpu::Texture::create2D("strata-view overlay image", GL_RGBA8, w, h);
+        for (const gpu::Texture* t : {&depth_, &leaf_, &color_}) {
             glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         }
@@ -68,6 +69,7 @@ void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const ren
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     depth_.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, frame.depth.data());
     leaf_.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, frame.leaf.data());
+    color_.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
 
     const double d = glm::length(camera.eye - camera.center);
     const bool ortho = camera.projection == render::Projection::Orthographic;
@@ -91,9 +93,11 @@ void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const ren
     program_.setUniform("footprint", footprint);
     program_.setUniform("sceneDepth", 0);
     program_.setUniform("sceneLeaf", 1);
+    program_.setUniform("sceneColor", 2);
     program_.setUniform("screenSpace", 0);
     depth_.bindUnit(0);
     leaf_.bindUnit(1);
+    color_.bindUnit(2);
 
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, w, h);
@@ -105,9 +109,10 @@ void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const ren
     program_.use();
 
     if (options.edges && edgeCount_ > 0) {
-        // (1 + surface) / 2 with the shader's (0.5, 0.5, 0.5, 0.5).
+        // (1 + surface) / 2 with the shader's (0.5, 0.5, 0.5, 0.5); its colour
+        // alone with alpha 0 (outside a silhouette). The image's alpha is kept.
         glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_SRC_ALPHA);
+        glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
         edgeArray_.bind();
         glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(edgeCount_));
         glDisable(GL_BLEND);
@@ -120,6 +125,11 @@ void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const ren
             world.push_back({glm::vec3(s.a), options.axesColor, kind});
             world.push_back({glm::vec3(s.b), options.axesColor, kind});
         }
+        if (options.scale)
+            for (const WorldSegment& s : scaleLabelSegments(d)) {
+                world.push_back({glm::vec3(s.a), options.axesColor, kSolid});
+                world.push_back({glm::vec3(s.b), options.axesColor, kSolid});
+            }
         for (const ScreenSegment& s : gizmoSegments(camera, options.axesColor)) {
             screen.push_back({glm::vec3(s.a, 0.0), s.color, kSolid});
             screen.push_back({glm::vec3(s.b, 0.0), s.color, kSolid});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -21,6 +22,51 @@ constexpr int kTicksPerMajor = 10;
 // normalized device coordinates, axes 10 long, letters centred 12 out, 3 either side.
 constexpr double kGizmoHalfHeight = 90.0, kGizmoAxis = 10.0, kGizmoLabel = 12.0, kGizmoLetter = 3.0;
 constexpr double kGizmoInset = 0.1;  // (1 - 0.8) / 2 of the view
+
+// While the distance is under this many times the power of ten below it,
+// every second tick is labelled too (only one or two majors are in view).
+constexpr double kMoreLabelsBelow = 3.0;
+constexpr int kMoreLabelsEvery = 2;
+
+// A label character's points on a unit cell: x 0 (left) to 1 (right) in the
+// reading direction, y 0 (nearest the axis) to 1; A B top, C D middle, E F
+// bottom, G H a short stroke at the bottom's middle, I J a short upright one
+// through the middle.
+glm::dvec2 glyphPoint(char point) {
+    switch (point) {
+        case 'A': return {0.0, 1.0};
+        case 'B': return {1.0, 1.0};
+        case 'C': return {0.0, 0.5};
+        case 'D': return {1.0, 0.5};
+        case 'E': return {0.0, 0.0};
+        case 'F': return {1.0, 0.0};
+        case 'G': return {0.35, 0.0};
+        case 'H': return {0.65, 0.0};
+        case 'I': return {0.5, 0.25};
+        default: return {0.5, 0.75};  // 'J'
+    }
+}
+
+// Each character as polylines through those points, separated by blanks.
+std::string_view glyphStrokes(char c) {
+    switch (c) {
+        case '0': return "ABFEA";
+        case '1': return "BF";
+        case '2': return "ABDCEF";
+        case '3': return "ABFE CD";
+        case '4': return "ACD BF";
+        case '5': return "BACDFE";
+        case '6': return "BAEFDC";
+        case '7': return "ABF";
+        case '8': return "ABFEA CD";
+        case '9': return "DCABFE";
+        case '-': return "CD";
+        case '.': return "GH";
+        case 'e': return "DBAEF CD";
+        case '+': return "CD IJ";
+        default: return "";
+    }
+}
 
 glm::vec3 rgb(unsigned v) {
     return {((v >> 16) & 0xff) / 255.0f, ((v >> 8) & 0xff) / 255.0f, (v & 0xff) / 255.0f};
@@ -53,6 +99,58 @@ std::vector<WorldSegment> axisSegments(double distance, bool ticks) {
             out.push_back({{p, 0, 0}, {p, -length, 0}, dashed});
             out.push_back({{0, p, 0}, {-length, p, 0}, dashed});
             out.push_back({{0, 0, p}, {-length, 0, p}, dashed});
+        }
+    }
+    return out;
+}
+
+std::vector<ScaleLabel> scaleLabels(double distance) {
+    const double l = distance;
+    const double spacing = scaleTickSpacing(l);
+    const double decade = spacing * 10.0;
+    const bool moreLabels = l / decade < kMoreLabelsBelow;
+    std::vector<ScaleLabel> out;
+    for (int k = 1; k * spacing < l; ++k) {
+        if (k % kTicksPerMajor != 0 && !(moreLabels && k % kMoreLabelsEvery == 0)) continue;
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", k * spacing);
+        for (int axis = 0; axis < 3; ++axis) {
+            out.push_back({axis, k * spacing, text});
+            out.push_back({axis, -k * spacing, std::string("-") + text});
+        }
+    }
+    return out;
+}
+
+std::vector<WorldSegment> scaleLabelSegments(double distance) {
+    const double u = distance / kTickDivisor;
+    const double width = u / 2.0, pitch = 0.75 * u;
+    // Distance from the axis of a cell's bottom, middle and top.
+    const double bottom = u / 4.0, middle = 7.0 * u / 8.0, top = 5.0 * u / 4.0;
+    auto height = [&](double y) {
+        return y <= 0.5 ? bottom + (middle - bottom) * y * 2.0 : middle + (top - middle) * (y - 0.5) * 2.0;
+    };
+    std::vector<WorldSegment> out;
+    for (const ScaleLabel& label : scaleLabels(distance)) {
+        glm::dvec3 outward(0.0), up(0.0), reading(0.0);
+        outward[label.axis] = label.at < 0.0 ? -1.0 : 1.0;
+        up[label.axis == 0 ? 1 : 0] = 1.0;
+        reading[label.axis] = label.axis == 0 ? 1.0 : -1.0;
+        // Characters fill the slots from the tick outwards; the text reads
+        // along `reading`, so where that points inwards it is laid last character first.
+        const bool readsOutwards = glm::dot(reading, outward) > 0.0;
+        const std::size_t n = label.text.size();
+        for (std::size_t slot = 0; slot < n; ++slot) {
+            const char c = label.text[readsOutwards ? slot : n - 1 - slot];
+            const glm::dvec3 centre = outward * (std::abs(label.at) + static_cast<double>(slot) * pitch);
+            auto place = [&](char point) {
+                const glm::dvec2 g = glyphPoint(point);
+                return centre + reading * ((g.x - 0.5) * width) + up * height(g.y);
+            };
+            const std::string_view strokes = glyphStrokes(c);
+            for (std::size_t k = 0; k + 1 < strokes.size(); ++k)
+                if (strokes[k] != ' ' && strokes[k + 1] != ' ')
+                    out.push_back({place(strokes[k]), place(strokes[k + 1]), false});
         }
     }
     return out;

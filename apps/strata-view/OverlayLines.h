@@ -6,6 +6,7 @@
 // "show edges". Overlay.cpp draws them.
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -34,6 +35,34 @@ double scaleTickSpacing(double distance);
 // scaleTickSpacing from the origin out to the distance, distance / 60 long,
 // every tenth distance / 30; X's ticks point to -Y, Y's and Z's to -X.
 std::vector<WorldSegment> axisSegments(double distance, bool ticks);
+
+// A number written beside a scale marker: the tick on `axis` (0 X, 1 Y,
+// 2 Z) at signed position `at`, and its text.
+struct ScaleLabel {
+    int axis = 0;
+    double at = 0.0;
+    std::string text;
+};
+
+// The numbers OpenSCAD writes beside the scale markers at camera distance
+// `distance`, on every half axis: at each major tick (every tenth), and, while
+// the distance is under three times the power of ten below it (few major
+// ticks in view), at every second tick too. The text is the tick's distance
+// from the origin as C's %g writes it (six significant digits), with a minus
+// sign on the negative halves.
+std::vector<ScaleLabel> scaleLabels(double distance);
+
+// The labels' characters as line segments, in the plane of the axis and the
+// direction its ticks point away from: X's in the XY plane on the +Y side,
+// reading along +X seen from above; Y's in the XY plane on the +X side,
+// reading along -Y; Z's in the XZ plane on the +X side, reading along -Z
+// (seen from the front). With u = distance / 60 (a short tick's length) each
+// character is u / 2 wide on a pitch of 3u / 4, and spans u / 4 to 5u / 4
+// from the axis, its middle bar at 7u / 8 (OpenSCAD's proportions); the
+// first character from the origin is centred on the tick, the rest further
+// out. Digits are drawn on six points (two columns, three rows), as a
+// seven-segment display would; also '-', '.', 'e' and '+'.
+std::vector<WorldSegment> scaleLabelSegments(double distance);
 
 // A segment in the view's pixels (x right, y up from the bottom-left corner).
 struct ScreenSegment {

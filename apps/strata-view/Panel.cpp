@@ -241,6 +241,10 @@ void Viewer::drawTreePanel() {
 void Viewer::drawPeelLabels() {
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+    // Over the view only: never over the panel, even one dragged wider than the view's left edge.
+    const float left = static_cast<float>(viewLeft()) / scale.x;
+    const float clipLeft = std::max(left, showPanel_ ? panelWidth_ : 0.0f);
+    draw->PushClipRect(ImVec2(clipLeft, 0.0f), ImGui::GetIO().DisplaySize, false);
     for (const PeelTile& tile : peelTiles_) {
         std::string label =
             "leaf " + std::to_string(tile.leaf) + " L" + std::to_string(tile.layer) + (tile.far ? " far" : " near");
@@ -249,10 +253,10 @@ void Viewer::drawPeelLabels() {
             if (tile.layer != 0 || tile.far) continue;
             label = std::to_string(tile.leaf);
         }
-        const float left = static_cast<float>(viewLeft()) / scale.x;
         draw->AddText(ImVec2(left + tile.x / scale.x + 3, tile.y / scale.y + 2), IM_COL32(255, 220, 120, 255),
                       label.c_str());
     }
+    draw->PopClipRect();
 }
 
 }  // namespace strata::view

@@ -29,6 +29,9 @@ constexpr auto kReloadPoll = std::chrono::milliseconds(200);
 // The file counts as deleted once this many polls in a row missed it: an
 // editor's unlink-then-rename save is over well within one poll.
 constexpr int kMissingPolls = 2;
+// The axes' colour over the depth and normal views' black background: the
+// light grey OpenSCAD's dark schemes (Starnight) use.
+const glm::vec3 kAxesOnBlack(0xe5 / 255.0f);
 
 }  // namespace
 
@@ -192,33 +195,38 @@ void Viewer::renderView() {
     peelTiles_.clear();
     const render::Camera cam = camera();
     try {
-        if (debugView_ == DebugView::Shaded && overlayOptions_.any()) {
-            // The overlay is tested against the frame's depth and leaves, so they are read back.
-            const render::Frame frame = renderer_.render(cam, settings_);
-            stats_ = frame.stats;
-            target_.upload(frame.rgba);
-            if (overlayOptions_.edges && edgesStale_) {
-                overlay_->setScene(scene_.model);
-                edgesStale_ = false;
-            }
-            OverlayOptions options = overlayOptions_;
-            options.axesColor = axesColor(settings_.colorScheme);
-            overlay_->draw(target_.framebuffer(), cam, frame, options);
-        } else if (debugView_ == DebugView::Shaded) {
+        if (debugView_ == DebugView::Shaded && !overlayOptions_.any()) {
             stats_ = renderer_.renderInto(target_.framebuffer(), 0, 0, cam, settings_);
         } else {
+            // The overlay is tested against the frame's depth and leaves, so
+            // they are read back; the debug views are drawn from them too.
             render::RenderSettings settings = settings_;
             settings.keepPeelLayers = debugView_ == DebugView::Peel;
             settings.keepBlockForms = debugView_ == DebugView::Forms;
             const render::Frame frame = renderer_.render(cam, settings);
             stats_ = frame.stats;
-            if (debugView_ == DebugView::Depth) target_.upload(depthImage(frame).rgba);
-            if (debugView_ == DebugView::Normal) target_.upload(normalImage(frame).rgba);
-            if (debugView_ == DebugView::Forms) target_.upload(formsImage(frame).rgba);
+            DebugImage image;
+            if (debugView_ == DebugView::Depth) image = depthImage(frame);
+            if (debugView_ == DebugView::Normal) image = normalImage(frame);
+            if (debugView_ == DebugView::Forms) image = formsImage(frame);
             if (debugView_ == DebugView::Peel) {
                 PeelGrid grid = peelGrid(frame, target_.width(), target_.height());
-                target_.upload(grid.image.rgba);
+                image = std::move(grid.image);
                 peelTiles_ = std::move(grid.tiles);
+            }
+            const std::vector<std::uint8_t>& shown = debugView_ == DebugView::Shaded ? frame.rgba : image.rgba;
+            target_.upload(shown);
+            // The peel grid's small images are not the camera's view: no lines over them.
+            if (overlayOptions_.any() && debugView_ != DebugView::Peel) {
+                if (overlayOptions_.edges && edgesStale_) {
+                    overlay_->setScene(scene_.model);
+                    edgesStale_ = false;
+                }
+                OverlayOptions options = overlayOptions_;
+                // The depth and normal views' background is black.
+                const bool dark = debugView_ == DebugView::Depth || debugView_ == DebugView::Normal;
+                options.axesColor = dark ? kAxesOnBlack : axesColor(settings_.colorScheme);
+                overlay_->draw(target_.framebuffer(), cam, frame, shown, options);
             }
         }
         renderError_.clear();

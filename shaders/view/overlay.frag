@@ -2,9 +2,13 @@
 // leaf images read back from strata's frame), not a depth buffer: strata's
 // image has no rasterized depth to test against.
 //   axes and ticks  hidden where they lie behind the visible surface;
-//   edges           drawn only where their own leaf is the visible surface,
-//                   at the same depth, so only the result's visible surfaces
-//                   show their triangles.
+//   edges           drawn where their own leaf is the visible surface, at
+//                   the same depth, so only the result's visible surfaces
+//                   show their triangles; and, at a silhouette, on the
+//                   pixels just outside it (nothing, or something farther,
+//                   seen there) when a neighbouring pixel shows the edge's
+//                   surface at its depth, so a silhouette's edge is drawn
+//                   whole and not only the half of it inside the surface.
 in float viewDepth;
 in vec3 color;
 flat in float lineKind;
@@ -13,6 +17,7 @@ layout(location = 0) out vec4 fragColor;
 
 uniform sampler2D sceneDepth;   // view depth of the visible surface, +inf where none; row 0 at the top
 uniform isampler2D sceneLeaf;   // the visible surface's tree leaf, -1 where none
+uniform sampler2D sceneColor;   // the image the lines are drawn over, rows as sceneDepth
 uniform bool screenSpace;       // the corner cross: on top of everything
 uniform int viewHeight;
 uniform vec2 originPixel;       // where the world origin falls, for the dashes
@@ -34,12 +39,29 @@ void main() {
         float surface = texelFetch(sceneDepth, texel, 0).r;
         float pixel = footprint.x + footprint.y * max(viewDepth, 0.0);
         if (lineKind >= 0.0) {
-            if (texelFetch(sceneLeaf, texel, 0).r != int(lineKind + 0.5)) discard;
-            if (abs(viewDepth - surface) > kEdgeDepthTolerance * abs(surface) + kEdgePixels * pixel) discard;
-            // Blended as (1, alpha): half-way from the surface's colour to white,
-            // as OpenSCAD's preview lightens a face's colour for its edges.
-            fragColor = vec4(0.5, 0.5, 0.5, 0.5);
-            return;
+            int leaf = int(lineKind + 0.5);
+            if (texelFetch(sceneLeaf, texel, 0).r == leaf &&
+                abs(viewDepth - surface) <= kEdgeDepthTolerance * abs(surface) + kEdgePixels * pixel) {
+                // Blended as (1, alpha): half-way from the surface's colour to white,
+                // as OpenSCAD's preview lightens a face's colour for its edges.
+                fragColor = vec4(0.5, 0.5, 0.5, 0.5);
+                return;
+            }
+            // Hidden behind a nearer surface: not a silhouette.
+            if (!(surface > viewDepth)) discard;
+            // Just outside a silhouette: the colour the edge has on the
+            // neighbouring pixel that shows its surface (alpha 0: replaces).
+            ivec2 last = textureSize(sceneLeaf, 0) - 1;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec2 n = clamp(texel + ivec2(dx, dy), ivec2(0), last);
+                    if (texelFetch(sceneLeaf, n, 0).r != leaf) continue;
+                    float d = texelFetch(sceneDepth, n, 0).r;
+                    if (abs(viewDepth - d) > kEdgeDepthTolerance * abs(d) + (kEdgePixels + 1.5) * pixel) continue;
+                    fragColor = vec4(0.5 + 0.5 * texelFetch(sceneColor, n, 0).rgb, 0.0);
+                    return;
+                }
+            discard;
         }
         // Lines lying on a surface stay visible, as OpenSCAD's axes drawn before the model do.
         if (viewDepth > surface + 1e-4 * abs(surface) + pixel) discard;

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -444,6 +445,51 @@ TEST_F(StrataView, AxesScaleMarkersAndTheCornerCrossAreDrawnOverTheModel) {
         for (int y = 213; y < 219; ++y) EXPECT_FALSE(isRgb(off, x, y, 255, 0, 0));
 }
 
+// The numbers beside the scale markers, found where a closed-form projection
+// of their ticks puts them. Seen from the top at distance 100: ticks every 10,
+// and as 100 is under three times 10^2, every second tick numbered: 20, 40,
+// ... The characters are u / 2 wide on a pitch of 3u / 4 and lie u / 4 to 5u / 4
+// from the axis, u = 100 / 60: X's on the +Y side (up in the image), the
+// first character from the origin centred on its tick.
+TEST_F(StrataView, ScaleNumbersStandBesideTheirTicks) {
+    const std::string scene = dir.write("axes.csg", kAxesScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "show axes on\n"
+                                 "screenshot axes.png\n"
+                                 "show scale on\n"
+                                 "screenshot scale.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image axes = readPng(dir / "axes.png"), scale = readPng(dir / "scale.png");
+    ASSERT_EQ(scale.width, 320);
+    const double pixelsPerUnit = 240.0 / (2.0 * 100.0 * std::tan(11.25 * 3.14159265358979323846 / 180.0));
+    const double u = 100.0 / 60.0;
+    // Black pixels in the image of x in [x0, x1], y in [u / 4, 5u / 4], one pixel of slack around.
+    auto blackIn = [&](const Image& image, double x0, double x1) {
+        const int c0 = static_cast<int>(std::floor(160.0 + x0 * pixelsPerUnit)) - 1;
+        const int c1 = static_cast<int>(std::floor(160.0 + x1 * pixelsPerUnit)) + 1;
+        const int r0 = static_cast<int>(std::floor(120.0 - 1.25 * u * pixelsPerUnit)) - 1;
+        const int r1 = static_cast<int>(std::floor(120.0 - 0.25 * u * pixelsPerUnit)) + 1;
+        EXPECT_LT(r1, 119);  // clear of the axis itself
+        int n = 0;
+        for (int y = r0; y <= r1; ++y)
+            for (int x = c0; x <= c1; ++x) n += isRgb(image, x, y, 0, 0, 0);
+        return n;
+    };
+    // "20": '2' centred on x = 20, '0' on 20 + 3u / 4.
+    const double twentyFrom = 20.0 - u / 4.0, twentyTo = 20.0 + 0.75 * u + u / 4.0;
+    EXPECT_GE(blackIn(scale, twentyFrom, twentyTo), 20);
+    EXPECT_EQ(blackIn(axes, twentyFrom, twentyTo), 0);
+    // "-20" reads along +X: "0" on x = -20, then "2" and "-" further out.
+    const double minusFrom = -20.0 - 1.5 * u - u / 4.0, minusTo = -20.0 + u / 4.0;
+    EXPECT_GE(blackIn(scale, minusFrom, minusTo), 25);
+    EXPECT_EQ(blackIn(axes, minusFrom, minusTo), 0);
+    // No number at 10, an odd tick.
+    EXPECT_EQ(blackIn(scale, 10.0 - u / 4.0, 10.0 + 0.75 * u + u / 4.0), 0);
+}
+
 TEST_F(StrataView, EdgesShowOnTheVisibleSurfacesOnly) {
     const std::string scene = dir.write("cube.csg", "cube(size = [10, 10, 10], center = true);\n");
     const ProcessResult r = view(scene,
@@ -454,18 +500,145 @@ TEST_F(StrataView, EdgesShowOnTheVisibleSurfacesOnly) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Image plain = readPng(dir / "plain.png"), edges = readPng(dir / "edges.png");
     ASSERT_EQ(plain.width, edges.width);
-    // Edge pixels: lighter than the face beneath, and only where the cube is.
-    int lighter = 0, onBackground = 0;
+    // Edge pixels: lighter than the face beneath, and only where the cube is
+    // or right beside it (a silhouette's edge drawn whole).
+    auto background = [&](int x, int y) {
+        const unsigned char* p = pixelAt(plain, x, y);
+        return std::equal(p, p + 4, plain.rgba.data());
+    };
+    int lighter = 0, awayFromTheCube = 0;
     for (int y = 0; y < plain.height; ++y)
         for (int x = 0; x < plain.width; ++x) {
             const unsigned char *a = pixelAt(plain, x, y), *b = pixelAt(edges, x, y);
             if (std::equal(a, a + 4, b)) continue;
-            if (std::equal(a, a + 4, plain.rgba.data())) ++onBackground;
-            else if (b[0] >= a[0] && b[1] >= a[1] && b[2] >= a[2]) ++lighter;
+            if (background(x, y)) {
+                bool besideTheCube = false;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int nx = std::clamp(x + dx, 0, plain.width - 1), ny = std::clamp(y + dy, 0, plain.height - 1);
+                        besideTheCube = besideTheCube || !background(nx, ny);
+                    }
+                awayFromTheCube += !besideTheCube;
+            } else if (b[0] >= a[0] && b[1] >= a[1] && b[2] >= a[2]) {
+                ++lighter;
+            }
         }
-    EXPECT_EQ(onBackground, 0);
+    EXPECT_EQ(awayFromTheCube, 0);
     // The three visible faces' sides and diagonals, some 9 segments of 50 to 100 pixels.
     EXPECT_GT(lighter, 300);
+}
+
+// A cube turned 30 degrees about Z, seen from the top (orthographic, 100
+// away, 240 / (2 * 100 * tan(11.25 deg)) pixels per unit): the outline of its
+// top face is its silhouette. Each column along the two shallow sides (slope
+// tan 30 deg, one pixel per column) has an edge pixel within a row of where
+// the side's closed-form projection crosses it, whichever side of the
+// silhouette that pixel's centre falls on.
+TEST_F(StrataView, EdgesAtASilhouetteAreDrawnWhole) {
+    const std::string scene =
+        dir.write("turned.csg",
+                  "multmatrix([[0.8660254037844387, -0.5, 0, 0], [0.5, 0.8660254037844387, 0, 0], "
+                  "[0, 0, 1, 0], [0, 0, 0, 1]]) { cube(size = [10, 10, 10], center = true); }\n");
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "screenshot plain.png\n"
+                                 "show edges on\n"
+                                 "screenshot edges.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image plain = readPng(dir / "plain.png"), edges = readPng(dir / "edges.png");
+    ASSERT_EQ(plain.width, 320);
+    ASSERT_EQ(edges.width, 320);
+    const double pixelsPerUnit = 240.0 / (2.0 * 100.0 * std::tan(11.25 * 3.14159265358979323846 / 180.0));
+    const double c = std::sqrt(3.0) / 2.0, s = 0.5;
+    // The top corner (x, y) turned, in pixels: column and row coordinates (rows from the top).
+    auto corner = [&](double x, double y) {
+        return std::pair<double, double>(160.0 + (c * x - s * y) * pixelsPerUnit, 120.0 - (s * x + c * y) * pixelsPerUnit);
+    };
+    auto changed = [&](int x, int y) {
+        const unsigned char *a = pixelAt(plain, x, y), *b = pixelAt(edges, x, y);
+        return !std::equal(a, a + 4, b);
+    };
+    int columns = 0, missing = 0, outside = 0;
+    for (const auto& [from, to] : {std::pair(corner(-5, 5), corner(5, 5)), std::pair(corner(-5, -5), corner(5, -5))}) {
+        for (int x = static_cast<int>(std::ceil(from.first)) + 3; x <= static_cast<int>(std::floor(to.first)) - 3; ++x) {
+            const double t = (x + 0.5 - from.first) / (to.first - from.first);
+            const int row = static_cast<int>(std::floor(from.second + t * (to.second - from.second)));
+            bool found = false;
+            for (int y = row - 1; y <= row + 1; ++y) {
+                found = found || changed(x, y);
+                const unsigned char* p = pixelAt(plain, x, y);
+                outside += changed(x, y) && std::equal(p, p + 4, plain.rgba.data());
+            }
+            ++columns;
+            missing += !found;
+        }
+    }
+    EXPECT_GT(columns, 70);
+    EXPECT_EQ(missing, 0);
+    // Some of them lie just outside, on the background.
+    EXPECT_GT(outside, 10);
+}
+
+// The debug views that show the camera's view (depth, normal, forms) get the
+// lines too; the depth and normal views, black where nothing is hit, draw
+// the axes light grey. The peel grid's small images get none.
+TEST_F(StrataView, DebugViewsShowTheAxesAndEdges) {
+    const std::string scene = dir.write("axes.csg", kAxesScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "projection o\n"
+                                 "camera 0,0,100,0,0,0\n"
+                                 "debug normal\n"
+                                 "screenshot normal.png\n"
+                                 "debug depth\n"
+                                 "screenshot depth.png\n"
+                                 "show axes on\n"
+                                 "screenshot depth-axes.png\n"
+                                 "debug normal\n"
+                                 "screenshot normal-axes.png\n"
+                                 "debug forms\n"
+                                 "screenshot forms-axes.png\n"
+                                 "show axes off\n"
+                                 "debug peel\n"
+                                 "screenshot peel.png\n"
+                                 "show axes on\n"
+                                 "show edges on\n"
+                                 "screenshot peel-lines.png\n"
+                                 "debug normal\n"
+                                 "show axes off\n"
+                                 "screenshot normal-edges.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image depth = readPng(dir / "depth.png");
+    ASSERT_EQ(depth.width, 320);
+    // The positive X axis, the row through the centre (see kAxesScene).
+    auto onXAxis = [](const Image& image, int r, int g, int b) {
+        int n = 0;
+        for (int x = 166; x < 316; ++x) n += isRgb(image, x, 119, r, g, b) || isRgb(image, x, 120, r, g, b);
+        return n;
+    };
+    EXPECT_EQ(onXAxis(depth, 0xe5, 0xe5, 0xe5), 0);
+    EXPECT_GE(onXAxis(readPng(dir / "depth-axes.png"), 0xe5, 0xe5, 0xe5), 148);
+    EXPECT_GE(onXAxis(readPng(dir / "normal-axes.png"), 0xe5, 0xe5, 0xe5), 148);
+    EXPECT_GE(onXAxis(readPng(dir / "forms-axes.png"), 0, 0, 0), 148);  // the scheme's (Cornfield: black)
+    EXPECT_EQ(differingPixels(readPng(dir / "peel.png"), readPng(dir / "peel-lines.png")), 0);
+    // Edges over the normal view (the tops: (0.5, 0.5, 1)): lighter, on the
+    // blocks only (x, y in [5, 9]: columns 190 to 214, rows 66 to 90; x in
+    // [-2, 2], y in [10, 14]: columns 148 to 172, rows 36 to 60), a pixel of slack.
+    const Image normal = readPng(dir / "normal.png"), edges = readPng(dir / "normal-edges.png");
+    ASSERT_EQ(normal.width, 320);
+    int lighter = 0, elsewhere = 0;
+    for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x) {
+            const unsigned char *a = pixelAt(normal, x, y), *b = pixelAt(edges, x, y);
+            if (std::equal(a, a + 4, b)) continue;
+            const bool onBlock = (x >= 188 && x <= 216 && y >= 64 && y <= 92) || (x >= 145 && x <= 175 && y >= 34 && y <= 62);
+            if (!onBlock) ++elsewhere;
+            else if (b[0] > a[0]) ++lighter;
+        }
+    EXPECT_EQ(elsewhere, 0);
+    EXPECT_GT(lighter, 50);
 }
 
 TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
@@ -493,6 +666,34 @@ TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
     const Image before = readPng(dir / "before.png");
     EXPECT_GT(drawnPixels(before), 1000);
     EXPECT_EQ(differingPixels(before, readPng(dir / "gone.png")), 0);
+}
+
+// The red line of a stale model lies over the debug views as over the shaded
+// one: the window's bottom rows hold its red text (255, 90, 90).
+TEST_F(StrataView, AStaleModelsRedLineShowsOverTheDebugViews) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "panel off\n"
+                                 "debug depth\n"
+                                 "screenshot-window fresh.png\n"
+                                 "remove a.csg\n"
+                                 "sleep 250\nsleep 250\nsleep 250\nsleep 250\n"
+                                 "screenshot-window depth.png\n"
+                                 "debug peel\n"
+                                 "screenshot-window peel.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto redInTheBottomRows = [](const Image& image) {
+        int n = 0;
+        for (int y = std::max(0, image.height - 30); y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) n += isRgb(image, x, y, 255, 90, 90);
+        return n;
+    };
+    const Image fresh = readPng(dir / "fresh.png");
+    ASSERT_EQ(fresh.width, 320);
+    EXPECT_EQ(redInTheBottomRows(fresh), 0);
+    EXPECT_GT(redInTheBottomRows(readPng(dir / "depth.png")), 30);
+    EXPECT_GT(redInTheBottomRows(readPng(dir / "peel.png")), 30);
 }
 
 // A screenshot as the very first command, window and all just made: never
