@@ -701,7 +701,7 @@ TEST_F(StrataView, AStaleModelsRedLineShowsOverTheDebugViews) {
 // frame can show it.
 TEST_F(StrataView, AFirstCommandScreenshotIsNeverBlack) {
     const std::string scene = dir.write("a.csg", kScene);
-    constexpr int kRuns = 20;
+    constexpr int kRuns = 50;
     int black = 0;
     for (int run = 0; run < kRuns; ++run) {
         const std::string shot = "first-" + std::to_string(run) + ".png";
