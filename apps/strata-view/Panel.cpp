@@ -121,7 +121,9 @@ void Viewer::drawPanel() {
         ImGui::SetNextItemWidth(-1);
         if (ImGui::InputTextWithHint("##csgexport", fallback.c_str(), csg, sizeof csg)) csgExportPath_ = csg;
         if (ImGui::Button("save CSG export")) saveChosenCsgExport();
-        ImGui::TextDisabled("OpenSCAD's export of the .scad; positions in messages and the tree are its lines");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("OpenSCAD's export of the .scad; the positions in messages and the tree are its lines");
+        ImGui::PopStyleColor();
     }
 
     if (ImGui::CollapsingHeader("export")) {
