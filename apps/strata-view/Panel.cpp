@@ -112,6 +112,20 @@ void Viewer::drawPanel() {
         ImGui::EndChild();
     }
 
+    // A .scad is shown through OpenSCAD's CSG export, whose lines the
+    // messages and the tree name: it can be saved to read them.
+    if (!scene_.csgExport.empty() && ImGui::CollapsingHeader("CSG export", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const std::string fallback = defaultCsgExportPath(path_);
+        char csg[1024];
+        std::snprintf(csg, sizeof csg, "%s", csgExportPath_.c_str());
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::InputTextWithHint("##csgexport", fallback.c_str(), csg, sizeof csg)) csgExportPath_ = csg;
+        if (ImGui::Button("save CSG export")) saveChosenCsgExport();
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("OpenSCAD's export of the .scad; the positions in messages and the tree are its lines");
+        ImGui::PopStyleColor();
+    }
+
     if (ImGui::CollapsingHeader("export")) {
         if (exportPath_.empty()) exportPath_ = defaultExportPath();
         char buffer[1024];
@@ -196,8 +210,6 @@ void Viewer::drawPanel() {
 
 void Viewer::drawTreePanel() {
     ImGui::TextDisabled("shown / # highlight / node");
-    // A .scad's nodes are positioned in OpenSCAD's CSG export of it, not in the .scad.
-    const bool csgExport = path_.ends_with(".scad") || path_.ends_with(".SCAD");
     // A clipper: a tree of a million leaves lists only the rows on screen.
     // Rows under a hidden node show unticked and greyed: hiding the parent hides them.
     std::vector<bool> hiddenAbove(rows_.size(), false);
@@ -230,12 +242,17 @@ void Viewer::drawTreePanel() {
             ImGui::EndDisabled();
             ImGui::SameLine();
             ImGui::SetCursorPosX(ImGui::GetCursorPosX() + 12.0f * static_cast<float>(row.depth));
-            const int line = scene_.tree.nodes[static_cast<std::size_t>(row.node)].where.line;
-            ImGui::Text("%s%d %s%s", row.background ? "% " : "", row.node, row.label.c_str(),
-                        line > 0 ? ((csgExport ? " (CSG line " : " (line ") + std::to_string(line) + ")").c_str() : "");
+            ImGui::Text("%s%d %s%s", row.background ? "% " : "", row.node, row.label.c_str(), rowLineNote(row.node).c_str());
             ImGui::PopID();
         }
     }
+}
+
+std::string Viewer::rowLineNote(int node) const {
+    const int line = scene_.tree.nodes[static_cast<std::size_t>(node)].where.line;
+    if (line <= 0) return {};
+    // A .scad's nodes are positioned in OpenSCAD's CSG export of it, not in the .scad.
+    return (scene_.csgExport.empty() ? " (line " : " (CSG line ") + std::to_string(line) + ")";
 }
 
 void Viewer::drawPeelLabels() {

@@ -14,6 +14,7 @@
 
 #include "SceneLoad.h"
 #include "strata/core/Error.h"
+#include "strata/io/ImageWriter.h"
 #include "strata/scene/CsgParser.h"
 
 extern char** environ;
@@ -116,8 +117,9 @@ std::vector<std::string> convertScad(const std::string& scad, const std::string&
 }
 
 // As strata-render: a .csg through the parser, a mesh as a tree of one Import
-// leaf; a .scad through openscad, whose printed lines go to `printed`.
-scene::Tree readTree(const std::string& path, std::vector<std::string>& printed) {
+// leaf; a .scad through openscad, whose printed lines go to `printed` and
+// whose CSG export goes to `exported`.
+scene::Tree readTree(const std::string& path, std::vector<std::string>& printed, std::string& exported) {
     const std::string ext = apps::lowerExtension(path);
     if (ext != ".csg" && ext != ".scad" && !apps::isMeshExtension(ext))
         throw Error(SourceLocation{path, 0, 0},
@@ -131,7 +133,11 @@ scene::Tree readTree(const std::string& path, std::vector<std::string>& printed)
         // Positions are in OpenSCAD's CSG export, not in the .scad: messages
         // say so ("a.scad (CSG export):9:6: ..."). Relative imports resolve
         // from the .scad's folder.
-        std::ifstream in(csg, std::ios::binary);
+        std::ifstream file(csg, std::ios::binary);
+        std::ostringstream text;
+        text << file.rdbuf();
+        exported = text.str();
+        std::istringstream in(exported);
         scene::Tree tree = scene::parseCsg(in, path + " (CSG export)", fs::path(path).parent_path().string());
         tree.source = path;
         return tree;
@@ -143,11 +149,30 @@ scene::Tree readTree(const std::string& path, std::vector<std::string>& printed)
 
 LoadedScene loadSceneFile(const std::string& path) {
     LoadedScene scene;
-    scene.tree = readTree(path, scene.openscadOutput);
+    scene.tree = readTree(path, scene.openscadOutput, scene.csgExport);
     scene.model = geometry::buildModel(scene.tree);
     // What the model forgave (an inside-out polyhedron) is shown with the reader's warnings.
     scene.tree.warnings.insert(scene.tree.warnings.end(), scene.model.warnings.begin(), scene.model.warnings.end());
     return scene;
+}
+
+std::string defaultCsgExportPath(const std::string& scadPath) {
+    return fs::path(scadPath).replace_extension(".csg").string();
+}
+
+void saveCsgExport(const LoadedScene& scene, const std::string& scenePath, const std::string& target) {
+    if (scene.csgExport.empty())
+        throw Error("cannot save a CSG export: " + scenePath + " is not a .scad, its positions are its own lines");
+    if (apps::lowerExtension(target) != ".csg")
+        throw Error("cannot save the CSG export to '" + target + "': expected a .csg file name");
+    // The .csg name keeps it off the .scad; a name that leads to the .scad
+    // all the same (a link) is refused too.
+    std::error_code ec;
+    if (fs::equivalent(target, scenePath, ec))
+        throw Error("cannot save the CSG export to '" + target + "': that is the .scad itself");
+    io::StagedFile file = io::StagedFile::write(
+        target, "CSG export", std::vector<unsigned char>(scene.csgExport.begin(), scene.csgExport.end()));
+    file.commit();
 }
 
 }  // namespace strata::view

@@ -16,10 +16,22 @@ struct LoadedScene {
     scene::Tree tree;
     geometry::Model model;
     std::vector<std::string> openscadOutput;  // a .scad's ECHO, WARNING, ... lines, as OpenSCAD printed them
+    // A .scad's CSG export as OpenSCAD wrote it, the text whose lines the
+    // tree's positions name; empty for a .csg or a mesh.
+    std::string csgExport;
 };
 
 // Parses and tessellates. Throws strata::Error with strata-render's one-line
 // messages ("file:line:col: message") on any bad input.
 LoadedScene loadSceneFile(const std::string& path);
+
+// Where the panel offers to save a .scad's CSG export: beside it, its stem with .csg.
+std::string defaultCsgExportPath(const std::string& scadPath);
+
+// Writes `scene`'s CSG export (loaded from `scenePath`) to `target`, as
+// strata's other outputs are written: complete or not at all. Throws
+// strata::Error with one line when the scene has no export (not a .scad),
+// `target` is not a .csg name or is the .scad itself, or the write fails.
+void saveCsgExport(const LoadedScene& scene, const std::string& scenePath, const std::string& target);
 
 }  // namespace strata::view

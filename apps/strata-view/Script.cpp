@@ -26,7 +26,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 30> kSyntax{{
+constexpr std::array<Syntax, 31> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -51,6 +51,7 @@ constexpr std::array<Syntax, 30> kSyntax{{
     {"screenshot-window", CommandKind::ScreenshotWindow, 1, 1},
     {"export", CommandKind::Export, 1, 1},
     {"export-exact", CommandKind::ExportExact, 1, 1},
+    {"save-csg", CommandKind::SaveCsg, 1, 1},
     {"copy", CommandKind::Copy, 2, 2},
     {"remove", CommandKind::Remove, 1, 1},
     {"wait-reload", CommandKind::WaitReload, 0, 0},
@@ -210,6 +211,9 @@ void checkArguments(Command& c, std::string_view name) {
         } catch (const Error&) {
             throw fail("expected a .stl, .off, .obj or .3mf file name, got '" + c.words[0] + "'", 0);
         }
+        break;
+    case CommandKind::SaveCsg:
+        if (!c.words[0].ends_with(".csg")) throw fail("expected a .csg file name, got '" + c.words[0] + "'", 0);
         break;
     default: break;
     }

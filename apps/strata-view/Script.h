@@ -37,6 +37,7 @@ enum class CommandKind {
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
     Export,           // export PATH         (the result sampled and contoured, as strata-render --export; waits until written)
     ExportExact,      // export-exact PATH   (the exact result, as --export-exact; waits until written)
+    SaveCsg,          // save-csg PATH.csg   (a .scad's CSG export, whose lines the positions name)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)

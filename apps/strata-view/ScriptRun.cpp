@@ -160,6 +160,7 @@ bool Viewer::runCommand(const Command& c) {
             }
             glfwWaitEventsTimeout(0.02);
             return false;
+        case CommandKind::SaveCsg: saveCsgExport(path(0)); return true;
         case CommandKind::Copy: replaceFile(path(0), path(1)); return true;
         case CommandKind::Remove: {
             std::error_code ec;
@@ -176,7 +177,7 @@ bool Viewer::runCommand(const Command& c) {
             if (what == "tree")
                 for (const TreeRow& row : rows_)
                     std::cout << std::string(static_cast<std::size_t>(row.depth) * 2, ' ') << row.node << ' '
-                              << row.label << '\n';
+                              << row.label << rowLineNote(row.node) << '\n';
             std::cout.flush();
             return true;
         }

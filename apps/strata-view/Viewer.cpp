@@ -374,6 +374,23 @@ void Viewer::saveNumberedScreenshot() {
     }
 }
 
+void Viewer::saveCsgExport(const std::string& path) {
+    view::saveCsgExport(scene_, path_, path);
+    message_ = "saved the CSG export to " + path;
+    console_.add(ConsoleLine::Kind::Info, "saved the CSG export of " + path_ + " to " + path +
+                                              ": the positions in messages and the tree's CSG lines are its lines");
+}
+
+void Viewer::saveChosenCsgExport() {
+    const std::string path = csgExportPath_.empty() ? defaultCsgExportPath(path_) : csgExportPath_;
+    try {
+        saveCsgExport(path);
+    } catch (const Error& e) {
+        message_ = e.what();
+        console_.add(ConsoleLine::Kind::Error, e.what());
+    }
+}
+
 std::string Viewer::cameraLine() const { return cameraArgument(camera()); }
 
 void Viewer::copyCamera() {

@@ -94,6 +94,10 @@ private:
     void saveNumberedScreenshot();
     void saveChosenScreenshot();  // to the panel's file name, or numbered when it is empty
     void copyCamera();
+    // Writes the shown .scad's CSG export to `path` and says so in the
+    // console; throws strata::Error (one line) when it cannot.
+    void saveCsgExport(const std::string& path);
+    void saveChosenCsgExport();  // to the panel's file name, or beside the .scad; errors go to the console
     // The panel's choice of export (exact or sampled, exportExact_), or the
     // one `exact` names.
     void startExport(const std::string& path);
@@ -116,6 +120,8 @@ private:
     // Panel.cpp
     void drawPanel();
     void drawTreePanel();
+    // " (line N)", or " (CSG line N)" for a .scad's node: where the node is written; empty when unknown.
+    std::string rowLineNote(int node) const;
     void drawPeelLabels();
 
     // ScriptRun.cpp: false while the command still waits (wait-reload, sleep).
@@ -134,6 +140,7 @@ private:
     Exporter exporter_;
     std::string exportPath_;         // the panel's export file name
     std::string screenshotPath_;     // the panel's screenshot file name; empty: strata-view-N.png
+    std::string csgExportPath_;      // the panel's file name for a .scad's CSG export; empty: beside the .scad
     bool exportExact_ = false;       // the panel exports CGAL's exact result, not the sampled one
     int exportResolution_ = remesh::kDefaultResolution;  // the sampled export's cells along the longest side
     Console console_;

@@ -60,7 +60,7 @@ TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("size 320 240\n  jump 3\n"),
               "s.txt:2:3: unknown command 'jump' (valid: open, size, layers, camera, projection, fov, orbit, pan, "
               "middle-drag, zoom-drag, zoom, preset, view-all, double-click, toggle, highlight, colorscheme, debug, panel, show, screenshot, "
-              "screenshot-window, export, export-exact, copy, remove, wait-reload, print, sleep, quit)");
+              "screenshot-window, export, export-exact, save-csg, copy, remove, wait-reload, print, sleep, quit)");
     EXPECT_EQ(errorOf("layers many\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got 'many'");
     EXPECT_EQ(errorOf("layers 0\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got '0'");
     EXPECT_EQ(errorOf("size 320\n"), "s.txt:1:1: size: expected 2 arguments, got 1");
@@ -73,6 +73,7 @@ TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("orbit 1 nan\n"), "s.txt:1:9: orbit: expected pixels, got 'nan'");
     EXPECT_EQ(errorOf("screenshot a.jpg\n"), "s.txt:1:12: screenshot: expected a .png file name, got 'a.jpg'");
     EXPECT_EQ(errorOf("export a.ply\n"), "s.txt:1:8: export: expected a .stl, .off, .obj or .3mf file name, got 'a.ply'");
+    EXPECT_EQ(errorOf("save-csg a.scad\n"), "s.txt:1:10: save-csg: expected a .csg file name, got 'a.scad'");
     EXPECT_EQ(errorOf("open \"a.csg\n"), "s.txt:1:6: unterminated quoted word");
     EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N >= 1");
     EXPECT_EQ(errorOf("debug xray\n"),

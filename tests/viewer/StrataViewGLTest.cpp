@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -342,6 +344,74 @@ TEST_F(StrataView, AScadsMessagesSayTheyArePositionsInItsCsgExport) {
     const ProcessResult r = runProcess({kView, scad}, {{"DISPLAY", ":4999"}});
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_TRUE(r.err.starts_with(scad + " (CSG export):1:1: polyhedron is not a closed solid")) << r.err;
+}
+
+// The line of `text` numbered `number` (from 1); empty past the end.
+std::string lineOf(const std::string& text, int number) {
+    std::istringstream in(text);
+    std::string line;
+    for (int k = 1; std::getline(in, line); ++k)
+        if (k == number) return line;
+    return {};
+}
+
+// The "(CSG line N)" of the first `print tree` row whose label is `label`; 0 when none.
+int csgLineOfRow(const std::string& out, const std::string& label) {
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (std::regex_match(line, m, std::regex(R"(\s*\d+ )" + label + R"( \(CSG line (\d+)\))")))
+            return std::stoi(m[1].str());
+    }
+    return 0;
+}
+
+TEST_F(StrataView, SaveCsgWritesTheExportWhoseLinesTheTreeNames) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    // The sphere and the cube land on different lines of the export (2 and 4),
+    // neither of them the .scad's line.
+    const std::string scad = dir.write("a.scad", "echo(\"two solids\");\n\ntranslate([20, 0, 0]) sphere(3);\ncube(5);\n");
+    const ProcessResult r = view(scad, "size 64 64\nprint tree\nsave-csg out.csg\nprint console\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // The file is OpenSCAD's export, byte for byte, and strata-render reads it.
+    ASSERT_EQ(runProcess({"/bin/sh", "-c", "openscad -o '" + (dir / "by-openscad.csg") + "' '" + scad + "'"}).exitCode, 0);
+    std::ifstream saved(dir / "out.csg", std::ios::binary), exported(dir / "by-openscad.csg", std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(saved), std::istreambuf_iterator<char>()};
+    const std::string byOpenscad{std::istreambuf_iterator<char>(exported), std::istreambuf_iterator<char>()};
+    ASSERT_FALSE(text.empty());
+    EXPECT_EQ(text, byOpenscad);
+    const ProcessResult stats = runProcess({kRender, dir / "out.csg", "--imgsize", "32,32", "-o", dir / "out.png", "--stats"});
+    EXPECT_EQ(stats.exitCode, 0) << stats.err;
+    // The tree's rows name the lines of the saved file where their statements are.
+    const int cube = csgLineOfRow(r.out, "cube"), sphere = csgLineOfRow(r.out, "sphere");
+    ASSERT_GT(cube, 0) << r.out;
+    ASSERT_GT(sphere, 0) << r.out;
+    EXPECT_NE(cube, sphere);
+    EXPECT_TRUE(lineOf(text, cube).find("cube(") != std::string::npos) << cube << "\n" << text;
+    EXPECT_TRUE(lineOf(text, sphere).find("sphere(") != std::string::npos) << sphere << "\n" << text;
+    // The console says where it went and what its lines are.
+    EXPECT_NE(r.out.find("saved the CSG export of " + scad + " to " + (dir / "out.csg") +
+                         ": the positions in messages and the tree's CSG lines are its lines\n"),
+              std::string::npos)
+        << r.out;
+}
+
+TEST_F(StrataView, SaveCsgWithoutAnExportOrIntoAMissingFolderIsOneLineAndNoFile) {
+    const std::string csg = dir.write("a.csg", kScene);
+    const ProcessResult plain = view(csg, "size 32 32\nsave-csg out.csg\n");
+    EXPECT_EQ(plain.exitCode, 1);
+    EXPECT_EQ(lineCount(plain.err), 1) << plain.err;
+    EXPECT_TRUE(plain.err.starts_with(dir / "script.txt:2:1: cannot save a CSG export: " + csg + " is not a .scad"))
+        << plain.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.csg"));
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    const std::string scad = dir.write("b.scad", "cube(5);\n");
+    const ProcessResult missing = view(scad, "size 32 32\nsave-csg nowhere/out.csg\n");
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_EQ(lineCount(missing.err), 1) << missing.err;
+    EXPECT_TRUE(missing.err.starts_with(dir / "script.txt:2:1: " + (dir / "nowhere/out.csg") + ": cannot write"))
+        << missing.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "nowhere"));
 }
 
 TEST_F(StrataView, ThePanelIsDockedBesideTheViewAndFramingFramesWhatIsSeen) {
