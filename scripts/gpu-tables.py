@@ -7,20 +7,22 @@ DIR holds bench-synthetic.json, bench-files.json and first-image.json as
 scripts/gpu-bench.sh writes them. Prints three Markdown tables: the seeded
 scenes, the models' frames, and the whole-process first images.
 """
+import importlib.util
 import json
 import os
 import sys
 
 
-def number(x, digits=3):
-    """Three significant digits, as the tables write them."""
-    if x is None:
-        return "-"
-    if x >= 100:
-        return f"{x:.0f}"
-    if x >= 10:
-        return f"{x:.1f}"
-    return f"{x:.2f}"
+def load_report():
+    """scripts/bench-report.py, for its number format (its name is no module name)."""
+    spec = importlib.util.spec_from_file_location("bench_report", os.path.join(os.path.dirname(__file__),
+                                                                                "bench-report.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+number = load_report().fmt  # about three significant digits, as every table of benchmarks.md
 
 
 def frames(results, first_column):

@@ -168,8 +168,8 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
     gpu::checkErrors();
 }
 
-bool GroupPeel::tiesWanted(const SceneBuffers& scene, const std::vector<int>& members) {
-    return members.size() <= kMostTieMembers || scene.shareAPlane(members);
+bool GroupPeel::tiesWanted(const SceneBuffers& scene, const std::vector<int>& members, bool unite) {
+    return unite || members.size() <= kMostTieMembers || scene.shareAPlane(members);
 }
 
 }  // namespace strata::render

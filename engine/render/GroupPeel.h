@@ -88,17 +88,18 @@ public:
     // `unite`: the group is the union of its members, not their intersection.
     void peel(const SceneBuffers& scene, const std::vector<int>& members, const PixelRect& valid,
               const gpu::Texture& layers, int layer, int idsLayer, bool ties, bool unite);
-    // Whether to look for ties among the members of an intersection: where
-    // two have faces in one plane (SceneBuffers::shareAPlane), always; where
-    // their surfaces only cross, up to kMostTieMembers members. A union
-    // always looks: its members are often parts that stand flush (a grid of
-    // blocks, parts on a plate), and hashing the planes of a million members
-    // would cost more memory than the two passes cost time. Ties cost two geometry passes
-    // over every member (the group's peel 2.5 times as long on llvmpipe);
-    // in a larger group of crossing surfaces, the pixels on the thin band
-    // where two come within the tolerance name the member rounding puts
-    // last instead of the lowest (the leaf and colour, not the depth).
-    static bool tiesWanted(const SceneBuffers& scene, const std::vector<int>& members);
+    // Whether to look for ties among `members`. A union (`unite`) always
+    // looks: its members are often parts that stand flush (a grid of blocks,
+    // parts on a plate), and hashing the planes of a million members would
+    // cost more memory than the two passes cost time. An intersection looks
+    // where two members have faces in one plane (SceneBuffers::shareAPlane),
+    // and, where their surfaces only cross, up to kMostTieMembers members.
+    // Ties cost two geometry passes over every member (the group's peel 2.5
+    // times as long on llvmpipe); in a larger intersection of crossing
+    // surfaces, the pixels on the thin band where two come within the
+    // tolerance name the member rounding puts last instead of the lowest
+    // (the leaf and colour, not the depth).
+    static bool tiesWanted(const SceneBuffers& scene, const std::vector<int>& members, bool unite);
     static constexpr std::size_t kMostTieMembers = 8;
 
     // R32UI, a layer per group, tile pixels: entry member | exit member <<

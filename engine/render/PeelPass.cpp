@@ -218,7 +218,7 @@ int PeelPass::peelGroups(const Job& job, const ViewSetup& view, std::vector<Oper
         // index among the tile's groups: its layer of the ids.
         out[k] = {used, 1, used};
         const bool unite = k < job.request.unionGroups.size() && job.request.unionGroups[k];
-        const bool ties = unite || GroupPeel::tiesWanted(job.scene, job.request.groups[k]);
+        const bool ties = GroupPeel::tiesWanted(job.scene, job.request.groups[k], unite);
         group_.peel(job.scene, job.request.groups[k], valid, layers_, used, used, ties, unite);
         ++used;
         passes_ += ties ? 4 : 2;  // entries, exits, and their ties (GroupPeel.h)

@@ -63,7 +63,6 @@ void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& mode
         leafColors_.push_back(c ? glm::vec4(*c) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     }
     layoutStart_.back() = static_cast<std::uint32_t>(layoutVertices);
-    indexCount_ = indexCount;
     planes_.assign(leaves_.size(), {});  // hashed on demand: hashPlanes
     sharing_.clear();
 }
@@ -71,7 +70,8 @@ void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& mode
 void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) {
     // Each triangle ends on a vertex of its own (lastCornerLayout), which
     // carries its face normal: the provoking vertex of a flat varying.
-    const std::size_t layoutVertices = layoutStart_.back(), indexCount = indexCount_;
+    const std::size_t layoutVertices = layoutStart_.back();
+    const std::size_t indexCount = leaves_.empty() ? 0 : leaves_.back().firstIndex + leaves_.back().indexCount;
     std::vector<float> positions;        // by 3, the layouts' vertices
     std::vector<float> normals;          // by 3, per layout vertex; a triangle's on its last corner
     std::vector<std::uint32_t> indices;  // #F by 3, absolute, in the layout
@@ -196,7 +196,7 @@ void SceneBuffers::hashPlanes(const geometry::Model& model, const std::vector<in
     for (int leaf : leaves) {
         const auto i = static_cast<std::size_t>(leaf);
         std::vector<std::uint64_t>& keys = planes_[i];
-        if (!keys.empty()) continue;
+        if (!leaves_[i].convex || !keys.empty()) continue;
         const geometry::Mesh& mesh = model.leafMeshes[i];
         for (const auto& t : mesh.triangles) {
             const glm::dvec3& a = mesh.positions[t[0]];

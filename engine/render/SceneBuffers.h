@@ -78,12 +78,12 @@ public:
     const LeafRange& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
     // Of every leaf with triangles, background leaves included.
     const geometry::Bounds& bounds() const { return bounds_; }
-    // Hashes the face planes of `leaves` (model as in upload), for
-    // shareAPlane; leaves not hashed have no planes there.
+    // Hashes the face planes of the convex `leaves` (model as in describe),
+    // for shareAPlane; leaves not hashed have no planes there.
     void hashPlanes(const geometry::Model& model, const std::vector<int>& leaves);
-    // Whether two of `leaves` have faces in one plane, facing the same way
-    // (to a billionth of the scene's size): where members of a group can tie
-    // (GroupPeel.h). Remembered per set of leaves.
+    // Whether two of the convex `leaves` have faces in one plane, facing the
+    // same way (to a billionth of the scene's size): where members of an
+    // intersection group can tie (GroupPeel.h). Remembered per set of leaves.
     bool shareAPlane(const std::vector<int>& leaves) const;
     // Leaf `leaf`'s vertices (world space, as uploaded), for screen rectangles.
     std::span<const glm::vec3> leafVertices(int leaf) const;
@@ -104,7 +104,6 @@ private:
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_
     std::vector<std::size_t> firstVertex_;     // per leaf, and one past the last
     std::vector<std::uint32_t> layoutStart_;   // per leaf, and one past the last: into the layouts' vertices
-    std::size_t indexCount_ = 0;               // of every leaf
     geometry::Bounds bounds_;
 };
 
