@@ -6,12 +6,14 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   clang libclang-rt-14-dev               # libFuzzer target (tests/fuzz)
-  libglm-dev libopenmesh-dev libopenimageio-dev openimageio-tools
+  libglm-dev libopenmesh-dev
+  libpng-dev libopenexr-dev              # PNG and EXR output
+  libopenimageio-dev openimageio-tools   # the tests read images back through OpenImageIO, apart from the writers
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libembree-dev libcli11-dev
   libpolyclipping-dev libglu1-mesa-dev   # 2D booleans and offsets (Clipper 6, as OpenSCAD); extrusion caps (GLU's tessellator)
   libfreetype-dev libharfbuzz-dev libfontconfig-dev fonts-liberation2   # text(), OpenSCAD's default font
-  libxml2-dev libpng-dev                 # import() of SVG files; surface() of PNG images
+  libxml2-dev                            # import() of SVG files
   libqhull-dev                           # hull() and minkowski(): convex hulls
   libcgal-dev                            # exact results of differences and intersections inside hull/resize/projection/minkowski, and --export-exact
   lib3mf-dev                             # --export to 3MF

@@ -10,8 +10,7 @@ The script fills:
 - DIR/lib: every shared library the two binaries load, copied from this
   machine and stripped, except glibc's own and the GL/EGL/GLX/glvnd
   libraries (the other machine's GL driver and glvnd must be used).
-  Libraries that the benchmarks never call are replaced by stubs (below):
-  29 MiB instead of about 390;
+  Libraries that the benchmarks never call are replaced by stubs (below);
 - DIR/fonts: Liberation Sans (regular and bold), OpenSCAD's default font,
   and a fonts.conf naming only that folder, for models with text();
 - DIR/models: the given scene files, with the files they import (`file =
@@ -21,37 +20,23 @@ The script fills:
 
 A stub has the real library's file name (soname) and version nodes, and
 defines exactly the symbols the copied objects import from it, so the
-dynamic loader is satisfied (libOpenImageIO is linked with BIND_NOW: every
-import must resolve at start-up). Its data are zero-filled, of the real
-size; its constructors and destructors return at once (OpenImageIO builds a
-DCMTK object at start-up); the few functions OpenImageIO calls whatever the
-format (QUIET) return 0; every other function prints its name and aborts,
-so a path that does need the library stops loudly instead of going wrong.
+dynamic loader is satisfied. Its data are zero-filled, of the real size;
+its constructors and destructors return at once; version queries (QUIET)
+return 0; every other function prints its name and aborts, so a path that
+does need the library stops loudly instead of going wrong.
 STRATA_STUB_TRACE=1 in the environment makes them print and return 0
 instead, to list what a run calls. The stubbed libraries, and why
 strata-bench and strata-render do not need them:
 
-- OpenImageIO's readers and writers of formats strata never writes (strata
-  writes PNG and OpenEXR only): OpenCV, DCMTK, FFmpeg, libheif, OpenJPEG,
-  OpenVDB, LibRaw, libtiff, libwebp, giflib, libjpeg, and OpenColorIO
-  (colour-space conversion, unused for 8-bit PNG and float EXR);
-- OpenEXR: only strata-render's AOVs, `--depth` and `--normal`;
 - Embree: only `strata-render --reference` (the CPU ray caster);
 - lib3MF: only `--export FILE.3mf`;
 - ICU (libicuuc, and with it its 30 MiB of data): only libxml2's conversion
   of SVG files in encodings other than UTF-8, UTF-16 and Latin-1.
 
-So `--depth`, `--normal`, `--reference` and `--export FILE.3mf` stop at a
-stub with its name; everything else strata-render and strata-bench do runs
-as on a full install, and gives the same images (checked on every example
-and model: byte-identical PNGs). Take a library off STUBBED to bundle it
-(OpenEXR adds 4.5 MiB, lib3MF 2 MiB, ICU 32 MiB).
-
-A bundle starts faster than a full install: the 230 or so libraries behind
-OpenImageIO are neither loaded nor initialised. `strata-render --help`
-takes 25-35 ms from a bundle and about 245 ms from Debian's packages on
-the 2-core machine of docs/benchmarks.md: whole-process times from a
-bundle are lower than a full install's on the same machine.
+So `--reference` and `--export FILE.3mf` stop at a stub with its name;
+everything else strata-render and strata-bench do runs as on a full
+install, and gives the same images. Take a library off STUBBED to bundle
+it (lib3MF adds 2 MiB, ICU 32 MiB).
 """
 import argparse
 import os
@@ -65,21 +50,11 @@ SYSTEM = re.compile(r"^(libc\.so|libm\.so|libpthread\.so|libdl\.so|librt\.so|ld-
                     r"|libEGL\.so|libGL\.so|libGLESv2\.so|libOpenGL\.so|libGLX\.so|libGLdispatch\.so"
                     r"|libgbm\.so|libglapi\.so|libvulkan\.so)")
 STUBBED = [
-    # OpenImageIO's other formats
-    "libopencv_core.so.406", "libopencv_imgproc.so.406", "libopencv_videoio.so.406",
-    "libdcmimage.so.17", "libdcmimgle.so.17", "libdcmdata.so.17", "liboflog.so.17", "libofstd.so.17",
-    "libavcodec.so.59", "libavformat.so.59", "libavutil.so.57", "libswscale.so.6",
-    "libheif.so.1", "libopenjp2.so.7", "libopenvdb.so.10.0", "libraw_r.so.20",
-    "libtiff.so.6", "libwebp.so.7", "libwebpdemux.so.2", "libgif.so.7", "libjpeg.so.62",
-    "libOpenColorIO.so.2.1",
-    # OpenEXR: only the depth and normal AOVs (--depth, --normal)
-    "libOpenEXR-3_1.so.30", "libOpenEXRCore-3_1.so.30", "libIex-3_1.so.30", "libIlmThread-3_1.so.30",
     # the reference ray caster; 3MF export; libxml2's encoding conversions
     "libembree3.so.3", "lib3MF.so.1", "libicuuc.so.72",
 ]
-# Stubs that OpenImageIO calls when it first lists its plugins, whatever the
-# format: they return 0 (or an empty string, for a version) and say nothing.
-QUIET = re.compile(r"[Vv]ersion|^TIFFSet(Error|Warning)Handler$")
+# Stubs that report a version: they return 0 (or an empty string) and say nothing.
+QUIET = re.compile(r"[Vv]ersion")
 FONTS = ["/usr/share/fonts/truetype/liberation2/LiberationSans-Regular.ttf",
          "/usr/share/fonts/truetype/liberation2/LiberationSans-Bold.ttf"]
 FONT_LICENCE = "/usr/share/doc/fonts-liberation2/copyright"

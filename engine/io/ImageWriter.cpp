@@ -5,15 +5,23 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <png.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -115,30 +123,95 @@ std::string writeAll(int fd, const std::vector<unsigned char>& bytes) {
     return {};
 }
 
-// Encodes one image through OpenImageIO into memory, then writes the bytes
-// into an unnamed file in the target's folder (O_TMPFILE), or where the file
-// system has none, into a named temporary there.
-StagedFile stage(const std::string& path, const std::string& what, const char* format, const OIIO::ImageSpec& spec,
-                 const void* pixels) {
+// ---------------------------------------------------------------------------
+// PNG through libpng, into memory. libpng reports errors by longjmp, so all
+// of its state lives in *e and in libpng's own structures: the jump skips no
+// C++ destructor.
+
+struct PngEncode {
     std::vector<unsigned char> bytes;
-    {
-        OIIO::Filesystem::IOVecOutput memory(bytes);
-        auto out = OIIO::ImageOutput::create(format);
-        if (!out) cannotWrite(path, what, oneLine(OIIO::geterror()));
-        if (!out->supports("ioproxy") || !out->set_ioproxy(&memory)) {
-            cannotWrite(path, what, "OpenImageIO cannot write it to memory");
-        }
-        // The name is only a label here: the proxy takes the bytes.
-        if (!out->open(path, spec)) cannotWrite(path, what, oneLine(out->geterror()));
-        if (!out->write_image(spec.format, pixels)) {
-            const std::string why = oneLine(out->geterror());
-            out->close();
-            cannotWrite(path, what, why);
-        }
-        if (!out->close()) cannotWrite(path, what, oneLine(out->geterror()));
-    }
-    return StagedFile::write(path, what, bytes);
+    char message[200] = {0};
+};
+
+void pngError(png_structp png, png_const_charp message) {
+    auto* e = static_cast<PngEncode*>(png_get_error_ptr(png));
+    std::snprintf(e->message, sizeof e->message, "%s", message ? message : "libpng error");
+    png_longjmp(png, 1);
 }
+
+void pngWarning(png_structp, png_const_charp) {}
+
+void pngWrite(png_structp png, png_bytep data, png_size_t length) {
+    auto* e = static_cast<PngEncode*>(png_get_io_ptr(png));
+    bool grown = true;
+    try {
+        e->bytes.insert(e->bytes.end(), data, data + length);
+    } catch (const std::bad_alloc&) {
+        grown = false;
+    }
+    if (!grown) png_error(png, "out of memory");
+}
+
+void pngFlush(png_structp) {}
+
+bool writePngRows(png_structp png, png_infop info, int width, int height, const std::uint8_t* rgba, PngEncode* e) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_set_write_fn(png, e, pngWrite, pngFlush);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+                 PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    // Rendered images are runs of flat or slowly shaded colour: unfiltered
+    // rows at zlib's fastest level encode a 1024x768 frame in a third of
+    // the time of libpng's defaults (adaptive filters, level 6), for files
+    // about 1.4 times as large.
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+    png_set_compression_level(png, 1);
+    png_text software{};
+    software.compression = PNG_TEXT_COMPRESSION_NONE;
+    software.key = const_cast<png_charp>("Software");
+    software.text = const_cast<png_charp>("strata");
+    png_set_text(png, info, &software, 1);
+    png_write_info(png, info);
+    const std::size_t rowBytes = static_cast<std::size_t>(width) * 4;
+    for (int y = 0; y < height; ++y) png_write_row(png, rgba + static_cast<std::size_t>(y) * rowBytes);
+    png_write_end(png, info);
+    return true;
+}
+
+bool encodePng(PngEncode* e, int width, int height, const std::uint8_t* rgba) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, e, pngError, pngWarning);
+    if (!png) {
+        std::snprintf(e->message, sizeof e->message, "out of memory");
+        return false;
+    }
+    png_infop info = png_create_info_struct(png);
+    const bool ok = info != nullptr && writePngRows(png, info, width, height, rgba, e);
+    if (!info) std::snprintf(e->message, sizeof e->message, "out of memory");
+    png_destroy_write_struct(&png, &info);
+    return ok;
+}
+
+// ---------------------------------------------------------------------------
+// OpenEXR, into memory.
+
+class MemoryStream final : public Imf::OStream {
+public:
+    MemoryStream() : Imf::OStream("memory") {}
+    void write(const char c[], int n) override {
+        if (n < 0) throw std::length_error("negative write");
+        const std::size_t end = position_ + static_cast<std::size_t>(n);
+        if (end > bytes.size()) bytes.resize(end);
+        std::memcpy(bytes.data() + position_, c, static_cast<std::size_t>(n));
+        position_ = end;
+    }
+    uint64_t tellp() override { return position_; }
+    void seekp(uint64_t pos) override { position_ = static_cast<std::size_t>(pos); }
+
+    std::vector<unsigned char> bytes;
+
+private:
+    std::size_t position_ = 0;
+};
 
 // The folder a file named `path` goes into; throws unless a file can be
 // written there under that name (not a folder, FIFO or device).
@@ -257,27 +330,42 @@ void removeTemporariesOnSignals() {
 
 StagedFile stagePng(const std::string& path, int width, int height, std::span<const std::uint8_t> rgba) {
     checkSize(path, "PNG", width, height, rgba.size(), 4);
-    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-    // Straight alpha, written as given: without this OpenImageIO assumes
-    // premultiplied values and divides colour by alpha on the way out.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    spec.attribute("Software", "strata");
-    return stage(path, "PNG", "png", spec, rgba.data());
+    PngEncode e;
+    if (!encodePng(&e, width, height, rgba.data())) cannotWrite(path, "PNG", e.message);
+    return StagedFile::write(path, "PNG", e.bytes);
 }
 
 StagedFile stageExr(const std::string& path, int width, int height, std::span<const std::string> channels,
                     std::span<const float> pixels) {
     if (channels.empty()) cannotWrite(path, "EXR", "no channels");
     checkSize(path, "EXR", width, height, pixels.size(), channels.size());
-    OIIO::ImageSpec spec(width, height, static_cast<int>(channels.size()), OIIO::TypeDesc::FLOAT);
-    spec.channelnames.assign(channels.begin(), channels.end());
-    spec.alpha_channel = -1;
-    spec.z_channel = -1;
-    for (std::size_t c = 0; c < channels.size(); ++c)
-        if (channels[c] == "Z") spec.z_channel = static_cast<int>(c);
-    spec.attribute("compression", "zip");
-    spec.attribute("Software", "strata");
-    return stage(path, "EXR", "openexr", spec, pixels.data());
+    MemoryStream memory;
+    try {
+        Imf::Header header(width, height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        header.lineOrder() = Imf::INCREASING_Y;
+        header.insert("Software", Imf::StringAttribute("strata"));
+        Imf::FrameBuffer frame;
+        const std::size_t stride = channels.size() * sizeof(float);
+        for (std::size_t c = 0; c < channels.size(); ++c) {
+            if (channels[c].empty()) cannotWrite(path, "EXR", "a channel without a name");
+            if (header.channels().findChannel(channels[c]) != nullptr) {
+                cannotWrite(path, "EXR", "channel '" + channels[c] + "' twice");
+            }
+            header.channels().insert(channels[c], Imf::Channel(Imf::FLOAT));
+            // The slice's base is only ever offset by in-range pixels.
+            char* base = reinterpret_cast<char*>(const_cast<float*>(pixels.data() + c));
+            frame.insert(channels[c], Imf::Slice(Imf::FLOAT, base, stride, stride * static_cast<std::size_t>(width)));
+        }
+        Imf::OutputFile file(memory, header, 1);
+        file.setFrameBuffer(frame);
+        file.writePixels(height);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& ex) {
+        cannotWrite(path, "EXR", oneLine(ex.what()));
+    }
+    return StagedFile::write(path, "EXR", memory.bytes);
 }
 
 StagedFile stageDepthExr(const std::string& path, int width, int height, std::span<const float> depth) {

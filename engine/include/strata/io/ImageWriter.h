@@ -1,5 +1,5 @@
 #pragma once
-// Writing strata's images through OpenImageIO: the shaded PNG and the EXR AOVs
+// Writing strata's images (libpng, OpenEXR): the shaded PNG and the EXR AOVs
 // of docs/contract.md. Every image is W*H pixels, row 0 at the TOP (as in
 // the files), pixel (i, j) at index j*W + i.
 //
