@@ -72,6 +72,8 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
     render::RenderSettings settings;
     settings.layers = options.layers;
     settings.colorScheme = options.colorScheme;
+    settings.readDepth = !options.depth.empty();
+    settings.readNormal = !options.normal.empty();
 
     // The context is made first and destroyed last (after the renderer's GL objects).
     auto t = Clock::now();

@@ -172,6 +172,17 @@ std::vector<char> reachedByUnionsOnly(const csg::CompiledTree& compiled, const S
     return out;
 }
 
+// Flips the row order in place: GL's bottom-up rows into image rows, top first.
+template <class T>
+void flipRowsInPlace(std::span<T> rows, int width, int height, int channels) {
+    const std::size_t row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+    for (int y = 0; y < height / 2; ++y) {
+        const auto top = rows.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y));
+        const auto bottom = rows.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(height - 1 - y));
+        std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row), bottom);
+    }
+}
+
 // Flips the row order: GL's bottom-up rows into image rows, top first, and back.
 template <class T>
 std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, int channels) {
@@ -188,6 +199,10 @@ std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, i
 // blocks is halved (rounded up to whole blocks), a shorter one is kept, so
 // no tile is thinner than a block unless the frame is. Empty parts are left
 // out; a tile that cannot be cut comes back alone.
+// Tiles cut for the operands' coverage (RenderSettings::coverageTilingFrom)
+// are at least this many pixels a side.
+constexpr int kSmallestCoverageTile = 64;
+
 std::vector<PixelRect> quarters(const PixelRect& tile) {
     auto half = [](int size) {
         const int b = EvaluatePass::kBlock;
@@ -281,7 +296,12 @@ struct Renderer::Impl {
     };
     // The tile grid the frame starts from (see planTiles' body); throws
     // strata::Error where even the smallest tile's layers exceed the budget.
-    std::vector<PixelRect> planTiles(const TileInputs& in) const;
+    struct TilePlan {
+        std::vector<PixelRect> grid;
+        std::size_t budgetTiles = 1;     // tiles the budget alone asks
+        std::size_t wholeLayerBytes = 0; // the layers' estimate for the frame in one tile
+    };
+    TilePlan planTiles(const TileInputs& in) const;
     // Peels each tile of `grid`, then evaluates it and recovers its normals;
     // a tile whose auto peeling outgrows the budget is split in four.
     TileCounts runTiles(const TileInputs& in, const std::vector<PixelRect>& grid, Frame& frame);
@@ -299,7 +319,7 @@ struct Renderer::Impl {
     // `marked`: ShadePass::run's.
     void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const std::optional<PixelRect>& marked);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
-    void readBack(Frame& frame);
+    void readBack(Frame& frame, const RenderSettings& settings);  // what settings.read* ask, beside image and leaves
 };
 
 void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme,
@@ -311,9 +331,9 @@ void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme
 }
 
 void Renderer::Impl::readColor(Frame& frame) {
-    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 4);
-    targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(rgba)));
-    frame.rgba = flipRows(rgba, frame.width, frame.height, 4);
+    frame.rgba.resize(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 4);
+    targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(frame.rgba)));
+    flipRowsInPlace(std::span(frame.rgba), frame.width, frame.height, 4);
 }
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -386,17 +406,23 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         request.firstLayerOnly = current->unionsOnly;
     }
     const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request};
-    const std::vector<PixelRect> grid = planTiles(in);
+    const TilePlan plan = planTiles(in);
+    const std::vector<PixelRect>& grid = plan.grid;
     const TileCounts counts = runTiles(in, grid, frame);
     stats.tiles = counts.drawn;
     std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
         return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
     });
-    if (grid.size() > 1) {
+    if (plan.budgetTiles > 1) {
         stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
                               std::to_string(view.height) + " would exceed the budget of " +
                               mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(counts.drawn) +
                               " tiles, each peeling only the operands that meet it");
+    } else if (grid.size() > 1) {
+        stats.notes.push_back("rendered in " + std::to_string(counts.drawn) +
+                              " tiles, each peeling only the operands that meet it: " +
+                              mebibytes(stats.textureBytes) + " of layers instead of " +
+                              mebibytes(plan.wholeLayerBytes) + " for the whole frame");
     }
     if (counts.splits > 0) {
         stats.notes.push_back("auto peeling needed more layers than estimated: split " +
@@ -410,7 +436,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     }
 }
 
-std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
+Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
     // The whole frame, or an even grid of quarters, of quarters of those,
     // ..., as fine as the densest tile needs for the layers its operands
     // need (a first guess for auto) to fit the budget. Only the operands
@@ -432,14 +458,20 @@ std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
     auto fitsBudget = [&](const PixelRect& tile) {
         return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <= budget;
     };
-    std::vector<PixelRect> grid{PixelRect{0, 0, in.view.width, in.view.height}};
-    for (;;) {
-        const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
-        if (over == grid.end()) return grid;
+    auto finerGrid = [](const std::vector<PixelRect>& grid) {
         std::vector<PixelRect> finer;
         for (const PixelRect& tile : grid) {
             for (const PixelRect& part : quarters(tile)) finer.push_back(part);
         }
+        return finer;
+    };
+    std::vector<PixelRect> grid{PixelRect{0, 0, in.view.width, in.view.height}};
+    TilePlan plan;
+    plan.wholeLayerBytes = PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(grid.front())) * area(grid.front());
+    for (;;) {
+        const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
+        if (over == grid.end()) break;
+        std::vector<PixelRect> finer = finerGrid(grid);
         if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
             const int estimate = layersFor(*over);
             const std::size_t perPixel = PeelPass::kBytesPerTexel * static_cast<std::size_t>(estimate);
@@ -449,6 +481,39 @@ std::vector<PixelRect> Renderer::Impl::planTiles(const TileInputs& in) const {
         }
         grid = std::move(finer);
     }
+    // Within the budget, finer still while the layers take more than
+    // coverageTilingFrom and the operands are small on screen: a quarter then
+    // peels only the few that meet it, so its layers shrink by far more
+    // than the area, for a few more draws. Operands that span the frame
+    // would be drawn once per tile for a quarter of the memory each, and
+    // stay whole.
+    auto draws = [&](const std::vector<PixelRect>& tiles) {
+        std::size_t sum = 0;
+        for (const PixelRect& tile : tiles) sum += static_cast<std::size_t>(layersFor(tile));
+        return sum;
+    };
+    auto layerBytes = [&](const std::vector<PixelRect>& tiles) {
+        std::size_t most = 0;
+        for (const PixelRect& tile : tiles) {
+            most = std::max(most, PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile));
+        }
+        return most;
+    };
+    plan.budgetTiles = grid.size();
+    std::size_t drawn = draws(grid);
+    while (layerBytes(grid) > in.settings.coverageTilingFrom) {
+        std::vector<PixelRect> finer = finerGrid(grid);
+        const bool small = std::any_of(finer.begin(), finer.end(), [](const PixelRect& tile) {
+            return std::min(tile.width, tile.height) < kSmallestCoverageTile;
+        });
+        if (finer.size() == grid.size() || small) break;
+        const std::size_t finerDrawn = draws(finer);
+        if (finerDrawn > 2 * drawn) break;
+        grid = std::move(finer);
+        drawn = finerDrawn;
+    }
+    plan.grid = std::move(grid);
+    return plan;
 }
 
 Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const std::vector<PixelRect>& grid,
@@ -629,24 +694,27 @@ void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& o
     }
 }
 
-void Renderer::Impl::readBack(Frame& frame) {
+void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
+    // Straight into the frame's own arrays, flipped in place: a 1024x768
+    // frame's read-back then holds no copies beside them.
     const int w = frame.width, h = frame.height;
     const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
 
     readColor(frame);
 
-    std::vector<float> depth(n);
-    targets.resultDepth.download(GL_RED, GL_FLOAT, std::as_writable_bytes(std::span(depth)));
-    frame.depth = flipRows(depth, w, h, 1);
+    if (settings.readDepth) {
+        frame.depth.resize(n);
+        targets.resultDepth.download(GL_RED, GL_FLOAT, std::as_writable_bytes(std::span(frame.depth)));
+        flipRowsInPlace(std::span(frame.depth), w, h, 1);
+    }
 
-    std::vector<std::int32_t> leaf(n);
-    targets.resultLeaf.download(GL_RED_INTEGER, GL_INT, std::as_writable_bytes(std::span(leaf)));
-    leaf = flipRows(leaf, w, h, 1);
     frame.leaf.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        frame.leaf[i] = shader::leafOfCode(leaf[i]);
-        if (leaf[i] >= 0) ++frame.stats.coveredPixels;
-        if (leaf[i] == shader::kLeafUnresolved) ++frame.stats.unresolvedPixels;
+    targets.resultLeaf.download(GL_RED_INTEGER, GL_INT, std::as_writable_bytes(std::span(frame.leaf)));
+    flipRowsInPlace(std::span(frame.leaf), w, h, 1);
+    for (std::int32_t& code : frame.leaf) {
+        if (code >= 0) ++frame.stats.coveredPixels;
+        if (code == shader::kLeafUnresolved) ++frame.stats.unresolvedPixels;
+        code = shader::leafOfCode(code);
     }
     if (frame.stats.unresolvedPixels > 0) {
         frame.stats.notes.push_back(std::to_string(frame.stats.unresolvedPixels) +
@@ -654,11 +722,12 @@ void Renderer::Impl::readBack(Frame& frame) {
                                     "(llvmpipe's loop limit); they are drawn empty");
     }
 
-    std::vector<float> normal(n * 4);
-    targets.normal.download(GL_RGBA, GL_FLOAT, std::as_writable_bytes(std::span(normal)));
-    normal = flipRows(normal, w, h, 4);
-    frame.normal.resize(n);
-    for (std::size_t i = 0; i < n; ++i) frame.normal[i] = {normal[i * 4], normal[i * 4 + 1], normal[i * 4 + 2]};
+    if (settings.readNormal) {
+        static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 must be three packed floats");
+        frame.normal.resize(n);
+        targets.normal.download(GL_RGB, GL_FLOAT, std::as_writable_bytes(std::span(frame.normal)));
+        flipRowsInPlace(std::span(frame.normal), w, h, 1);
+    }
     gpu::checkErrors();
 }
 
@@ -753,7 +822,7 @@ Frame Renderer::render(const Camera& camera, const RenderSettings& settings) {
     Frame frame;
     impl_->drawFrame(camera, settings, frame, true);
     const auto start = Clock::now();
-    impl_->readBack(frame);
+    impl_->readBack(frame, settings);
     frame.stats.readbackMs = millisecondsSince(start);
     frame.stats.totalMs += frame.stats.readbackMs;
     return frame;

@@ -897,6 +897,69 @@ TEST_F(RendererGLTest, TiledFramesReuseOneLayerTexture) {
     expectSameAsUntiled(second, whole);
 }
 
+TEST_F(RendererGLTest, AFrameReadsBackOnlyTheOutputsAskedFor) {
+    const scene::Tree tree = paperPair(NodeKind::Difference);
+    const render::Frame all = draw(tree, topCamera());
+    render::RenderSettings imageOnly;
+    imageOnly.readDepth = false;
+    imageOnly.readNormal = false;
+    const render::Frame image = renderer_->render(topCamera(), imageOnly);
+    EXPECT_TRUE(image.depth.empty());
+    EXPECT_TRUE(image.normal.empty());
+    EXPECT_EQ(image.rgba, all.rgba);
+    EXPECT_EQ(image.leaf, all.leaf);
+    EXPECT_EQ(image.stats.coveredPixels, all.stats.coveredPixels);
+    ASSERT_EQ(all.depth.size(), all.leaf.size());
+    ASSERT_EQ(all.normal.size(), all.leaf.size());
+    // The full read-back, rows top first: the centre pixel's normal faces the eye above.
+    expectCentre(all, kEyeHeight - capHeight(1.0, 1.0, -1), 1, {0, 0, 1});
+    render::RenderSettings depthOnly;
+    depthOnly.readNormal = false;
+    const render::Frame depth = renderer_->render(topCamera(), depthOnly);
+    EXPECT_EQ(depth.depth, all.depth);
+    EXPECT_TRUE(depth.normal.empty());
+}
+
+// Small operands spread over the frame: past coverageTilingFrom, quarters
+// that each peel only the spheres that meet them, in a fraction of the
+// memory, with the same surfaces as one tile.
+TEST_F(RendererGLTest, SmallScatteredOperandsArePeeledInTilesOfTheirOwn) {
+    scene::Tree tree;
+    tree.root = tree.addNode(NodeKind::Difference, slabAndSpheres(tree, 3, 48, 1.7, 0.7, 1.1, 0.15));
+    render::Camera camera = topCamera();
+    camera.width = camera.height = 512;
+    // 49 layers and a scratch one of 512 x 512 x 8 bytes: 100 MiB in one tile.
+    render::RenderSettings roomy;
+    roomy.coverageTilingFrom = std::size_t(16) << 20;
+    const render::Frame tiled = draw(tree, camera, roomy);  // first: a fresh layer texture
+    render::RenderSettings whole;
+    whole.coverageTilingFrom = std::numeric_limits<std::size_t>::max();
+    const render::Frame one = renderer_->render(camera, whole);
+    EXPECT_EQ(one.stats.tiles, 1);
+    EXPECT_GE(tiled.stats.tiles, 4);
+    EXPECT_LT(tiled.stats.textureBytes * 4, one.stats.textureBytes) << "each tile holds the layers of few spheres";
+    EXPECT_LE(tiled.stats.peelPasses, 2 * one.stats.peelPasses);
+    ASSERT_EQ(tiled.stats.notes.size(), 1u);
+    EXPECT_NE(tiled.stats.notes[0].find("only the operands that meet it"), std::string::npos) << tiled.stats.notes[0];
+    EXPECT_EQ(tiled.stats.notes[0].find("budget"), std::string::npos) << tiled.stats.notes[0];
+    expectSameAsUntiled(tiled, one);
+}
+
+// Operands that span the frame would be drawn once per tile: they stay in
+// one, however low the threshold.
+TEST_F(RendererGLTest, OperandsThatSpanTheFrameStayInOneTile) {
+    scene::Tree tree;
+    const int slab = tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}));
+    const int big = tree.addLeaf(sphereLeaf({0.1, -0.1, 1.0}, 1.9));
+    const int bigger = tree.addLeaf(sphereLeaf({-0.1, 0.1, 1.4}, 2.2));
+    tree.root = tree.addNode(NodeKind::Difference, {slab, big, bigger});
+    render::Camera camera = topCamera();
+    camera.width = camera.height = 512;
+    render::RenderSettings eager;
+    eager.coverageTilingFrom = 0;
+    EXPECT_EQ(draw(tree, camera, eager).stats.tiles, 1);
+}
+
 TEST_F(RendererGLTest, AutoPeelingDeeperThanGuessedSplitsTheTile) {
     // The guess is 2 layers for a non-convex operand (and a scratch layer);
     // four shells stacked on the view axis need 4. A budget of exactly the

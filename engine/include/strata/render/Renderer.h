@@ -40,6 +40,15 @@ struct RenderSettings {
     // Bytes the layered textures may take; above it the frame is rendered in
     // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
     std::size_t memoryBudget = std::size_t(512) << 20;
+    // Within the budget, layers of more bytes than this are drawn in tiles
+    // where the operands are small on screen: quarters of the frame (then
+    // quarters of those, down to 64 pixels a side) while a quarter's layers
+    // hold only the operands that meet it and the tiles together draw at
+    // most twice as many layers. Operands that span the frame stay in one
+    // tile. A new layer texture costs its bytes in memory and, on llvmpipe,
+    // a first frame the time to zero them (144 MiB: about 75 ms); more tiles
+    // cost every frame a few more passes.
+    std::size_t coverageTilingFrom = std::size_t(64) << 20;
     bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
     bool keepBlockForms = false;               // record each pixel's evaluator form in Frame::blockForms (figures, tests)
     // Evaluate every pixel with the general (array) form of the evaluator,
@@ -73,6 +82,11 @@ struct RenderSettings {
     // leaves drew 0.3 to 0.7 ms slower as union groups, while 1535 drew in
     // 1.9 ms instead of 9.0.
     int unionGroupFrom = 64;
+    // What render() reads back beside the image and the leaves: leave out
+    // what the caller will not use (Frame::depth, Frame::normal stay empty),
+    // and its read-back with it (20 bytes a pixel).
+    bool readDepth = true;
+    bool readNormal = true;
 };
 
 struct FrameStats {
@@ -118,8 +132,8 @@ enum class BlockForm : std::uint8_t { None, FirstSurface, Register, Product, Arr
 struct Frame {
     int width = 0, height = 0;
     std::vector<std::uint8_t> rgba;   // W*H*4, shaded image
-    std::vector<float> depth;         // W*H, view depth dot(P - eye, f); +inf on miss
-    std::vector<glm::vec3> normal;    // W*H, world-space unit outward normal of the result; 0 on miss
+    std::vector<float> depth;         // W*H, view depth dot(P - eye, f); +inf on miss (empty: !readDepth)
+    std::vector<glm::vec3> normal;    // W*H, world-space unit outward normal of the result; 0 on miss (empty: !readNormal)
     std::vector<std::int32_t> leaf;   // W*H, tree leaf index of the visible surface; -1 on miss
     std::vector<PeelLayerImage> peelLayers;  // with RenderSettings::keepPeelLayers: by operand, then layer
     std::vector<BlockForm> blockForms;       // with RenderSettings::keepBlockForms: W*H, each pixel's block's form
