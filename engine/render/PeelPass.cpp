@@ -73,28 +73,29 @@ bool anyListed(const SceneBuffers& scene, std::span<const int> operandLeaves, st
 
 }  // namespace
 
-int PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
-                             std::span<const char> inTile, const PeelRequest& request) {
+PeelPass::LayerEstimate PeelPass::estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
+                                                 std::span<const char> inTile, const PeelRequest& request) {
     const int fixedLayers = request.fixedLayers;
-    int layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
+    LayerEstimate estimate;
+    estimate.layers = fixedLayers > 0 ? 0 : 1;  // auto: one scratch layer for the empty check
     int groups = 0;
     for (std::size_t k = 0; k < operandLeaves.size(); ++k) {
         if (!inTile[k]) continue;
         groups += isGroup(request, k) ? 1 : 0;
         const LeafRange& leaf = scene.leaf(operandLeaves[k]);
         if (leaf.indexCount == 0) continue;
-        layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
+        estimate.layers += onePass(leaf, request, k) ? 1 : (fixedLayers > 0 ? fixedLayers : 2);
     }
-    // Groups: their scratch images and ids, in layers' bytes.
-    if (groups > 0) {
-        layers += static_cast<int>((GroupPeel::bytesPerPixel(groups) + kBytesPerTexel - 1) / kBytesPerTexel);
-    }
+    // Groups: their scratch images and ids.
+    if (groups > 0) estimate.scratchBytesPerPixel += GroupPeel::bytesPerPixel(groups);
     // Collecting: the lists' images, and auto's room for a list's every
     // layer while it is resolved (the guess above gives each operand 2).
     if (anyListed(scene, operandLeaves, inTile, request)) {
-        layers += kCollectScratchLayers + (fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2);
+        estimate.scratchBytesPerPixel += kCollectScratchBytes;
+        estimate.layers += fixedLayers > 0 ? 0 : kCollectCapacity / 2 - 2;
     }
-    return std::max(layers, 1);
+    estimate.layers = std::max(estimate.layers, 1);
+    return estimate;
 }
 
 bool PeelPass::reserve(int width, int height, int needed, int keep, std::size_t budgetBytes) {
@@ -152,10 +153,15 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
         fragments_ = {};
         fragmentCounts_ = {};
     }
-    const int estimate = estimateLayers(scene, operandLeaves, inTile, request);
-    if (!reserve(tile.width, tile.height, estimate, 0, request.budgetBytes)) return false;
+    // The layer texture holds the layers alone: the groups' and lists' images
+    // are textures of their own, out of the same budget.
+    const LayerEstimate estimate = estimateLayers(scene, operandLeaves, inTile, request);
+    const std::size_t scratch = estimate.scratchBytesPerPixel * static_cast<std::size_t>(tile.width) *
+                                static_cast<std::size_t>(tile.height);
+    const std::size_t layerBudget = request.budgetBytes > scratch ? request.budgetBytes - scratch : 0;
+    if (!reserve(tile.width, tile.height, estimate.layers, 0, layerBudget)) return false;
 
-    const Job job{scene, tile, operandLeaves, rects, block, request, inTile};
+    const Job job{scene, tile, operandLeaves, rects, block, request, inTile, layerBudget};
     beginPasses(scene, view, tile);
     // Groups first, then the convex batch, one layer each (reserve() made
     // room for all); then the other operands one by one.
@@ -276,7 +282,7 @@ int PeelPass::peelOperand(const Job& job, std::size_t k, int first) {
 int PeelPass::peelFixed(const Job& job, int leaf, int first, int passes) {
     for (int pass = 0; pass < passes; ++pass) {
         const int layer = first + pass;
-        if (!reserve(job.tile.width, job.tile.height, layer + 1, layer, job.request.budgetBytes)) return kOverBudget;
+        if (!reserve(job.tile.width, job.tile.height, layer + 1, layer, job.layerBudget)) return kOverBudget;
         peelPass(job.scene, leaf, layer, pass, false);
     }
     return passes;
@@ -294,7 +300,7 @@ int PeelPass::peelAuto(const Job& job, int leaf, int first) {
             if (!deeper) return pass;
         }
         const int layer = first + pass;
-        if (!reserve(job.tile.width, job.tile.height, layer + 1, layer, job.request.budgetBytes)) return kOverBudget;
+        if (!reserve(job.tile.width, job.tile.height, layer + 1, layer, job.layerBudget)) return kOverBudget;
         peelPass(job.scene, leaf, layer, pass, true);
     }
 }
@@ -358,11 +364,8 @@ int PeelPass::peelThroughLists(const Job& job, int leaf, const PixelRect& valid,
     const PixelRect& tile = job.tile;
     const bool automatic = job.request.fixedLayers <= 0;
     const int layerCount = automatic ? kCollectCapacity / 2 : job.request.fixedLayers;
-    // The lists' images come out of the budget.
-    const std::size_t scratch = static_cast<std::size_t>(kCollectScratchLayers) * kBytesPerTexel *
-                                static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
-    const std::size_t budget = job.request.budgetBytes > scratch ? job.request.budgetBytes - scratch : 0;
-    if (!reserve(tile.width, tile.height, first + layerCount, first, budget)) return kOverBudget;
+    // The lists' images come out of the budget (job.layerBudget is without them).
+    if (!reserve(tile.width, tile.height, first + layerCount, first, job.layerBudget)) return kOverBudget;
     // The lists' images are the tile's size exactly: the budget counts them so
     // (run's reserve), and a larger pair left from an earlier frame would
     // hold memory the budget does not know of.

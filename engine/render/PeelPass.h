@@ -110,14 +110,22 @@ public:
     static constexpr int kCollectCapacity = shader::kCollectCapacity;
     static_assert(kCollectCapacity == 8, "shaders/csg/resolve.frag reads a list as two vec4s");
     // The lists' images (kCollectCapacity R32F layers and an R32UI count) per
-    // pixel, in layers' bytes, counted in the estimate where they are needed.
-    static constexpr int kCollectScratchLayers = (kCollectCapacity * 4 + 4 + 7) / 8;
+    // pixel, counted in the estimate where they are needed.
+    static constexpr std::size_t kCollectScratchBytes = kCollectCapacity * 4 + 4;
 
-    // How many layers the operands would need if the fixed count holds, or a
-    // first guess for auto (1 per convex or first-layer-only operand, 2 per
-    // other, 1 scratch).
-    static int estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
-                              std::span<const char> inTile, const PeelRequest& request);
+    // What a tile's operands would need if the fixed count holds, or a first
+    // guess for auto (1 layer per convex or first-layer-only operand, 2 per
+    // other, 1 scratch): the layer texture's layers, and the images of their
+    // own that groups and fragment lists take beside it.
+    struct LayerEstimate {
+        int layers = 1;
+        std::size_t scratchBytesPerPixel = 0;
+        std::size_t bytesPerPixel() const {
+            return static_cast<std::size_t>(layers) * kBytesPerTexel + scratchBytesPerPixel;
+        }
+    };
+    static LayerEstimate estimateLayers(const SceneBuffers& scene, std::span<const int> operandLeaves,
+                                        std::span<const char> inTile, const PeelRequest& request);
 
     // Where operand layers are valid: `rect` (frame pixels) widened to whole
     // `block`s counted from the tile's corner, clipped to the tile, in texture
@@ -148,6 +156,7 @@ private:
         int block;
         const PeelRequest& request;
         std::span<const char> inTile;  // per operand: its rectangle meets the tile
+        std::size_t layerBudget;       // the budget less the groups' and lists' images
         PixelRect valid(std::size_t k) const { return region(rects[k], tile, block); }
     };
     // What a strategy returns in place of a layer count: the layers would

@@ -456,7 +456,7 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
     };
     auto fitsBudget = [&](const PixelRect& tile) {
-        return PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile) <= budget;
+        return layersFor(tile).bytesPerPixel() * area(tile) <= budget;
     };
     auto finerGrid = [](const std::vector<PixelRect>& grid) {
         std::vector<PixelRect> finer;
@@ -467,15 +467,15 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
     };
     std::vector<PixelRect> grid{PixelRect{0, 0, in.view.width, in.view.height}};
     TilePlan plan;
-    plan.wholeLayerBytes = PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(grid.front())) * area(grid.front());
+    plan.wholeLayerBytes = layersFor(grid.front()).bytesPerPixel() * area(grid.front());
     for (;;) {
         const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
         if (over == grid.end()) break;
         std::vector<PixelRect> finer = finerGrid(grid);
         if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
-            const int estimate = layersFor(*over);
-            const std::size_t perPixel = PeelPass::kBytesPerTexel * static_cast<std::size_t>(estimate);
-            throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate) +
+            const PeelPass::LayerEstimate estimate = layersFor(*over);
+            const std::size_t perPixel = estimate.bytesPerPixel();
+            throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate.layers) +
                         " peel layers for only " + std::to_string(budget / perPixel) +
                         " pixels at a time; give it at least " + mebibytes(perPixel * area(*over)));
         }
@@ -489,13 +489,13 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
     // stay whole.
     auto draws = [&](const std::vector<PixelRect>& tiles) {
         std::size_t sum = 0;
-        for (const PixelRect& tile : tiles) sum += static_cast<std::size_t>(layersFor(tile));
+        for (const PixelRect& tile : tiles) sum += static_cast<std::size_t>(layersFor(tile).layers);
         return sum;
     };
     auto layerBytes = [&](const std::vector<PixelRect>& tiles) {
         std::size_t most = 0;
         for (const PixelRect& tile : tiles) {
-            most = std::max(most, PeelPass::kBytesPerTexel * static_cast<std::size_t>(layersFor(tile)) * area(tile));
+            most = std::max(most, layersFor(tile).bytesPerPixel() * area(tile));
         }
         return most;
     };

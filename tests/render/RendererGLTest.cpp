@@ -730,6 +730,22 @@ void expectSameAsUntiled(const render::Frame& tiled, const render::Frame& whole)
     EXPECT_EQ(differ, 0u);
 }
 
+// A group's scratch images are textures of their own: the layer texture
+// holds the layers alone (one a group, one scratch), not room for them too.
+TEST_F(RendererGLTest, AGroupsScratchImagesTakeNoLayers) {
+    scene::Tree tree;
+    std::vector<int> lens{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
+    for (int i = 0; i < 3; ++i) lens.push_back(tree.addLeaf(sphereLeaf({0.2 * i, 0.1, 0.0}, 2.2)));
+    tree.root = tree.addNode(NodeKind::Intersection, lens);
+    const render::Frame f = draw(tree, topCamera());
+    ASSERT_EQ(f.stats.operands, 1);
+    // Two RG32F layers; the group's images are two RGBA32F ones, a depth and
+    // stencil texture and the members' ids: 16 + 44 bytes a pixel.
+    const std::size_t pixels = static_cast<std::size_t>(kSize) * kSize;
+    EXPECT_GT(f.stats.textureBytes, 16 * pixels);
+    EXPECT_LE(f.stats.textureBytes, (16 + 44) * pixels);
+}
+
 TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
     // A lens of a slab and six offset spheres, minus a lens of a sphere and a
     // cube: each an intersection of convex leaves, so each one operand when
