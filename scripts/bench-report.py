@@ -48,6 +48,8 @@ def ratio(a, b):
 
 def heading(run):
     ocsg = run.get("opencsg_renderer") or run.get("opencsg_unavailable", "OpenCSG not recorded")
+    if run.get("opencsg_context"):
+        ocsg += f" ({run['opencsg_context']})"
     return (
         f"#### {run['renderer']}, {run['gl_version']}; {ocsg}; {run['date']}\n\n"
         f"Median of {run['frames']} frames after {run['warmup']} warm-up, seed {run['seed']}, "

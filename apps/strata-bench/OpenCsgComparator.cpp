@@ -2,9 +2,12 @@
 #include <GL/glew.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-// Only to release strata's context; X11's macros stay out as in strata's Context.cpp.
+// strata's context is released through EGL, and without an X display the
+// comparator's own context is an EGL one; X11's macros stay out as in
+// strata's Context.cpp.
 #define EGL_NO_X11
 #include <EGL/egl.h>
+#include <EGL/eglext.h>
 #include <opencsg.h>
 
 #include "OpenCsgComparator.h"
@@ -13,6 +16,8 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -35,6 +40,185 @@ void checkGl(const char* where) {
     char code[16];
     std::snprintf(code, sizeof code, "0x%04X", error);
     throw Error(std::string("OpenCSG comparator: GL error ") + code + " after " + where);
+}
+
+// glvnd refuses a GLX context on a thread that has an EGL one current.
+void releaseEgl() {
+    if (eglGetCurrentContext() != EGL_NO_CONTEXT)
+        eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
+bool hasEglExtension(const char* list, const char* name) {
+    if (list == nullptr) return false;
+    const std::size_t n = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == '\0' || p[n] == ' ')) return true;
+    return false;
+}
+
+std::string eglWhy(const char* what) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04X", unsigned(eglGetError()));
+    return std::string(what) + " failed (EGL error " + code + ")";
+}
+
+// The comparator's compatibility context, however it was made.
+class CompatGl {
+public:
+    virtual ~CompatGl() = default;
+    virtual void makeCurrent() = 0;  // throws strata::Error
+    virtual void release() = 0;      // leaves no context current
+    virtual std::string kind() const = 0;
+    virtual bool glx() const = 0;  // false: GLEW's GLX part finds no display (see initGlew)
+};
+
+// A hidden 64 x 64 GLFW window's GL 2.1 context: GLX, so it needs an X display.
+class GlxWindow final : public CompatGl {
+public:
+    GlxWindow() {
+        if (!glfwInit()) throw Error("no GLX compatibility context (GLFW could not start: " + glfwWhy() + ")");
+        // GLFW stays initialised, as strata::gpu::WindowContext leaves it: terminating
+        // it would close windows that other code in the process opened.
+        glfwDefaultWindowHints();
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        // GL 2.1 without a profile: a compatibility context, for OpenCSG's fixed-function drawing.
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+        releaseEgl();  // GLFW makes the new context current while creating it
+        window_.reset(glfwCreateWindow(64, 64, "strata-bench OpenCSG", nullptr, nullptr));
+        if (!window_) throw Error("no GLX compatibility context (" + glfwWhy() + ")");
+        glfwMakeContextCurrent(nullptr);
+    }
+
+    void makeCurrent() override {
+        releaseEgl();
+        glfwMakeContextCurrent(window_.get());
+        if (glfwGetCurrentContext() != window_.get()) throw Error("cannot make the compatibility context current");
+    }
+    void release() override { glfwMakeContextCurrent(nullptr); }
+    std::string kind() const override { return "GLX"; }
+    bool glx() const override { return true; }
+
+private:
+    std::unique_ptr<GLFWwindow, decltype(&glfwDestroyWindow)> window_{nullptr, &glfwDestroyWindow};
+};
+
+// An EGL context with the compatibility profile and no surface: the
+// comparator draws into framebuffer objects only. Its display is found as
+// strata's Context finds its own (Mesa's surfaceless platform, else an EGL
+// device, as NVIDIA's driver offers, else the default display), so both
+// contexts live on the same one; like strata, it never terminates it.
+class EglCompat final : public CompatGl {
+public:
+    EglCompat() {
+        std::string why;
+        auto attempt = [&](EGLDisplay candidate, const char* name) {
+            std::string failure;
+            if (tryDisplay(candidate, failure)) {
+                kind_ = std::string("EGL ") + name;
+                return true;
+            }
+            why += (why.empty() ? "" : "; ") + std::string(name) + ": " + failure;
+            return false;
+        };
+        const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        auto getPlatformDisplay =
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        bool ok = false;
+        if (getPlatformDisplay != nullptr && hasEglExtension(client, "EGL_MESA_platform_surfaceless"))
+            ok = attempt(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+                         "surfaceless");
+        if (!ok && getPlatformDisplay != nullptr && hasEglExtension(client, "EGL_EXT_platform_device")) {
+            auto queryDevices =
+                reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+            EGLDeviceEXT devices[16];
+            EGLint count = 0;
+            if (queryDevices != nullptr && queryDevices(16, devices, &count) == EGL_TRUE)
+                for (EGLint i = 0; i < count && !ok; ++i)
+                    ok = attempt(getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), "device");
+        }
+        if (!ok) ok = attempt(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default");
+        if (!ok) throw Error("no EGL compatibility context (" + why + ")");
+    }
+
+    ~EglCompat() override {
+        if (eglGetCurrentContext() == context_)
+            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(display_, context_);
+    }
+    EglCompat(const EglCompat&) = delete;
+    EglCompat& operator=(const EglCompat&) = delete;
+
+    void makeCurrent() override {
+        // The thread's EGL context, strata's included, is replaced; the API
+        // is bound per thread, and strata binds the same one.
+        eglBindAPI(EGL_OPENGL_API);
+        if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE)
+            throw Error("cannot make the compatibility context current (" + eglWhy("eglMakeCurrent") + ")");
+    }
+    void release() override {
+        if (eglGetCurrentContext() == context_)
+            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+    std::string kind() const override { return kind_; }
+    bool glx() const override { return false; }
+
+private:
+    // Initialises `candidate` and makes the context there; on failure says why.
+    bool tryDisplay(EGLDisplay candidate, std::string& why) {
+        auto failed = [&why](std::string what) {
+            why = std::move(what);
+            return false;
+        };
+        if (candidate == EGL_NO_DISPLAY) return failed("no display");
+        if (eglInitialize(candidate, nullptr, nullptr) != EGL_TRUE) return failed(eglWhy("eglInitialize"));
+        const char* extensions = eglQueryString(candidate, EGL_EXTENSIONS);
+        if (!hasEglExtension(extensions, "EGL_KHR_surfaceless_context"))
+            return failed("no EGL_KHR_surfaceless_context");
+        if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) return failed("no desktop OpenGL API");
+        EGLConfig config = EGL_NO_CONFIG_KHR;
+        if (!hasEglExtension(extensions, "EGL_KHR_no_config_context")) {
+            const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+            EGLint count = 0;
+            if (eglChooseConfig(candidate, want, &config, 1, &count) != EGL_TRUE || count < 1)
+                return failed("no config for desktop OpenGL");
+        }
+        // 2.1 asks for no profile; the mask says compatibility to any driver
+        // that hands out a newer version than asked for.
+        const EGLint attributes[] = {
+            EGL_CONTEXT_MAJOR_VERSION_KHR, 2,
+            EGL_CONTEXT_MINOR_VERSION_KHR, 1,
+            EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT_KHR,
+            EGL_NONE};
+        const EGLContext created = eglCreateContext(candidate, config, EGL_NO_CONTEXT, attributes);
+        if (created == EGL_NO_CONTEXT) return failed(eglWhy("eglCreateContext (compatibility profile)"));
+        display_ = candidate;
+        context_ = created;
+        return true;
+    }
+
+    EGLDisplay display_ = EGL_NO_DISPLAY;
+    EGLContext context_ = EGL_NO_CONTEXT;
+    std::string kind_;
+};
+
+// GLEW for the current context. Debian's GLEW is built for GLX: glewInit()
+// loads GL's entry points through glXGetProcAddressARB (glvnd's dispatch
+// stubs, which call into whichever context is current, an EGL one too) and
+// then initialises its GLX extensions, which fails with
+// GLEW_ERROR_NO_GLX_DISPLAY where no GLX context is current. In an EGL
+// context that one error is taken as success once the entry points the
+// comparator and OpenCSG use are seen loaded: GLEW clears a version's or an
+// extension's flag where one of its functions did not load.
+void initGlew(bool glx) {
+    const GLenum glew = glewInit();
+    if (glew == GLEW_OK) return;
+    if (!glx && glew == GLEW_ERROR_NO_GLX_DISPLAY) {
+        if (GLEW_VERSION_1_5 && GLEW_VERSION_2_0 && GLEW_VERSION_2_1 && glGenFramebuffers != nullptr) return;
+        throw Error("GLEW loaded no GL 2.1 entry points in the EGL compatibility context");
+    }
+    throw Error(std::string("GLEW failed in the compatibility context (") +
+                reinterpret_cast<const char*>(glewGetErrorString(glew)) + ")");
 }
 
 // RAII names of the compatibility context; destroyed while it is current.
@@ -126,52 +310,40 @@ struct Scene {
 
 class Comparator final : public OpenCsgComparator {
 public:
-    Comparator() {
-        if (!glfwInit()) throw Error("GLFW could not start (" + glfwWhy() + ")");
-        // GLFW stays initialised, as strata::gpu::WindowContext leaves it: terminating
-        // it would close windows that other code in the process opened.
-        glfwDefaultWindowHints();
-        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-        // GL 2.1 without a profile: a compatibility context, for OpenCSG's fixed-function drawing.
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
-        releaseEgl();  // GLFW makes the new context current while creating it
-        window_.reset(glfwCreateWindow(64, 64, "strata-bench OpenCSG", nullptr, nullptr));
-        if (!window_) throw Error("no GLX compatibility context (" + glfwWhy() + ")");
-        glfwMakeContextCurrent(window_.get());
-        const GLenum glew = glewInit();
-        if (glew != GLEW_OK) {
-            glfwMakeContextCurrent(nullptr);
-            throw Error(std::string("GLEW failed in the compatibility context (") +
-                        reinterpret_cast<const char*>(glewGetErrorString(glew)) + ")");
-        }
-        if (!GLEW_ARB_framebuffer_object) {
-            glfwMakeContextCurrent(nullptr);
-            throw Error("the compatibility context lacks GL_ARB_framebuffer_object");
+    explicit Comparator(std::unique_ptr<CompatGl> gl) : gl_(std::move(gl)) {
+        gl_->makeCurrent();
+        try {
+            initGlew(gl_->glx());
+            if (!GLEW_ARB_framebuffer_object) throw Error("the compatibility context lacks GL_ARB_framebuffer_object");
+            if (!compatibilityProfile())
+                throw Error(std::string("got no compatibility profile (OpenGL ") +
+                            reinterpret_cast<const char*>(glGetString(GL_VERSION)) + ")");
+        } catch (...) {
+            gl_->release();
+            throw;
         }
         renderer_ = std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) + ", " +
                     reinterpret_cast<const char*>(glGetString(GL_VERSION));
-        glfwMakeContextCurrent(nullptr);
+        gl_->release();
     }
 
     ~Comparator() override {
         // The scene's GL objects and OpenCSG's go while their context is current.
-        releaseEgl();
-        glfwMakeContextCurrent(window_.get());
+        try {
+            gl_->makeCurrent();
+        } catch (const Error&) {
+            return;  // nothing to free them in; they go with the context
+        }
         scene_.reset();
         OpenCSG::freeResources();
-        glfwMakeContextCurrent(nullptr);
+        gl_->release();
     }
 
     std::string renderer() const override { return renderer_; }
+    std::string context() const override { return gl_->kind(); }
 
-    void makeCurrent() override {
-        releaseEgl();
-        glfwMakeContextCurrent(window_.get());
-        if (glfwGetCurrentContext() != window_.get()) throw Error("cannot make the compatibility context current");
-    }
-
-    void release() override { glfwMakeContextCurrent(nullptr); }
+    void makeCurrent() override { gl_->makeCurrent(); }
+    void release() override { gl_->release(); }
 
     void setScene(const CsgProducts& products, int width, int height, const ViewMatrices& matrices,
                   ConvexityMode mode) override {
@@ -314,12 +486,6 @@ public:
     std::size_t bufferBytes() const override { return scene_ ? scene_->bytes : 0; }
 
 private:
-    // glvnd refuses a GLX context on a thread that has an EGL one current.
-    static void releaseEgl() {
-        if (eglGetCurrentContext() != EGL_NO_CONTEXT)
-            eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    }
-
     Scene& requireScene() {
         if (!scene_) throw Error("OpenCSG comparator: no scene set");
         return *scene_;
@@ -363,7 +529,19 @@ private:
         return std::max(1u, unsigned(*std::max_element(counts.begin(), counts.end())));
     }
 
-    std::unique_ptr<GLFWwindow, decltype(&glfwDestroyWindow)> window_{nullptr, &glfwDestroyWindow};
+    // Before 3.2 every context is a compatibility one; from 3.2 on GL says
+    // which profile it is.
+    static bool compatibilityProfile() {
+        int major = 0, minor = 0;
+        const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+        if (version == nullptr || std::sscanf(version, "%d.%d", &major, &minor) != 2) return false;
+        if (major < 3 || (major == 3 && minor < 2)) return true;
+        GLint mask = 0;
+        glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+        return (mask & GL_CONTEXT_COMPATIBILITY_PROFILE_BIT) != 0;
+    }
+
+    std::unique_ptr<CompatGl> gl_;
     std::string renderer_;
     std::unique_ptr<Scene> scene_;
 };
@@ -374,8 +552,22 @@ const char* openCsgVersion() {
     return OPENCSG_VERSION_STRING;
 }
 
-std::unique_ptr<OpenCsgComparator> openOpenCsgComparator() {
-    return std::make_unique<Comparator>();
+std::unique_ptr<OpenCsgComparator> openOpenCsgComparator(CompatContext kind) {
+    std::string glxWhy;
+    if (kind != CompatContext::Egl) {
+        try {
+            return std::make_unique<Comparator>(std::make_unique<GlxWindow>());
+        } catch (const Error& e) {
+            if (kind == CompatContext::Glx) throw;
+            glxWhy = e.what();
+        }
+    }
+    try {
+        return std::make_unique<Comparator>(std::make_unique<EglCompat>());
+    } catch (const Error& e) {
+        if (glxWhy.empty()) throw;
+        throw Error(glxWhy + "; " + e.what());
+    }
 }
 
 }  // namespace strata::bench

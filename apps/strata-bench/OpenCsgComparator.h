@@ -4,12 +4,15 @@
 // against strata in the same process.
 //
 // OpenCSG reaches GL through GLEW, which Debian builds for GLX, and draws
-// with the fixed-function pipeline: it needs a GLX compatibility context. So
-// the comparator owns a hidden GLFW window with one, next to strata's EGL
-// 4.5 core context. glvnd lets a thread have one current context of one API
-// at a time, so makeCurrent() first releases the thread's EGL context; the
-// caller makes strata's current again after release(). GLEW and GL headers
-// stay inside OpenCsgComparator.cpp: this header includes none.
+// with the fixed-function pipeline: it needs a compatibility context. So the
+// comparator owns one of its own, next to strata's EGL 4.5 core context: a
+// hidden GLFW window's GLX context where an X display is there, else an EGL
+// compatibility context without a surface (drawing into framebuffer objects
+// only), on the display strata's context uses. glvnd lets a thread have one
+// current context of one API at a time, so makeCurrent() first releases the
+// thread's EGL context; the caller makes strata's current again after
+// release(). GLEW and GL headers stay inside OpenCsgComparator.cpp: this
+// header includes none.
 
 #include <cstddef>
 #include <cstdint>
@@ -49,6 +52,7 @@ public:
     virtual ~OpenCsgComparator() = default;
 
     virtual std::string renderer() const = 0;  // "GL_RENDERER, GL_VERSION" of the compatibility context
+    virtual std::string context() const = 0;   // what made it: "GLX", "EGL surfaceless", "EGL device", ...
     virtual void makeCurrent() = 0;            // releases the thread's EGL context first
     virtual void release() = 0;                // leaves no context current
 
@@ -82,9 +86,16 @@ public:
 // "OpenCSG 1.5.0": the version the comparator was built against.
 const char* openCsgVersion();
 
-// Opens the comparator (a hidden 64 x 64 window) and leaves no context
-// current. Throws strata::Error saying why it is unavailable: built without
-// OpenCSG, no display, no compatibility context, GLEW failed.
-std::unique_ptr<OpenCsgComparator> openOpenCsgComparator();
+// Which compatibility context the comparator makes.
+enum class CompatContext {
+    Auto,  // GLX where GLFW can open a window (an X display), else EGL
+    Glx,   // a hidden GLFW window's GLX context only
+    Egl,   // an EGL compatibility context only, also where a display is there
+};
+
+// Opens the comparator and leaves no context current. Throws strata::Error
+// saying why it is unavailable: built without OpenCSG, no compatibility
+// context of the kind asked for (or of either, for Auto), GLEW failed.
+std::unique_ptr<OpenCsgComparator> openOpenCsgComparator(CompatContext kind = CompatContext::Auto);
 
 }  // namespace strata::bench

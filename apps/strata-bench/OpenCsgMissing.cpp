@@ -9,7 +9,7 @@ const char* openCsgVersion() {
     return "no OpenCSG";
 }
 
-std::unique_ptr<OpenCsgComparator> openOpenCsgComparator() {
+std::unique_ptr<OpenCsgComparator> openOpenCsgComparator(CompatContext) {
     throw Error(std::string("built without OpenCSG: ") + STRATA_BENCH_OPENCSG_WHY);
 }
 

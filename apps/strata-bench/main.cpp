@@ -2,7 +2,7 @@
 // code (Scenes.h), against the floor of drawing the same triangles once with
 // a depth test (PlainDraw.h), in the same process and GL context, and
 // against OpenCSG (OpenCsgRun.h) in a second, compatibility context of the
-// same process where OpenCSG was built in and an X display is there.
+// same process where OpenCSG was built in (GLX with an X display, else EGL).
 // Your own scene files (.csg, or one closed mesh) run the same way, from
 // OpenSCAD's default view, with K their number of leaves.
 // Run by hand (docs/benchmarks.md); never by CI.
@@ -11,7 +11,7 @@
 //                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
 //                [--glibc-heap] [--no-groups] [--opencsg-convexity openscad|measured]
-//                [--opencsg-limit 100000]
+//                [--opencsg-limit 100000] [--opencsg-context auto|glx|egl]
 
 #include <algorithm>
 #include <chrono>
@@ -97,6 +97,7 @@ struct Options {
     bool openCsg = true;
     double openCsgCapMs = 2000;
     std::string openCsgConvexity = "openscad";
+    std::string openCsgContext = "auto";
     std::size_t openCsgLimit = bench::kOpenScadRenderingLimit;
     bool steadyHeap = true;
     bool groups = true;  // RenderSettings::groupOperands
@@ -379,10 +380,11 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     json.key("date").value(today());
     json.key("renderer").value(context.renderer());
     json.key("gl_version").value(context.version());
-    if (openCsg.comparator)
+    if (openCsg.comparator) {
         json.key("opencsg_renderer").value(std::string(bench::openCsgVersion()) + ", " +
                                            openCsg.comparator->renderer());
-    else
+        json.key("opencsg_context").value(openCsg.comparator->context());
+    } else
         json.key("opencsg_unavailable").value(openCsg.unavailable);
     json.key("opencsg_cap_ms").value(options.openCsgCapMs);
     json.key("opencsg_limit").value(static_cast<unsigned long long>(options.openCsgLimit));
@@ -458,6 +460,10 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
                    "OpenCSG's convexity of each primitive: openscad (the file's convexity argument, else 1, as "
                    "OpenSCAD passes it) or measured (counted in the view for each non-convex leaf)")
         ->check(CLI::IsMember({"openscad", "measured"}));
+    app.add_option("--opencsg-context", options.openCsgContext,
+                   "OpenCSG's compatibility context: auto (GLX where there is an X display, else EGL), glx "
+                   "(a hidden GLFW window) or egl (EGL without a surface, also where there is a display)")
+        ->check(CLI::IsMember({"auto", "glx", "egl"}));
     app.add_option("--opencsg-limit", options.openCsgLimit,
                    "OpenSCAD's \"Turn off rendering at\" elements: a sum of more primitives is not drawn with "
                    "OpenCSG, and the normalization gives up at twice as many elements")
@@ -480,8 +486,12 @@ OpenCsgSide openOpenCsg(const Options& options, gpu::Context& context) {
         return openCsg;
     }
     try {
-        openCsg.comparator = bench::openOpenCsgComparator();
-        std::printf("# %s: %s\n", bench::openCsgVersion(), openCsg.comparator->renderer().c_str());
+        const bench::CompatContext kind = options.openCsgContext == "glx"   ? bench::CompatContext::Glx
+                                          : options.openCsgContext == "egl" ? bench::CompatContext::Egl
+                                                                            : bench::CompatContext::Auto;
+        openCsg.comparator = bench::openOpenCsgComparator(kind);
+        std::printf("# %s: %s (%s)\n", bench::openCsgVersion(), openCsg.comparator->renderer().c_str(),
+                    openCsg.comparator->context().c_str());
     } catch (const std::exception& e) {
         openCsg.unavailable = std::string("OpenCSG unavailable: ") + e.what();
         std::printf("# %s\n", openCsg.unavailable.c_str());
