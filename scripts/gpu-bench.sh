@@ -5,7 +5,7 @@
 #
 #   scripts/gpu-bench.sh [--bundle DIR] [--out DIR] [--quick] [--budget S]
 #                        [--frames N] [--warmup N] [--runs N] [--models DIR]
-#                        [--parts synthetic,files,first-image,export]
+#                        [--parts synthetic,files,first-image,opencsg,export]
 #                        [--export-models FILE,...] [--export-resolutions N,...]
 #
 # Binaries: with --bundle, DIR/bin/strata-bench and strata-render run on
@@ -35,6 +35,11 @@
 #                each model: NVIDIA's and Mesa's on-disk caches would
 #                otherwise hold the shaders of earlier runs), peak RSS where
 #                GNU time is installed, and the --stats figures.
+#   opencsg      strata-bench with OpenCSG (as OpenSCAD's preview draws the
+#                tree) through an EGL compatibility context, no display
+#                needed: cheese K = 64 and 256 at 1024x768 and 1920x1080,
+#                and each model at 1024x768; 10 frames after 3, every OpenCSG
+#                setting capped at 2 s a frame.
 #   export       strata-render MODEL --export x.stl --export-resolution N
 #                --stats, once per model (--export-models, default
 #                examples/*.csg) and resolution (--export-resolutions,
@@ -48,12 +53,13 @@
 # 2 frames, 2 runs; a check of the script itself on llvmpipe in about a
 # minute.
 #
-# Writes to --out DIR (default ./gpu-bench-out), seven files at most:
+# Writes to --out DIR (default ./gpu-bench-out), eight files at most:
 #   log.txt               everything the steps print, with times
 #   env.json              GPU (nvidia-smi), GL renderer, CPU, OS, commit, where
 #                         each loaded library came from
 #   bench-synthetic.json  strata-bench --json of the synthetic steps, merged
 #   bench-files.json      the same for the models
+#   bench-opencsg.json    the same, with OpenCSG beside strata
 #   first-image.json      every run of strata-render, with its --stats
 #   export.json           every export run, with its --stats
 #   images.tar            the first-image PNGs, to check what the GPU drew
@@ -63,7 +69,7 @@ set -uo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 [[ -f $root/scripts/bench-report.py ]] || root=$(pwd)
-bundle="" out=./gpu-bench-out quick=0 budget=330 frames="" warmup="" runs="" models="" parts=synthetic,files,first-image
+bundle="" out=./gpu-bench-out quick=0 budget=330 frames="" warmup="" runs="" models="" parts=synthetic,files,first-image,opencsg
 export_models="" export_resolutions=512
 while (($#)); do
   case $1 in
@@ -253,10 +259,11 @@ if ((!quick)) && has_part synthetic; then
     --frames 200 --warmup 0 2>&1 | grep '^cheese'
 fi
 
+opencsg_args=(--no-opencsg)   # the opencsg part sets its own
 run_bench() {   # name json timeout args... ; 0 when the JSON was written
   local name=$1 json=$2 t=$3; shift 3
   log "strata-bench $name ($*) [timeout ${t} s]"
-  timeout -k 5 "$t" env "${runenv[@]}" "$bench" --no-opencsg --frames "$frames" --warmup "$warmup" \
+  timeout -k 5 "$t" env "${runenv[@]}" "$bench" "${opencsg_args[@]}" --frames "$frames" --warmup "$warmup" \
     --json "$json" "$@" 2>&1 | grep -v '^    opencsg: OpenCSG left out'
   local rc=${PIPESTATUS[0]}
   if [[ ! -s $json ]]; then fail "strata-bench $name: exit $rc, no JSON$( ((rc == 124 || rc == 137)) && echo ' (timed out)')"; return 1; fi
@@ -364,6 +371,31 @@ if has_part first-image; then
   (cd "$work/img" && ls ./*.png >/dev/null 2>&1 && tar -cf "$out/images.tar" ./*.png)
 fi
 
+# ---- OpenCSG beside strata ----------------------------------------------------
+# OpenSCAD's preview on the same GPU: the comparator's own compatibility
+# context through EGL (strata-bench --opencsg-context egl), fewer frames, as
+# OpenCSG's slower settings take seconds a frame on the large scenes.
+opencsg_json=()
+if has_part opencsg; then
+  opencsg_args=(--opencsg-context egl --opencsg-cap-ms 2000)
+  saved_frames=$frames saved_warmup=$warmup
+  ((quick)) || { frames=10 warmup=3; }
+  cases=("--scenes cheese --k 64,256 --size $file_size")
+  ((quick)) || cases+=("--scenes cheese --k 64,256 --size 1920x1080")
+  for f in "${files[@]}"; do cases+=("--files $f --size $file_size"); done
+  i=0
+  for c in "${cases[@]}"; do
+    i=$((i + 1))
+    t=$(step_time "$step_limit")
+    if ((t == 0)); then skipped+=("opencsg $c"); continue; fi
+    # shellcheck disable=SC2086  # the case's words are options
+    run_bench "OpenCSG $i" "$work/opencsg-$i.json" "$t" $c && opencsg_json+=("$work/opencsg-$i.json")
+    merge_bench_json "$out/bench-opencsg.json" "${opencsg_json[@]}"
+  done
+  frames=$saved_frames warmup=$saved_warmup
+  opencsg_args=(--no-opencsg)
+fi
+
 # ---- export -------------------------------------------------------------------
 export_rows=()
 if has_part export; then
@@ -447,11 +479,15 @@ py=$(command -v python3 || true)
   echo "- strata $commit; $( [[ -n $bundle ]] && echo "bundle $bundle" || echo "built here")"
   echo "- CPU: $cpu, $(nproc) cores; $os; glibc $glibc"
   echo "- $frames frames after $warmup warm-up per case; first image: $runs runs; $(date -u +%Y-%m-%d)"
-  for part in synthetic files; do
+  for part in synthetic files opencsg; do
     f="$out/bench-$part.json"
     [[ -s $f ]] || continue
     echo
-    echo "## strata-bench: $([[ $part == synthetic ]] && echo "the seeded scenes" || echo "real models, $file_size")"
+    case $part in
+      synthetic) echo "## strata-bench: the seeded scenes" ;;
+      files) echo "## strata-bench: real models, $file_size" ;;
+      opencsg) echo "## strata-bench against OpenCSG (EGL), 10 frames after 3" ;;
+    esac
     echo
     if [[ -n $py ]]; then "$py" scripts/bench-report.py "$f" 2>&1; echo; fi
     echo "Per pass (medians):"
