@@ -72,6 +72,11 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
     render::RenderSettings settings;
     settings.layers = options.layers;
     settings.colorScheme = options.colorScheme;
+    // One frame: its layer texture is made for it alone, so smaller tiles
+    // with more draws cost less than the memory they save (OpenSCAD's
+    // example008 at 1024x768: 0.40 s and 150 MB instead of 0.57 s and 288 MB).
+    settings.coverageTilingFrom = std::size_t(16) << 20;
+    settings.coverageTilingDraws = 4.0;
     settings.readDepth = !options.depth.empty();
     settings.readNormal = !options.normal.empty();
 

@@ -484,9 +484,9 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
     // Within the budget, finer still while the layers take more than
     // coverageTilingFrom and the operands are small on screen: a quarter then
     // peels only the few that meet it, so its layers shrink by far more
-    // than the area, for a few more draws. Operands that span the frame
-    // would be drawn once per tile for a quarter of the memory each, and
-    // stay whole.
+    // than the area, for a few more draws (at most coverageTilingDraws
+    // times as many a step). Operands that span the frame would be drawn
+    // once per tile for a quarter of the memory each, and stay whole.
     auto draws = [&](const std::vector<PixelRect>& tiles) {
         std::size_t sum = 0;
         for (const PixelRect& tile : tiles) sum += static_cast<std::size_t>(layersFor(tile).layers);
@@ -508,7 +508,7 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
         });
         if (finer.size() == grid.size() || small) break;
         const std::size_t finerDrawn = draws(finer);
-        if (finerDrawn > 2 * drawn) break;
+        if (static_cast<double>(finerDrawn) > in.settings.coverageTilingDraws * static_cast<double>(drawn)) break;
         grid = std::move(finer);
         drawn = finerDrawn;
     }

@@ -737,7 +737,9 @@ TEST_F(RendererGLTest, AGroupsScratchImagesTakeNoLayers) {
     std::vector<int> lens{tree.addLeaf(cubeLeaf({-2, -2, -1}, {2, 2, 1}))};
     for (int i = 0; i < 3; ++i) lens.push_back(tree.addLeaf(sphereLeaf({0.2 * i, 0.1, 0.0}, 2.2)));
     tree.root = tree.addNode(NodeKind::Intersection, lens);
-    const render::Frame f = draw(tree, topCamera());
+    render::Renderer fresh;  // the shared renderer keeps the largest layer texture of the tests before
+    fresh.setScene(tree, geometry::buildModel(tree));
+    const render::Frame f = fresh.render(topCamera(), {});
     ASSERT_EQ(f.stats.operands, 1);
     // Two RG32F layers; the group's images are two RGBA32F ones, a depth and
     // stencil texture and the members' ids: 16 + 44 bytes a pixel.
@@ -947,10 +949,12 @@ TEST_F(RendererGLTest, SmallScatteredOperandsArePeeledInTilesOfTheirOwn) {
     // 49 layers and a scratch one of 512 x 512 x 8 bytes: 100 MiB in one tile.
     render::RenderSettings roomy;
     roomy.coverageTilingFrom = std::size_t(16) << 20;
-    const render::Frame tiled = draw(tree, camera, roomy);  // first: a fresh layer texture
+    render::Renderer fresh;  // the shared renderer keeps the largest layer texture of the tests before
+    fresh.setScene(tree, geometry::buildModel(tree));
+    const render::Frame tiled = fresh.render(camera, roomy);  // first: the texture is made for the tiles
     render::RenderSettings whole;
     whole.coverageTilingFrom = std::numeric_limits<std::size_t>::max();
-    const render::Frame one = renderer_->render(camera, whole);
+    const render::Frame one = fresh.render(camera, whole);
     EXPECT_EQ(one.stats.tiles, 1);
     EXPECT_GE(tiled.stats.tiles, 4);
     EXPECT_LT(tiled.stats.textureBytes * 4, one.stats.textureBytes) << "each tile holds the layers of few spheres";

@@ -43,12 +43,15 @@ struct RenderSettings {
     // Within the budget, layers of more bytes than this are drawn in tiles
     // where the operands are small on screen: quarters of the frame (then
     // quarters of those, down to 64 pixels a side) while a quarter's layers
-    // hold only the operands that meet it and the tiles together draw at
-    // most twice as many layers. Operands that span the frame stay in one
-    // tile. A new layer texture costs its bytes in memory and, on llvmpipe,
-    // a first frame the time to zero them (144 MiB: about 75 ms); more tiles
-    // cost every frame a few more passes.
+    // hold only the operands that meet it and each step's tiles together
+    // draw at most coverageTilingDraws times as many layers. With the
+    // defaults, operands that span the frame stay in one tile. A new layer
+    // texture costs its bytes in memory and, on llvmpipe, a first frame the
+    // time to zero them (144 MiB: about 75 ms); more tiles cost every frame
+    // a few more passes. A program that draws one frame (strata-render)
+    // gains by cutting sooner: it never reuses the texture.
     std::size_t coverageTilingFrom = std::size_t(64) << 20;
+    double coverageTilingDraws = 2.0;
     bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
     bool keepBlockForms = false;               // record each pixel's evaluator form in Frame::blockForms (figures, tests)
     // Evaluate every pixel with the general (array) form of the evaluator,
