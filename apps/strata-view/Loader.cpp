@@ -47,27 +47,32 @@ Loader::~Loader() {
     if (running_.valid()) running_.wait();
 }
 
-void Loader::start(const std::string& path) {
+void Loader::start(const std::string& path, std::chrono::steady_clock::time_point requested) {
     started_ = std::chrono::steady_clock::now();
     progress_ = std::make_shared<LoadProgress>();
-    running_ = std::async(std::launch::async, [path, wake = wake_, progress = progress_] {
+    running_ = std::async(std::launch::async, [path, requested, wake = wake_, progress = progress_] {
         LoadResult result;
         result.path = path;
+        result.requested = requested;
         const WorkOutcome outcome =
             runReporting(*progress, path, "loading cancelled", [&] { result.scene = loadSceneFile(path); });
         result.error = outcome.error;
         result.cancelled = outcome.cancelled;
         result.milliseconds = outcome.milliseconds;
+        result.finished = std::chrono::steady_clock::now();
         if (wake) wake();
         return result;
     });
 }
 
 void Loader::request(const std::string& path) {
-    if (busy())
+    const auto now = std::chrono::steady_clock::now();
+    if (busy()) {
         waiting_ = path;
-    else
-        start(path);
+        waitingRequested_ = now;
+    } else {
+        start(path, now);
+    }
 }
 
 std::optional<LoadResult> Loader::poll() {
@@ -75,7 +80,7 @@ std::optional<LoadResult> Loader::poll() {
         return std::nullopt;
     LoadResult result = running_.get();
     if (waiting_) {
-        start(*waiting_);
+        start(*waiting_, waitingRequested_);
         waiting_.reset();
     }
     return result;

@@ -23,7 +23,11 @@ struct LoadResult {
     std::optional<LoadedScene> scene;  // empty on failure
     std::string error;                 // the one-line message on failure
     bool cancelled = false;            // stopped by Loader::cancel (no error in the file)
-    double milliseconds = 0;
+    double milliseconds = 0;           // parsing and meshing, on the worker
+    // When Loader::request asked for it (for a reload: when the file watch
+    // saw the change), so that any wait behind a running load is after it.
+    std::chrono::steady_clock::time_point requested;
+    std::chrono::steady_clock::time_point finished;  // when the worker was done with it
 };
 
 // What a running load reports (strata/core/Progress.h), read by the GL
@@ -80,12 +84,13 @@ public:
     void cancel();
 
 private:
-    void start(const std::string& path);
+    void start(const std::string& path, std::chrono::steady_clock::time_point requested);
 
     std::function<void()> wake_;
     std::future<LoadResult> running_;
     std::shared_ptr<LoadProgress> progress_;
     std::optional<std::string> waiting_;
+    std::chrono::steady_clock::time_point waitingRequested_;
     std::chrono::steady_clock::time_point started_;
 };
 

@@ -198,7 +198,7 @@ void checkArguments(Command& c, std::string_view name) {
         oneOf({"axes", "scale", "edges"});
         if (c.words[1] != "on" && c.words[1] != "off") throw fail("expected on or off, got '" + c.words[1] + "'", 1);
         break;
-    case CommandKind::Print: oneOf({"camera", "console", "error", "stats", "title", "tree"}); break;
+    case CommandKind::Print: oneOf({"camera", "console", "error", "load", "stats", "title", "tree"}); break;
     case CommandKind::Sleep: whole(0, 0, 600000, "milliseconds from 0 to 600000"); break;
     case CommandKind::Screenshot:
     case CommandKind::ScreenshotWindow:

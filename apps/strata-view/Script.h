@@ -41,7 +41,7 @@ enum class CommandKind {
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
-    Print,            // print camera|console|error|stats|title|tree
+    Print,            // print camera|console|error|load|stats|title|tree
     Sleep,            // sleep MS
     Quit,             // quit
 };

@@ -174,6 +174,7 @@ bool Viewer::runCommand(const Command& c) {
             if (what == "stats") std::cout << statsLine(stats_) << std::endl;
             if (what == "console") std::cout << console_.text();
             if (what == "title") std::cout << title() << std::endl;
+            if (what == "load") std::cout << loadLine() << std::endl;
             if (what == "tree")
                 for (const TreeRow& row : rows_)
                     std::cout << std::string(static_cast<std::size_t>(row.depth) * 2, ' ') << row.node << ' '

@@ -177,16 +177,25 @@ void Viewer::applyLoad(LoadResult result) {
     }
     updateTitle();
     sceneDirty_ = true;
+    loadOnItsWay_.emplace();
+    loadOnItsWay_->requested = result.requested;
+    loadOnItsWay_->finished = result.finished;
+    loadOnItsWay_->loadMs = result.milliseconds;
 }
 
 void Viewer::uploadScene() {
     sceneDirty_ = false;
     viewDirty_ = true;
+    const auto start = Clock::now();
     try {
         renderer_.setScene(applyEdits(scene_.tree, edits_), scene_.model);
         renderError_.clear();
     } catch (const Error& e) {
         renderError_ = e.what();
+    }
+    if (loadOnItsWay_ && !loadOnItsWay_->uploaded) {
+        loadOnItsWay_->uploadStarted = start;
+        loadOnItsWay_->uploaded = Clock::now();
     }
 }
 
@@ -262,6 +271,13 @@ void Viewer::drawWindow() {
         windowShotWritten_ = true;
     }
     window_.swapBuffers();
+    // The first frame of a new model: its image is in the target, the window swapped.
+    if (loadOnItsWay_ && loadOnItsWay_->uploaded && !sceneDirty_ && !viewDirty_ && target_.width() > 0) {
+        glFinish();  // the frame is on screen, not only queued
+        loadOnItsWay_->shown = Clock::now();
+        lastShownLoad_ = loadOnItsWay_;
+        loadOnItsWay_.reset();
+    }
 }
 
 void Viewer::setLayers(int layers) {
@@ -392,6 +408,22 @@ void Viewer::saveChosenCsgExport() {
 }
 
 std::string Viewer::cameraLine() const { return cameraArgument(camera()); }
+
+// "load_ms L handover_ms H upload_ms U first_frame_ms F total_ms T poll_ms P":
+// parse and mesh on the worker; from the worker's end to the upload's start
+// (waking the window's thread, replacing the old model); setScene; from the
+// upload to the frame shown; from the request (the file watch noticing the
+// save) to the frame shown: all of those, and the wait for the worker to
+// start between; and how often the file is polled: a save waits up to that
+// long to be noticed, outside every figure.
+std::string Viewer::loadLine() const {
+    if (!lastShownLoad_) return "no load";
+    const LoadTimes& t = *lastShownLoad_;
+    auto ms = [](Clock::duration d) { return std::to_string(std::chrono::duration<double, std::milli>(d).count()); };
+    return "load_ms " + std::to_string(t.loadMs) + " handover_ms " + ms(*t.uploadStarted - t.finished) +
+           " upload_ms " + ms(*t.uploaded - *t.uploadStarted) + " first_frame_ms " + ms(t.shown - *t.uploaded) +
+           " total_ms " + ms(t.shown - t.requested) + " poll_ms " + ms(kReloadPoll);
+}
 
 void Viewer::copyCamera() {
     glfwSetClipboardString(window_.window(), cameraLine().c_str());

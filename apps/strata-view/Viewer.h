@@ -108,6 +108,8 @@ private:
     void pollExport();
     std::string defaultExportPath() const;
     std::string cameraLine() const;
+    // print load: the last shown load's figures, or "no load".
+    std::string loadLine() const;
     void viewChanged() { viewDirty_ = true; }
 
     // Input.cpp
@@ -156,6 +158,18 @@ private:
     bool fileMissing_ = false;       // the shown file was deleted (FileWatch::missingPolls)
     std::string renderError_;
     int loadsFinished_ = 0;
+    // A load's way to the screen, on the steady clock: asked for (the file
+    // watch saw the change, or open / F5), parsed and meshed on the worker,
+    // uploaded (Renderer::setScene), its first frame drawn and swapped.
+    struct LoadTimes {
+        std::chrono::steady_clock::time_point requested, finished;  // LoadResult's
+        double loadMs = 0;  // parse and mesh (LoadResult::milliseconds)
+        // setScene, with the tree edits applied: its start and end.
+        std::optional<std::chrono::steady_clock::time_point> uploadStarted, uploaded;
+        std::chrono::steady_clock::time_point shown;  // after glFinish
+    };
+    std::optional<LoadTimes> loadOnItsWay_;  // applied, its frame not yet shown
+    std::optional<LoadTimes> lastShownLoad_; // the newest load whose frame was shown (print load)
 
     Orbit orbit_;
     render::Projection projection_ = render::Projection::Perspective;

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -109,6 +110,27 @@ std::vector<std::string> cameraLines(const std::string& out) {
     for (std::string line; std::getline(in, line);)
         if (line.starts_with("--camera=")) lines.push_back(line);
     return lines;
+}
+
+// The figures of a "print load" line, by name; empty when the line is not one.
+std::map<std::string, double> loadFigures(const std::string& line) {
+    std::smatch m;
+    if (!std::regex_match(line, m,
+                          std::regex(R"(load_ms (\S+) handover_ms (\S+) upload_ms (\S+) first_frame_ms (\S+) )"
+                                     R"(total_ms (\S+) poll_ms (\S+))")))
+        return {};
+    return {{"load", std::stod(m[1])},   {"handover", std::stod(m[2])}, {"upload", std::stod(m[3])},
+            {"frame", std::stod(m[4])}, {"total", std::stod(m[5])},    {"poll", std::stod(m[6])}};
+}
+
+// The operands of each "print stats" line, in order.
+std::vector<int> statsOperands(const std::string& out) {
+    std::vector<int> operands;
+    std::smatch m;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);)
+        if (std::regex_search(line, m, std::regex(R"( operands (\d+)$)"))) operands.push_back(std::stoi(m[1]));
+    return operands;
 }
 
 class StrataView : public ::testing::Test {
@@ -258,6 +280,42 @@ TEST_F(StrataView, ReloadShowsTheNewFileAndKeepsTheLastGoodOneOnAnError) {
     const std::string expected = scene + parseError.substr(broken.size());
     EXPECT_EQ(r.out, "no error\n" + expected + "no error\n");
     EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+}
+
+// print load: the way of the last shown load to the screen, for a script's
+// open as for a reload; its parts lie inside its total.
+TEST_F(StrataView, PrintLoadGivesTheLastReloadsFiguresAndItsFrameShowsTheNewModel) {
+    const std::string start = dir.write("start.csg", kOnlyCylinder);
+    dir.write("a.csg", kScene);
+    dir.write("second.csg", kNoCylinder);
+    const ProcessResult r = view(start,
+                                 "size 160 120\n"
+                                 "print load\n"
+                                 "open a.csg\n"
+                                 "print load\n"
+                                 "print stats\n"
+                                 "copy second.csg a.csg\n"
+                                 "wait-reload\n"
+                                 "print load\n"
+                                 "print stats\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::vector<std::string> lines;
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    ASSERT_EQ(lines.size(), 5u) << r.out;
+    // The scene named on the command line is loaded before the window opens: no figures.
+    EXPECT_EQ(lines[0], "no load");
+    for (const std::string& line : {lines[1], lines[3]}) {
+        const std::map<std::string, double> f = loadFigures(line);
+        ASSERT_EQ(f.size(), 6u) << line;
+        for (const auto& [name, value] : f) EXPECT_GE(value, 0.0) << name << " in " << line;
+        EXPECT_GT(f.at("poll"), 0.0) << line;
+        // Printed to a microsecond each: allow their rounding.
+        EXPECT_GE(f.at("total") + 1e-5, f.at("load") + f.at("handover") + f.at("upload") + f.at("frame")) << line;
+    }
+    // The frame after the open shows a.csg (cube, sphere, cylinder), the one
+    // after the reload second.csg (no cylinder).
+    EXPECT_EQ(statsOperands(r.out), (std::vector<int>{3, 2})) << r.out;
 }
 
 TEST_F(StrataView, DoubleClickRecentresOnTheSurfaceUnderThePixel) {
