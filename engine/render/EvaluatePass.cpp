@@ -106,12 +106,12 @@ void EvaluatePass::setTree(const csg::CompiledTree& tree, bool leafMarks) {
         programFor({BlockForm::FirstSurface, 0}, leafMarks);
         programFor({BlockForm::Register, 4}, leafMarks);
         const bool product = !tree.code.empty() && csg::countingTree(tree.code).nodes.size() == 1;  // one AND or OR
-        if (product && operands > kRegisterSlots) programFor({BlockForm::Product, 0}, leafMarks);
-        if (operands > 4) programFor({BlockForm::Register, kRegisterSlots}, leafMarks);
+        if (product && operands > kRegisterOperands) programFor({BlockForm::Product, 0}, leafMarks);
+        if (operands > 4) programFor({BlockForm::Register, kRegisterOperands}, leafMarks);
         // The array form only as large as most blocks need: a block with
         // more live operands compiles its own variant when it comes. (The
         // largest ones do not link on every driver: NVIDIA's refused 2048.)
-        if (operands > kRegisterSlots) {
+        if (operands > kRegisterOperands) {
             programFor({BlockForm::Array, capacityFor(std::min(operands, kPrecompiledLive))}, leafMarks);
         }
     }
@@ -146,7 +146,8 @@ EvaluatePass::BlockTree EvaluatePass::addTree(const std::vector<std::uint32_t>& 
     if (forms == Forms::Any && code.size() == 1 && (code[0] & csg::kOpNegate) == 0 && slots == 1) {
         return firstSurfaceTree(used[0], operandLayers);
     }
-    if (forms != Forms::ArrayOnly && slots <= kRegisterSlots && slotsReach) {
+    if (forms != Forms::ArrayOnly && slots <= kRegisterSlots &&
+        used.size() <= static_cast<std::size_t>(kRegisterOperands) && slotsReach) {
         return registerTree(code, used, slots, operandLayers, data);
     }
     const csg::CountingTree tree = csg::countingTree(code);
@@ -169,12 +170,12 @@ EvaluatePass::BlockTree EvaluatePass::registerTree(const std::vector<std::uint32
                                                    const std::vector<OperandLayers>& operandLayers,
                                                    TreeData& data) const {
     // A slot per peeled layer, the tree as a truth table over the operands'
-    // inside bits: in the record for 4 slots, in two nodes for 8.
+    // inside bits: in the record for 4 slots, in two nodes for 8 and 16.
     const TruthTable table = truthTable(code, used);
     BlockTree out;
-    out.variant = {BlockForm::Register, slots <= 4 ? 4 : kRegisterSlots};
+    out.variant = {BlockForm::Register, slots <= 4 ? 4 : slots <= 8 ? 8 : kRegisterSlots};
     std::uint32_t tableField = static_cast<std::uint32_t>(table[0] & 0xffffu);
-    if (out.variant.maxLive == kRegisterSlots) {
+    if (out.variant.maxLive > 4) {
         tableField = static_cast<std::uint32_t>(data.nodes.size());
         for (int half = 0; half < 2; ++half) {
             const std::uint64_t a = table[static_cast<std::size_t>(half * 2)];

@@ -12,9 +12,9 @@
 // countingTree), so a pixel gathers and evaluates only what can matter there.
 // The shader comes in four forms (BlockForm): the first-surface form (the
 // block's tree is one operand of one layer, so the result's first surface is
-// the operand's), the register form (operands of up to eight peeled layers
-// in all, a slot per layer, the tree as a truth table, everything in
-// registers; MAX_LIVE 4 or 8 slots), the product form (more operands of one
+// the operand's), the register form (up to eight operands of up to sixteen
+// peeled layers in all, a slot per layer, the tree as a truth table,
+// everything in registers; MAX_LIVE 4, 8 or 16 slots), the product form (more operands of one
 // layer each under a single AND or OR: a CSG product or a union) and the
 // array form (anything else: a heap of surfaces and a counting tree in
 // per-pixel arrays of MAX_LIVE, a power of two from 16 up). A variant of the
@@ -98,9 +98,11 @@ public:
     static constexpr std::uint32_t kFrontFaces = 1u << shader::faceBit(false, false);
     static constexpr std::uint32_t kBackFaces = 1u << shader::faceBit(true, false);
     static constexpr int kFlipped = shader::faceBit(false, true);
-    // The most slots of the register form (compiled for MAX_LIVE 4 and 8):
-    // up to this many peeled layers of the block's operands.
-    static constexpr int kRegisterSlots = 8;
+    // The most slots of the register form (compiled for MAX_LIVE 4, 8 and
+    // 16): up to this many peeled layers of the block's operands, of at most
+    // kRegisterOperands operands (the truth table's inputs).
+    static constexpr int kRegisterSlots = 16;
+    static constexpr int kRegisterOperands = 8;
     // The array form's largest MAX_LIVE compiled with the tree (setTree).
     static constexpr int kPrecompiledLive = 64;
     static constexpr int kBlock = shader::kBlock;

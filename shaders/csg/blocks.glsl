@@ -49,4 +49,8 @@ BLOCK_VARYING uvec4 vLayerA, vLeafA;  // slots 0-3: layer in uLayers | operand i
 BLOCK_VARYING uvec4 vLayerB, vLeafB;  // slots 4-7
 BLOCK_VARYING uvec4 vTableLow, vTableHigh;
 #endif
+#if MAX_LIVE > 8
+BLOCK_VARYING uvec4 vLayerC, vLeafC;  // slots 8-11
+BLOCK_VARYING uvec4 vLayerD, vLeafD;  // slots 12-15
+#endif
 #endif

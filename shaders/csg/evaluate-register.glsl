@@ -1,10 +1,12 @@
-// The register form of evaluate.frag, for blocks whose operands have at most
-// eight peeled layers in all (eight convex operands, say, or a mesh of three
-// layers and five spheres): a slot per layer, each holding at most two
-// surfaces here, the layer's near and far, and the block's tree is a truth
-// table over the operands' inside bits. No arrays and no loops but the walk
-// over depths: every slot is one component of a vector (bank A holds slots
-// 0-3, bank B slots 4-7). Compiled for 4 and 8 slots (MAX_LIVE).
+// The register form of evaluate.frag, for blocks of at most eight operands
+// with at most sixteen peeled layers in all (eight convex operands, say, or
+// a mesh of three layers and five spheres, or three extruded letters of
+// three layers each and two blocks): a slot per layer, each holding at most
+// two surfaces here, the layer's near and far, and the block's tree is a
+// truth table over the operands' inside bits. No arrays and no loops but
+// the walk over depths: every slot is one component of a vector (bank A
+// holds slots 0-3, bank B slots 4-7, banks C and D slots 8-15). Compiled for
+// 4, 8 and 16 slots (MAX_LIVE).
 //
 // An operand's inside bit follows its surfaces as the array form's walk
 // does: each surface of a cluster (evaluate.frag) toggles it, so a pair
@@ -13,7 +15,7 @@
 //
 // blocks[b]: x first slot in blockOperands, y slot count, z the truth table
 // (bit m: the result when operand i is inside exactly for the bits i of m)
-// for 4 slots, or for 8 the index in blockNodes of its 256 bits (two uvec4,
+// for 4 slots, or for 8 and 16 the index in blockNodes of its 256 bits (two uvec4,
 // bit m in word m / 32). blockOperands[x + i]: x the slot's layer in
 // uLayers, y its operand's bit in the table (kSlotOperandMask), z its tree
 // leaf. The vertex stage hands the fragments the slots packed (blocks.glsl).
@@ -61,11 +63,24 @@ void main() {
     uvec4 bitB = uvec4(1u) << ((vLayerB >> kSlotLayerBits) & kSlotOperandMask);
     uvec4 tableLow = vTableLow, tableHigh = vTableHigh;
 #endif
+#if MAX_LIVE > 8
+    vec4 nearC = vec4(kInfinity), farC = vec4(kInfinity);
+    vec4 nearD = vec4(kInfinity), farD = vec4(kInfinity);
+    ivec4 leafC = ivec4(vLeafC), leafD = ivec4(vLeafD);
+    uvec4 bitC = uvec4(1u) << ((vLayerC >> kSlotLayerBits) & kSlotOperandMask);
+    uvec4 bitD = uvec4(1u) << ((vLayerD >> kSlotLayerBits) & kSlotOperandMask);
+#endif
     LOAD_SLOT(nearA, farA, vLayerA, 0, 0) LOAD_SLOT(nearA, farA, vLayerA, 1, 1)
     LOAD_SLOT(nearA, farA, vLayerA, 2, 2) LOAD_SLOT(nearA, farA, vLayerA, 3, 3)
 #if MAX_LIVE > 4
     LOAD_SLOT(nearB, farB, vLayerB, 0, 4) LOAD_SLOT(nearB, farB, vLayerB, 1, 5)
     LOAD_SLOT(nearB, farB, vLayerB, 2, 6) LOAD_SLOT(nearB, farB, vLayerB, 3, 7)
+#endif
+#if MAX_LIVE > 8
+    LOAD_SLOT(nearC, farC, vLayerC, 0, 8) LOAD_SLOT(nearC, farC, vLayerC, 1, 9)
+    LOAD_SLOT(nearC, farC, vLayerC, 2, 10) LOAD_SLOT(nearC, farC, vLayerC, 3, 11)
+    LOAD_SLOT(nearD, farD, vLayerD, 0, 12) LOAD_SLOT(nearD, farD, vLayerD, 1, 13)
+    LOAD_SLOT(nearD, farD, vLayerD, 2, 14) LOAD_SLOT(nearD, farD, vLayerD, 3, 15)
 #endif
 
     // An operand is inside from the start when an odd number of its
@@ -78,6 +93,13 @@ void main() {
     insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
     vec4 headB = nearB;
 #endif
+#if MAX_LIVE > 8
+    odd = bitC * ((uvec4(lessThan(nearC, vec4(kInfinity))) + uvec4(lessThan(farC, vec4(kInfinity)))) & 1u);
+    insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
+    odd = bitD * ((uvec4(lessThan(nearD, vec4(kInfinity))) + uvec4(lessThan(farD, vec4(kInfinity)))) & 1u);
+    insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
+    vec4 headC = nearC, headD = nearD;
+#endif
     bool inside = RESULT(insideBits);
 #ifdef RESULT_PEEL
     startSkipping();
@@ -87,6 +109,10 @@ void main() {
         float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
 #if MAX_LIVE > 4
         nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
+#endif
+#if MAX_LIVE > 8
+        nearest = min(nearest, min(min(min(headC.x, headC.y), min(headC.z, headC.w)),
+                                   min(min(headD.x, headD.y), min(headD.z, headD.w))));
 #endif
         int step = walkTo(nearest, RESULT(insideBits), inside);
         if (step == kWalkWritten) return;
@@ -98,6 +124,12 @@ void main() {
 #if MAX_LIVE > 4
         TAKE_SLOT(headB, nearB, farB, leafB, bitB, 0) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 1)
         TAKE_SLOT(headB, nearB, farB, leafB, bitB, 2) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 3)
+#endif
+#if MAX_LIVE > 8
+        TAKE_SLOT(headC, nearC, farC, leafC, bitC, 0) TAKE_SLOT(headC, nearC, farC, leafC, bitC, 1)
+        TAKE_SLOT(headC, nearC, farC, leafC, bitC, 2) TAKE_SLOT(headC, nearC, farC, leafC, bitC, 3)
+        TAKE_SLOT(headD, nearD, farD, leafD, bitD, 0) TAKE_SLOT(headD, nearD, farD, leafD, bitD, 1)
+        TAKE_SLOT(headD, nearD, farD, leafD, bitD, 2) TAKE_SLOT(headD, nearD, farD, leafD, bitD, 3)
 #endif
         insideBits ^= toggled;
         noteResult(RESULT(insideBits), inside);

@@ -43,5 +43,9 @@ void main() {
     vTableLow = blockNodes[vRecord.z];
     vTableHigh = blockNodes[vRecord.z + 1u];
 #endif
+#if MAX_LIVE > 8
+    SLOT(vLayerC, vLeafC, 0, 8) SLOT(vLayerC, vLeafC, 1, 9) SLOT(vLayerC, vLeafC, 2, 10) SLOT(vLayerC, vLeafC, 3, 11)
+    SLOT(vLayerD, vLeafD, 0, 12) SLOT(vLayerD, vLeafD, 1, 13) SLOT(vLayerD, vLeafD, 2, 14) SLOT(vLayerD, vLeafD, 3, 15)
+#endif
 #endif
 }

@@ -179,7 +179,8 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
     EXPECT_GT(covered, 12u * 64u * 64u / 10u) << "the scenes must show something";
     EXPECT_GT(insideStarts, 0u) << "the cameras inside must see something";
     // The fast forms must have been the ones drawn: a shells leaf has at
-    // most two layers, so every block fits the register form's eight slots.
+    // most two layers, so every block of at most eight operands fits the
+    // register form's sixteen slots.
     EXPECT_EQ(fastBlocks.arrayBlocks, 0u);
     // Blocks that one operand alone meets take the first-surface form: the
     // first operand of a difference, any operand of a union.
@@ -201,7 +202,8 @@ INSTANTIATE_TEST_SUITE_P(Trees, EvaluatorForms,
                                            FormsCase{NodeKind::Union, 7}, FormsCase{NodeKind::Difference, 24},
                                            FormsCase{NodeKind::Intersection, 20}, FormsCase{NodeKind::Union, 30},
                                            FormsCase{NodeKind::Difference, 4, 3}, FormsCase{NodeKind::Union, 4, 4},
-                                           FormsCase{NodeKind::Intersection, 3, 2}),
+                                           FormsCase{NodeKind::Intersection, 3, 2}, FormsCase{NodeKind::Difference, 8, 7},
+                                           FormsCase{NodeKind::Union, 8, 7}),
                          [](const ::testing::TestParamInfo<FormsCase>& info) {
                              return std::string(scene::kindName(info.param.kind)) + std::to_string(info.param.count) +
                                     (info.param.shells > 0 ? "Shells" + std::to_string(info.param.shells) : "");
