@@ -172,9 +172,10 @@ std::vector<char> reachedByUnionsOnly(const csg::CompiledTree& compiled, const S
     return out;
 }
 
-// Flips the row order in place: GL's bottom-up rows into image rows, top first.
+// Flips the row order in place: GL's bottom-up rows into image rows, top
+// first, and back.
 template <class T>
-void flipRowsInPlace(std::span<T> rows, int width, int height, int channels) {
+void flipRows(std::span<T> rows, int width, int height, int channels) {
     const std::size_t row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
     for (int y = 0; y < height / 2; ++y) {
         const auto top = rows.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y));
@@ -183,26 +184,14 @@ void flipRowsInPlace(std::span<T> rows, int width, int height, int channels) {
     }
 }
 
-// Flips the row order: GL's bottom-up rows into image rows, top first, and back.
-template <class T>
-std::vector<T> flipRows(const std::vector<T>& bottomUp, int width, int height, int channels) {
-    std::vector<T> out(bottomUp.size());
-    const std::size_t row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
-    for (int y = 0; y < height; ++y) {
-        std::copy_n(bottomUp.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(height - 1 - y)),
-                    row, out.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)));
-    }
-    return out;
-}
+// Tiles cut for the operands' coverage (RenderSettings::coverageTilingFrom)
+// are at least this many pixels a side.
+constexpr int kSmallestCoverageTile = 64;
 
 // `tile` cut in four on the evaluator's block grid: each side of at least two
 // blocks is halved (rounded up to whole blocks), a shorter one is kept, so
 // no tile is thinner than a block unless the frame is. Empty parts are left
 // out; a tile that cannot be cut comes back alone.
-// Tiles cut for the operands' coverage (RenderSettings::coverageTilingFrom)
-// are at least this many pixels a side.
-constexpr int kSmallestCoverageTile = 64;
-
 std::vector<PixelRect> quarters(const PixelRect& tile) {
     auto half = [](int size) {
         const int b = EvaluatePass::kBlock;
@@ -333,7 +322,7 @@ void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme
 void Renderer::Impl::readColor(Frame& frame) {
     frame.rgba.resize(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 4);
     targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(frame.rgba)));
-    flipRowsInPlace(std::span(frame.rgba), frame.width, frame.height, 4);
+    flipRows(std::span(frame.rgba), frame.width, frame.height, 4);
 }
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -448,38 +437,46 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
     const std::vector<int>& operands = current->tree.operandLeaf;
     const std::size_t budget = in.settings.memoryBudget;
     std::vector<char> inTile(operands.size());
-    auto layersFor = [&](const PixelRect& tile) {
-        for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = in.rects[k].intersects(tile) ? 1 : 0;
-        return PeelPass::estimateLayers(scene, operands, inTile, in.request);
-    };
     auto area = [](const PixelRect& tile) {
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
     };
-    auto fitsBudget = [&](const PixelRect& tile) {
-        return layersFor(tile).bytesPerPixel() * area(tile) <= budget;
+    // A grid and each of its tiles' estimates, made once per grid.
+    struct Grid {
+        std::vector<PixelRect> tiles;
+        std::vector<PeelPass::LayerEstimate> estimates;
     };
-    auto finerGrid = [](const std::vector<PixelRect>& grid) {
-        std::vector<PixelRect> finer;
-        for (const PixelRect& tile : grid) {
-            for (const PixelRect& part : quarters(tile)) finer.push_back(part);
+    auto withEstimates = [&](std::vector<PixelRect> tiles) {
+        Grid grid{std::move(tiles), {}};
+        for (const PixelRect& tile : grid.tiles) {
+            for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = in.rects[k].intersects(tile) ? 1 : 0;
+            grid.estimates.push_back(PeelPass::estimateLayers(scene, operands, inTile, in.request));
         }
-        return finer;
+        return grid;
     };
-    std::vector<PixelRect> grid{PixelRect{0, 0, in.view.width, in.view.height}};
+    auto bytes = [&](const Grid& grid, std::size_t t) { return grid.estimates[t].bytesPerPixel() * area(grid.tiles[t]); };
+    auto quartered = [](const Grid& grid) {
+        std::vector<PixelRect> parts;
+        for (const PixelRect& tile : grid.tiles) {
+            for (const PixelRect& part : quarters(tile)) parts.push_back(part);
+        }
+        return parts;
+    };
+    Grid grid = withEstimates({PixelRect{0, 0, in.view.width, in.view.height}});
     TilePlan plan;
-    plan.wholeLayerBytes = layersFor(grid.front()).bytesPerPixel() * area(grid.front());
+    plan.wholeLayerBytes = bytes(grid, 0);
     for (;;) {
-        const auto over = std::find_if_not(grid.begin(), grid.end(), fitsBudget);
-        if (over == grid.end()) break;
-        std::vector<PixelRect> finer = finerGrid(grid);
-        if (finer.size() == grid.size()) {  // no tile can be cut: `over` is as small as tiles get
-            const PeelPass::LayerEstimate estimate = layersFor(*over);
+        std::size_t over = 0;
+        while (over < grid.tiles.size() && bytes(grid, over) <= budget) ++over;
+        if (over == grid.tiles.size()) break;
+        std::vector<PixelRect> parts = quartered(grid);
+        if (parts.size() == grid.tiles.size()) {  // no tile can be cut: `over` is as small as tiles get
+            const PeelPass::LayerEstimate& estimate = grid.estimates[over];
             const std::size_t perPixel = estimate.bytesPerPixel();
             throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate.layers) +
                         " peel layers for only " + std::to_string(budget / perPixel) +
-                        " pixels at a time; give it at least " + mebibytes(perPixel * area(*over)));
+                        " pixels at a time; give it at least " + mebibytes(perPixel * area(grid.tiles[over])));
         }
-        grid = std::move(finer);
+        grid = withEstimates(std::move(parts));
     }
     // Within the budget, finer still while the layers take more than
     // coverageTilingFrom and the operands are small on screen: a quarter then
@@ -487,32 +484,28 @@ Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
     // than the area, for a few more draws (at most coverageTilingDraws
     // times as many a step). Operands that span the frame would be drawn
     // once per tile for a quarter of the memory each, and stay whole.
-    auto draws = [&](const std::vector<PixelRect>& tiles) {
+    auto draws = [](const Grid& g) {
         std::size_t sum = 0;
-        for (const PixelRect& tile : tiles) sum += static_cast<std::size_t>(layersFor(tile).layers);
+        for (const PeelPass::LayerEstimate& e : g.estimates) sum += static_cast<std::size_t>(e.layers);
         return sum;
     };
-    auto layerBytes = [&](const std::vector<PixelRect>& tiles) {
+    auto layerBytes = [&](const Grid& g) {
         std::size_t most = 0;
-        for (const PixelRect& tile : tiles) {
-            most = std::max(most, layersFor(tile).bytesPerPixel() * area(tile));
-        }
+        for (std::size_t t = 0; t < g.tiles.size(); ++t) most = std::max(most, bytes(g, t));
         return most;
     };
-    plan.budgetTiles = grid.size();
-    std::size_t drawn = draws(grid);
+    plan.budgetTiles = grid.tiles.size();
     while (layerBytes(grid) > in.settings.coverageTilingFrom) {
-        std::vector<PixelRect> finer = finerGrid(grid);
-        const bool small = std::any_of(finer.begin(), finer.end(), [](const PixelRect& tile) {
+        std::vector<PixelRect> parts = quartered(grid);
+        const bool small = std::any_of(parts.begin(), parts.end(), [](const PixelRect& tile) {
             return std::min(tile.width, tile.height) < kSmallestCoverageTile;
         });
-        if (finer.size() == grid.size() || small) break;
-        const std::size_t finerDrawn = draws(finer);
-        if (static_cast<double>(finerDrawn) > in.settings.coverageTilingDraws * static_cast<double>(drawn)) break;
-        grid = std::move(finer);
-        drawn = finerDrawn;
+        if (parts.size() == grid.tiles.size() || small) break;
+        Grid cut = withEstimates(std::move(parts));
+        if (static_cast<double>(draws(cut)) > in.settings.coverageTilingDraws * static_cast<double>(draws(grid))) break;
+        grid = std::move(cut);
     }
-    plan.grid = std::move(grid);
+    plan.grid = std::move(grid.tiles);
     return plan;
 }
 
@@ -630,9 +623,9 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
         // The next round walks on from each pixel's change (+inf: none left).
         glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, tile.x, tile.y, 0, resultStart.id(),
                            GL_TEXTURE_2D, 0, tile.x, tile.y, 0, tile.width, tile.height, 1);
-        depth = flipRows(depth, tile.width, tile.height, 1);
-        normal = flipRows(normal, tile.width, tile.height, 4);
-        leaf = flipRows(leaf, tile.width, tile.height, 1);
+        flipRows(std::span(depth), tile.width, tile.height, 1);
+        flipRows(std::span(normal), tile.width, tile.height, 4);
+        flipRows(std::span(leaf), tile.width, tile.height, 1);
         for (std::size_t i = 0; i < n; ++i) {
             if (leaf[i] < 0) depth[i] = std::numeric_limits<float>::infinity();
             outward[i] = {normal[i * 4], normal[i * 4 + 1], normal[i * 4 + 2]};
@@ -705,12 +698,12 @@ void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
     if (settings.readDepth) {
         frame.depth.resize(n);
         targets.resultDepth.download(GL_RED, GL_FLOAT, std::as_writable_bytes(std::span(frame.depth)));
-        flipRowsInPlace(std::span(frame.depth), w, h, 1);
+        flipRows(std::span(frame.depth), w, h, 1);
     }
 
     frame.leaf.resize(n);
     targets.resultLeaf.download(GL_RED_INTEGER, GL_INT, std::as_writable_bytes(std::span(frame.leaf)));
-    flipRowsInPlace(std::span(frame.leaf), w, h, 1);
+    flipRows(std::span(frame.leaf), w, h, 1);
     for (std::int32_t& code : frame.leaf) {
         if (code >= 0) ++frame.stats.coveredPixels;
         if (code == shader::kLeafUnresolved) ++frame.stats.unresolvedPixels;
@@ -726,7 +719,7 @@ void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
         static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 must be three packed floats");
         frame.normal.resize(n);
         targets.normal.download(GL_RGB, GL_FLOAT, std::as_writable_bytes(std::span(frame.normal)));
-        flipRowsInPlace(std::span(frame.normal), w, h, 1);
+        flipRows(std::span(frame.normal), w, h, 1);
     }
     gpu::checkErrors();
 }
@@ -881,9 +874,12 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     }
     resetDrawState();
     impl.targets.ensure(w, h);
-    impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, flipRows(depth, w, h, 1).data());
-    impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, flipRows(normal, w, h, 4).data());
-    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, flipRows(codes, w, h, 1).data());
+    flipRows(std::span(depth), w, h, 1);
+    flipRows(std::span(normal), w, h, 4);
+    flipRows(std::span(codes), w, h, 1);
+    impl.targets.resultDepth.upload(0, 0, 0, w, h, 1, GL_RED, GL_FLOAT, depth.data());
+    impl.targets.normal.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT, normal.data());
+    impl.targets.resultLeaf.upload(0, 0, 0, w, h, 1, GL_RED_INTEGER, GL_INT, codes.data());
 
     Frame frame;
     frame.width = w;
