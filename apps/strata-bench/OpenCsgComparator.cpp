@@ -2,12 +2,9 @@
 #include <GL/glew.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-// strata's context is released through EGL, and without an X display the
-// comparator's own context is an EGL one; X11's macros stay out as in
-// strata's Context.cpp.
+// Only to release strata's context; X11's macros stay out as in strata's Context.cpp.
 #define EGL_NO_X11
 #include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <opencsg.h>
 
 #include "OpenCsgComparator.h"
@@ -16,12 +13,12 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/gpu/Context.h"
 
 namespace strata::bench {
 namespace {
@@ -46,20 +43,6 @@ void checkGl(const char* where) {
 void releaseEgl() {
     if (eglGetCurrentContext() != EGL_NO_CONTEXT)
         eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-}
-
-bool hasEglExtension(const char* list, const char* name) {
-    if (list == nullptr) return false;
-    const std::size_t n = std::strlen(name);
-    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == '\0' || p[n] == ' ')) return true;
-    return false;
-}
-
-std::string eglWhy(const char* what) {
-    char code[16];
-    std::snprintf(code, sizeof code, "0x%04X", unsigned(eglGetError()));
-    return std::string(what) + " failed (EGL error " + code + ")";
 }
 
 // The comparator's compatibility context, however it was made.
@@ -103,103 +86,27 @@ private:
     std::unique_ptr<GLFWwindow, decltype(&glfwDestroyWindow)> window_{nullptr, &glfwDestroyWindow};
 };
 
-// An EGL context with the compatibility profile and no surface: the
-// comparator draws into framebuffer objects only. Its display is found as
-// strata's Context finds its own (Mesa's surfaceless platform, else an EGL
-// device, as NVIDIA's driver offers, else the default display), so both
-// contexts live on the same one; like strata, it never terminates it.
+// An EGL context with the compatibility profile and no surface
+// (gpu::Context's, on the display strata's own context gets): the comparator
+// draws into framebuffer objects only.
 class EglCompat final : public CompatGl {
 public:
-    EglCompat() {
-        std::string why;
-        auto attempt = [&](EGLDisplay candidate, const char* name) {
-            std::string failure;
-            if (tryDisplay(candidate, failure)) {
-                kind_ = std::string("EGL ") + name;
-                return true;
-            }
-            why += (why.empty() ? "" : "; ") + std::string(name) + ": " + failure;
-            return false;
-        };
-        const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-        auto getPlatformDisplay =
-            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-        bool ok = false;
-        if (getPlatformDisplay != nullptr && hasEglExtension(client, "EGL_MESA_platform_surfaceless"))
-            ok = attempt(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
-                         "surfaceless");
-        if (!ok && getPlatformDisplay != nullptr && hasEglExtension(client, "EGL_EXT_platform_device")) {
-            auto queryDevices =
-                reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-            EGLDeviceEXT devices[16];
-            EGLint count = 0;
-            if (queryDevices != nullptr && queryDevices(16, devices, &count) == EGL_TRUE)
-                for (EGLint i = 0; i < count && !ok; ++i)
-                    ok = attempt(getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), "device");
-        }
-        if (!ok) ok = attempt(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default");
-        if (!ok) throw Error("no EGL compatibility context (" + why + ")");
-    }
+    EglCompat() : context_(compatibilityOptions()) { context_.release(); }
 
-    ~EglCompat() override {
-        if (eglGetCurrentContext() == context_)
-            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        eglDestroyContext(display_, context_);
-    }
-    EglCompat(const EglCompat&) = delete;
-    EglCompat& operator=(const EglCompat&) = delete;
-
-    void makeCurrent() override {
-        // The thread's EGL context, strata's included, is replaced; the API
-        // is bound per thread, and strata binds the same one.
-        eglBindAPI(EGL_OPENGL_API);
-        if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE)
-            throw Error("cannot make the compatibility context current (" + eglWhy("eglMakeCurrent") + ")");
-    }
-    void release() override {
-        if (eglGetCurrentContext() == context_)
-            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    }
-    std::string kind() const override { return kind_; }
+    // The thread's EGL context, strata's included, is replaced.
+    void makeCurrent() override { context_.makeCurrent(); }
+    void release() override { context_.release(); }
+    std::string kind() const override { return "EGL " + context_.platform(); }
     bool glx() const override { return false; }
 
 private:
-    // Initialises `candidate` and makes the context there; on failure says why.
-    bool tryDisplay(EGLDisplay candidate, std::string& why) {
-        auto failed = [&why](std::string what) {
-            why = std::move(what);
-            return false;
-        };
-        if (candidate == EGL_NO_DISPLAY) return failed("no display");
-        if (eglInitialize(candidate, nullptr, nullptr) != EGL_TRUE) return failed(eglWhy("eglInitialize"));
-        const char* extensions = eglQueryString(candidate, EGL_EXTENSIONS);
-        if (!hasEglExtension(extensions, "EGL_KHR_surfaceless_context"))
-            return failed("no EGL_KHR_surfaceless_context");
-        if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) return failed("no desktop OpenGL API");
-        EGLConfig config = EGL_NO_CONFIG_KHR;
-        if (!hasEglExtension(extensions, "EGL_KHR_no_config_context")) {
-            const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-            EGLint count = 0;
-            if (eglChooseConfig(candidate, want, &config, 1, &count) != EGL_TRUE || count < 1)
-                return failed("no config for desktop OpenGL");
-        }
-        // 2.1 asks for no profile; the mask says compatibility to any driver
-        // that hands out a newer version than asked for.
-        const EGLint attributes[] = {
-            EGL_CONTEXT_MAJOR_VERSION_KHR, 2,
-            EGL_CONTEXT_MINOR_VERSION_KHR, 1,
-            EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT_KHR,
-            EGL_NONE};
-        const EGLContext created = eglCreateContext(candidate, config, EGL_NO_CONTEXT, attributes);
-        if (created == EGL_NO_CONTEXT) return failed(eglWhy("eglCreateContext (compatibility profile)"));
-        display_ = candidate;
-        context_ = created;
-        return true;
+    static gpu::ContextOptions compatibilityOptions() {
+        gpu::ContextOptions options;
+        options.debug = false;
+        options.compatibility = true;
+        return options;
     }
-
-    EGLDisplay display_ = EGL_NO_DISPLAY;
-    EGLContext context_ = EGL_NO_CONTEXT;
-    std::string kind_;
+    gpu::Context context_;
 };
 
 // GLEW for the current context. Debian's GLEW is built for GLX: glewInit()

@@ -44,6 +44,10 @@ std::string eglErrorName(EGLint error) {
     }
 }
 
+std::string profileName(const ContextOptions& options) {
+    return options.compatibility ? "2.1 compatibility" : "4.5 core";
+}
+
 }  // namespace
 
 bool debugByDefault() {
@@ -65,7 +69,7 @@ struct Context::Impl {
     // Tries one display: initialise, create a 4.5 core context, make it
     // current, and check what the driver really gave. On failure appends why to
     // `why`, destroys what it made and returns false.
-    bool tryDisplay(EGLDisplay candidate, const char* platformName, bool wantDebug,
+    bool tryDisplay(EGLDisplay candidate, const char* platformName, const ContextOptions& options,
                     std::vector<std::string>& why) {
         auto failed = [&](const std::string& what) {
             why.push_back(std::string(platformName) + ": " + what);
@@ -97,22 +101,29 @@ struct Context::Impl {
                 return failed("no config for desktop OpenGL");
         }
 
+        // 2.1 has no profiles; the mask says compatibility to a driver that
+        // hands out a newer version than asked for.
+        const bool compatibility = options.compatibility;
         const EGLint attributes[] = {
-            EGL_CONTEXT_MAJOR_VERSION_KHR, 4,
-            EGL_CONTEXT_MINOR_VERSION_KHR, 5,
-            EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
-            EGL_CONTEXT_FLAGS_KHR, wantDebug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
+            EGL_CONTEXT_MAJOR_VERSION_KHR, compatibility ? 2 : 4,
+            EGL_CONTEXT_MINOR_VERSION_KHR, compatibility ? 1 : 5,
+            EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR,
+            compatibility ? EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT_KHR : EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
+            EGL_CONTEXT_FLAGS_KHR, options.debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
             EGL_NONE};
         EGLContext created = eglCreateContext(candidate, config, EGL_NO_CONTEXT, attributes);
         if (created == EGL_NO_CONTEXT)
-            return failed("eglCreateContext for 4.5 core failed (" + eglErrorName(eglGetError()) + ")");
+            return failed("eglCreateContext for " + profileName(options) + " failed (" + eglErrorName(eglGetError()) +
+                          ")");
         if (eglMakeCurrent(candidate, EGL_NO_SURFACE, EGL_NO_SURFACE, created) != EGL_TRUE) {
             const EGLint error = eglGetError();
             eglDestroyContext(candidate, created);
             return failed("eglMakeCurrent failed (" + eglErrorName(error) + ")");
         }
         // A driver may hand back less than it was asked for; trust only what GL says.
-        if (currentGlVersion() < 45 || !currentGlIsCoreProfile()) {
+        const bool gotIt = compatibility ? currentGlVersion() >= 21 && !currentGlIsCoreProfile()
+                                         : currentGlVersion() >= 45 && currentGlIsCoreProfile();
+        if (!gotIt) {
             const std::string version = currentGlString(GlString::Version);
             eglMakeCurrent(candidate, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(candidate, created);
@@ -135,7 +146,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     // 1. Mesa's surfaceless platform: no display server, no GPU needed (llvmpipe).
     if (getPlatformDisplay != nullptr && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
         ok = impl_->tryDisplay(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
-                               "surfaceless", options.debug, why);
+                               "surfaceless", options, why);
     } else {
         why.push_back("surfaceless: EGL_MESA_platform_surfaceless missing");
     }
@@ -148,17 +159,17 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         if (queryDevices != nullptr && queryDevices(16, devices, &count) == EGL_TRUE) {
             for (EGLint i = 0; i < count && !ok; ++i)
                 ok = impl_->tryDisplay(getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr),
-                                       "device", options.debug, why);
+                                       "device", options, why);
         }
     }
 
     // 3. Whatever the default display is.
-    if (!ok) ok = impl_->tryDisplay(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default", options.debug, why);
+    if (!ok) ok = impl_->tryDisplay(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default", options, why);
 
     if (!ok) {
         std::string reasons;
         for (const std::string& r : why) reasons += (reasons.empty() ? "" : "; ") + r;
-        throw Error("EGL: no OpenGL 4.5 core context available (" + reasons + ")");
+        throw Error("EGL: no OpenGL " + profileName(options) + " context available (" + reasons + ")");
     }
 
     if (options.debug) enableDebugOutput(impl_->debug);
@@ -167,10 +178,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
 Context::~Context() {
     if (impl_->context == EGL_NO_CONTEXT) return;
-    if (eglGetCurrentContext() == impl_->context) {
-        eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (currentDebugState() == &impl_->debug) setCurrentDebugState(nullptr);
-    }
+    release();
     eglDestroyContext(impl_->display, impl_->context);  // the display stays (see tryDisplay)
 }
 
@@ -178,6 +186,12 @@ void Context::makeCurrent() {
     if (eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context) != EGL_TRUE)
         throw Error("EGL: eglMakeCurrent failed (" + eglErrorName(eglGetError()) + ")");
     setCurrentDebugState(&impl_->debug);
+}
+
+void Context::release() {
+    if (eglGetCurrentContext() != impl_->context) return;
+    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (currentDebugState() == &impl_->debug) setCurrentDebugState(nullptr);
 }
 
 bool Context::debug() const noexcept { return impl_->debug.enabled; }

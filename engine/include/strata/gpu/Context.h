@@ -1,6 +1,8 @@
 #pragma once
 // A headless OpenGL 4.5 core context through EGL, for strata-render, the tests
-// and the benchmark. No display, no window: render into your own Framebuffer.
+// and the benchmark (and, on request, a 2.1 compatibility context, for the
+// benchmark's OpenCSG comparator). No display, no window: render into your
+// own Framebuffer.
 //
 // Platforms, tried in order: Mesa's surfaceless platform
 // (EGL_PLATFORM_SURFACELESS_MESA; llvmpipe on a machine with no GPU), then an
@@ -25,12 +27,16 @@ bool debugByDefault();
 struct ContextOptions {
     // Synchronous KHR_debug output; GL errors then fail loudly at checkErrors().
     bool debug = debugByDefault();
+    // A GL 2.1 compatibility context (fixed-function drawing, as OpenCSG
+    // needs) instead of 4.5 core, on the display a core context would get.
+    bool compatibility = false;
 };
 
 class Context {
 public:
     // Throws strata::Error("EGL: no OpenGL 4.5 core context available (<why>)")
-    // when EGL or a 4.5 core context is missing.
+    // when EGL or a 4.5 core context (with `compatibility`: "2.1
+    // compatibility") is missing.
     explicit Context(const ContextOptions& options = {});
     ~Context();
     Context(const Context&) = delete;
@@ -38,6 +44,8 @@ public:
 
     // Makes this context current on the calling thread (the constructor already did).
     void makeCurrent();
+    // Leaves no context current on the calling thread, if this one is.
+    void release();
 
     bool debug() const noexcept;
     std::string vendor() const;    // GL_VENDOR
