@@ -10,7 +10,7 @@
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
 //                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
-//                [--glibc-heap] [--no-groups] [--opencsg-convexity openscad|measured]
+//                [--glibc-heap] [--no-groups] [--no-plain] [--opencsg-convexity openscad|measured]
 //                [--opencsg-limit 100000] [--opencsg-context auto|glx|egl]
 
 #include <algorithm>
@@ -101,6 +101,7 @@ struct Options {
     std::size_t openCsgLimit = bench::kOpenScadRenderingLimit;
     bool steadyHeap = true;
     bool groups = true;  // RenderSettings::groupOperands
+    bool plainUnions = true;  // RenderSettings::plainUnions
 };
 
 // llvmpipe bins each frame's triangles into blocks it mallocs and frees
@@ -133,7 +134,8 @@ struct Result {
     int operands = 0;
     double setupMs = 0;                    // geometry + setScene
     double strataMs = 0, strataMinMs = 0;  // wall clock per frame, glFinish included
-    double peelMs = 0, evaluateMs = 0, normalMs = 0, shadeMs = 0;  // FrameStats, medians
+    double peelMs = 0, evaluateMs = 0, normalMs = 0, plainFrameMs = 0, shadeMs = 0;  // FrameStats, medians
+    bool plainFrame = false;               // FrameStats::plain: strata drew the union plainly
     double plainMs = 0, plainMinMs = 0;
     std::size_t plainBytes = 0;            // the floor's vertex buffer and framebuffer
     std::size_t textureBytes = 0;
@@ -177,7 +179,8 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
 
     render::RenderSettings settings;
     settings.groupOperands = options.groups;
-    std::vector<double> frame, peel, evaluate, normal, shade;
+    settings.plainUnions = options.plainUnions;
+    std::vector<double> frame, peel, evaluate, normal, plainFrame, shade;
     render::FrameStats last;
     for (int i = 0; i < options.warmup + options.frames; ++i) {
         const auto start = Clock::now();
@@ -189,6 +192,7 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
         peel.push_back(last.peelMs);
         evaluate.push_back(last.evaluateMs);
         normal.push_back(last.normalMs);
+        plainFrame.push_back(last.plainMs);
         shade.push_back(last.shadeMs);
     }
     gpu::checkErrors();
@@ -197,6 +201,8 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
     result.peelMs = median(peel);
     result.evaluateMs = median(evaluate);
     result.normalMs = median(normal);
+    result.plainFrameMs = median(plainFrame);
+    result.plainFrame = last.plain;
     result.shadeMs = median(shade);
     result.textureBytes = last.textureBytes;
     result.operands = last.operands;
@@ -393,6 +399,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     json.key("warmup").value(options.warmup);
     json.key("steady_heap").value(options.steadyHeap);
     json.key("convex_groups").value(options.groups);
+    json.key("plain_unions").value(options.plainUnions);
     json.key("seed").value(options.seed);
     json.key("results").beginArray();
     for (const Result& r : results) {
@@ -414,6 +421,8 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
         json.key("peel_ms").value(r.peelMs);
         json.key("evaluate_ms").value(r.evaluateMs);
         json.key("normal_ms").value(r.normalMs);
+        json.key("plain_frame").value(r.plainFrame);
+        json.key("plain_frame_ms").value(r.plainFrameMs);
         json.key("shade_ms").value(r.shadeMs);
         json.key("plain_ms").value(r.plainMs);
         json.key("plain_min_ms").value(r.plainMinMs);
@@ -474,6 +483,9 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
     app.add_flag("!--no-groups", options.groups,
                  "peel every convex operand of an intersection on its own, not the intersection as one operand "
                  "(to measure what grouping gains)");
+    app.add_flag("!--no-plain", options.plainUnions,
+                 "run every pass on a union seen from outside too, not its plain depth-tested draw (to measure "
+                 "what the plain path gains)");
     return scenes;
 }
 

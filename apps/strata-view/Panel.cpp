@@ -180,8 +180,13 @@ void Viewer::drawPanel() {
     if (ImGui::CollapsingHeader("frame", ImGuiTreeNodeFlags_DefaultOpen)) {
         int used = 0;
         for (int l : stats_.layersPerLeaf) used = std::max(used, l);
-        ImGui::Text("%.1f ms  (peel %.1f, evaluate %.1f, normal %.1f, shade %.1f, copy %.1f)", stats_.totalMs,
-                    stats_.peelMs, stats_.evaluateMs, stats_.normalMs, stats_.shadeMs, stats_.readbackMs);
+        if (stats_.plain) {
+            ImGui::Text("%.1f ms  (plain %.1f, shade %.1f, copy %.1f)", stats_.totalMs, stats_.plainMs,
+                        stats_.shadeMs, stats_.readbackMs);
+        } else {
+            ImGui::Text("%.1f ms  (peel %.1f, evaluate %.1f, normal %.1f, shade %.1f, copy %.1f)", stats_.totalMs,
+                        stats_.peelMs, stats_.evaluateMs, stats_.normalMs, stats_.shadeMs, stats_.readbackMs);
+        }
         ImGui::Text("layers %s, used up to %d; %d operands", settings_.layers == 0 ? "auto" : "fixed", used,
                     stats_.operands);
         ImGui::Text("%d x %d px, %.1f MiB of layers, %d tile(s)", target_.width(), target_.height(),

@@ -38,7 +38,7 @@ std::string statsLine(const render::FrameStats& s) {
     int used = 0;
     for (int l : s.layersPerLeaf) used = std::max(used, l);
     return "total_ms " + std::to_string(s.totalMs) + " peel_ms " + std::to_string(s.peelMs) + " evaluate_ms " +
-           std::to_string(s.evaluateMs) + " normal_ms " + std::to_string(s.normalMs) + " shade_ms " +
+           std::to_string(s.evaluateMs) + " normal_ms " + std::to_string(s.normalMs) + " plain_ms " + std::to_string(s.plainMs) + " shade_ms " +
            std::to_string(s.shadeMs) + " layers_used " + std::to_string(used) + " operands " +
            std::to_string(s.operands);
 }

@@ -31,6 +31,7 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("peel").value(ms(f.peelMs));
     json.key("evaluate").value(ms(f.evaluateMs));
     json.key("normal").value(ms(f.normalMs));
+    json.key("plain").value(ms(f.plainMs));
     json.key("shade").value(ms(f.shadeMs));
     json.key("readback").value(ms(f.readbackMs));
     json.key("frame").value(ms(f.totalMs));
@@ -55,6 +56,8 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("covered_pixels").value(static_cast<std::uint64_t>(f.coveredPixels));
     json.key("unresolved_pixels").value(static_cast<std::uint64_t>(f.unresolvedPixels));
     json.key("tiles").value(f.tiles);
+    json.key("plain_frame").value(f.plain);
+    json.key("plain_tied_leaves").value(static_cast<std::uint64_t>(f.tiedLeaves));
     json.key("peel_passes").value(f.peelPasses);
     json.key("list_peeled_operands").value(f.listPeeledOperands);
 

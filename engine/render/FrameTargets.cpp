@@ -28,6 +28,9 @@ void FrameTargets::ensure(int width, int height) {
 }
 
 void FrameTargets::allocate(int width, int height) {
+    plainDepth = {};
+    plainTarget = {};
+    plainColorTarget = {};
     resultDepth = gpu::Texture::create2D("result depth", GL_R32F, width, height);
     resultLeaf = gpu::Texture::create2D("result leaf", GL_R32I, width, height);
     normal = gpu::Texture::create2D("result normal", GL_RGBA32F, width, height);
@@ -53,6 +56,25 @@ void FrameTargets::allocate(int width, int height) {
     colorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
     colorTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
     colorTarget.checkComplete();
+}
+
+void FrameTargets::ensurePlain() {
+    if (plainDepth.id() != 0) return;
+    plainDepth = gpu::Texture::create2D("plain depth", GL_DEPTH32F_STENCIL8, width_, height_);
+    plainTarget = gpu::Framebuffer("plain");
+    plainTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
+    plainTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
+    plainTarget.attachTexture(GL_COLOR_ATTACHMENT2, normal);
+    plainTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
+    plainTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
+    plainTarget.checkComplete();
+
+    plainColorTarget = gpu::Framebuffer("plain colour");
+    plainColorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
+    plainColorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+    plainColorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
+    plainColorTarget.attachTexture(GL_STENCIL_ATTACHMENT, plainDepth);
+    plainColorTarget.checkComplete();
 }
 
 void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
@@ -140,7 +162,8 @@ bool FrameTargets::canMarkLeaves() {
 }
 
 std::size_t FrameTargets::bytes() const {
-    return resultDepth.byteSize() + resultLeaf.byteSize() + normal.byteSize() + color.byteSize() + marks.byteSize();
+    return resultDepth.byteSize() + resultLeaf.byteSize() + normal.byteSize() + color.byteSize() + marks.byteSize() +
+           (plainDepth.id() != 0 ? plainDepth.byteSize() : 0);
 }
 
 }  // namespace strata::render

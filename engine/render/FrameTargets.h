@@ -68,6 +68,19 @@ public:
     gpu::Framebuffer normalTarget;    // 0: normal
     gpu::Framebuffer colorTarget;     // 0: color
 
+    // The plain path's (PlainPass.h) depth and stencil, D32F_S8: its depth
+    // test, and the marks of the pixels it wrote, which the shade pass then
+    // tests in place of `marks`. Made by ensurePlain, at the first plain
+    // frame of a size.
+    gpu::Texture plainDepth;
+    gpu::Framebuffer plainTarget;       // 0: resultDepth, 1: resultLeaf, 2: normal; plainDepth
+    gpu::Framebuffer plainColorTarget;  // 0: color; plainDepth's stencil
+    void ensurePlain();
+    // This frame's choice, set by the renderer: the marks are plainDepth's.
+    bool plainFrame = false;
+    // The colour image with this frame's marks as its stencil.
+    const gpu::Framebuffer& shadeTarget() const { return plainFrame ? plainColorTarget : colorTarget; }
+
     // Whether the driver can give each pixel its leaf's mark (asks GL).
     static bool canMarkLeaves();
     // This frame's choice, set by the renderer before the evaluate pass.

@@ -16,6 +16,7 @@
 #include "GroupPeel.h"
 #include "NormalPass.h"
 #include "PeelPass.h"
+#include "PlainPass.h"
 #include "SceneBuffers.h"
 #include "ShadePass.h"
 #include "ShaderInterface.h"
@@ -224,6 +225,7 @@ struct Renderer::Impl {
     PeelPass peel;
     EvaluatePass evaluate;
     NormalPass normals;
+    PlainPass plain;
     ShadePass shade;
     AlphaPass alpha;
     TranslucentPass translucent;
@@ -259,6 +261,10 @@ struct Renderer::Impl {
     // meshes go as they reach the GPU.
     void setScene(const scene::Tree& tree, const geometry::Model& model, geometry::Model* release);
 
+    // A plain frame (PlainPass.h) in place of the peel, evaluate and normal passes.
+    // `drawn` holds every pixel its leaves cover.
+    void drawPlain(const ViewSetup& view, const PixelRect& drawn, const std::vector<glm::vec2>& baseColors,
+                   Frame& frame);
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
@@ -370,6 +376,7 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const geometry::Model& mo
     impl.unionGrouped.unionsOnly = reachedByUnionsOnly(impl.unionGrouped.tree, impl.scene);
     // Last, once nothing above needs the meshes any more.
     impl.scene.fill(model, release);
+    impl.plain.setLeaves(impl.scene, PlainPass::plainLeaves(impl.separate.tree, impl.scene));
     impl.current = &impl.grouped;
     impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
     impl.translucentLeaves = render::translucentLeaves(tree, impl.scene);
@@ -724,6 +731,22 @@ void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
     gpu::checkErrors();
 }
 
+void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
+                               const std::vector<glm::vec2>& baseColors, Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const auto start = Clock::now();
+    plain.run(targets, scene, view, drawn, baseColors);
+    glFinish();
+    stats.plainMs = millisecondsSince(start);
+    stats.plain = true;
+    stats.tiedLeaves = plain.tiedLeaves();
+    stats.operands = static_cast<int>(plain.leaves().size());
+    stats.tiles = 1;
+    stats.notes.push_back("drawn plainly: a union of " + std::to_string(plain.leaves().size()) +
+                          (plain.leaves().size() == 1 ? " leaf" : " leaves") +
+                          " seen from outside, depth-tested with no peel or evaluator");
+}
+
 ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame,
                                     bool aovs) {
     const auto frameStart = Clock::now();
@@ -744,15 +767,21 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         frame.blockForms.assign(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height),
                                 BlockForm::None);
     }
+    // A union of leaves seen from outside is drawn plainly (PlainPass.h),
+    // except where a frame asks for what only the peel has: the layers, the
+    // evaluator's forms, or the result's later surfaces.
+    const bool outside = beyondNearPlane(view, scene.bounds());
+    const bool plainFrame = settings.plainUnions && outside && !plain.leaves().empty() && roundSink == nullptr &&
+                            !settings.keepPeelLayers && !settings.keepBlockForms;
     // Debug views show each operand's own layers: no groups there. Unions
     // group where every ray starts outside, as the first layer does
     // (peelAndEvaluate), and not for the result peel, which walks past it.
-    const bool unions = beyondNearPlane(view, scene.bounds()) && roundSink == nullptr &&
+    const bool unions = outside && roundSink == nullptr &&
                         unionOnlyOperands >= static_cast<std::size_t>(std::max(settings.unionGroupFrom, 2));
     const Compilation& chosen = !settings.groupOperands || settings.keepPeelLayers ? separate
                                 : unions                                            ? unionGrouped
                                                                                     : grouped;
-    if (current != &chosen) {
+    if (current != &chosen && !plainFrame) {
         evaluate.setTree(chosen.tree, canMarkLeaves);
         current = &chosen;
     }
@@ -767,7 +796,9 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     std::vector<PixelRect> rects, markRects;
     std::vector<int> markLeaves;
     PixelRect drawn;
-    if (compiled.kind == csg::CompiledTree::Kind::Code) {
+    if (plainFrame) {
+        for (int leaf : plain.leaves()) drawn = drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
+    } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
         rects.resize(compiled.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
             // An intersection's surfaces lie where all its members' do, a
@@ -790,12 +821,15 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // The translucent and alpha passes read the result beyond the marked pixels.
     targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), drawn.grown(1));
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
+    targets.plainFrame = plainFrame;
     if (copiedLeaves > 0) {
         stats.notes.push_back(std::to_string(copiedLeaves) +
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
-    if (compiled.kind == csg::CompiledTree::Kind::Code) {
+    if (plainFrame) {
+        drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), frame);
+    } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
         peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
         stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
@@ -874,6 +908,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     }
     resetDrawState();
     impl.targets.ensure(w, h);
+    impl.targets.plainFrame = false;
     flipRows(std::span(depth), w, h, 1);
     flipRows(std::span(normal), w, h, 4);
     flipRows(std::span(codes), w, h, 1);

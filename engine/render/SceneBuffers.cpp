@@ -157,8 +157,10 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
     flatVertexArray_.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
     flatVertexArray_.setAttribute(1, 1, 3, GL_FLOAT, 0);
     flatVertexArray_.setElementBuffer(indices_);
-    if (!memberNumbers_.id()) {
-        std::vector<float> numbers(kMostMembers);
+    // Numbers for a group's members and for every leaf (floats: exact below 2^24).
+    const std::size_t numbered = std::max(kMostMembers, leaves_.size());
+    if (!memberNumbers_.id() || memberNumbers_.size() < numbered * sizeof(float)) {
+        std::vector<float> numbers(numbered);
         for (std::size_t m = 0; m < numbers.size(); ++m) numbers[m] = static_cast<float>(m);
         memberNumbers_ = gpu::Buffer::fromSpan("scene member numbers", std::span<const float>(numbers), 0);
     }
@@ -169,6 +171,28 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
     memberVertexArray_.setBindingDivisor(1, 1);
     memberVertexArray_.setAttribute(2, 1, 1, GL_FLOAT, 0);
     memberVertexArray_.setElementBuffer(indices_);
+    leafVertexArray_ = gpu::VertexArray("scene with face normals and leaf numbers");
+    leafVertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
+    leafVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    leafVertexArray_.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
+    leafVertexArray_.setAttribute(1, 1, 3, GL_FLOAT, 0);
+    leafVertexArray_.setVertexBuffer(2, memberNumbers_, 0, sizeof(float));
+    leafVertexArray_.setBindingDivisor(2, 1);
+    leafVertexArray_.setAttribute(2, 2, 1, GL_FLOAT, 0);
+    leafVertexArray_.setElementBuffer(indices_);
+}
+
+std::vector<DrawElementsIndirectCommand> SceneBuffers::leafCommands(std::span<const int> leaves) const {
+    if (leaves_.size() > kMostLeafNumbers) throw Error("renderer: more than 2^24 - 1 leaves to number");
+    std::vector<DrawElementsIndirectCommand> commands;
+    commands.reserve(leaves.size());
+    for (int leaf : leaves) {
+        const LeafRange& range = leaves_[static_cast<std::size_t>(leaf)];
+        if (range.indexCount == 0) continue;
+        commands.push_back({static_cast<GLuint>(range.indexCount), 1, static_cast<GLuint>(range.firstIndex), 0,
+                            static_cast<GLuint>(leaf)});
+    }
+    return commands;
 }
 
 std::vector<DrawElementsIndirectCommand> SceneBuffers::memberCommands(std::span<const int> leaves) const {

@@ -1,7 +1,7 @@
 #pragma once
 // The scene on the GPU: every leaf's world-space triangles in one vertex
-// buffer, with per-leaf ranges, and two vertex arrays over it, shared by
-// every pass that draws leaves:
+// buffer, with per-leaf ranges, and four vertex arrays over it, shared by
+// every pass that draws leaves; one index buffer serves them all:
 // - vertexArray(): positions (attribute 0), the triangles in
 //   geometry::lastCornerLayout: each ends on a vertex of its own, copied
 //   where needed. Corners keep the mesh's order, and copies their position,
@@ -10,11 +10,14 @@
 //   triangle that ends on the vertex: a flat varying takes it from there
 //   (the provoking vertex), so the normal and translucent passes need no
 //   lookup by gl_PrimitiveID.
-// One index buffer serves all three.
 // - memberVertexArray(): positions, and per instance its number (attribute
 //   2, a float): drawn by a multi-draw whose draw m has base instance m, as
 //   memberCommands makes it, each draw's vertices carry m (surface.vert's
 //   GROUP_MEMBERS), so a group's members go in one call.
+// - leafVertexArray(): positions, face normals, and per instance its number
+//   (attribute 2) as memberVertexArray() has it: drawn by a multi-draw whose
+//   draw of leaf i has base instance i (leafCommands), each fragment knows
+//   its tree leaf (the plain path, PlainPass.h).
 // A leaf's range indexes all alike. Every pass that draws them does so with
 // shaders/csg/surface.vert as its vertex stage (setSurfaceView).
 
@@ -72,6 +75,12 @@ public:
     // A multi-draw's records for `leaves` (at most kMostMembers), in order:
     // draw m draws leaves[m] with base instance m.
     std::vector<DrawElementsIndirectCommand> memberCommands(std::span<const int> leaves) const;
+    const gpu::VertexArray& leafVertexArray() const { return leafVertexArray_; }
+    // The most leaves leafVertexArray() can number exactly (as floats).
+    static constexpr std::size_t kMostLeafNumbers = (std::size_t(1) << 24) - 1;
+    // A multi-draw's records for `leaves` over leafVertexArray(), in order,
+    // leaves without triangles left out: leaf i's draw has base instance i.
+    std::vector<DrawElementsIndirectCommand> leafCommands(std::span<const int> leaves) const;
     // Per leaf: its color() in rgba, a = -1 when it has none.
     const std::vector<glm::vec4>& leafColors() const { return leafColors_; }
     const std::vector<LeafRange>& leaves() const { return leaves_; }
@@ -97,6 +106,7 @@ private:
     gpu::VertexArray flatVertexArray_;
     gpu::Buffer memberNumbers_;  // 0, 1, 2, ... as floats: attribute 2 of memberVertexArray_
     gpu::VertexArray memberVertexArray_;
+    gpu::VertexArray leafVertexArray_;
     std::vector<LeafRange> leaves_;
     std::vector<std::vector<std::uint64_t>> planes_;  // per leaf hashed: its faces' planes, sorted
     mutable std::map<std::vector<int>, bool> sharing_;  // shareAPlane's answers

@@ -38,12 +38,13 @@ void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorSch
     program_.setUniform(shader::kShadeSize, glm::ivec2(view.width, view.height));
     program_.use();
     targets.normal.bindUnit(shader::kTextureNormal);
-    targets.colorTarget.bindForDraw();
+    const gpu::Framebuffer& target = targets.shadeTarget();
+    target.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     if (marked) {
         // The background everywhere, then the shader only where the evaluator wrote.
         const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
-        targets.colorTarget.clearColor(0, background);
+        glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, background);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(GL_NOTEQUAL, 0, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);

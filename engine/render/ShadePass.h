@@ -28,7 +28,8 @@ class ShadePass {
 public:
     ShadePass();
     // With `marked`: clear to the background and shade only the pixels the
-    // evaluator marked (FrameTargets::marks), all of which lie inside that
+    // evaluator or the plain path marked (FrameTargets::shadeTarget's
+    // stencil), all of which lie inside that
     // rectangle; the marks outside it are not read. Without: shade every
     // pixel (a G-buffer that came from elsewhere has no marks).
     void run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme,

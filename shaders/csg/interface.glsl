@@ -30,6 +30,10 @@ SHARED int kPeelPreviousLayer = 3;  // the layer the next pass reads
 SHARED int kPeelKeyBase = 4;        // GROUP: the bits below every fragment's tagged depth
 SHARED int kPeelTieTolerance = 6;   // GROUP_TIE: the depth within which a member ties with the winner
 
+// plain.frag (after surface.vert's).
+SHARED int kPlainKeyBase = 3;       // the nearest pass: the bits below every fragment's tagged depth
+SHARED int kPlainTieTolerance = 4;  // TIE: the depth within which a leaf ties with the nearest
+
 // resolve.frag.
 SHARED int kResolveFirstLayer = 0;
 SHARED int kResolveLayerCount = 1;
@@ -85,6 +89,7 @@ SHARED int kBufferShownFaces = 5;     // evaluate: per leaf, the faces the resul
 SHARED int kBufferGroupTable = 6;     // evaluate: groups of convex operands and their members
 SHARED int kBufferDrawLayers = 6;     // peel's convex batch (surface.vert LAYERED): each draw's layer
 SHARED int kBufferResolveStats = 7;   // resolve: the most layers, and overflow
+SHARED int kBufferPlainColors = 0;    // plain: each leaf's packed base colours
 
 // Texture units.
 SHARED int kTextureLayers = 0;        // peel (the previous layer), evaluate: the peeled layers
@@ -95,6 +100,7 @@ SHARED int kTextureGroupWinners = 1;  // peel GROUP_TIE: a copy of the winning e
 SHARED int kTextureResultDepth = 0;   // normal, translucent: the evaluator's depth
 SHARED int kTextureResultLeaf = 1;    // normal, alpha: the evaluator's leaf code
 SHARED int kTextureNormal = 0;        // shade: normal and base colour
+SHARED int kTexturePlainNearest = 0;  // plain TIE: a copy of the nearest pass's depths
 
 // Image units.
 SHARED int kImageFragmentCounts = 1;  // peel COLLECT, resolve

@@ -244,12 +244,16 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
         // Coverage, depth and normal must match exactly; the leaf named at a
         // tie may differ (each form names the first operand it meets). So
         // for the intersection and the union as one group (ConvexGroups.h),
-        // and the intersection's group names the lowest leaf: cube 0.
+        // and the intersection's group names the lowest leaf: cube 0; and
+        // for the union drawn plainly (PlainPass.h).
         render::RenderSettings unite;
         unite.unionGroupFrom = 2;
+        unite.plainUnions = false;
         const render::Frame grouped = renderer.render(camera, unite);
         EXPECT_EQ(grouped.stats.operands, kind == NodeKind::Difference ? 12 : 1);
-        for (const render::Frame* other : {&general, &grouped}) {
+        const render::Frame plain = renderer.render(camera, {});
+        EXPECT_EQ(plain.stats.plain, kind == NodeKind::Union);
+        for (const render::Frame* other : {&general, &grouped, &plain}) {
             for (std::size_t p = 0; p < fast.leaf.size(); ++p) {
                 ASSERT_EQ(fast.leaf[p] >= 0, other->leaf[p] >= 0) << scene::kindName(kind) << " pixel " << p;
                 ASSERT_EQ(std::memcmp(&fast.depth[p], &other->depth[p], sizeof(float)), 0) << scene::kindName(kind);

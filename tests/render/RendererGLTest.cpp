@@ -240,32 +240,38 @@ TEST_F(RendererGLTest, IntersectionOfSpheresIsTheLens) {
 }
 
 TEST_F(RendererGLTest, OrthographicCubeCoversExactlyItsPixels) {
+    // Drawn plainly (a union seen from outside: PlainPass.h) and peeled.
     scene::Tree tree;
     tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}))});
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
-    // The contract's orthographic ray of pixel (i, j) starts at x*h*a, y*h:
-    // it hits the top face (depth 9, normal +Z) iff both are inside [-1, 1].
-    const double h = 10.0 * std::tan(22.5 / 2.0 * std::numbers::pi / 180.0);
-    std::size_t expected = 0;
-    for (int j = 0; j < kSize; ++j) {
-        for (int i = 0; i < kSize; ++i) {
-            const double x = (2.0 * (i + 0.5) / kSize - 1.0) * h;
-            const double y = (1.0 - 2.0 * (j + 0.5) / kSize) * h;
-            const bool hit = std::abs(x) < 1.0 && std::abs(y) < 1.0;
-            expected += hit ? 1 : 0;
-            const std::size_t k = at(f, i, j);
-            ASSERT_EQ(f.leaf[k], hit ? 0 : -1) << i << "," << j;
-            if (hit) {
-                EXPECT_NEAR(f.depth[k], 9.0, 1e-5);
-                EXPECT_NEAR(f.normal[k].z, 1.0f, 1e-6);
-            } else {
-                EXPECT_TRUE(std::isinf(f.depth[k]) && f.depth[k] > 0);
-                EXPECT_EQ(f.normal[k], glm::vec3(0.0f));
+    for (const bool plain : {true, false}) {
+        render::RenderSettings settings;
+        settings.plainUnions = plain;
+        const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic), settings);
+        EXPECT_EQ(f.stats.plain, plain);
+        // The contract's orthographic ray of pixel (i, j) starts at x*h*a, y*h:
+        // it hits the top face (depth 9, normal +Z) iff both are inside [-1, 1].
+        const double h = 10.0 * std::tan(22.5 / 2.0 * std::numbers::pi / 180.0);
+        std::size_t expected = 0;
+        for (int j = 0; j < kSize; ++j) {
+            for (int i = 0; i < kSize; ++i) {
+                const double x = (2.0 * (i + 0.5) / kSize - 1.0) * h;
+                const double y = (1.0 - 2.0 * (j + 0.5) / kSize) * h;
+                const bool hit = std::abs(x) < 1.0 && std::abs(y) < 1.0;
+                expected += hit ? 1 : 0;
+                const std::size_t k = at(f, i, j);
+                ASSERT_EQ(f.leaf[k], hit ? 0 : -1) << i << "," << j;
+                if (hit) {
+                    EXPECT_NEAR(f.depth[k], 9.0, 1e-5);
+                    EXPECT_NEAR(f.normal[k].z, 1.0f, 1e-6);
+                } else {
+                    EXPECT_TRUE(std::isinf(f.depth[k]) && f.depth[k] > 0);
+                    EXPECT_EQ(f.normal[k], glm::vec3(0.0f));
+                }
             }
         }
+        EXPECT_EQ(f.stats.coveredPixels, expected);
+        EXPECT_EQ(f.stats.layersPerLeaf, std::vector<int>{plain ? 0 : 1});
     }
-    EXPECT_EQ(f.stats.coveredPixels, expected);
-    EXPECT_EQ(f.stats.layersPerLeaf, std::vector<int>{1});
 }
 
 TEST_F(RendererGLTest, ASmallerModelAfterALargeOneLeavesNoTrace) {
@@ -423,6 +429,7 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
     render::RenderSettings everyLayer, apart;
     everyLayer.keepPeelLayers = true;
     apart.groupOperands = false;
+    apart.plainUnions = false;  // the peel of such a union is what is tested
     for (render::Projection p : kProjections) {
         const render::Frame once = draw(tree, topCamera(p), apart);
         EXPECT_EQ(once.stats.layersPerLeaf[0], 1);
@@ -434,6 +441,7 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
         EXPECT_EQ(once.rgba, all.rgba);
         render::RenderSettings unite;
         unite.unionGroupFrom = 2;
+        unite.plainUnions = false;
         const render::Frame united = renderer_->render(topCamera(p), unite);
         EXPECT_EQ(united.stats.operands, 1);
         EXPECT_EQ(united.stats.layersPerLeaf[0], 1);
@@ -1300,6 +1308,7 @@ TEST_F(RendererGLTest, UnitedMembersSharingAFaceShowTheLowestLeafThere) {
         render::RenderSettings separate, unite;
         separate.groupOperands = false;
         unite.unionGroupFrom = 2;
+        separate.plainUnions = unite.plainUnions = false;  // the groups' peel is what is tested
         const render::Camera camera = topCamera();
         const render::Frame one = draw(tree, camera, unite);
         const render::Frame apart = renderer_->render(camera, separate);

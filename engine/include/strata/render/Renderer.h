@@ -7,6 +7,8 @@
 //   peel       PeelPass        dual depth peeling into an RG32F array texture
 //   evaluate   EvaluatePass    the compiled tree (strata/csg/CompiledTree.h) per pixel
 //   normal     NormalPass      the visible leaves redrawn for face normals
+//   plain      PlainPass       in place of those three for a union seen from
+//                              outside: its front faces depth-tested into the G-buffer
 //   shade      ShadePass       colours, Lambert light, Sobel outline
 //   translucent TranslucentPass '%' and '#' leaves over the image
 // GL state on return: depth test, stencil test, culling, blending and scissor test off;
@@ -85,6 +87,12 @@ struct RenderSettings {
     // leaves drew 0.3 to 0.7 ms slower as union groups, while 1535 drew in
     // 1.9 ms instead of 9.0.
     int unionGroupFrom = 64;
+    // Draw a frame whose tree is a union of leaves, seen from outside, as
+    // depth-tested geometry straight into the shading inputs: no peel, no
+    // evaluator, no normal pass (engine/render/PlainPass.h; docs/algorithm.md,
+    // "Plain frames"). false: such frames run every pass, as any tree does
+    // (tests compare the two).
+    bool plainUnions = true;
     // What render() reads back beside the image and the leaves: leave out
     // what the caller will not use (Frame::depth, Frame::normal stay empty),
     // and its read-back with it (20 bytes a pixel).
@@ -94,9 +102,14 @@ struct RenderSettings {
 
 struct FrameStats {
     // Wall clock of each pass, every tile, a glFinish (or a read-back) after each:
-    // peel, evaluate (the CSG evaluator), normal (the normal pass), shade
-    // (shading and translucent leaves), readback (render() only).
-    double peelMs = 0, evaluateMs = 0, normalMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
+    // peel, evaluate (the CSG evaluator), normal (the normal pass), plain
+    // (a plain frame's draws, in place of those three), shade (shading and
+    // translucent leaves), readback (render() only).
+    double peelMs = 0, evaluateMs = 0, normalMs = 0, plainMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
+    // The frame was drawn plainly (RenderSettings::plainUnions): its leaves
+    // drawn depth-tested, `tiedLeaves` of them a second time for ties.
+    bool plain = false;
+    std::size_t tiedLeaves = 0;
     // Peel passes used, per tree leaf: 0 for leaves not drawn, among them a
     // leaf identical to a lower one, which shares that one's layers
     // (IdenticalLeaves.h).

@@ -1,0 +1,93 @@
+#pragma once
+// The plain path: a frame whose tree is a union of leaves (no difference,
+// no intersection, no complement once compiled), every leaf a solid with
+// volume, and every ray starting outside all of them (the scene beyond the
+// near plane). The result's first surface is then the nearest entry into
+// any leaf, so the frame needs no peel, no evaluator and no normal pass:
+// the leaves' front faces are drawn depth-tested straight into the G-buffer
+// (FrameTargets: depth, leaf code, normal and base colour), and the stencil
+// marks every pixel written, for the shade pass (shaders/csg/plain.frag).
+//
+// Two geometry passes at most, each one multi-draw over the leaves in
+// ascending order (SceneBuffers::leafVertexArray: each fragment knows its
+// leaf):
+//   - nearest: every leaf, depth test LESS on the order key of the tagged
+//     depth: the nearest surface, the lowest leaf among exactly equal ones;
+//   - ties: only the leaves whose boxes come within the tolerance of
+//     another leaf's (mayTie), over a copy of the nearest depths: a front
+//     face within a quarter of the coincidence tolerance of the nearest one
+//     is that surface as far as rounding can tell, and the lowest such leaf
+//     is the one shown, with its own depth and normal. This is the rule the
+//     evaluator applies to a face that several leaves share (evaluate.frag,
+//     "the surface shown"), and the one GroupPeel's union groups apply, so
+//     the image, depths, normals and leaves are those of the full pipeline.
+//     Where no two leaves' boxes meet, no pixel can tie and the pass is
+//     left out.
+// What the full pipeline does otherwise: a leaf thinner than the tolerance
+// along a ray (a sheet, a ray grazing an edge or a cone's tip) is entered
+// and left in one cluster there and shows nothing, where the plain path
+// shows its front face; the union groups' one layer behaves as the plain
+// path does.
+//
+// GL state: sets the viewport to the frame, the framebuffer, depth, stencil,
+// cull and scissor state, and leaves depth test, stencil test, culling and
+// the scissor test off; expects blending off. Leaves the scene's
+// vertexArray() bound.
+
+#include <span>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "FrameTargets.h"
+#include "SceneBuffers.h"
+#include "ViewSetup.h"
+#include "strata/csg/CompiledTree.h"
+#include "strata/gpu/Buffer.h"
+#include "strata/gpu/Program.h"
+#include "strata/gpu/Texture.h"
+
+namespace strata::render {
+
+class PlainPass {
+public:
+    PlainPass();  // compiles the shaders; needs a current context
+
+    // The leaves a plain frame of `compiled` draws (its operands' leaves, a
+    // leaf identical to a lower one standing for both), or nothing when the
+    // tree cannot be drawn plainly: code other than a union of plain
+    // literals, a group, or an operand with a shell of no volume.
+    static std::vector<int> plainLeaves(const csg::CompiledTree& compiled, const SceneBuffers& scene);
+
+    // The leaves the next frames draw (plainLeaves), and the scene's boxes.
+    void setLeaves(const SceneBuffers& scene, std::vector<int> leaves);
+    const std::vector<int>& leaves() const { return leaves_; }
+
+    // Draws setLeaves' leaves into `targets` (its plain target, made here if
+    // need be) inside `drawn`, which holds every pixel they cover.
+    // `baseColors`: ShadePass::baseColors of this frame's colour scheme.
+    void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
+             const std::vector<glm::vec2>& baseColors);
+
+    // Leaves whose tie pass ran in the last frame (0: none could tie).
+    std::size_t tiedLeaves() const { return tieCount_; }
+
+    // Of `leaves`, those whose world boxes, grown by `margin`, meet another's
+    // of them, ascending; every one of them past `budget` box comparisons.
+    static std::vector<int> mayTie(const SceneBuffers& scene, std::span<const int> leaves, double margin,
+                                   std::size_t budget);
+
+private:
+    gpu::Program nearest_;  // plain.frag: the nearest front face
+    gpu::Program ties_;     // plain.frag TIE: the lowest leaf tying with it
+    std::vector<int> leaves_;
+    gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands
+    GLsizei nearestDraws_ = 0, tieDraws_ = 0;
+    std::size_t tieCount_ = 0;
+    double tieMargin_ = -1.0;  // the margin tieCommands_ was found with (-1: none yet)
+    gpu::Buffer colors_;       // baseColors, as last uploaded
+    std::vector<glm::vec2> uploadedColors_;
+    gpu::Texture nearestCopy_;  // R32F, the frame's size: the tie pass's input
+};
+
+}  // namespace strata::render
