@@ -77,7 +77,7 @@ void FrameTargets::ensurePlain() {
     plainColorTarget.checkComplete();
 }
 
-void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
+void FrameTargets::clearResult(bool wholeFrame, bool wholeNormal, const PixelRect& drawn) {
     glDisable(GL_SCISSOR_TEST);
     if (wholeFrame) {
         const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
@@ -85,12 +85,13 @@ void FrameTargets::clearResult(bool wholeFrame, const PixelRect& drawn) {
         evaluateTarget.clearColor(0, depth);
         evaluateTarget.clearColorInt(1, leaf);
     }
-    const PixelRect r = wholeFrame ? PixelRect{0, 0, width_, height_} : drawn.intersection({0, 0, width_, height_});
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    if (wholeNormal) normalTarget.clearColor(0, zero);
+    const PixelRect r = drawn.intersection({0, 0, width_, height_});
     if (r.empty()) return;
     glEnable(GL_SCISSOR_TEST);
     glScissor(r.x, r.y, r.width, r.height);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    normalTarget.clearColor(0, zero);
+    if (!wholeNormal) normalTarget.clearColor(0, zero);
     const GLint noMark = 0;
     glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);
     glDisable(GL_SCISSOR_TEST);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 
 #include "ShaderInterface.h"
@@ -13,7 +12,7 @@ namespace strata::render {
 namespace {
 
 gpu::Program plainProgram(bool ties) {
-    std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}, {"GROUP_MEMBERS", ""}};
+    std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}, {"GROUP_MEMBERS", ""}, {"REVERSED_DEPTH", ""}};
     if (ties) defines.push_back({"TIE", ""});
     return gpu::Program::fromFiles(ties ? "plain ties" : "plain nearest", {"csg/surface.vert", "csg/plain.frag"},
                                    defines);
@@ -104,7 +103,8 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     const double needed = 0.25 * view.coincidence * secant;
     if (tieMargin_ < needed) {
         tieMargin_ = 2.0 * needed;
-        const std::vector<int> tying = mayTie(scene, leaves_, tieMargin_, kTieComparisons);
+        std::vector<int> tying = mayTie(scene, leaves_, tieMargin_, kTieComparisons);
+        std::reverse(tying.begin(), tying.end());  // the lowest leaf drawn last, and kept
         const std::vector<DrawElementsIndirectCommand> commands = scene.leafCommands(tying);
         gpu::Buffer::uploadGrowing(tieCommands_, "plain tie commands", commands);
         tieDraws_ = static_cast<GLsizei>(commands.size());
@@ -115,25 +115,36 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         uploadedColors_ = baseColors;
     }
 
+    // Reversed depth (surface.vert, REVERSED_DEPTH): near / depth in
+    // perspective, a float's relative precision at every depth. The tie
+    // pass's pull: a quarter of the tolerance at the near plane, where a
+    // depth step moves the window depth most, twice over.
+    const double nearPlane = view.nearPlane, farPlane = view.farPlane;
+    const double reach = 0.25 * view.coincidence;
+    glm::vec3 depthTerms, pulled;
+    if (view.orthographic) {
+        const double span = farPlane - nearPlane;
+        depthTerms = glm::vec3(static_cast<float>(farPlane / span), static_cast<float>(-1.0 / span), 0.0f);
+        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * reach / span));
+    } else {
+        depthTerms = glm::vec3(static_cast<float>(nearPlane), 0.0f, 0.0f);
+        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * reach / nearPlane));
+    }
     setSurfaceView(nearest_, view);
-    // Tagged depths from half the near plane's on map into [0, 1) in order
-    // (plain.frag: orderKey); every fragment lies beyond the near plane.
-    const float base = static_cast<float>(view.nearPlane * 0.5);
-    std::uint32_t bits = 0;
-    std::memcpy(&bits, &base, sizeof bits);
-    nearest_.setUniform(shader::kPlainKeyBase, bits);
+    nearest_.setUniform(shader::kSurfaceReversedDepth, depthTerms);
 
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glScissor(drawn.x, drawn.y, drawn.width, drawn.height);
     targets.plainTarget.bindForDraw();
-    glClearNamedFramebufferfi(targets.plainTarget.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    glClearNamedFramebufferfi(targets.plainTarget.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
     colors_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferPlainColors);
     scene.leafVertexArray().bind();
 
     // Nearest: every pixel written is marked for the shade pass.
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
@@ -145,8 +156,9 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, nearestDraws_, 0);
     glDisable(GL_STENCIL_TEST);
 
-    // Ties: the nearest depths copied aside, the lowest leaf within the
-    // tolerance of each.
+    // Ties: the nearest depths copied aside; the leaves that can tie, last
+    // the lowest, each fragment that may tie tested before its shader runs
+    // (depth clamped: the pull may take a fragment past the near plane).
     if (tieDraws_ > 0) {
         if (nearestCopy_.width() != view.width || nearestCopy_.height() != view.height) {
             nearestCopy_ = gpu::Texture::create2D("plain nearest copy", GL_R32F, view.width, view.height);
@@ -154,14 +166,20 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, nearestCopy_.id(),
                            GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, drawn.width, drawn.height, 1);
         nearestCopy_.bindUnit(shader::kTexturePlainNearest);
-        const float farthest = 1.0f;
-        glClearNamedFramebufferfv(targets.plainTarget.id(), GL_DEPTH, 0, &farthest);
         setSurfaceView(ties_, view);
-        ties_.setUniform(shader::kPlainTieTolerance, static_cast<float>(view.coincidence * 0.25));
+        ties_.setUniform(shader::kSurfaceReversedDepth, pulled);
+        ties_.setUniform(shader::kPlainTieTolerance, static_cast<float>(reach));
         ties_.use();
+        glDepthFunc(GL_GEQUAL);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_DEPTH_CLAMP);
         tieCommands_.bind(GL_DRAW_INDIRECT_BUFFER);
         glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, tieDraws_, 0);
+        glDisable(GL_DEPTH_CLAMP);
+        glDepthMask(GL_TRUE);
     }
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(GL_LESS);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     scene.vertexArray().bind();
     glDisable(GL_CULL_FACE);

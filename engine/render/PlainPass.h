@@ -8,21 +8,25 @@
 // (FrameTargets: depth, leaf code, normal and base colour), and the stencil
 // marks every pixel written, for the shade pass (shaders/csg/plain.frag).
 //
-// Two geometry passes at most, each one multi-draw over the leaves in
-// ascending order (SceneBuffers::leafVertexArray: each fragment knows its
-// leaf):
-//   - nearest: every leaf, depth test LESS on the order key of the tagged
-//     depth: the nearest surface, the lowest leaf among exactly equal ones;
+// Two geometry passes at most, each one multi-draw over the leaves
+// (SceneBuffers::leafVertexArray: each fragment knows its leaf), with the
+// depth reversed (near / depth: a float's relative precision at every
+// depth; surface.vert's REVERSED_DEPTH) so that the depth test orders
+// surfaces as finely as their view depths do:
+//   - nearest: every leaf in ascending order, depth test GREATER: the
+//     nearest surface, the lowest leaf among exactly equal ones;
 //   - ties: only the leaves whose boxes come within the tolerance of
-//     another leaf's (mayTie), over a copy of the nearest depths: a front
-//     face within a quarter of the coincidence tolerance of the nearest one
-//     is that surface as far as rounding can tell, and the lowest such leaf
-//     is the one shown, with its own depth and normal. This is the rule the
-//     evaluator applies to a face that several leaves share (evaluate.frag,
-//     "the surface shown"), and the one GroupPeel's union groups apply, so
-//     the image, depths, normals and leaves are those of the full pipeline.
-//     Where no two leaves' boxes meet, no pixel can tie and the pass is
-//     left out.
+//     another leaf's (mayTie), in descending order, pulled toward the eye
+//     and tested GEQUAL against the nearest depths without writing them, so
+//     that the test lets through, before the shader runs, every fragment
+//     that may tie; the shader keeps a front face within a quarter of the
+//     coincidence tolerance of the nearest (a copy of the nearest depths),
+//     which is that surface as far as rounding can tell, and the last
+//     written, the lowest such leaf, is the one shown, with its own depth and
+//     normal. This is the rule the evaluator applies to a face that several
+//     leaves share (evaluate.frag, "the surface shown"), and the one
+//     GroupPeel's union groups apply. Where no two leaves' boxes meet, no
+//     pixel can tie and the pass is left out.
 // What the full pipeline does otherwise: a leaf thinner than the tolerance
 // along a ray (a sheet, a ray grazing an edge or a cone's tip) is entered
 // and left in one cluster there and shows nothing, where the plain path
@@ -31,7 +35,8 @@
 //
 // GL state: sets the viewport to the frame, the framebuffer, depth, stencil,
 // cull and scissor state, and leaves depth test, stencil test, culling and
-// the scissor test off; expects blending off. Leaves the scene's
+// the scissor test off, the depth function LESS and clip control GL's
+// default; expects blending off. Leaves the scene's
 // vertexArray() bound.
 
 #include <span>

@@ -819,7 +819,8 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     targets.ensure(view.width, view.height);
     // A pixel around `drawn` for the shade pass's Sobel filter.
     // The translucent and alpha passes read the result beyond the marked pixels.
-    targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), drawn.grown(1));
+    targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), aovs && settings.readNormal,
+                        drawn.grown(1));
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     targets.plainFrame = plainFrame;
     if (copiedLeaves > 0) {

@@ -24,6 +24,7 @@
 SHARED int kSurfaceViewProjection = 0;
 SHARED int kSurfaceEye = 1;
 SHARED int kSurfaceForward = 2;  // the unit view direction f
+SHARED int kSurfaceReversedDepth = 12;  // REVERSED_DEPTH: the clip depth's terms, above every fragment stage's
 
 // peel.frag (after surface.vert's).
 SHARED int kPeelPreviousLayer = 3;  // the layer the next pass reads
@@ -31,8 +32,7 @@ SHARED int kPeelKeyBase = 4;        // GROUP: the bits below every fragment's ta
 SHARED int kPeelTieTolerance = 6;   // GROUP_TIE: the depth within which a member ties with the winner
 
 // plain.frag (after surface.vert's).
-SHARED int kPlainKeyBase = 3;       // the nearest pass: the bits below every fragment's tagged depth
-SHARED int kPlainTieTolerance = 4;  // TIE: the depth within which a leaf ties with the nearest
+SHARED int kPlainTieTolerance = 3;  // TIE: the depth within which a leaf ties with the nearest
 
 // resolve.frag.
 SHARED int kResolveFirstLayer = 0;

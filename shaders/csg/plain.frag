@@ -7,19 +7,21 @@
 // Only front faces are drawn (culling): from outside, a union's first
 // surface is the nearest entry into any leaf.
 //
-// The nearest pass writes, as its depth, the order key of the fragment's
-// tagged depth (peel.frag's GROUP uses the same key), so the depth test
-// keeps exactly the nearest tagged depth, and among equal ones the lowest
-// leaf (leaves are drawn in ascending order, the test is strict). TIE: the
-// leaves that can come within the tolerance of another once more, each
-// fragment within a quarter of the coincidence tolerance of the nearest
-// (a copy of the nearest pass's depths) taking part with its leaf as the
-// depth: the lowest such leaf wins, with its own surface, as the
-// evaluator's rule for one face shared by several leaves names it
-// (evaluate.frag, "the surface shown").
+// Depth is reversed (surface.vert's REVERSED_DEPTH, a 32-bit float depth
+// buffer with clip control zero to one): the window depth is near / depth in
+// perspective, so every depth keeps a float's relative precision. The
+// nearest pass keeps the nearest surface (depth test GREATER), the lowest
+// leaf among exactly equal ones (leaves are drawn in ascending order, the
+// test is strict). TIE: the leaves that can come within the tolerance of
+// another once more, in descending order, pulled toward the eye by more than
+// a quarter of the tolerance and tested GEQUAL against the nearest pass's
+// depths with no depth writes, so that the test, run before the shader,
+// lets through every fragment that may tie and few others; the shader then
+// keeps exactly those within a quarter of the tolerance of the nearest (a
+// copy of the nearest pass's depths). Each writes its own surface, and the
+// last, the lowest leaf there, stays: the surface the evaluator's rule names
+// for a face that several leaves share (evaluate.frag, "the surface shown").
 //
-// Outputs: evaluate.frag's (tagged depth, leaf code) and normal.frag's
-// (outward face normal, packed base colour) at once.
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
@@ -37,31 +39,19 @@ layout(std430, binding = kBufferPlainColors) readonly buffer BaseColors {
 };
 
 #ifdef TIE
+layout(early_fragment_tests) in;
+
 layout(binding = kTexturePlainNearest) uniform sampler2D uNearest;  // the nearest pass's tagged depths
 layout(location = kPlainTieTolerance) uniform float uTieTolerance;
-#else
-layout(location = kPlainKeyBase) uniform uint uKeyBase;  // bits of a depth before every fragment's
-
-// As peel.frag's orderKey: the tagged depth's bits from uKeyBase's on, as a
-// normal float in [0, 1) that orders exactly as the tagged depths do.
-float orderKey(float tagged) {
-    uint bits = floatBitsToUint(tagged);
-    uint offset = bits > uKeyBase ? min(bits - uKeyBase, 0x3f000000u) : 0u;
-    return uintBitsToFloat(offset + 0x00800000u);
-}
 #endif
 
 void main() {
     float t = taggedDepth(vViewDepth, gl_FrontFacing);
-    int leaf = int(vMember);
 #ifdef TIE
     float nearest = texelFetch(uNearest, ivec2(gl_FragCoord.xy), 0).r;
     if (untagged(t) > untagged(nearest) + uTieTolerance) discard;
-    // Leaves number fewer than 2^24 - 1: the key is exact and below 1.
-    gl_FragDepth = (vMember + 1.0) / 16777216.0;
-#else
-    gl_FragDepth = orderKey(t);
 #endif
+    int leaf = int(vMember);
     outDepth = t;
     outLeaf = leafCode(leaf, false);
     outNormal = vec4(vFaceNormal, baseColors[leaf].x);

@@ -15,6 +15,14 @@
 // member's index in its group (attribute 2, per instance; draw m has base
 // instance m), handed on flat.
 //
+// REVERSED_DEPTH (the plain path, PlainPass.h): the clip depth is
+// x + y * depth + z * w of uReversedDepth, with the view depth and clip w:
+// in perspective (near, 0, pull) gives the window depth near / depth (clip
+// control zero to one), which keeps a float's relative precision at every
+// depth; orthographic, (far / (far - near), -1 / (far - near), pull). Both
+// put the near plane at 1, and `pull` moves every depth that much toward it. x, y and w are as in
+// every other pass, so the same pixels are covered.
+//
 // LAYERED (the peel pass's batch of convex operands, one multi-draw with one
 // draw per operand): each draw's triangles go to the array layer
 // drawLayers[gl_DrawID] of a layered framebuffer.
@@ -43,6 +51,9 @@ layout(location = 2) flat out float vMember;
 layout(location = kSurfaceViewProjection) uniform mat4 uViewProjection;
 layout(location = kSurfaceEye) uniform vec3 uEye;
 layout(location = kSurfaceForward) uniform vec3 uForward;
+#ifdef REVERSED_DEPTH
+layout(location = kSurfaceReversedDepth) uniform vec3 uReversedDepth;
+#endif
 
 // Linear view depth dot(P - eye, f): an affine function of P, so perspective-
 // correct interpolation gives its exact value at every fragment.
@@ -57,6 +68,9 @@ void main() {
     vMember = aMember;
 #endif
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
+#ifdef REVERSED_DEPTH
+    gl_Position.z = uReversedDepth.x + uReversedDepth.y * vViewDepth + uReversedDepth.z * gl_Position.w;
+#endif
 #ifdef LAYERED
     gl_Layer = int(drawLayers[gl_DrawIDARB]);
 #endif
