@@ -19,7 +19,7 @@ gpu::Program plainProgram(bool ties) {
 }
 
 // Box comparisons mayTie may spend before it takes every leaf as one that
-// may tie: a few tens of milliseconds, once per scene.
+// may tie: a few tens of milliseconds, once per scene and tolerance.
 constexpr std::size_t kTieComparisons = std::size_t(1) << 25;
 
 }  // namespace
@@ -53,38 +53,99 @@ void PlainPass::setLeaves(const SceneBuffers& scene, std::vector<int> leaves) {
 
 std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const int> leaves, double margin,
                                    std::size_t budget) {
-    // Sweep along x: leaves by the low end of their boxes, each compared
-    // with those still open (whose high end reaches it).
-    std::vector<int> order;
-    order.reserve(leaves.size());
-    for (int leaf : leaves)
-        if (!scene.leaf(leaf).bounds.empty()) order.push_back(leaf);
+    // The boxes, grown by the margin, in a grid of cells about as large as
+    // the median box: a box is compared with those that share a cell with
+    // it, so leaves apart cost no comparison (a grid of a million cubes is
+    // a few million cell entries). A box over many cells (a base plate
+    // under small parts) is compared with every box; a cell crowded past
+    // kCrowded boxes counts them all as tying. Past `budget` comparisons
+    // every leaf does.
+    constexpr std::size_t kCrowded = 64, kMostCells = 64;
     auto box = [&](int leaf) -> const geometry::Bounds& { return scene.leaf(leaf).bounds; };
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return box(a).min.x < box(b).min.x; });
-    std::vector<char> ties(scene.leaves().size(), 0);
-    std::vector<int> open;
-    std::size_t comparisons = 0;
-    for (int leaf : order) {
+    auto meet = [&](int a, int b) {
+        const geometry::Bounds &p = box(a), &q = box(b);
+        for (int axis = 0; axis < 3; ++axis) {
+            if (p.max[axis] + margin < q.min[axis] - margin || q.max[axis] + margin < p.min[axis] - margin)
+                return false;
+        }
+        return true;
+    };
+    std::vector<int> present;
+    present.reserve(leaves.size());
+    for (int leaf : leaves)
+        if (!box(leaf).empty()) present.push_back(leaf);
+    std::vector<int> all(present);
+    std::sort(all.begin(), all.end());
+    if (present.size() < 2) return {};
+
+    std::vector<double> extents;
+    extents.reserve(present.size());
+    for (int leaf : present) {
+        const glm::dvec3 size = box(leaf).max - box(leaf).min;
+        extents.push_back(std::max({size.x, size.y, size.z}));
+    }
+    std::nth_element(extents.begin(), extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2),
+                     extents.end());
+    geometry::Bounds whole;
+    for (int leaf : present) whole.extend(box(leaf));
+    const double cell = std::max({extents[extents.size() / 2] + 2.0 * margin, whole.diagonal() * 1e-6, 1e-300});
+
+    // (cell key, leaf) for each cell a small box covers; the large ones apart.
+    std::vector<std::pair<std::uint64_t, int>> entries;
+    std::vector<int> large;
+    auto cellOf = [&](double v, double origin) {
+        return static_cast<std::int64_t>(std::floor((v - origin) / cell));
+    };
+    for (int leaf : present) {
         const geometry::Bounds& b = box(leaf);
-        std::erase_if(open, [&](int other) { return box(other).max.x + margin < b.min.x - margin; });
-        comparisons += open.size() + 1;
-        if (comparisons > budget) {
-            std::vector<int> all(leaves.begin(), leaves.end());
-            std::sort(all.begin(), all.end());
-            return all;
+        std::int64_t low[3], high[3];
+        std::uint64_t count = 1;
+        for (int axis = 0; axis < 3; ++axis) {
+            low[axis] = cellOf(b.min[axis] - margin, whole.min[axis]);
+            high[axis] = cellOf(b.max[axis] + margin, whole.min[axis]);
+            count *= static_cast<std::uint64_t>(high[axis] - low[axis] + 1);
         }
-        for (int other : open) {
-            const geometry::Bounds& o = box(other);
-            const bool meet = o.min.y - margin <= b.max.y + margin && b.min.y - margin <= o.max.y + margin &&
-                              o.min.z - margin <= b.max.z + margin && b.min.z - margin <= o.max.z + margin;
-            if (meet) ties[static_cast<std::size_t>(leaf)] = ties[static_cast<std::size_t>(other)] = 1;
+        if (count > kMostCells) {
+            large.push_back(leaf);
+            continue;
         }
-        open.push_back(leaf);
+        for (std::int64_t x = low[0]; x <= high[0]; ++x)
+            for (std::int64_t y = low[1]; y <= high[1]; ++y)
+                for (std::int64_t z = low[2]; z <= high[2]; ++z) {
+                    // 21 bits a coordinate, from one below the scene's corner.
+                    const auto bits = [](std::int64_t c) { return static_cast<std::uint64_t>(c + 1) & 0x1fffff; };
+                    entries.emplace_back(bits(x) << 42 | bits(y) << 21 | bits(z), leaf);
+                }
+    }
+    if (large.size() * present.size() > budget) return all;
+    std::vector<char> ties(scene.leaves().size(), 0);
+    std::size_t comparisons = large.size() * present.size();
+    for (int big : large) {
+        for (int other : present) {
+            if (other != big && meet(big, other)) ties[static_cast<std::size_t>(big)] = ties[static_cast<std::size_t>(other)] = 1;
+        }
+    }
+    std::sort(entries.begin(), entries.end());
+    for (std::size_t first = 0; first < entries.size();) {
+        std::size_t last = first;
+        while (last < entries.size() && entries[last].first == entries[first].first) ++last;
+        const std::size_t n = last - first;
+        if (n > kCrowded) {
+            for (std::size_t i = first; i < last; ++i) ties[static_cast<std::size_t>(entries[i].second)] = 1;
+        } else {
+            comparisons += n * (n - 1) / 2;
+            if (comparisons > budget) return all;
+            for (std::size_t i = first; i < last; ++i)
+                for (std::size_t j = i + 1; j < last; ++j) {
+                    const int a = entries[i].second, b = entries[j].second;
+                    if (meet(a, b)) ties[static_cast<std::size_t>(a)] = ties[static_cast<std::size_t>(b)] = 1;
+                }
+        }
+        first = last;
     }
     std::vector<int> out;
-    for (int leaf : leaves)
+    for (int leaf : all)
         if (ties[static_cast<std::size_t>(leaf)]) out.push_back(leaf);
-    std::sort(out.begin(), out.end());
     return out;
 }
 

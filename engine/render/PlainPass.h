@@ -78,7 +78,9 @@ public:
     std::size_t tiedLeaves() const { return tieCount_; }
 
     // Of `leaves`, those whose world boxes, grown by `margin`, meet another's
-    // of them, ascending; every one of them past `budget` box comparisons.
+    // of them, ascending (and possibly a few more, never fewer: where many
+    // boxes crowd one place); every one of them past `budget` box
+    // comparisons.
     static std::vector<int> mayTie(const SceneBuffers& scene, std::span<const int> leaves, double margin,
                                    std::size_t budget);
 
