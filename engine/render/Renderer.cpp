@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <deque>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -221,14 +222,35 @@ void resetDrawState() {
 
 }  // namespace
 
+// A pass made on its first use: each compiles its shaders when made, and a
+// frame that never needs one (a plain frame needs no peel, evaluator or
+// normal pass; most models have no translucent leaf) should not pay for
+// them, least of all the first frame of a process.
+template <class Pass>
+class Lazy {
+public:
+    Pass* operator->() {
+        if (!pass_) pass_.emplace();
+        return &*pass_;
+    }
+
+private:
+    std::optional<Pass> pass_;
+};
+
 struct Renderer::Impl {
-    PeelPass peel;
-    EvaluatePass evaluate;
-    NormalPass normals;
-    PlainPass plain;
-    ShadePass shade;
-    AlphaPass alpha;
-    TranslucentPass translucent;
+    Lazy<PeelPass> peel;
+    Lazy<EvaluatePass> evaluate;
+    Lazy<NormalPass> normals;
+    Lazy<PlainPass> plain;
+    Lazy<ShadePass> shade;
+    Lazy<AlphaPass> alpha;
+    Lazy<TranslucentPass> translucent;
+    // The leaves a plain frame of the scene draws (PlainPass::plainLeaves;
+    // none: the scene is not drawn plainly), and whether the plain pass
+    // still has another scene's.
+    std::vector<int> plainLeaves;
+    bool plainStale = true;
     FrameTargets targets;
     SceneBuffers scene;
     // The tree compiled with every operand its own (`separate`), with
@@ -319,9 +341,9 @@ struct Renderer::Impl {
 
 void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme,
                                 const std::optional<PixelRect>& marked) {
-    shade.run(targets, view, scheme, marked);
-    alpha.run(targets, scene, view, scheme, alphaLeaves);
-    translucent.run(targets, scene, view, translucentLeaves);
+    shade->run(targets, view, scheme, marked);
+    if (!alphaLeaves.empty()) alpha->run(targets, scene, view, scheme, alphaLeaves);
+    if (!translucentLeaves.empty()) translucent->run(targets, scene, view, translucentLeaves);
     glFinish();
 }
 
@@ -376,9 +398,10 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const geometry::Model& mo
     impl.unionGrouped.unionsOnly = reachedByUnionsOnly(impl.unionGrouped.tree, impl.scene);
     // Last, once nothing above needs the meshes any more.
     impl.scene.fill(model, release);
-    impl.plain.setLeaves(impl.scene, PlainPass::plainLeaves(impl.separate.tree, impl.scene));
-    impl.current = &impl.grouped;
-    impl.evaluate.setTree(impl.grouped.tree, impl.canMarkLeaves);
+    impl.plainLeaves = PlainPass::plainLeaves(impl.separate.tree, impl.scene);
+    impl.plainStale = true;
+    // The evaluator takes its tree at the first frame that needs one.
+    impl.current = nullptr;
     impl.translucentLeaves = render::translucentLeaves(tree, impl.scene);
     impl.alphaLeaves = render::alphaLeaves(tree, impl.scene);
     impl.leafCount = tree.leaves.size();
@@ -531,18 +554,18 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
         tiles.pop_front();
 
         const auto start = Clock::now();
-        const bool fits = peel.run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
+        const bool fits = peel->run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
         glFinish();
         stats.peelMs += millisecondsSince(start);
-        stats.textureBytes = std::max(stats.textureBytes, peel.textureBytes());
-        stats.textureAllocations += peel.allocations();
-        stats.peelPasses += peel.passes();
-        stats.listPeeledOperands += peel.collected();
+        stats.textureBytes = std::max(stats.textureBytes, peel->textureBytes());
+        stats.textureAllocations += peel->allocations();
+        stats.peelPasses += peel->passes();
+        stats.listPeeledOperands += peel->collected();
         if (!fits) {
             if (quarters(tile).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
                             std::string("the memory budget of ") + mebibytes(in.settings.memoryBudget) +
-                            " and the GPU's " + std::to_string(peel.maxArrayLayers()) + " array layers allow");
+                            " and the GPU's " + std::to_string(peel->maxArrayLayers()) + " array layers allow");
             }
             // Auto peeling went deeper than guessed: split the tile in four.
             for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
@@ -572,14 +595,14 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
     const csg::CompiledTree& compiled = current->tree;
     auto start = Clock::now();
     std::vector<BlockForm> forms;
-    evaluate.run(targets, peel.layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, compiled, layers),
-                 peel.groupIds(), in.settings.generalEvaluator, in.view.coincidence, stats,
+    evaluate->run(targets, peel->layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, compiled, layers),
+                 peel->groupIds(), in.settings.generalEvaluator, in.view.coincidence, stats,
                  in.settings.keepBlockForms ? &forms : nullptr);
     if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
-    const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
+    const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
     stats.evaluateMs += millisecondsSince(start);
     start = Clock::now();
-    normals.run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
+    normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
     glFinish();
     stats.normalMs += millisecondsSince(start);
 }
@@ -598,12 +621,12 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
     for (int round = 0;; ++round) {
         auto start = Clock::now();
         targets.clearRegion(tile);
-        evaluate.runResultRound(targets, peel.layers(), tile, layers, in.rects, groups, peel.groupIds(), resultStart,
+        evaluate->runResultRound(targets, peel->layers(), tile, layers, in.rects, groups, peel->groupIds(), resultStart,
                                 round > 0, in.view.coincidence, stats);
-        const std::vector<std::uint32_t> shown = evaluate.shownFaces();  // waits for the evaluator
+        const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
         stats.evaluateMs += millisecondsSince(start);
         start = Clock::now();
-        normals.run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves,
+        normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves,
                     in.markRects);
         glFinish();
         stats.normalMs += millisecondsSince(start);
@@ -675,7 +698,7 @@ void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& o
             }
             const PixelRect valid = PeelPass::region(rects[k], tile, EvaluatePass::kBlock);
             if (valid.empty()) continue;
-            peel.layers().downloadRegion(valid.x, valid.y, layers[k].first + l, valid.width, valid.height, 1, GL_RG,
+            peel->layers().downloadRegion(valid.x, valid.y, layers[k].first + l, valid.width, valid.height, 1, GL_RG,
                                          GL_FLOAT, std::as_writable_bytes(std::span(texels)));
             for (int y = valid.y; y < valid.y + valid.height; ++y) {
                 for (int x = valid.x; x < valid.x + valid.width; ++x) {
@@ -735,15 +758,19 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
                                const std::vector<glm::vec2>& baseColors, Frame& frame) {
     FrameStats& stats = frame.stats;
     const auto start = Clock::now();
-    plain.run(targets, scene, view, drawn, baseColors);
+    if (plainStale) {
+        plain->setLeaves(scene, plainLeaves);
+        plainStale = false;
+    }
+    plain->run(targets, scene, view, drawn, baseColors);
     glFinish();
     stats.plainMs = millisecondsSince(start);
     stats.plain = true;
-    stats.tiedLeaves = plain.tiedLeaves();
-    stats.operands = static_cast<int>(plain.leaves().size());
+    stats.tiedLeaves = plain->tiedLeaves();
+    stats.operands = static_cast<int>(plainLeaves.size());
     stats.tiles = 1;
-    stats.notes.push_back("drawn plainly: a union of " + std::to_string(plain.leaves().size()) +
-                          (plain.leaves().size() == 1 ? " leaf" : " leaves") +
+    stats.notes.push_back("drawn plainly: a union of " + std::to_string(plainLeaves.size()) +
+                          (plainLeaves.size() == 1 ? " leaf" : " leaves") +
                           " seen from outside, depth-tested with no peel or evaluator");
 }
 
@@ -771,7 +798,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // except where a frame asks for what only the peel has: the layers, the
     // evaluator's forms, or the result's later surfaces.
     const bool outside = beyondNearPlane(view, scene.bounds());
-    const bool plainFrame = settings.plainUnions && outside && !plain.leaves().empty() && roundSink == nullptr &&
+    const bool plainFrame = settings.plainUnions && outside && !plainLeaves.empty() && roundSink == nullptr &&
                             !settings.keepPeelLayers && !settings.keepBlockForms;
     // Debug views show each operand's own layers: no groups there. Unions
     // group where every ray starts outside, as the first layer does
@@ -782,7 +809,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                                 : unions                                            ? unionGrouped
                                                                                     : grouped;
     if (current != &chosen && !plainFrame) {
-        evaluate.setTree(chosen.tree, canMarkLeaves);
+        evaluate->setTree(chosen.tree, canMarkLeaves);
         current = &chosen;
     }
     const csg::CompiledTree& compiled = chosen.tree;
@@ -797,7 +824,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     std::vector<int> markLeaves;
     PixelRect drawn;
     if (plainFrame) {
-        for (int leaf : plain.leaves()) drawn = drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
+        for (int leaf : plainLeaves) drawn = drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
     } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
         rects.resize(compiled.operandLeaf.size());
         for (std::size_t k = 0; k < rects.size(); ++k) {
