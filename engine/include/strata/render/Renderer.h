@@ -174,7 +174,8 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Uploads the leaf meshes and compiles the tree. Call again after an edit.
+    // Uploads the leaf meshes and compiles the tree (the passes' shaders are
+    // compiled by the first frame that needs them). Call again after an edit.
     void setScene(const scene::Tree& tree, const geometry::Model& model);
     // The same, letting each leaf's mesh go as soon as it is on the GPU and
     // handing the memory back: for a caller that needs the meshes no more
