@@ -40,6 +40,9 @@ const std::unordered_set<std::string>& unsupportedNames() {
 // Everything a statement passes to its children.
 struct Context {
     glm::dmat4 transform{1.0};
+    // What `transform` is relative to: identity, except below a hull,
+    // minkowski or resize, whose children are placed relative to the node.
+    glm::dmat4 frame{1.0};
     glm::dvec4 color{-1.0, -1.0, -1.0, -1.0};  // per component: < 0 is unset
     Display display = Display::Normal;
 };
@@ -57,6 +60,7 @@ struct Open {
     bool ownsFlat = false;  // closing it turns the pending flat tree into a leaf
     enum class Gather { None, Hull, Minkowski, Resize, Projection };
     Gather gather = Gather::None;  // hull() or minkowski() of solids: its children become one or more hull leaves
+    glm::dmat4 placement{1.0};     // hull() or minkowski(): its own transform, which places its result
     Resize resize;                 // resize(): its arguments and placement, filled in when it closes
     bool cut = false;              // projection(cut = ...)
     int flatParent = -1;           // projection() in a flat tree: the flat node its shape joins
@@ -311,8 +315,17 @@ Parser::Statement Parser::statementHead() {
 // The block a statement opens, with the context its modifiers make.
 Open Parser::openFor(const Statement& st, const Open& parent) const {
     Context ctx = parent.context;
-    if (st.background) ctx.display = Display::Background;
-    else if (st.highlight && ctx.display == Display::Normal) ctx.display = Display::Highlight;
+    if (st.background) {
+        ctx.display = Display::Background;
+        if (parent.context.display != Display::Background) {
+            // A '%' subtree is drawn on its own, so it is placed in the world
+            // even below a node that places its children relative to itself.
+            ctx.transform = ctx.frame * ctx.transform;
+            ctx.frame = glm::dmat4(1.0);
+        }
+    } else if (st.highlight && ctx.display == Display::Normal) {
+        ctx.display = Display::Highlight;
+    }
     if (st.root && rootNode_ < 0 && !st.dropped) {
         ctx = Context{};  // '!' makes this subtree the whole scene, without its ancestors' transforms
         if (st.highlight) ctx.display = Display::Highlight;
@@ -401,8 +414,14 @@ void Parser::operationStatement(const Statement& st, Open open) {
     } else if (name == "difference") {
         kind = NodeKind::Difference;
     } else if (name == "hull" || name == "minkowski") {
-        // Collects the children; closing turns them into hull leaves.
+        // Collects the children; closing turns them into hull leaves. The
+        // children are placed relative to the node and its transform places
+        // the result, as OpenSCAD transforms the result: a Minkowski sum of
+        // children placed in the world would have their translations added.
         open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
+        open.placement = open.context.transform;
+        open.context.frame = open.context.frame * open.context.transform;
+        open.context.transform = glm::dmat4(1.0);
     } else if (name == "resize") {
         // Its leaves are placed relative to it, and scaled when the model is built.
         open.gather = Open::Gather::Resize;
@@ -410,6 +429,7 @@ void Parser::operationStatement(const Statement& st, Open open) {
             open.resize = resizeArguments(st.args);
             open.resize.outer = open.context.transform;
             open.resize.where = st.where;
+            open.context.frame = open.context.frame * open.context.transform;
             open.context.transform = glm::dmat4(1.0);
         }
     } else if (name == "multmatrix") {
@@ -1231,9 +1251,10 @@ int Parser::finishProjection(const Open& open) {
 
 // hull() and minkowski() close: their children become hull leaves (a
 // minkowski of unions of convex leaves, one hull per choice of a part from
-// each child, under a union), or one flat result when the children are flat.
-// Returns the node that replaces the statement, or -1 when strata cannot make
-// it yet (counted and warned, the subtree left out).
+// each child, under a union), or one flat result when the children are flat;
+// all of them placed by the node's own transform. Returns the node that
+// replaces the statement, or -1 when strata cannot make it yet (counted and
+// warned, the subtree left out).
 int Parser::finishGather(const Open& open) {
     if (open.gather == Open::Gather::Resize) return finishResize(open);
     if (open.gather == Open::Gather::Projection) return finishProjection(open);
@@ -1242,7 +1263,9 @@ int Parser::finishGather(const Open& open) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
     const SourceLocation where = n.where;
     if (n.children.empty()) return -1;  // nothing to hull
-    if (flatChildren(open.node)) return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski);
+    if (flatChildren(open.node)) {
+        return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski, open.placement);
+    }
 
     // Each child's solid leaves (a hull takes them all as one set of points);
     // a difference or intersection among them is evaluated exactly.
@@ -1273,14 +1296,14 @@ int Parser::finishGather(const Open& open) {
         MinkowskiSum sum;
         for (int c : solidChildren) sum.operands.push_back(extractSolid(c));
         Leaf leaf = leafAt(open.context, where);
-        leaf.transform = glm::dmat4(1.0);  // the operands carry their own placement
+        leaf.transform = open.placement;  // the operands are placed relative to the node
         leaf.primitive = std::move(sum);
         return tree_.addLeaf(std::move(leaf));
     }
     auto leafCopy = [&](int l) { return tree_.leaves[static_cast<std::size_t>(l)]; };
     auto hullLeaf = [&](Hull h) {
         Leaf leaf = leafAt(open.context, where);
-        leaf.transform = glm::dmat4(1.0);  // the parts carry their own placement
+        leaf.transform = open.placement;  // the parts are placed relative to the node
         leaf.primitive = std::move(h);
         return tree_.addLeaf(std::move(leaf));
     };
