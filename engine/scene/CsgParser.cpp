@@ -139,6 +139,7 @@ private:
     std::shared_ptr<Tree> extractSolid(int root);
     void exactify(int root);
     int finishGather(const Open& open);
+    int emptyNode(const SourceLocation& where);
     bool flatChildren(int node) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -1085,6 +1086,22 @@ bool convexByConstruction(const Primitive& p) {
            std::holds_alternative<Hull>(p);
 }
 
+// Leaves whose parameters make no solid (a cube with a side of 0, a sphere
+// of radius 0, a cylinder of no height or no radius): OpenSCAD makes them
+// empty, and geometry::tessellate makes no mesh for them.
+bool emptyByParameters(const Primitive& p) {
+    if (const auto* c = std::get_if<Cube>(&p)) {
+        const glm::dvec3 s = c->size;
+        return !(s.x > 0 && s.y > 0 && s.z > 0) || std::isinf(s.x) || std::isinf(s.y) || std::isinf(s.z);
+    }
+    if (const auto* s = std::get_if<Sphere>(&p)) return !(s->r > 0) || std::isinf(s->r);
+    if (const auto* c = std::get_if<Cylinder>(&p)) {
+        return !(c->h > 0) || std::isinf(c->h) || !(c->r1 >= 0) || !(c->r2 >= 0) || !(c->r1 > 0 || c->r2 > 0) ||
+               std::isinf(c->r1) || std::isinf(c->r2);
+    }
+    return false;
+}
+
 constexpr std::size_t kMaxMinkowskiParts = 4096;
 
 }  // namespace
@@ -1129,7 +1146,7 @@ Resize Parser::resizeArguments(const std::vector<CsgArgument>& args) const {
 // one flat result, resized as OpenSCAD resizes a Polygon2d.
 int Parser::finishResize(const Open& open) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
-    if (n.children.empty()) return -1;
+    if (n.children.empty()) return emptyNode(n.where);
     if (flatChildren(open.node)) {
         const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer);
         if (merged < 0) return -1;
@@ -1249,12 +1266,22 @@ int Parser::finishProjection(const Open& open) {
     return tree_.addLeaf(std::move(leaf));
 }
 
+// A node that stands for the empty solid where a statement makes nothing
+// (a hull or minkowski of no solid): it takes part in the CSG as the empty
+// set, as OpenSCAD's empty result does (an intersection with it is empty).
+int Parser::emptyNode(const SourceLocation& where) {
+    const int node = tree_.addNode(NodeKind::Union, {});
+    tree_.nodes[static_cast<std::size_t>(node)].where = where;
+    return node;
+}
+
 // hull() and minkowski() close: their children become hull leaves (a
 // minkowski of unions of convex leaves, one hull per choice of a part from
 // each child, under a union), or one flat result when the children are flat;
-// all of them placed by the node's own transform. Returns the node that
-// replaces the statement, or -1 when strata cannot make it yet (counted and
-// warned, the subtree left out).
+// all of them placed by the node's own transform. A child without a solid is
+// left out (OpenSCAD's minkowski skips empty children), and without any the
+// node is the empty solid. Returns the node that replaces the statement, or
+// -1 when strata cannot make it yet (counted and warned, the subtree left out).
 int Parser::finishGather(const Open& open) {
     if (open.gather == Open::Gather::Resize) return finishResize(open);
     if (open.gather == Open::Gather::Projection) return finishProjection(open);
@@ -1262,7 +1289,7 @@ int Parser::finishGather(const Open& open) {
     const char* name = hull ? "hull" : "minkowski";
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
     const SourceLocation where = n.where;
-    if (n.children.empty()) return -1;  // nothing to hull
+    if (n.children.empty()) return emptyNode(where);
     if (flatChildren(open.node)) {
         return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski, open.placement);
     }
@@ -1282,6 +1309,8 @@ int Parser::finishGather(const Open& open) {
                          std::string("a 2D object inside ") + name + " of solids is ignored, as OpenSCAD ignores it");
                 continue;
             }
+            // Adds no point to a hull and no part to its child's union.
+            if (emptyByParameters(p)) continue;
             convex = convex && convexByConstruction(p);
             solid.push_back(l);
         }
@@ -1290,7 +1319,7 @@ int Parser::finishGather(const Open& open) {
             solidChildren.push_back(c);
         }
     }
-    if (children.empty()) return -1;
+    if (children.empty()) return emptyNode(where);
     if (!hull && !convex) {
         // Other solids are split into convex parts once their meshes are known.
         MinkowskiSum sum;

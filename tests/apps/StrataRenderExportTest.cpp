@@ -232,6 +232,18 @@ TEST(StrataRenderExport, AMinkowskiSumUnderATranslationIsWhereOpenScadPutsIt) {
     EXPECT_NEAR(PMP::volume(ours), PMP::volume(theirs), 1e-5 * PMP::volume(theirs));
 }
 
+// OpenSCAD 2021.01 on `intersection() { cube(10); minkowski() { } }`:
+// "Current top level object is empty."
+TEST(StrataRenderExport, AnIntersectionWithAnEmptyMinkowskiSumIsEmpty) {
+    TempDir dir;
+    const std::string scene = dir.write(
+        "empty.csg", "intersection() {\n\tcube(size = [10, 10, 10], center = false);\n\tminkowski(convexity = 0);\n}\n");
+    const ProcessResult r = runProcess({kExe, scene, "--export", dir / "a.stl", "--export-exact"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(r.err, scene + ": the CSG result is empty: nothing to export\n");
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"empty.csg"});
+}
+
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {
     TempDir dir;
     const std::string cube = dir.write("cube.csg", "cube(size = 1);\n");

@@ -113,7 +113,8 @@ struct Exact {
 // operand is a child's subtree (a union of leaves, any difference or
 // intersection in it already an Exact leaf), read into a tree of its own,
 // placed relative to the sum's leaf; geometry::minkowskiSum splits each into
-// convex parts and joins the parts' sums exactly, as OpenSCAD does.
+// convex parts and joins the parts' sums exactly, as OpenSCAD does (an
+// operand with no solid is left out of the sum, as OpenSCAD leaves it out).
 struct MinkowskiSum {
     std::vector<std::shared_ptr<const Tree>> operands;
 };
