@@ -61,6 +61,7 @@ struct Open {
     enum class Gather { None, Hull, Minkowski, Resize, Projection };
     Gather gather = Gather::None;  // hull() or minkowski() of solids: its children become one or more hull leaves
     glm::dmat4 placement{1.0};     // hull() or minkowski(): its own transform, which places its result
+    std::size_t resizesBefore = 0; // hull() or minkowski(): Tree::resizes when it opened (later ones are inside it)
     Resize resize;                 // resize(): its arguments and placement, filled in when it closes
     bool cut = false;              // projection(cut = ...)
     int flatParent = -1;           // projection() in a flat tree: the flat node its shape joins
@@ -138,6 +139,7 @@ private:
     int finishProjection(const Open& open);
     std::shared_ptr<Tree> extractSolid(int root);
     void exactify(int root);
+    void exactifyResized(int node, std::size_t first);
     int finishGather(const Open& open);
     int emptyNode(const SourceLocation& where);
     bool flatChildren(int node) const;
@@ -421,6 +423,7 @@ void Parser::operationStatement(const Statement& st, Open open) {
         // children placed in the world would have their translations added.
         open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
         open.placement = open.context.transform;
+        open.resizesBefore = tree_.resizes.size();
         open.context.frame = open.context.frame * open.context.transform;
         open.context.transform = glm::dmat4(1.0);
     } else if (name == "resize") {
@@ -1237,6 +1240,33 @@ void Parser::exactify(int root) {
     }
 }
 
+// Every child of `node` that holds a resize() becomes one Exact leaf holding
+// its subtree (with the resize group, which extractSolid keeps): a hull or
+// Minkowski sum copies its leaves, and a copy would not be resized. Only the
+// resizes from `first` on can be inside it.
+void Parser::exactifyResized(int node, std::size_t first) {
+    std::unordered_set<int> resized;
+    for (std::size_t i = first; i < tree_.resizes.size(); ++i) {
+        resized.insert(tree_.resizes[i].leaves.begin(), tree_.resizes[i].leaves.end());
+    }
+    if (resized.empty()) return;
+    for (std::size_t i = 0; i < tree_.nodes[static_cast<std::size_t>(node)].children.size(); ++i) {
+        const int c = tree_.nodes[static_cast<std::size_t>(node)].children[i];
+        const std::vector<int> under = tree_.leavesUnder(c);
+        if (std::none_of(under.begin(), under.end(), [&](int l) { return resized.count(l) != 0; })) continue;
+        Leaf leaf;
+        leaf.where = tree_.nodes[static_cast<std::size_t>(c)].where;
+        Exact exact{extractSolid(c)};
+        if (!exact.solid->leaves.empty()) {
+            leaf.color = exact.solid->leaves.front().color;
+            leaf.display = exact.solid->leaves.front().display;
+        }
+        leaf.primitive = std::move(exact);
+        const int replacement = tree_.addLeaf(std::move(leaf));
+        tree_.nodes[static_cast<std::size_t>(node)].children[i] = replacement;
+    }
+}
+
 // projection() closes: its solids become a Projection shape, joined to the
 // flat tree it stands in, or shown as a slab of its own among solids.
 int Parser::finishProjection(const Open& open) {
@@ -1295,8 +1325,10 @@ int Parser::finishGather(const Open& open) {
     }
 
     // Each child's solid leaves (a hull takes them all as one set of points);
-    // a difference or intersection among them is evaluated exactly.
+    // a difference or intersection among them, or a resize, is evaluated
+    // exactly.
     exactify(open.node);
+    exactifyResized(open.node, open.resizesBefore);
     std::vector<std::vector<int>> children;
     std::vector<int> solidChildren;  // the children with a solid in them
     bool convex = true;              // every solid leaf convex by construction
