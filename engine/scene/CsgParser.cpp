@@ -133,7 +133,8 @@ private:
                       const SourceLocation& where);
     int finishFlat();
     Leaf leafAt(const Context& ctx, const SourceLocation& where) const;
-    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0));
+    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0),
+                          const Context* shownAs = nullptr);
     Resize resizeArguments(const std::vector<CsgArgument>& args) const;
     int finishResize(const Open& open);
     int finishProjection(const Open& open);
@@ -1025,14 +1026,18 @@ FlatOp flatOpOf(NodeKind kind) {
 
 // A union, intersection or difference whose children are all flat slabs is a
 // 2D boolean in OpenSCAD: it becomes one slab of the combined flat tree (each
-// child under its own transform). Returns the new leaf's node, or -1.
-int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dmat4& placement) {
+// child under its own transform), shown as its children are when they agree.
+// A hull, minkowski or resize makes one new shape, shown as the node itself
+// (`shownAs`), whatever its children's colours. Returns the new leaf's node,
+// or -1.
+int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dmat4& placement, const Context* shownAs) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
     if (n.kind == NodeKind::Leaf || n.children.empty() || !flatChildren(node)) return -1;
     const Leaf* first = &tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(n.children[0])].leaf)];
     for (int c : n.children) {
         const Leaf& leaf = tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(c)].leaf)];
-        if (!keepsPlane(leaf.transform) || leaf.display != first->display || leaf.color != first->color) return -1;
+        if (!keepsPlane(leaf.transform)) return -1;
+        if (shownAs == nullptr && (leaf.display != first->display || leaf.color != first->color)) return -1;
     }
     FlatTree merged;
     FlatNode root;
@@ -1060,11 +1065,15 @@ int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dma
         sub = FlatTree{};
     }
     Leaf leaf;
+    if (shownAs != nullptr) {
+        leaf = leafAt(*shownAs, n.where);
+    } else {
+        leaf.color = first->color;
+        leaf.display = first->display;
+        leaf.where = n.where;
+    }
     leaf.primitive = FlatSlab{std::move(merged)};
     leaf.transform = placement;
-    leaf.color = first->color;
-    leaf.display = first->display;
-    leaf.where = n.where;
     return tree_.addLeaf(std::move(leaf));
 }
 
@@ -1151,7 +1160,7 @@ int Parser::finishResize(const Open& open) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
     if (n.children.empty()) return emptyNode(n.where);
     if (flatChildren(open.node)) {
-        const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer);
+        const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer, &open.context);
         if (merged < 0) return -1;
         FlatTree& shape = std::get<FlatSlab>(tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(merged)].leaf)].primitive).shape;
         FlatNode& root = shape.nodes[static_cast<std::size_t>(shape.root)];
@@ -1321,7 +1330,7 @@ int Parser::finishGather(const Open& open) {
     const SourceLocation where = n.where;
     if (n.children.empty()) return emptyNode(where);
     if (flatChildren(open.node)) {
-        return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski, open.placement);
+        return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski, open.placement, &open.context);
     }
 
     // Each child's solid leaves (a hull takes them all as one set of points);

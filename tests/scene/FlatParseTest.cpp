@@ -318,6 +318,24 @@ TEST(FlatParse, APlacedFlatMinkowskiAmongSolidsMovesOnce) {
     EXPECT_NEAR(volume(model.leafMeshes[0]), 23.0, 1e-9);  // a slab one unit thick
 }
 
+// A 2D hull of children of different colours is one shape, shown as the hull
+// is (OpenSCAD's preview draws a hull in its own colour, not its children's):
+// OpenSCAD 2021.01's `openscad -o x.svg` of
+//   hull() { color("red") square(2); translate([5, 0]) color("blue") square(1); }
+// is (0,0) (6,0) (6,1) (2,2) (0,2), of area 10.
+TEST(FlatParse, AFlatHullOfColouredChildrenIsOneShape) {
+    const Tree t = parse(
+        "hull() {\n\tcolor([1, 0, 0, 1]) {\n\t\tsquare(size = [2, 2], center = false);\n\t}\n"
+        "\tmultmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\t\tcolor([0, 0, 1, 1]) {\n\t\t\tsquare(size = [1, 1], center = false);\n\t\t}\n\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_FALSE(t.leaves[0].color.has_value());
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_EQ(model.bounds.min, glm::dvec3(0, 0, -0.5));
+    EXPECT_EQ(model.bounds.max, glm::dvec3(6, 2, 0.5));
+    EXPECT_NEAR(volume(model.leafMeshes[0]), 10.0, 1e-9);
+}
+
 TEST(FlatParse, HullOfADifferenceHullsItsExactResult) {
     // A cube with its top half cut away: the hull is the remaining 2 x 2 x 1 box.
     const Tree t = parse(
