@@ -105,7 +105,9 @@ Mesh tessellate(const scene::Hull& hull) {
     }
     for (const scene::Leaf& summand : hull.summands) {
         const Mesh m = leafMesh(summand);
-        if (m.positions.empty()) return Mesh{};  // a sum with nothing is nothing
+        // A part that makes no mesh adds nothing to its operand's union (the
+        // parser leaves out parts and operands empty by their parameters).
+        if (m.positions.empty()) return Mesh{};
         points = pointSums(points, m.positions);
     }
     return convexHull(points);

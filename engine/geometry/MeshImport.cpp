@@ -16,6 +16,7 @@
 #include <mutex>
 #include <vector>
 
+#include "PlyCheck.h"
 #include "PolygonTriangulation.h"
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
@@ -100,38 +101,29 @@ std::string readHead(const std::string& path, std::size_t limit) {
     return text;
 }
 
-// Element counts an OFF or PLY header declares (vertices, faces, ...), so a
-// corrupt header cannot make OpenMesh reserve gigabytes: every element takes
-// at least one byte of the file. Empty when the header cannot be parsed
-// (OpenMesh then reports the file itself) or the format has no counts.
-std::vector<unsigned long long> declaredCounts(const std::string& head, const std::string& ext) {
+// Element counts an OFF header declares (vertices, faces), so a corrupt
+// header cannot make OpenMesh reserve gigabytes: every element takes at
+// least one byte of the file. Empty when the header cannot be parsed
+// (OpenMesh then reports the file itself) or has no counts.
+std::vector<unsigned long long> declaredOffCounts(const std::string& head) {
     std::vector<unsigned long long> counts;
     std::istringstream in(head);
     std::string line;
-    if (ext == ".ply") {
-        while (std::getline(in, line) && line.rfind("end_header", 0) != 0) {
-            std::istringstream words(line);
-            std::string element, name;
-            unsigned long long n = 0;
-            if (words >> element >> name >> n && element == "element") counts.push_back(n);
-        }
-    } else if (ext == ".off") {
-        std::string keyword;
-        if (!(in >> keyword) || keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return {};
-        std::getline(in, line);  // rest of the keyword line
-        if (line.find("BINARY") != std::string::npos) return {};
-        std::string numbers = line;
-        while (std::getline(in, line)) {  // counts may follow comments and blank lines
-            const auto first = line.find_first_not_of(" \t\r");
-            if (first == std::string::npos || line[first] == '#') continue;
-            numbers += " " + line;
-            break;
-        }
-        std::istringstream words(numbers);
-        unsigned long long dimension = 0, vertices = 0, faces = 0;
-        if (keyword.find('n') != std::string::npos && !(words >> dimension)) return {};
-        if (words >> vertices >> faces) counts = {vertices, faces};
+    std::string keyword;
+    if (!(in >> keyword) || keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return {};
+    std::getline(in, line);  // rest of the keyword line
+    if (line.find("BINARY") != std::string::npos) return {};
+    std::string numbers = line;
+    while (std::getline(in, line)) {  // counts may follow comments and blank lines
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        numbers += " " + line;
+        break;
     }
+    std::istringstream words(numbers);
+    unsigned long long dimension = 0, vertices = 0, faces = 0;
+    if (keyword.find('n') != std::string::npos && !(words >> dimension)) return {};
+    if (words >> vertices >> faces) counts = {vertices, faces};
     return counts;
 }
 
@@ -185,8 +177,11 @@ Mesh importMesh(const std::string& path) {
     const auto size = std::filesystem::file_size(path, ec);
     if (size == 0) throw fail("empty file");
     const std::string head = readHead(path, 1 << 16);
-    for (unsigned long long n : declaredCounts(head, ext)) {
-        if (n > size) throw fail("header declares " + std::to_string(n) + " elements, more than the file can hold");
+    if (ext == ".ply") detail::checkPly(path, size);
+    if (ext == ".off") {
+        for (unsigned long long n : declaredOffCounts(head)) {
+            if (n > size) throw fail("header declares " + std::to_string(n) + " elements, more than the file can hold");
+        }
     }
     if (looksLikeText(head)) {
         if (const std::size_t line = lineOfNonFiniteWord(readAll(path)); line > 0) {

@@ -37,16 +37,21 @@ Mesh minkowskiSum(const scene::MinkowskiSum& sum) {
     // An operand is the union of its leaves, and a sum distributes over a
     // union: its parts are its leaves' parts.
     std::vector<Model> models;
+    models.reserve(sum.operands.size());  // operands point into the models
     std::vector<std::vector<const Mesh*>> operands;
     detail::ContentKey key;
     key.mix(0x6d696e6b6f77736bull);  // "minkowsk": apart from exactResult's keys
     for (const auto& operand : sum.operands) {
         models.push_back(buildModel(*operand));
-        operands.push_back(solidMeshes(*operand, models.back()));
-        if (operands.back().empty()) return Mesh{};  // a sum with nothing is nothing
+        std::vector<const Mesh*> meshes = solidMeshes(*operand, models.back());
+        // OpenSCAD leaves an empty operand out of the sum (an empty
+        // intersection, a cube of size 0), rather than making the sum empty.
+        if (meshes.empty()) continue;
+        operands.push_back(std::move(meshes));
         key.mix(operands.back().size());
         for (const Mesh* m : operands.back()) key.mix(*m);
     }
+    if (operands.empty()) return Mesh{};
     if (std::optional<Mesh> known = detail::cachedResult(key.value())) return std::move(*known);
 
     std::vector<std::vector<Part>> parts(operands.size());

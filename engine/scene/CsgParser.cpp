@@ -40,6 +40,9 @@ const std::unordered_set<std::string>& unsupportedNames() {
 // Everything a statement passes to its children.
 struct Context {
     glm::dmat4 transform{1.0};
+    // What `transform` is relative to: identity, except below a hull,
+    // minkowski or resize, whose children are placed relative to the node.
+    glm::dmat4 frame{1.0};
     glm::dvec4 color{-1.0, -1.0, -1.0, -1.0};  // per component: < 0 is unset
     Display display = Display::Normal;
 };
@@ -57,6 +60,8 @@ struct Open {
     bool ownsFlat = false;  // closing it turns the pending flat tree into a leaf
     enum class Gather { None, Hull, Minkowski, Resize, Projection };
     Gather gather = Gather::None;  // hull() or minkowski() of solids: its children become one or more hull leaves
+    glm::dmat4 placement{1.0};     // hull() or minkowski(): its own transform, which places its result
+    std::size_t resizesBefore = 0; // hull() or minkowski(): Tree::resizes when it opened (later ones are inside it)
     Resize resize;                 // resize(): its arguments and placement, filled in when it closes
     bool cut = false;              // projection(cut = ...)
     int flatParent = -1;           // projection() in a flat tree: the flat node its shape joins
@@ -128,13 +133,16 @@ private:
                       const SourceLocation& where);
     int finishFlat();
     Leaf leafAt(const Context& ctx, const SourceLocation& where) const;
-    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0));
+    int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0),
+                          const Context* shownAs = nullptr);
     Resize resizeArguments(const std::vector<CsgArgument>& args) const;
     int finishResize(const Open& open);
     int finishProjection(const Open& open);
     std::shared_ptr<Tree> extractSolid(int root);
     void exactify(int root);
+    void exactifyResized(int node, std::size_t first);
     int finishGather(const Open& open);
+    int emptyNode(const SourceLocation& where);
     bool flatChildren(int node) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -311,8 +319,17 @@ Parser::Statement Parser::statementHead() {
 // The block a statement opens, with the context its modifiers make.
 Open Parser::openFor(const Statement& st, const Open& parent) const {
     Context ctx = parent.context;
-    if (st.background) ctx.display = Display::Background;
-    else if (st.highlight && ctx.display == Display::Normal) ctx.display = Display::Highlight;
+    if (st.background) {
+        ctx.display = Display::Background;
+        if (parent.context.display != Display::Background) {
+            // A '%' subtree is drawn on its own, so it is placed in the world
+            // even below a node that places its children relative to itself.
+            ctx.transform = ctx.frame * ctx.transform;
+            ctx.frame = glm::dmat4(1.0);
+        }
+    } else if (st.highlight && ctx.display == Display::Normal) {
+        ctx.display = Display::Highlight;
+    }
     if (st.root && rootNode_ < 0 && !st.dropped) {
         ctx = Context{};  // '!' makes this subtree the whole scene, without its ancestors' transforms
         if (st.highlight) ctx.display = Display::Highlight;
@@ -401,8 +418,15 @@ void Parser::operationStatement(const Statement& st, Open open) {
     } else if (name == "difference") {
         kind = NodeKind::Difference;
     } else if (name == "hull" || name == "minkowski") {
-        // Collects the children; closing turns them into hull leaves.
+        // Collects the children; closing turns them into hull leaves. The
+        // children are placed relative to the node and its transform places
+        // the result, as OpenSCAD transforms the result: a Minkowski sum of
+        // children placed in the world would have their translations added.
         open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
+        open.placement = open.context.transform;
+        open.resizesBefore = tree_.resizes.size();
+        open.context.frame = open.context.frame * open.context.transform;
+        open.context.transform = glm::dmat4(1.0);
     } else if (name == "resize") {
         // Its leaves are placed relative to it, and scaled when the model is built.
         open.gather = Open::Gather::Resize;
@@ -410,6 +434,7 @@ void Parser::operationStatement(const Statement& st, Open open) {
             open.resize = resizeArguments(st.args);
             open.resize.outer = open.context.transform;
             open.resize.where = st.where;
+            open.context.frame = open.context.frame * open.context.transform;
             open.context.transform = glm::dmat4(1.0);
         }
     } else if (name == "multmatrix") {
@@ -1001,14 +1026,18 @@ FlatOp flatOpOf(NodeKind kind) {
 
 // A union, intersection or difference whose children are all flat slabs is a
 // 2D boolean in OpenSCAD: it becomes one slab of the combined flat tree (each
-// child under its own transform). Returns the new leaf's node, or -1.
-int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dmat4& placement) {
+// child under its own transform), shown as its children are when they agree.
+// A hull, minkowski or resize makes one new shape, shown as the node itself
+// (`shownAs`), whatever its children's colours. Returns the new leaf's node,
+// or -1.
+int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dmat4& placement, const Context* shownAs) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
     if (n.kind == NodeKind::Leaf || n.children.empty() || !flatChildren(node)) return -1;
     const Leaf* first = &tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(n.children[0])].leaf)];
     for (int c : n.children) {
         const Leaf& leaf = tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(c)].leaf)];
-        if (!keepsPlane(leaf.transform) || leaf.display != first->display || leaf.color != first->color) return -1;
+        if (!keepsPlane(leaf.transform)) return -1;
+        if (shownAs == nullptr && (leaf.display != first->display || leaf.color != first->color)) return -1;
     }
     FlatTree merged;
     FlatNode root;
@@ -1036,11 +1065,15 @@ int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dma
         sub = FlatTree{};
     }
     Leaf leaf;
+    if (shownAs != nullptr) {
+        leaf = leafAt(*shownAs, n.where);
+    } else {
+        leaf.color = first->color;
+        leaf.display = first->display;
+        leaf.where = n.where;
+    }
     leaf.primitive = FlatSlab{std::move(merged)};
     leaf.transform = placement;
-    leaf.color = first->color;
-    leaf.display = first->display;
-    leaf.where = n.where;
     return tree_.addLeaf(std::move(leaf));
 }
 
@@ -1063,6 +1096,22 @@ namespace {
 bool convexByConstruction(const Primitive& p) {
     return std::holds_alternative<Cube>(p) || std::holds_alternative<Sphere>(p) || std::holds_alternative<Cylinder>(p) ||
            std::holds_alternative<Hull>(p);
+}
+
+// Leaves whose parameters make no solid (a cube with a side of 0, a sphere
+// of radius 0, a cylinder of no height or no radius): OpenSCAD makes them
+// empty, and geometry::tessellate makes no mesh for them.
+bool emptyByParameters(const Primitive& p) {
+    if (const auto* c = std::get_if<Cube>(&p)) {
+        const glm::dvec3 s = c->size;
+        return !(s.x > 0 && s.y > 0 && s.z > 0) || std::isinf(s.x) || std::isinf(s.y) || std::isinf(s.z);
+    }
+    if (const auto* s = std::get_if<Sphere>(&p)) return !(s->r > 0) || std::isinf(s->r);
+    if (const auto* c = std::get_if<Cylinder>(&p)) {
+        return !(c->h > 0) || std::isinf(c->h) || !(c->r1 >= 0) || !(c->r2 >= 0) || !(c->r1 > 0 || c->r2 > 0) ||
+               std::isinf(c->r1) || std::isinf(c->r2);
+    }
+    return false;
 }
 
 constexpr std::size_t kMaxMinkowskiParts = 4096;
@@ -1109,9 +1158,9 @@ Resize Parser::resizeArguments(const std::vector<CsgArgument>& args) const {
 // one flat result, resized as OpenSCAD resizes a Polygon2d.
 int Parser::finishResize(const Open& open) {
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
-    if (n.children.empty()) return -1;
+    if (n.children.empty()) return emptyNode(n.where);
     if (flatChildren(open.node)) {
-        const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer);
+        const int merged = mergeFlatChildren(open.node, FlatOp::Resize, open.resize.outer, &open.context);
         if (merged < 0) return -1;
         FlatTree& shape = std::get<FlatSlab>(tree_.leaves[static_cast<std::size_t>(tree_.nodes[static_cast<std::size_t>(merged)].leaf)].primitive).shape;
         FlatNode& root = shape.nodes[static_cast<std::size_t>(shape.root)];
@@ -1200,6 +1249,33 @@ void Parser::exactify(int root) {
     }
 }
 
+// Every child of `node` that holds a resize() becomes one Exact leaf holding
+// its subtree (with the resize group, which extractSolid keeps): a hull or
+// Minkowski sum copies its leaves, and a copy would not be resized. Only the
+// resizes from `first` on can be inside it.
+void Parser::exactifyResized(int node, std::size_t first) {
+    std::unordered_set<int> resized;
+    for (std::size_t i = first; i < tree_.resizes.size(); ++i) {
+        resized.insert(tree_.resizes[i].leaves.begin(), tree_.resizes[i].leaves.end());
+    }
+    if (resized.empty()) return;
+    for (std::size_t i = 0; i < tree_.nodes[static_cast<std::size_t>(node)].children.size(); ++i) {
+        const int c = tree_.nodes[static_cast<std::size_t>(node)].children[i];
+        const std::vector<int> under = tree_.leavesUnder(c);
+        if (std::none_of(under.begin(), under.end(), [&](int l) { return resized.count(l) != 0; })) continue;
+        Leaf leaf;
+        leaf.where = tree_.nodes[static_cast<std::size_t>(c)].where;
+        Exact exact{extractSolid(c)};
+        if (!exact.solid->leaves.empty()) {
+            leaf.color = exact.solid->leaves.front().color;
+            leaf.display = exact.solid->leaves.front().display;
+        }
+        leaf.primitive = std::move(exact);
+        const int replacement = tree_.addLeaf(std::move(leaf));
+        tree_.nodes[static_cast<std::size_t>(node)].children[i] = replacement;
+    }
+}
+
 // projection() closes: its solids become a Projection shape, joined to the
 // flat tree it stands in, or shown as a slab of its own among solids.
 int Parser::finishProjection(const Open& open) {
@@ -1229,11 +1305,22 @@ int Parser::finishProjection(const Open& open) {
     return tree_.addLeaf(std::move(leaf));
 }
 
+// A node that stands for the empty solid where a statement makes nothing
+// (a hull or minkowski of no solid): it takes part in the CSG as the empty
+// set, as OpenSCAD's empty result does (an intersection with it is empty).
+int Parser::emptyNode(const SourceLocation& where) {
+    const int node = tree_.addNode(NodeKind::Union, {});
+    tree_.nodes[static_cast<std::size_t>(node)].where = where;
+    return node;
+}
+
 // hull() and minkowski() close: their children become hull leaves (a
 // minkowski of unions of convex leaves, one hull per choice of a part from
-// each child, under a union), or one flat result when the children are flat.
-// Returns the node that replaces the statement, or -1 when strata cannot make
-// it yet (counted and warned, the subtree left out).
+// each child, under a union), or one flat result when the children are flat;
+// all of them placed by the node's own transform. A child without a solid is
+// left out (OpenSCAD's minkowski skips empty children), and without any the
+// node is the empty solid. Returns the node that replaces the statement, or
+// -1 when strata cannot make it yet (counted and warned, the subtree left out).
 int Parser::finishGather(const Open& open) {
     if (open.gather == Open::Gather::Resize) return finishResize(open);
     if (open.gather == Open::Gather::Projection) return finishProjection(open);
@@ -1241,12 +1328,16 @@ int Parser::finishGather(const Open& open) {
     const char* name = hull ? "hull" : "minkowski";
     const Node& n = tree_.nodes[static_cast<std::size_t>(open.node)];
     const SourceLocation where = n.where;
-    if (n.children.empty()) return -1;  // nothing to hull
-    if (flatChildren(open.node)) return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski);
+    if (n.children.empty()) return emptyNode(where);
+    if (flatChildren(open.node)) {
+        return mergeFlatChildren(open.node, hull ? FlatOp::Hull : FlatOp::Minkowski, open.placement, &open.context);
+    }
 
     // Each child's solid leaves (a hull takes them all as one set of points);
-    // a difference or intersection among them is evaluated exactly.
+    // a difference or intersection among them, or a resize, is evaluated
+    // exactly.
     exactify(open.node);
+    exactifyResized(open.node, open.resizesBefore);
     std::vector<std::vector<int>> children;
     std::vector<int> solidChildren;  // the children with a solid in them
     bool convex = true;              // every solid leaf convex by construction
@@ -1259,6 +1350,8 @@ int Parser::finishGather(const Open& open) {
                          std::string("a 2D object inside ") + name + " of solids is ignored, as OpenSCAD ignores it");
                 continue;
             }
+            // Adds no point to a hull and no part to its child's union.
+            if (emptyByParameters(p)) continue;
             convex = convex && convexByConstruction(p);
             solid.push_back(l);
         }
@@ -1267,20 +1360,20 @@ int Parser::finishGather(const Open& open) {
             solidChildren.push_back(c);
         }
     }
-    if (children.empty()) return -1;
+    if (children.empty()) return emptyNode(where);
     if (!hull && !convex) {
         // Other solids are split into convex parts once their meshes are known.
         MinkowskiSum sum;
         for (int c : solidChildren) sum.operands.push_back(extractSolid(c));
         Leaf leaf = leafAt(open.context, where);
-        leaf.transform = glm::dmat4(1.0);  // the operands carry their own placement
+        leaf.transform = open.placement;  // the operands are placed relative to the node
         leaf.primitive = std::move(sum);
         return tree_.addLeaf(std::move(leaf));
     }
     auto leafCopy = [&](int l) { return tree_.leaves[static_cast<std::size_t>(l)]; };
     auto hullLeaf = [&](Hull h) {
         Leaf leaf = leafAt(open.context, where);
-        leaf.transform = glm::dmat4(1.0);  // the parts carry their own placement
+        leaf.transform = open.placement;  // the parts are placed relative to the node
         leaf.primitive = std::move(h);
         return tree_.addLeaf(std::move(leaf));
     };

@@ -217,6 +217,27 @@ TEST(StrataRender, HugeAndNonFiniteNumbersNameTheirNode) {
     expectFailure(dir, {nul}, nul + ":1:15: import file name holds a NUL byte: 'a\\0b.stl'");
 }
 
+TEST(StrataRender, HostilePlyHeadersAreOneLineNotACrashOrAHang) {
+    TempDir dir;
+    // 49 bytes: a property before any element (OpenMesh's reader crashes on it).
+    const std::string noElement = dir.write("no_element.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n");
+    expectFailure(dir, {noElement}, noElement + ":3: cannot read mesh: a property before any element");
+    // No end_header (OpenMesh's reader never returns).
+    const std::string noEnd = dir.write("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n");
+    expectFailure(dir, {noEnd}, noEnd + ": cannot read mesh: the header has no end_header line");
+    // A face list longer than the file (OpenMesh would reserve it and read on).
+    const std::string longList = dir.write(
+        "long_list.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
+    expectFailure(dir, {longList}, longList + ":13: cannot read mesh: a list of 2000000000 values, more than the file holds");
+    // The same files imported by a scene: named by the import, then the file.
+    const std::string scene = dir.write("imports.csg", "import(file = \"no_element.ply\");\n");
+    expectFailure(dir, {scene}, scene + ":1:1: " + noElement + ":3: cannot read mesh: a property before any element");
+    const std::string scene2 = dir.write("imports2.csg", "cube(1);\nimport(file = \"no_end.ply\");\n");
+    expectFailure(dir, {scene2}, scene2 + ":2:1: " + noEnd + ": cannot read mesh: the header has no end_header line");
+}
+
 TEST(StrataRender, AFailureAfterWarningsIsStillOneLine) {
     TempDir dir;
     // An unsupported node (a warning from the parser) and an open

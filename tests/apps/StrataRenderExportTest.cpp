@@ -9,6 +9,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -210,6 +211,37 @@ TEST(StrataRenderExport, ExactExportKeepsVoidsAndIslandsInThem) {
     EXPECT_NEAR(volumeOf("void", "difference() { cube(size = 10); " + hole + "}\n"), 1000.0 - ball, 1e-9 * 1000.0);
     EXPECT_NEAR(volumeOf("both", "difference() { cube(size = 10); " + hole + "}\n" + island),
                 1000.0 - ball + small, 1e-9 * 1000.0);
+}
+
+// tests/data/flat/hull/minkowski_translated: OpenSCAD 2021.01's CSG export
+// of `translate([25, 25, 0]) minkowski() { cube(10); cylinder(r = 2, h = 1); }`
+// and `openscad -o` of it: the translation moves the sum once.
+TEST(StrataRenderExport, AMinkowskiSumUnderATranslationIsWhereOpenScadPutsIt) {
+    TempDir dir;
+    const std::string base = std::string(STRATA_TEST_DIR) + "/data/flat/hull/minkowski_translated";
+    const ProcessResult r = runProcess({kExe, base + ".csg", "--export", dir / "sum.off", "--export-exact"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Solid ours = read(dir / "sum.off");
+    const Solid theirs = read(base + ".off");
+    const CGAL::Bbox_3 a = PMP::bbox(ours), b = PMP::bbox(theirs);
+    for (int i = 0; i < 3; ++i) {
+        // Six significant digits, as OpenSCAD prints.
+        EXPECT_NEAR(a.min(i), b.min(i), 1e-4) << i;
+        EXPECT_NEAR(a.max(i), b.max(i), 1e-4) << i;
+    }
+    EXPECT_NEAR(PMP::volume(ours), PMP::volume(theirs), 1e-5 * PMP::volume(theirs));
+}
+
+// OpenSCAD 2021.01 on `intersection() { cube(10); minkowski() { } }`:
+// "Current top level object is empty."
+TEST(StrataRenderExport, AnIntersectionWithAnEmptyMinkowskiSumIsEmpty) {
+    TempDir dir;
+    const std::string scene = dir.write(
+        "empty.csg", "intersection() {\n\tcube(size = [10, 10, 10], center = false);\n\tminkowski(convexity = 0);\n}\n");
+    const ProcessResult r = runProcess({kExe, scene, "--export", dir / "a.stl", "--export-exact"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(r.err, scene + ": the CSG result is empty: nothing to export\n");
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"empty.csg"});
 }
 
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {

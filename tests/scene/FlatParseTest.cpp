@@ -210,23 +210,28 @@ TEST(FlatParse, BadFlatArgumentsNameTheirPosition) {
     EXPECT_EQ(errorOf("surface(file = \"missing.dat\");"), "t.csg:1:16: surface file not found: missing.dat");
 }
 
-TEST(FlatParse, HullOfSolidsIsOneLeafOfItsPartsInWorldSpace) {
+TEST(FlatParse, HullOfSolidsIsOneLeafOfItsPartsPlacedByTheHullsTransform) {
     const Tree t = parse(
-        "color([1, 0, 0, 1]) hull() {\n"
+        "multmatrix([[1, 0, 0, 10], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) color([1, 0, 0, 1]) hull() {\n"
         "\tmultmatrix([[1, 0, 0, 4], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(r = 1);\n"
         "\tgroup() { cube(size = 1); color([0, 1, 0, 1]) cylinder(h = 2, r = 1); }\n"
-        "\t%cube(size = 9);\n}\n");
+        "\t%multmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]) cube(size = 9);\n}\n");
     ASSERT_EQ(t.leaves.size(), 2u);  // the hull and the background cube
     ASSERT_EQ(t.background.size(), 1u);
-    const Leaf& leaf = t.nodes[static_cast<std::size_t>(t.root)].kind == NodeKind::Leaf
-                           ? t.leaves[static_cast<std::size_t>(t.nodes[static_cast<std::size_t>(t.root)].leaf)]
-                           : t.leaves.at(0);
+    const Node& root = t.nodes[static_cast<std::size_t>(t.root)];
+    ASSERT_EQ(root.kind, NodeKind::Leaf);
+    const Leaf& leaf = t.leaves[static_cast<std::size_t>(root.leaf)];
     const auto& h = std::get<Hull>(leaf.primitive);
     ASSERT_EQ(h.parts.size(), 3u);
     EXPECT_TRUE(h.summands.empty());
-    EXPECT_EQ(h.parts[0].transform[3][0], 4.0);  // each part keeps its own placement
-    EXPECT_EQ(leaf.transform, glm::dmat4(1.0));
+    EXPECT_EQ(h.parts[0].transform[3][0], 4.0);  // each part placed relative to the hull
+    EXPECT_EQ(leaf.transform[3][0], 10.0);       // and the hull by its own transform
     EXPECT_EQ(*leaf.color, glm::dvec4(1, 0, 0, 1));  // the colour outside the hull, not the parts'
+    // The '%' cube is drawn on its own, in the world: both translations.
+    const Leaf& background = t.leaves[static_cast<std::size_t>(t.nodes[static_cast<std::size_t>(t.background[0])].leaf)];
+    EXPECT_EQ(background.display, Display::Background);
+    EXPECT_EQ(background.transform[3][0], 10.0);
+    EXPECT_EQ(background.transform[3][2], 5.0);
 }
 
 TEST(FlatParse, MinkowskiOfUnionsIsAUnionOfHulls) {
@@ -244,6 +249,91 @@ TEST(FlatParse, MinkowskiOfUnionsIsAUnionOfHulls) {
         EXPECT_TRUE(std::holds_alternative<Sphere>(h.summands[0].primitive));
         EXPECT_TRUE(std::holds_alternative<Cylinder>(h.summands[1].primitive));
     }
+}
+
+// OpenSCAD 2021.01's CSG export of
+//   translate([10, 0, 0]) minkowski() { union() { cube(2); translate([5, 0, 0]) cube(2); } sphere(1, $fn = 8); }
+// `openscad -o x.off` of it: x from 9.07612 to 17.9239, y and z from
+// -0.923879 to 2.92388, volume 99.0893 (two disjoint hulls).
+TEST(FlatParse, APlacedMinkowskiOfAUnionMovesItsHullsOnce) {
+    const Tree t = parse(
+        "multmatrix([[1, 0, 0, 10], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\tminkowski(convexity = 0) {\n\t\tunion() {\n\t\t\tcube(size = [2, 2, 2], center = false);\n"
+        "\t\t\tmultmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\t\t\t\tcube(size = [2, 2, 2], center = false);\n\t\t\t}\n\t\t}\n"
+        "\t\tsphere($fn = 8, $fa = 12, $fs = 2, r = 1);\n\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 2u);
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_NEAR(model.bounds.min.x, 9.07612, 1e-5);
+    EXPECT_NEAR(model.bounds.max.x, 17.9239, 1e-4);
+    EXPECT_NEAR(model.bounds.min.y, -0.923879, 1e-6);
+    EXPECT_NEAR(model.bounds.max.z, 2.92388, 1e-5);
+    EXPECT_NEAR(volume(model.leafMeshes[0]) + volume(model.leafMeshes[1]), 99.0893, 1e-3);
+}
+
+// OpenSCAD 2021.01's CSG export of
+//   translate([20, 0, 0]) minkowski() { cube(2); %translate([0, 0, 5]) cube(1); cylinder(r = 1, h = 1, $fn = 4); }
+// The sum is OpenSCAD's x in [19, 23], y in [-1, 3], z in [0, 3], volume 42;
+// the '%' cube takes no part in it and is drawn where OpenSCAD's preview
+// draws it, at [20, 21] x [0, 1] x [5, 6].
+TEST(FlatParse, ABackgroundChildOfAPlacedMinkowskiStaysInTheWorld) {
+    const Tree t = parse(
+        "multmatrix([[1, 0, 0, 20], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\tminkowski(convexity = 0) {\n\t\tcube(size = [2, 2, 2], center = false);\n"
+        "%\t\tmultmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]) {\n"
+        "\t\t\tcube(size = [1, 1, 1], center = false);\n\t\t}\n"
+        "\t\tcylinder($fn = 4, $fa = 12, $fs = 2, h = 1, r1 = 1, r2 = 1, center = false);\n\t}\n}\n");
+    ASSERT_EQ(t.background.size(), 1u);
+    const geometry::Model model = geometry::buildModel(t);
+    const Node& root = t.nodes[static_cast<std::size_t>(t.root)];
+    ASSERT_EQ(root.kind, NodeKind::Leaf);
+    const geometry::Mesh& sum = model.leafMeshes[static_cast<std::size_t>(root.leaf)];
+    const geometry::Bounds b = geometry::boundsOf(sum);
+    EXPECT_NEAR(b.min.x, 19.0, 1e-12);
+    EXPECT_NEAR(b.max.x, 23.0, 1e-12);
+    EXPECT_NEAR(b.min.y, -1.0, 1e-12);
+    EXPECT_NEAR(b.max.z, 3.0, 1e-12);
+    EXPECT_NEAR(volume(sum), 42.0, 1e-9);
+    const int backgroundLeaf = t.nodes[static_cast<std::size_t>(t.background[0])].leaf;
+    const geometry::Bounds c = geometry::boundsOf(model.leafMeshes[static_cast<std::size_t>(backgroundLeaf)]);
+    EXPECT_EQ(c.min, glm::dvec3(20, 0, 5));
+    EXPECT_EQ(c.max, glm::dvec3(21, 1, 6));
+}
+
+// A 2D minkowski among solids, under a translation: OpenSCAD 2021.01's
+// `openscad -o x.svg` of
+//   translate([5, 5, 0]) minkowski() { square(3); circle(1, $fn = 4); }
+// is the octagon (4,5) (5,4) (8,4) (9,5) (9,8) (8,9) (5,9) (4,8): the square
+// grown by the diamond, 9 + 3 * (2 + 2) + 2 = 23 in area, moved once.
+TEST(FlatParse, APlacedFlatMinkowskiAmongSolidsMovesOnce) {
+    const Tree t = parse(
+        "multmatrix([[1, 0, 0, 5], [0, 1, 0, 5], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\tminkowski(convexity = 0) {\n\t\tsquare(size = [3, 3], center = false);\n"
+        "\t\tcircle($fn = 4, $fa = 12, $fs = 2, r = 1);\n\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_TRUE(t.isFlat());
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_EQ(model.bounds.min, glm::dvec3(4, 4, -0.5));
+    EXPECT_EQ(model.bounds.max, glm::dvec3(9, 9, 0.5));
+    EXPECT_NEAR(volume(model.leafMeshes[0]), 23.0, 1e-9);  // a slab one unit thick
+}
+
+// A 2D hull of children of different colours is one shape, shown as the hull
+// is (OpenSCAD's preview draws a hull in its own colour, not its children's):
+// OpenSCAD 2021.01's `openscad -o x.svg` of
+//   hull() { color("red") square(2); translate([5, 0]) color("blue") square(1); }
+// is (0,0) (6,0) (6,1) (2,2) (0,2), of area 10.
+TEST(FlatParse, AFlatHullOfColouredChildrenIsOneShape) {
+    const Tree t = parse(
+        "hull() {\n\tcolor([1, 0, 0, 1]) {\n\t\tsquare(size = [2, 2], center = false);\n\t}\n"
+        "\tmultmatrix([[1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+        "\t\tcolor([0, 0, 1, 1]) {\n\t\t\tsquare(size = [1, 1], center = false);\n\t\t}\n\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
+    EXPECT_FALSE(t.leaves[0].color.has_value());
+    const geometry::Model model = geometry::buildModel(t);
+    EXPECT_EQ(model.bounds.min, glm::dvec3(0, 0, -0.5));
+    EXPECT_EQ(model.bounds.max, glm::dvec3(6, 2, 0.5));
+    EXPECT_NEAR(volume(model.leafMeshes[0]), 10.0, 1e-9);
 }
 
 TEST(FlatParse, HullOfADifferenceHullsItsExactResult) {

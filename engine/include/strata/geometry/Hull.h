@@ -21,8 +21,9 @@ Mesh convexHull(const std::vector<glm::dvec3>& points);
 // ("minkowski: too many points ...") past 2^24 of them.
 std::vector<glm::dvec3> pointSums(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b);
 
-// The hull of every part's vertices (world space), each moved by a vertex of
-// every summand in turn.
+// The hull of every part's vertices, each moved by a vertex of every summand
+// in turn, relative to the hull's leaf (its transform places the result).
+// Empty where a summand makes no mesh: that choice of parts adds nothing.
 Mesh tessellate(const scene::Hull& hull);
 
 }  // namespace strata::geometry

@@ -9,7 +9,9 @@
 
 namespace strata::geometry {
 
-// The closed, outward sum in world space; empty when an operand is empty.
+// The closed, outward sum, relative to the sum's leaf (its transform places
+// it). An operand with no solid is left out, as OpenSCAD leaves it out; the
+// sum is empty when every operand is.
 // Results share the exact results' cache (by the operands' meshes). Throws
 // strata::Error when an operand's mesh cannot be split, or when the sum
 // would take more than 4096 hulls.

@@ -92,9 +92,11 @@ struct Surface {
 struct Leaf;
 
 // hull() of solids, and minkowski() of convex ones: the convex hull of the
-// vertices of every part (in world space), each moved by a vertex of every
-// summand in turn; a Minkowski sum of convex solids is the hull of their
-// vertex sums. Parts and summands are whole leaves with their own transforms.
+// vertices of every part, each moved by a vertex of every summand in turn; a
+// Minkowski sum of convex solids is the hull of their vertex sums. Parts and
+// summands are whole leaves with their own transforms, relative to the hull
+// leaf, whose transform places the result (as OpenSCAD transforms a result:
+// summands placed in the world would add their translations).
 struct Hull {
     std::vector<Leaf> parts;
     std::vector<Leaf> summands;
@@ -109,9 +111,10 @@ struct Exact {
 
 // minkowski() of solids that are not all convex by construction: each
 // operand is a child's subtree (a union of leaves, any difference or
-// intersection in it already an Exact leaf), read into a tree of its own;
-// geometry::minkowskiSum splits each into convex parts and joins the parts'
-// sums exactly, as OpenSCAD does.
+// intersection in it already an Exact leaf), read into a tree of its own,
+// placed relative to the sum's leaf; geometry::minkowskiSum splits each into
+// convex parts and joins the parts' sums exactly, as OpenSCAD does (an
+// operand with no solid is left out of the sum, as OpenSCAD leaves it out).
 struct MinkowskiSum {
     std::vector<std::shared_ptr<const Tree>> operands;
 };
@@ -128,7 +131,7 @@ enum class Display {
 
 struct Leaf {
     Primitive primitive;
-    glm::dmat4 transform{1.0};          // object to world (to its resize()'s frame, inside one), column vectors
+    glm::dmat4 transform{1.0};          // object to world (to its resize(), hull or sum, inside one), column vectors
     std::optional<glm::dvec4> color;    // RGBA in [0,1]; outermost color() wins
     Display display = Display::Normal;
     SourceLocation where;               // the primitive's line in the input
