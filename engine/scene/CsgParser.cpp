@@ -142,7 +142,7 @@ private:
     void exactify(int root);
     void exactifyResized(int node, std::size_t first);
     int finishGather(const Open& open);
-    int emptyNode(const SourceLocation& where);
+    int emptyNode(SourceLocation where);  // by value: `where` may lie in the nodes it adds to
     bool flatChildren(int node) const;
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -1308,9 +1308,9 @@ int Parser::finishProjection(const Open& open) {
 // A node that stands for the empty solid where a statement makes nothing
 // (a hull or minkowski of no solid): it takes part in the CSG as the empty
 // set, as OpenSCAD's empty result does (an intersection with it is empty).
-int Parser::emptyNode(const SourceLocation& where) {
+int Parser::emptyNode(SourceLocation where) {
     const int node = tree_.addNode(NodeKind::Union, {});
-    tree_.nodes[static_cast<std::size_t>(node)].where = where;
+    tree_.nodes[static_cast<std::size_t>(node)].where = std::move(where);
     return node;
 }
 
