@@ -92,15 +92,6 @@ bool splitOffHeader(std::string& text) {
     return true;
 }
 
-// The first `limit` bytes of a file.
-std::string readHead(const std::string& path, std::size_t limit) {
-    std::ifstream in(path, std::ios::binary);
-    std::string text(limit, '\0');
-    in.read(text.data(), static_cast<std::streamsize>(limit));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    return text;
-}
-
 // Element counts an OFF header declares (vertices, faces), so a corrupt
 // header cannot make OpenMesh reserve gigabytes: every element takes at
 // least one byte of the file. Empty when the header cannot be parsed
@@ -176,7 +167,7 @@ Mesh importMesh(const std::string& path) {
     if (!std::ifstream(path, std::ios::binary)) throw fail("cannot open file");
     const auto size = std::filesystem::file_size(path, ec);
     if (size == 0) throw fail("empty file");
-    const std::string head = readHead(path, 1 << 16);
+    const std::string head = detail::readHead(path, 1 << 16);
     if (ext == ".ply") detail::checkPly(path, size);
     if (ext == ".off") {
         for (unsigned long long n : declaredOffCounts(head)) {

@@ -299,6 +299,8 @@ void Checker::binaryBody(const Header& h) const {
     }
 }
 
+}  // namespace
+
 std::string readHead(const std::string& path, std::size_t limit) {
     std::ifstream in(path, std::ios::binary);
     std::string text(limit, '\0');
@@ -306,8 +308,6 @@ std::string readHead(const std::string& path, std::size_t limit) {
     text.resize(static_cast<std::size_t>(in.gcount()));
     return text;
 }
-
-}  // namespace
 
 void checkPly(const std::string& path, std::uintmax_t size) {
     const Checker check(path, size);

@@ -26,4 +26,7 @@ constexpr std::size_t kPlyHeaderLimit = std::size_t(1) << 16;
 // fault, as in a binary body).
 void checkPly(const std::string& path, std::uintmax_t size);
 
+// The first `limit` bytes of the file at `path` (fewer where it is shorter).
+std::string readHead(const std::string& path, std::size_t limit);
+
 }  // namespace strata::geometry::detail
