@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "ShaderInterface.h"
 #include "strata/gpu/Check.h"

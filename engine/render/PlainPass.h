@@ -66,7 +66,6 @@ public:
 
     // The leaves the next frames draw (plainLeaves), and the scene's boxes.
     void setLeaves(const SceneBuffers& scene, std::vector<int> leaves);
-    const std::vector<int>& leaves() const { return leaves_; }
 
     // Draws setLeaves' leaves into `targets` (its plain target, made here if
     // need be) inside `drawn`, which holds every pixel they cover.
