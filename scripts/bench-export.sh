@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Exact export as a user meets it: whole processes, `strata-render FILE
-# --export x.stl --export-exact` against OpenSCAD's own CGAL export
-# (`openscad -o x.stl FILE`), interleaved, RUNS times each; prints a Markdown
-# table of the medians (wall seconds, peak resident memory), their ratio, and
-# the two results' volumes (from the binary and ASCII STL files).
+# --export x.stl` against OpenSCAD's own CGAL export (`openscad -o x.stl
+# FILE`), interleaved, RUNS times each; prints a Markdown table of the
+# medians (wall seconds, peak resident memory), their ratio, the two
+# results' volumes (from the binary and ASCII STL files), and each file's
+# triangles and audit (strata_mesh_audit: "clean", or the degenerate
+# triangles, open or non-manifold edges after welding, and crossing pairs).
 #
 #   scripts/bench-export.sh [--runs N] FILE.csg...
 #
-# Needs a Release build (build/), openscad 2021.01, python3 and GNU time.
+# Needs a Release build (build/, with tests/bench/strata_mesh_audit),
+# openscad 2021.01, python3 and GNU time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -24,7 +27,10 @@ for tool in openscad python3 /usr/bin/time; do
   command -v "$tool" >/dev/null || { echo "bench-export: $tool is not installed" >&2; exit 1; }
 done
 render=build/apps/strata-render/strata-render
-[[ -x $render ]] || { echo "bench-export: build $render first (scripts/build.sh release)" >&2; exit 1; }
+audit=build/tests/bench/strata_mesh_audit
+for exe in "$render" "$audit"; do
+  [[ -x $exe ]] || { echo "bench-export: build $exe first (scripts/build.sh release)" >&2; exit 1; }
+done
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -54,13 +60,26 @@ print('%.6g' % v)
 PY
 }
 
-echo "| model | strata s | OpenSCAD s | strata / OpenSCAD | strata MiB | OpenSCAD MiB | strata volume | OpenSCAD volume |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+# The audit of one STL: "triangles | clean" or "triangles | what is wrong".
+audited() {
+  [[ -f $1 ]] || { echo "- | -"; return; }
+  "$audit" "$1" | python3 -c '
+import json, sys
+a = json.loads(sys.stdin.read())
+faults = [(a["degenerate"], "degenerate"), (a["boundary_edges"], "open edges"),
+          (a["nonmanifold_edges"], "non-manifold edges"), (a["misoriented_edges"], "misoriented edges"),
+          (a["self_intersections"], "crossing pairs")]
+said = ", ".join("%d %s" % (n, what) for n, what in faults if n)
+print("%d | %s" % (a["triangles"], said or "clean"))'
+}
+
+echo "| model | strata s | OpenSCAD s | strata / OpenSCAD | strata MiB | OpenSCAD MiB | strata volume | OpenSCAD volume | strata triangles | strata audit | OpenSCAD triangles | OpenSCAD audit |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- |"
 for f in "${files[@]}"; do
   : >"$work/s"
   : >"$work/o"
   for ((i = 0; i < runs; i++)); do
-    measure "$render" "$f" --export "$work/s.stl" --export-exact >>"$work/s"
+    measure "$render" "$f" --export "$work/s.stl" >>"$work/s"
     measure openscad -o "$work/o.stl" "$f" >>"$work/o"
   done
   st=$(cut -d' ' -f1 "$work/s" | median)
@@ -69,7 +88,9 @@ for f in "${files[@]}"; do
   om=$(cut -d' ' -f2 "$work/o" | median)
   sv=$( [[ -f $work/s.stl ]] && volume "$work/s.stl" || echo "-")
   ov=$( [[ -f $work/o.stl ]] && volume "$work/o.stl" || echo "-")
-  awk -v n="$(basename "$f")" -v st="$st" -v ot="$ot" -v sm="$sm" -v om="$om" -v sv="$sv" -v ov="$ov" \
-    'BEGIN {printf "| `%s` | %.2f | %.2f | %.2f | %.0f | %.0f | %s | %s |\n", n, st, ot, (ot > 0 ? st / ot : 0), sm / 1024, om / 1024, sv, ov}'
+  sa=$(audited "$work/s.stl")
+  oa=$(audited "$work/o.stl")
+  awk -v n="$(basename "$f")" -v st="$st" -v ot="$ot" -v sm="$sm" -v om="$om" -v sv="$sv" -v ov="$ov" -v sa="$sa" -v oa="$oa" \
+    'BEGIN {printf "| `%s` | %.2f | %.2f | %.2f | %.0f | %.0f | %s | %s | %s | %s |\n", n, st, ot, (ot > 0 ? st / ot : 0), sm / 1024, om / 1024, sv, ov, sa, oa}'
   rm -f "$work/s.stl" "$work/o.stl"
 done
