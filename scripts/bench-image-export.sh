@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Export as a user meets it, three ways, whole processes, interleaved, RUNS
 # times each: strata's image-space export (`strata-render FILE --export
-# x.off`, the GPU's result peel and the contouring, at --export-resolution R),
+# x.off --export-sampled`, the GPU's result peel and the contouring, at --export-resolution R),
 # strata's exact export (`--export-exact`, CGAL) and OpenSCAD's own CGAL
 # export (`openscad -o x.off FILE`). Prints a Markdown table of the medians
 # (wall seconds, peak resident memory) and, for the image-space result
@@ -63,7 +63,7 @@ echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---
 for f in "${files[@]}"; do
   : >"$work/i"; : >"$work/e"; : >"$work/o"
   for ((r = 0; r < runs; r++)); do
-    measure "$render" "$f" --export "$work/i.off" --export-resolution "$resolution" >>"$work/i"
+    measure "$render" "$f" --export "$work/i.off" --export-sampled --export-resolution "$resolution" >>"$work/i"
     measure "$render" "$f" --export "$work/e.off" --export-exact >>"$work/e"
     if ((openscad)); then measure openscad -o "$work/o.off" "$f" >>"$work/o"; else echo "fail fail" >>"$work/o"; fi
   done

@@ -13,8 +13,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 scene=examples/openscad_CSG.csg
 "$render" "$scene" -o "$out/scene.png" --imgsize 480,360
-"$render" "$scene" --export "$work/64.off" --export-resolution 64
+"$render" "$scene" --export "$work/64.off" --export-sampled --export-resolution 64
 "$render" "$work/64.off" -o "$out/mesh-64.png" --imgsize 480,360
-"$render" "$scene" --export "$work/128.off" --export-resolution 128
+"$render" "$scene" --export "$work/128.off" --export-sampled --export-resolution 128
 printf 'size 480 400\ncamera 14,-20,18,0,0,0\nshow edges on\nscreenshot %s\nquit\n' "$PWD/$out/edges-128.png" >"$work/edges.script"
 xvfb-run -a -s "-screen 0 1280x1024x24" "$view" "$work/128.off" --script "$work/edges.script"

@@ -40,7 +40,7 @@
 #                needed: cheese K = 64 and 256 at 1024x768 and 1920x1080,
 #                and each model at 1024x768; 10 frames after 3, every OpenCSG
 #                setting capped at 2 s a frame.
-#   export       strata-render MODEL --export x.stl --export-resolution N
+#   export       strata-render MODEL --export x.stl --export-sampled --export-resolution N
 #                --stats, once per model (--export-models, default
 #                examples/*.csg) and resolution (--export-resolutions,
 #                default 512): the whole process's wall time, peak RSS, the
@@ -412,10 +412,10 @@ if has_part export; then
       s=$EPOCHREALTIME
       if [[ -n $gnutime ]]; then
         timeout -k 5 "$t" "$gnutime" -f "%M" -o "$work/t" env "${runenv[@]}" \
-          "$render" "$f" --export "$work/x.stl" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
+          "$render" "$f" --export "$work/x.stl" --export-sampled --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
       else
         timeout -k 5 "$t" env "${runenv[@]}" \
-          "$render" "$f" --export "$work/x.stl" --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
+          "$render" "$f" --export "$work/x.stl" --export-sampled --export-resolution "$res" --stats >"$work/stats.json" 2>"$work/err"
       fi
       rc=$?
       e=$EPOCHREALTIME

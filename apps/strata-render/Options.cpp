@@ -190,11 +190,12 @@ ParseResult parseOptions(int argc, char** argv) {
                    "without -o, --depth or --normal nothing is rendered")
         ->type_name("FILE");
     app.add_flag("--export-exact", o.exportExact,
-                 "export the exact result, evaluated by CGAL as OpenSCAD's render does, instead of sampling "
-                 "the image-space result");
+                 "export the exact result, evaluated by CGAL as OpenSCAD's render does (the default)");
+    app.add_flag("--export-sampled", o.exportSampled,
+                 "export a mesh contoured from the image-space result, sampled on a grid, instead of the exact one");
     std::string exportResolution;
     app.add_option("--export-resolution", exportResolution,
-                   "cells along the longest side of the result's box for --export (default 512, 8 to 4096)")
+                   "cells along the longest side of the result's box for --export-sampled (default 512, 8 to 4096)")
         ->type_name("N");
 
     static_cast<CliOutcome&>(result) = parseCommandLine(app, argc, argv, "strata-render", [&] {
@@ -211,10 +212,11 @@ ParseResult parseOptions(int argc, char** argv) {
             throw UsageError{"--depth and --normal name the same file '" + o.depth + "'"};
         }
         if (app.count("--export")) checkExport(o);
+        if (o.exportExact && o.exportSampled) throw UsageError{"--export-exact and --export-sampled: give one of them"};
         if (o.exportExact && o.exportPath.empty()) throw UsageError{"--export-exact: give --export FILE too"};
+        if (o.exportSampled && o.exportPath.empty()) throw UsageError{"--export-sampled: give --export FILE too"};
         if (app.count("--export-resolution")) {
-            if (o.exportPath.empty()) throw UsageError{"--export-resolution: give --export FILE too"};
-            if (o.exportExact) throw UsageError{"--export-resolution: the exact export has no resolution"};
+            if (!o.exportSampled) throw UsageError{"--export-resolution: the exact export has no resolution; give --export-sampled too"};
             long long n = 0;
             if (!parseInt(exportResolution, n) || n < remesh::kLeastResolution || n > remesh::kMostResolution)
                 throw UsageError{"--export-resolution: expected a whole number from " +

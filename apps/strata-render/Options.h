@@ -25,7 +25,8 @@ struct RenderOptions {
     bool reference = false;                 // --reference: the CPU ray caster instead of the GPU passes
     std::string colorScheme = "Cornfield";
     std::string exportPath;                 // --export FILE.stl|.off|.obj|.3mf; empty: none
-    bool exportExact = false;               // --export-exact: CGAL's exact result of the tree
+    bool exportExact = false;               // --export-exact: the default, said aloud
+    bool exportSampled = false;             // --export-sampled: contoured from the image-space result, not CGAL's exact one
     int exportResolution = 512;             // --export-resolution N: cells along the result's longest side
 };
 

@@ -160,7 +160,7 @@ int run(const apps::RenderOptions& options) {
         t = Clock::now();
         const ProgressScope scope(&progress);
         const glm::vec4 faceColor = render::colorScheme(options.colorScheme).faceFront;
-        if (options.exportExact) {
+        if (!options.exportSampled) {
             staged.push_back(apps::stageExactExport(tree, model, options.exportPath, faceColor).file);
         } else {
             apps::ImageExportSettings settings;

@@ -26,7 +26,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 31> kSyntax{{
+constexpr std::array<Syntax, 32> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -50,7 +50,8 @@ constexpr std::array<Syntax, 31> kSyntax{{
     {"screenshot", CommandKind::Screenshot, 1, 1},
     {"screenshot-window", CommandKind::ScreenshotWindow, 1, 1},
     {"export", CommandKind::Export, 1, 1},
-    {"export-exact", CommandKind::ExportExact, 1, 1},
+    {"export-exact", CommandKind::Export, 1, 1},
+    {"export-sampled", CommandKind::ExportSampled, 1, 1},
     {"save-csg", CommandKind::SaveCsg, 1, 1},
     {"copy", CommandKind::Copy, 2, 2},
     {"remove", CommandKind::Remove, 1, 1},
@@ -205,7 +206,7 @@ void checkArguments(Command& c, std::string_view name) {
         if (!c.words[0].ends_with(".png")) throw fail("expected a .png file name, got '" + c.words[0] + "'", 0);
         break;
     case CommandKind::Export:
-    case CommandKind::ExportExact:
+    case CommandKind::ExportSampled:
         try {
             io::meshFormatOf(c.words[0]);
         } catch (const Error&) {

@@ -35,8 +35,8 @@ enum class CommandKind {
     Show,             // show axes|scale|edges on|off
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
-    Export,           // export PATH         (the result sampled and contoured, as strata-render --export; waits until written)
-    ExportExact,      // export-exact PATH   (the exact result, as --export-exact; waits until written)
+    Export,           // export PATH         (the exact result, as strata-render --export; waits until written)
+    ExportSampled,    // export-sampled PATH (sampled and contoured, as --export-sampled --reference; waits until written)
     SaveCsg,          // save-csg PATH.csg   (a .scad's CSG export, whose lines the positions name)
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     Remove,           // remove PATH         (delete a file)

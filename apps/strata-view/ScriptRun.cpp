@@ -144,11 +144,11 @@ bool Viewer::runCommand(const Command& c) {
             }
             return false;
         case CommandKind::Export:
-        case CommandKind::ExportExact:
+        case CommandKind::ExportSampled:
             // Started once, then waited for; its error is the script's error.
             if (!waitingSince_) {
                 lastExport_.reset();
-                startExport(path(0), c.kind == CommandKind::ExportExact);
+                startExport(path(0), c.kind == CommandKind::Export);
                 waitingSince_ = Clock::now();
             }
             if (lastExport_ && !exporter_.busy()) {

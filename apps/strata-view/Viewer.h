@@ -143,7 +143,7 @@ private:
     std::string exportPath_;         // the panel's export file name
     std::string screenshotPath_;     // the panel's screenshot file name; empty: strata-view-N.png
     std::string csgExportPath_;      // the panel's file name for a .scad's CSG export; empty: beside the .scad
-    bool exportExact_ = false;       // the panel exports CGAL's exact result, not the sampled one
+    bool exportExact_ = true;        // the panel exports CGAL's exact result, not the sampled one
     int exportResolution_ = remesh::kDefaultResolution;  // the sampled export's cells along the longest side
     Console console_;
     std::optional<ExportResult> lastExport_;  // the last finished export, for a waiting script

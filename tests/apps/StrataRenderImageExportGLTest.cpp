@@ -1,4 +1,4 @@
-// strata-render --export (the image-space export), run as a user runs it.
+// strata-render --export --export-sampled (the image-space export), run as a user runs it.
 // The exported mesh is read and checked by CGAL, not by strata: closed,
 // outward, free of self-intersections; its volume against CGAL's exact
 // result of the same scene (--export-exact) and converging as the
@@ -67,7 +67,10 @@ void expectSound(const Solid& s, const std::string& what) {
 std::string exportMesh(const TempDir& dir, const std::string& scene, const std::string& name,
                        std::vector<std::string> extra = {}) {
     const std::string out = dir / name;
+    // Sampled unless the exact result is asked for, to compare with.
+    const bool exact = std::find(extra.begin(), extra.end(), "--export-exact") != extra.end();
     std::vector<std::string> argv{kExe, scene, "--export", out};
+    if (!exact) argv.push_back("--export-sampled");
     argv.insert(argv.end(), extra.begin(), extra.end());
     const ProcessResult r = runProcess(argv);
     EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -228,13 +231,15 @@ TEST(StrataRenderImageExport, BadResolutionsAreOneLineAndWriteNothing) {
         std::string prefix;
     };
     const std::vector<Case> cases{
-        {{cube, "--export", dir / "a.stl", "--export-resolution", "4"},
+        {{cube, "--export", dir / "a.stl", "--export-sampled", "--export-resolution", "4"},
          "strata-render: --export-resolution: expected a whole number from 8 to 4096"},
-        {{cube, "--export", dir / "a.stl", "--export-resolution", "many"},
+        {{cube, "--export", dir / "a.stl", "--export-sampled", "--export-resolution", "many"},
          "strata-render: --export-resolution: expected a whole number from 8 to 4096"},
-        {{cube, "--export-resolution", "64"}, "strata-render: --export-resolution: give --export FILE too"},
-        {{cube, "--export", dir / "a.stl", "--export-exact", "--export-resolution", "64"},
-         "strata-render: --export-resolution: the exact export has no resolution"},
+        {{cube, "--export-sampled", "--export-resolution", "64"}, "strata-render: --export-sampled: give --export FILE too"},
+        {{cube, "--export", dir / "a.stl", "--export-resolution", "64"},
+         "strata-render: --export-resolution: the exact export has no resolution; give --export-sampled too"},
+        {{cube, "--export", dir / "a.stl", "--export-exact", "--export-sampled"},
+         "strata-render: --export-exact and --export-sampled: give one of them"},
         {{flat, "--export", dir / "a.stl"}, flat + ": a 2D model has no solid to export"},
         {{empty, "--export", dir / "a.stl"}, empty + ": the CSG result is empty: nothing to export"},
         {{cube, "--export", dir / "nowhere/a.stl"}, (dir / "nowhere/a.stl") + ": cannot write"},

@@ -362,12 +362,13 @@ TEST_F(StrataView, ScriptErrorsAtRunTimeNameTheCommand) {
 TEST_F(StrataView, ExportWritesWhatStrataRenderExports) {
     const std::string scene = dir.write("a.csg", kScene);
     const ProcessResult r =
-        view(scene, "size 64 64\nexport-exact view.off\nexport sampled.off\nquit\n");
+        view(scene, "size 64 64\nexport view.off\nexport-sampled sampled.off\nquit\n");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const ProcessResult cli = runProcess({kRender, scene, "--export", dir / "render.off", "--export-exact"});
+    const ProcessResult cli = runProcess({kRender, scene, "--export", dir / "render.off"});
     ASSERT_EQ(cli.exitCode, 0) << cli.err;
     // The viewer samples with the CPU reference: strata-render --reference.
-    const ProcessResult sampled = runProcess({kRender, scene, "--export", dir / "render-sampled.off", "--reference"});
+    const ProcessResult sampled =
+        runProcess({kRender, scene, "--export", dir / "render-sampled.off", "--export-sampled", "--reference"});
     ASSERT_EQ(sampled.exitCode, 0) << sampled.err;
     auto bytes = [](const std::string& path) {
         std::ifstream in(path, std::ios::binary);
