@@ -15,6 +15,11 @@
 
 namespace strata::apps {
 
+// Rounds `mesh` to single precision (what STL and 3MF keep; every format
+// gets the same points) and removes what rounding flattened (vertices
+// brought together, triangles left without area), keeping it closed.
+void roundForFile(geometry::Mesh& mesh);
+
 struct ExactExport {
     io::StagedFile file;        // commit() puts it in place
     std::size_t triangles = 0;

@@ -1,6 +1,7 @@
 #include "strata/geometry/Exact.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <deque>
@@ -19,6 +20,7 @@
 #include "NefPolyhedra.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
+#include "strata/geometry/Model.h"
 
 namespace strata::geometry {
 namespace {
@@ -48,6 +50,66 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
 
 Solid toSolid(const Mesh& mesh, const SourceLocation& where) {
     return detail::toExactSolid(mesh, where, "an exact evaluation");
+}
+
+// Primitives whose object-space mesh is cheap to make again.
+bool remakeable(const scene::Primitive& p) {
+    return std::holds_alternative<scene::Cube>(p) || std::holds_alternative<scene::Sphere>(p) ||
+           std::holds_alternative<scene::Cylinder>(p) || std::holds_alternative<scene::Polyhedron>(p) ||
+           std::holds_alternative<scene::LinearExtrude>(p) || std::holds_alternative<scene::RotateExtrude>(p);
+}
+
+// The leaf's multmatrix() chain, outermost first, when its product in
+// doubles (as the parser multiplied it) is the leaf's transform bit for bit.
+std::optional<std::vector<glm::dmat4>> checkedChain(const scene::Leaf& leaf) {
+    std::vector<glm::dmat4> chain;
+    for (const scene::TransformStep* s = leaf.steps.get(); s != nullptr; s = s->previous.get()) chain.push_back(s->matrix);
+    std::reverse(chain.begin(), chain.end());
+    glm::dmat4 product(1.0);
+    for (const glm::dmat4& m : chain) product = product * m;
+    if (product != leaf.transform) return std::nullopt;
+    return chain;
+}
+
+// A leaf's solid with exact points. The checked world-space mesh is the
+// leaf's object-space mesh moved by its transform, rounded to doubles at
+// every point; leaves under one rotation, flush before it, are then a
+// rounding apart after it, and the exact result keeps those slivers. So
+// where the world mesh is exactly the object mesh moved by the transform
+// (nothing was cleaned away), and the transform is exactly the product of
+// its chain, each object-space point is moved by the chain's matrices one
+// by one in exact arithmetic instead, as OpenSCAD transforms results:
+// faces flush in a frame stay flush. Elsewhere the world mesh as it is.
+Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const SourceLocation& where) {
+    const scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(leafIndex)];
+    if (!leaf.steps || !remakeable(leaf.primitive)) return toSolid(world, where);
+    const std::optional<std::vector<glm::dmat4>> chain = checkedChain(leaf);
+    if (!chain) return toSolid(world, where);
+    const Mesh object = objectMesh(leaf.primitive);
+    const Mesh moved = transformed(object, leaf.transform);
+    if (moved.positions != world.positions || moved.triangles != world.triangles) return toSolid(world, where);
+    using FT = Kernel::FT;
+    using ET = FT::ET;
+    Solid s;
+    std::vector<Solid::Vertex_index> vertices;
+    vertices.reserve(object.positions.size());
+    for (const glm::dvec3& p : object.positions) {
+        std::array<ET, 3> q{ET(p.x), ET(p.y), ET(p.z)};
+        for (auto m = chain->rbegin(); m != chain->rend(); ++m) {
+            std::array<ET, 3> next;
+            for (int i = 0; i < 3; ++i) {
+                next[static_cast<std::size_t>(i)] = ET((*m)[0][i]) * q[0] + ET((*m)[1][i]) * q[1] + ET((*m)[2][i]) * q[2] +
+                                                   ET((*m)[3][i]);
+            }
+            q = std::move(next);
+        }
+        vertices.push_back(s.add_vertex(Kernel::Point_3(FT(q[0]), FT(q[1]), FT(q[2]))));
+    }
+    for (const auto& t : world.triangles) {
+        if (s.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Solid::null_face())
+            throw Error(where, "an exact evaluation cannot take this solid: it touches itself along an edge or a corner");
+    }
+    return s;
 }
 
 // Vertices in lexicographic order, each triangle turned to start at its
@@ -235,7 +297,7 @@ namespace {
 // once, at the end (toMesh).
 Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps) {
     const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
-    if (n.kind == scene::NodeKind::Leaf) return toSolid(leafMeshes[static_cast<std::size_t>(n.leaf)], n.where);
+    if (n.kind == scene::NodeKind::Leaf) return leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where);
     const Boolean op = n.kind == scene::NodeKind::Difference     ? Boolean::Difference
                        : n.kind == scene::NodeKind::Intersection ? Boolean::Intersection
                                                                  : Boolean::Union;

@@ -24,7 +24,6 @@
 #include "strata/geometry/Surface.h"
 
 namespace strata::geometry {
-namespace {
 
 Mesh objectMesh(const scene::Primitive& p) {
     return std::visit(
@@ -44,6 +43,8 @@ Mesh objectMesh(const scene::Primitive& p) {
         },
         p);
 }
+
+namespace {
 
 // OpenSCAD's resize of the result that a resize() node's leaves make
 // (PolySet::resize): each axis given a size is scaled to it, `auto` axes

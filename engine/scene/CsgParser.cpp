@@ -40,6 +40,7 @@ const std::unordered_set<std::string>& unsupportedNames() {
 // Everything a statement passes to its children.
 struct Context {
     glm::dmat4 transform{1.0};
+    std::shared_ptr<const TransformStep> steps;  // the multmatrix() chain `transform` is the product of
     // What `transform` is relative to: identity, except below a hull,
     // minkowski or resize, whose children are placed relative to the node.
     glm::dmat4 frame{1.0};
@@ -325,6 +326,7 @@ Open Parser::openFor(const Statement& st, const Open& parent) const {
             // A '%' subtree is drawn on its own, so it is placed in the world
             // even below a node that places its children relative to itself.
             ctx.transform = ctx.frame * ctx.transform;
+            ctx.steps = std::make_shared<const TransformStep>(TransformStep{ctx.transform, nullptr});
             ctx.frame = glm::dmat4(1.0);
         }
     } else if (st.highlight && ctx.display == Display::Normal) {
@@ -427,6 +429,7 @@ void Parser::operationStatement(const Statement& st, Open open) {
         open.resizesBefore = tree_.resizes.size();
         open.context.frame = open.context.frame * open.context.transform;
         open.context.transform = glm::dmat4(1.0);
+        open.context.steps = nullptr;
     } else if (name == "resize") {
         // Its leaves are placed relative to it, and scaled when the model is built.
         open.gather = Open::Gather::Resize;
@@ -436,9 +439,14 @@ void Parser::operationStatement(const Statement& st, Open open) {
             open.resize.where = st.where;
             open.context.frame = open.context.frame * open.context.transform;
             open.context.transform = glm::dmat4(1.0);
+            open.context.steps = nullptr;
         }
     } else if (name == "multmatrix") {
-        if (!st.dropped) open.context.transform = open.context.transform * multmatrix(st.args, st.where);
+        if (!st.dropped) {
+            const glm::dmat4 m = multmatrix(st.args, st.where);
+            open.context.transform = open.context.transform * m;
+            open.context.steps = std::make_shared<const TransformStep>(TransformStep{m, open.context.steps});
+        }
         open.collapsible = true;
     } else if (name == "color") {
         if (!st.dropped) {
@@ -1074,6 +1082,7 @@ int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dma
     }
     leaf.primitive = FlatSlab{std::move(merged)};
     leaf.transform = placement;
+    leaf.steps = nullptr;
     return tree_.addLeaf(std::move(leaf));
 }
 
@@ -1656,6 +1665,7 @@ int Parser::makeLeaf(const std::string& name, const std::vector<CsgArgument>& ar
 Leaf Parser::leafAt(const Context& ctx, const SourceLocation& where) const {
     Leaf leaf;
     leaf.transform = ctx.transform;
+    leaf.steps = ctx.steps;
     if (ctx.color.r >= 0.0 || ctx.color.g >= 0.0 || ctx.color.b >= 0.0 || ctx.color.a >= 0.0) leaf.color = ctx.color;
     leaf.display = ctx.display;
     leaf.where = where;

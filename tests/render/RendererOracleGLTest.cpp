@@ -197,7 +197,7 @@ scene::Primitive randomPrimitive(std::mt19937& rng) {
 
 scene::Leaf randomLeaf(std::mt19937& rng) {
     std::uniform_real_distribution<double> pos(-1.2, 1.2), angle(0.0, 360.0);
-    scene::Leaf leaf{randomPrimitive(rng), glm::dmat4(1.0), std::nullopt, scene::Display::Normal, {}};
+    scene::Leaf leaf{randomPrimitive(rng), glm::dmat4(1.0), std::nullopt, scene::Display::Normal, {}, nullptr};
     glm::dmat4 m = glm::translate(glm::dmat4(1.0), {pos(rng), pos(rng), pos(rng)});
     m = glm::rotate(m, glm::radians(angle(rng)), glm::normalize(glm::dvec3(pos(rng), pos(rng), pos(rng) + 0.01)));
     leaf.transform = m;

@@ -32,4 +32,7 @@ Model buildModel(const scene::Tree& tree);
 // transformed; not yet cleaned or checked (buildModel does that).
 Mesh leafMesh(const scene::Leaf& leaf);
 
+// A primitive's solid in its own object space: leafMesh before the transform.
+Mesh objectMesh(const scene::Primitive& primitive);
+
 }  // namespace strata::geometry

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -129,12 +130,27 @@ enum class Display {
     Background,  // '%': not part of the CSG result, drawn translucent
 };
 
+// One matrix of the chain a leaf's transform was multiplied from: the
+// multmatrix() nodes above it, the innermost last (`previous` leads
+// outward). Shared by the leaves under one node, never changed. The exact
+// evaluation applies the chain step by step in exact arithmetic, as
+// OpenSCAD transforms a child's result, so that faces flush before a
+// rotation stay flush after it.
+struct TransformStep {
+    glm::dmat4 matrix{1.0};
+    std::shared_ptr<const TransformStep> previous;
+};
+
 struct Leaf {
     Primitive primitive;
     glm::dmat4 transform{1.0};          // object to world (to its resize(), hull or sum, inside one), column vectors
     std::optional<glm::dvec4> color;    // RGBA in [0,1]; outermost color() wins
     Display display = Display::Normal;
     SourceLocation where;               // the primitive's line in the input
+    // The chain `transform` was multiplied from (outermost first, in
+    // doubles); null for the identity or where it is not known. Consumers
+    // check that the chain's product is `transform` before trusting it.
+    std::shared_ptr<const TransformStep> steps;
 };
 
 // resize(): the leaves under it are scaled together so that the box of the
