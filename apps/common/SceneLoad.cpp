@@ -3,7 +3,9 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
+#include "ScadExport.h"
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/scene/CsgParser.h"
@@ -23,15 +25,33 @@ void checkReadable(const std::string& path) {
     if (!why.empty()) throw Error(SourceLocation{path, 0, 0}, "cannot read (" + why + ")");
 }
 
-scene::Tree loadSceneFile(const std::string& path) {
+SceneFile readSceneFile(const std::string& path, const std::vector<std::string>& defines) {
     const std::string ext = lowerExtension(path);
-    const bool isMesh = isMeshExtension(ext);
-    if (ext != ".csg" && !isMesh)
-        throw Error(SourceLocation{path, 0, 0}, "unknown scene type '" + ext +
-                                                    "' (expected .csg, .stl, .obj, .off or .ply)");
+    if (ext != ".csg" && ext != ".scad" && !isMeshExtension(ext))
+        throw Error(SourceLocation{path, 0, 0},
+                    "unknown scene type '" + ext + "' (expected .csg, .scad, .stl, .obj, .off or .ply)");
     checkReadable(path);
-    if (!isMesh) return scene::parseCsgFile(path);
-    return scene::meshFileTree(path);
+    SceneFile file;
+    if (ext == ".csg") {
+        file.tree = scene::parseCsgFile(path);
+    } else if (ext == ".scad") {
+        ScadExport exported = exportScad(path, defines);
+        // Positions are in OpenSCAD's CSG export, not in the .scad: messages
+        // say so ("a.scad (CSG export):9:6: ..."). Relative imports resolve
+        // from the .scad's folder.
+        std::istringstream in(exported.csg);
+        file.tree = scene::parseCsg(in, path + " (CSG export)", std::filesystem::path(path).parent_path().string());
+        file.tree.source = path;
+        file.openscadOutput = std::move(exported.printed);
+        file.csgExport = std::move(exported.csg);
+    } else {
+        file.tree = scene::meshFileTree(path);
+    }
+    return file;
+}
+
+scene::Tree loadSceneFile(const std::string& path, const std::vector<std::string>& defines) {
+    return readSceneFile(path, defines).tree;
 }
 
 }  // namespace strata::apps

@@ -1,24 +1,39 @@
 #pragma once
 // A scene file as the programs take it: OpenSCAD's .csg export through the
-// parser, or one closed mesh (.stl, .obj, .off, .ply) as a tree of a single
-// Import leaf. strata-render and strata-bench load their scenes through it,
-// so both accept and refuse the same files with the same messages.
+// parser, a .scad through the installed openscad's CSG export (ScadExport.h),
+// or one closed mesh (.stl, .obj, .off, .ply) as a tree of a single Import
+// leaf. strata-render, strata-bench and strata-view load their scenes
+// through it, so all three accept and refuse the same files with the same
+// messages.
 
 #include <string>
+#include <vector>
 
 #include "strata/scene/Tree.h"
 
 namespace strata::apps {
 
-// Throws strata::Error naming the file (and the line and column for a
-// parse error) for an unknown extension, a missing or unreadable file, or a
-// directory.
-scene::Tree loadSceneFile(const std::string& path);
+// A scene file read, with what a .scad brings besides its tree.
+struct SceneFile {
+    scene::Tree tree;
+    std::vector<std::string> openscadOutput;  // a .scad's ECHO, WARNING, ... lines, as OpenSCAD printed them
+    // A .scad's CSG export as OpenSCAD wrote it, the text whose lines the
+    // tree's positions name; empty for a .csg or a mesh.
+    std::string csgExport;
+};
 
-// Its parts, for a program that takes more kinds of file (strata-view's
-// .scad): the extension, dot included, in lower case ("model.STL" -> ".stl");
-// whether it names a mesh format; and a throw, naming the file, unless
-// `path` is a file that can be opened.
+// Reads `path`; a .scad with each of `defines` ("name=value") given to
+// openscad as -D. Throws strata::Error naming the file (and the line and
+// column for a parse error) for an unknown extension, a missing or
+// unreadable file, a directory, or a .scad openscad cannot export.
+SceneFile readSceneFile(const std::string& path, const std::vector<std::string>& defines = {});
+
+// readSceneFile's tree alone.
+scene::Tree loadSceneFile(const std::string& path, const std::vector<std::string>& defines = {});
+
+// Its parts: the extension, dot included, in lower case ("model.STL" ->
+// ".stl"); whether it names a mesh format; and a throw, naming the file,
+// unless `path` is a file that can be opened.
 std::string lowerExtension(const std::string& path);
 bool isMeshExtension(const std::string& ext);
 void checkReadable(const std::string& path);

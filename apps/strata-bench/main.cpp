@@ -3,12 +3,13 @@
 // a depth test (PlainDraw.h), in the same process and GL context, and
 // against OpenCSG (OpenCsgRun.h) in a second, compatibility context of the
 // same process where OpenCSG was built in (GLX with an X display, else EGL).
-// Your own scene files (.csg, or one closed mesh) run the same way, from
-// OpenSCAD's default view, with K their number of leaves.
+// Your own scene files (.csg, .scad through openscad, or one closed mesh)
+// run the same way, from OpenSCAD's default view, with K their number of
+// leaves.
 // Run by hand (docs/benchmarks.md); never by CI.
 //
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
-//                [--files model.csg,part.stl] [--frames 10] [--warmup 2]
+//                [--files model.csg,part.stl,gear.scad] [-D teeth=12] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
 //                [--glibc-heap] [--no-groups] [--no-plain] [--opencsg-convexity openscad|measured]
 //                [--opencsg-limit 100000] [--opencsg-context auto|glx|egl]
@@ -32,7 +33,9 @@
 #include <malloc.h>
 #endif
 
+#include "CommandLine.h"
 #include "OpenCsgRun.h"
+#include "OpenscadOptions.h"
 #include "PlainDraw.h"
 #include "SceneLoad.h"
 #include "Scenes.h"
@@ -89,6 +92,7 @@ struct Options {
     std::vector<std::string> scenes = bench::sceneNames();
     std::vector<int> ks{1, 8, 32, 64, 128, 256};
     std::vector<std::string> files;  // scene files, each once per size
+    std::vector<std::string> defines;  // -D NAME=VALUE, for each .scad of files
     std::vector<std::string> sizes{"1024x768"};
     int frames = 10;
     int warmup = 2;
@@ -452,9 +456,10 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
             ->delimiter(',')
             ->check(CLI::IsMember(bench::sceneNames()));
     app.add_option("--files", options.files,
-                   "scene files (.csg, .stl, .obj, .off, .ply) to time as well, from OpenSCAD's default view; "
-                   "alone, without --scenes, only these")
+                   "scene files (.csg, .scad, .stl, .obj, .off, .ply) to time as well, from OpenSCAD's default "
+                   "view; alone, without --scenes, only these")
         ->delimiter(',');
+    apps::addDefineOption(app, options.defines);
     app.add_option("--k", options.ks, "operand counts K")->delimiter(',')->check(CLI::Range(1, 100000));
     app.add_option("--size", options.sizes, "image sizes WxH")->delimiter(',');
     app.add_option("--frames", options.frames, "timed frames per case")->check(CLI::Range(1, 100000));
@@ -553,13 +558,19 @@ int main(int argc, char** argv) {
     CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
     const CLI::Option* scenes = addOptions(app, options);
     CLI11_PARSE(app, argc, argv);
+    try {
+        apps::checkDefines(options.defines, options.files);
+    } catch (const apps::UsageError& e) {
+        std::cerr << "strata-bench: " << e.message << '\n';
+        return 2;
+    }
     const std::string heap = steadyHeap(options.steadyHeap);
     if (!options.files.empty() && scenes->count() == 0) options.scenes.clear();
 
     try {
         // Loaded first, so a bad file fails before minutes of frames.
         std::vector<scene::Tree> fileTrees;
-        for (const std::string& path : options.files) fileTrees.push_back(apps::loadSceneFile(path));
+        for (const std::string& path : options.files) fileTrees.push_back(apps::loadSceneFile(path, options.defines));
 
         std::vector<Size> sizes;
         for (const std::string& s : options.sizes) sizes.push_back(parseSize(s));

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "CommandLine.h"
+#include "OpenscadOptions.h"
 #include "strata/core/Error.h"
 #include "strata/io/MeshWriter.h"
 #include "strata/remesh/Remesh.h"
@@ -167,8 +168,11 @@ ParseResult parseOptions(int argc, char** argv) {
     CLI::App app{"strata-render: image-space CSG rendering, headless (options and outputs: docs/contract.md)", "strata-render"};
     app.option_defaults()->always_capture_default(false);
     std::string imgsize, camera, projection, fov, layers;
-    app.add_option("SCENE", o.scene, "a .csg file (OpenSCAD's CSG export), or one closed .stl/.obj/.off/.ply mesh")
+    app.add_option("SCENE", o.scene,
+                   "a .csg file (OpenSCAD's CSG export), a .scad file (needs openscad), or one closed "
+                   ".stl/.obj/.off/.ply mesh")
         ->required();
+    addDefineOption(app, o.defines);
     app.add_option("-o", o.png, "write the shaded image (8-bit RGBA PNG)")->type_name("FILE.png");
     app.add_option("--depth", o.depth, "write the depth AOV (OpenEXR, channel Z)")->type_name("FILE.exr");
     app.add_option("--normal", o.normal, "write the normal AOV (OpenEXR, channels R,G,B)")->type_name("FILE.exr");
@@ -181,6 +185,7 @@ ParseResult parseOptions(int argc, char** argv) {
     app.add_option("--fov", fov, "vertical field of view in degrees (default 22.5)")->type_name("DEG");
     app.add_option("--layers", layers, "depth-peel layers per operand, or auto (default)")->type_name("N|auto");
     app.add_flag("--stats", o.stats, "print one JSON object of figures on stdout");
+    app.add_flag("-q,--quiet", o.quiet, "print only errors on stderr: no warnings, progress or a .scad's echo");
     app.add_flag("--reference", o.reference,
                  "find the surfaces with the CPU reference ray caster (Embree) instead of the GPU passes, "
                  "to compare the two on your own scenes (same outputs, same shading)");
@@ -197,8 +202,11 @@ ParseResult parseOptions(int argc, char** argv) {
     app.add_option("--export-resolution", exportResolution,
                    "cells along the longest side of the result's box for --export-sampled (default 512, 8 to 4096)")
         ->type_name("N");
+    addOpenscadOptions(app);
 
     static_cast<CliOutcome&>(result) = parseCommandLine(app, argc, argv, "strata-render", [&] {
+        checkOpenscadOptions(app, app.count("--camera") != 0);
+        checkDefines(o.defines, {o.scene});
         if (!imgsize.empty() || app.count("--imgsize")) parseImageSize(imgsize, o);
         if (app.count("--camera")) parseCamera(camera, o);
         if (app.count("--projection")) parseProjection(projection, o);

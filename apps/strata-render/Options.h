@@ -12,7 +12,8 @@
 namespace strata::apps {
 
 struct RenderOptions {
-    std::string scene;                      // SCENE: .csg, .stl, .obj, .off or .ply
+    std::string scene;                      // SCENE: .csg, .scad, .stl, .obj, .off or .ply
+    std::vector<std::string> defines;       // -D NAME=VALUE, for a .scad, in order
     std::string png;                        // -o FILE.png; empty: none
     std::string depth;                      // --depth FILE.exr
     std::string normal;                     // --normal FILE.exr
@@ -22,6 +23,7 @@ struct RenderOptions {
     double fovDegrees = 22.5;
     int layers = 0;                         // 0: auto
     bool stats = false;
+    bool quiet = false;                     // -q: errors only on stderr
     bool reference = false;                 // --reference: the CPU ray caster instead of the GPU passes
     std::string colorScheme = "Cornfield";
     std::string exportPath;                 // --export FILE.stl|.off|.obj|.3mf; empty: none

@@ -100,7 +100,7 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
             // The CPU oracle finds the surfaces; the GPU only shades them, so
             // both paths' images differ only where their surfaces do.
             reference::ReferenceOptions referenceOptions;
-            referenceOptions.progress = reference::progressOnStderr();
+            if (!options.quiet) referenceOptions.progress = reference::progressOnStderr();
             const reference::ReferenceImage image =
                 reference::renderReference(tree, model, camera, referenceOptions);
             frame = renderer.shade(camera, settings,
@@ -134,7 +134,8 @@ int run(const apps::RenderOptions& options) {
     checkOutputFolder(options.exportPath);
 
     auto t = Clock::now();
-    const scene::Tree tree = apps::loadSceneFile(options.scene);
+    apps::SceneFile file = apps::readSceneFile(options.scene, options.defines);
+    const scene::Tree& tree = file.tree;
     stats.parseMs = msSince(t);
     // Warnings are printed once everything is written: a run that fails
     // says one line, its error.
@@ -144,10 +145,11 @@ int run(const apps::RenderOptions& options) {
     stats.dimensions = tree.isFlat() ? 2 : 3;
 
     t = Clock::now();
-    apps::StderrProgress progress("strata-render");
+    apps::StderrProgress stderrProgress("strata-render");
+    Progress* progress = options.quiet ? nullptr : &stderrProgress;
     geometry::Model model;
     {
-        const ProgressScope scope(&progress);
+        const ProgressScope scope(progress);
         model = geometry::buildModel(tree);
     }
     stats.geometryMs = msSince(t);
@@ -158,7 +160,7 @@ int run(const apps::RenderOptions& options) {
     std::vector<io::StagedFile> staged;
     if (!options.exportPath.empty()) {
         t = Clock::now();
-        const ProgressScope scope(&progress);
+        const ProgressScope scope(progress);
         const glm::vec4 faceColor = render::colorScheme(options.colorScheme).faceFront;
         if (!options.exportSampled) {
             staged.push_back(apps::stageExactExport(tree, model, options.exportPath, faceColor).file);
@@ -182,7 +184,11 @@ int run(const apps::RenderOptions& options) {
     stats.writeMs += msSince(t);
     stats.totalMs = msSince(start);
 
-    for (const std::string& w : stats.warnings) std::cerr << w << '\n';
+    // A .scad's echo and warnings as OpenSCAD printed them, then strata's.
+    if (!options.quiet) {
+        for (const std::string& line : file.openscadOutput) std::cerr << line << '\n';
+        for (const std::string& w : stats.warnings) std::cerr << w << '\n';
+    }
     if (options.stats) std::cout << io::statsJson(stats) << std::endl;
     return 0;
 }

@@ -1,8 +1,8 @@
 #pragma once
-// Reading the file strata-view shows: what strata-render accepts (a .csg, or
-// one closed .stl/.obj/.off/.ply mesh) plus .scad, converted to CSG by running
-// `openscad -o <temporary>.csg file.scad` when openscad is installed.
-// CPU only, so it runs on the loader thread.
+// Reading the file strata-view shows: what strata-render accepts (a .csg, a
+// .scad through the installed openscad, or one closed .stl/.obj/.off/.ply
+// mesh; apps/common/SceneLoad.h), meshed, with a .scad's CSG export kept for
+// saving. CPU only, so it runs on the loader thread.
 
 #include <string>
 #include <vector>

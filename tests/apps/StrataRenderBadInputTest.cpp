@@ -64,7 +64,8 @@ TEST(StrataRender, HelpListsTheContractsOptions) {
     const ProcessResult r = runProcess({kExe, "--help"});
     EXPECT_EQ(r.exitCode, 0);
     for (const char* option : {"-o", "--depth", "--normal", "--imgsize", "--camera", "--projection", "--fov",
-                               "--layers", "--stats", "--colorscheme"})
+                               "--layers", "--stats", "--colorscheme", "-D", "--viewall", "--autocenter", "--preview",
+                               "--quiet"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 
@@ -245,4 +246,52 @@ TEST(StrataRender, AFailureAfterWarningsIsStillOneLine) {
     const std::string scene = dir.write(
         "both.csg", "roof() square(1);\npolyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n");
     expectFailure(dir, {scene}, scene + ":2:1: polyhedron is not a closed solid");
+}
+
+// A .scad goes through the installed openscad; its mistakes name the .scad.
+TEST(StrataRender, DefinitionsWithoutAScadAreAUsageError) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "-D", "size=3"},
+                  "strata-render: -D: only a .scad scene takes definitions (the scene is '" + scene + "')");
+    const ProcessResult r = runProcess({kExe, scene, "-D", "size=3", "-o", dir / "out.png"});
+    EXPECT_EQ(r.exitCode, 2);
+    const std::string scad = dir.write("a.scad", "cube(1);\n");
+    expectFailure(dir, {scad, "-D", "size"}, "strata-render: -D: expected NAME=VALUE, got 'size'");
+    expectFailure(dir, {scad, "-D", "=3"}, "strata-render: -D: expected NAME=VALUE, got '=3'");
+}
+
+TEST(StrataRender, ScadWithoutOpenscadSaysSoInOneLine) {
+    TempDir dir;
+    const std::string scad = dir.write("a.scad", "cube(1);\n");
+    expectFailure(dir, {scad, "-D", "n=1"}, scad + ": cannot open .scad: openscad is not installed",
+                  {{"PATH", dir / "nothing-here"}});
+}
+
+TEST(StrataRender, ScadMistakesNameTheScad) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    TempDir dir;
+    const std::string scad = dir.write("bad.scad", "cube(1);\nsphere(;\n");
+    expectFailure(dir, {scad}, scad + ":2: openscad could not export CSG: ERROR: Parser error");
+    // A bad value in a -D is named as the -D, not as a line past the .scad's end.
+    const std::string good = dir.write("good.scad", "n = 1;\ncube(n);\n");
+    expectFailure(dir, {good, "-D", "n=1", "-D", "m=2+"}, good + ": openscad could not export CSG: in -D m=2+: ERROR");
+    // An error in the export's geometry names the .scad's CSG export.
+    const std::string open = dir.write("open.scad", "polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n");
+    expectFailure(dir, {open}, open + " (CSG export):1:1: polyhedron is not a closed solid");
+}
+
+TEST(StrataRender, OpenscadOptionsItDoesNotTakeAreOneLineEach) {
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", kCube);
+    expectFailure(dir, {scene, "--animate", "10"}, "strata-render: --animate: strata-render renders one frame");
+    expectFailure(dir, {scene, "--render"}, "strata-render: --render: strata-render draws OpenSCAD's preview");
+    expectFailure(dir, {scene, "--preview=throwntogether"}, "strata-render: --preview=throwntogether: ");
+    expectFailure(dir, {scene, "--export-format", "binstl"}, "strata-render: --export-format: ");
+    expectFailure(dir, {scene, "--view", "axes"}, "strata-render: --view: ");
+    expectFailure(dir, {scene, "-p", "params.json", "-P", "big"}, "strata-render: -p: strata-render gives openscad only -D");
+    expectFailure(dir, {scene, "--hardwarnings"}, "strata-render: --hardwarnings: ");
+    expectFailure(dir, {scene, "--camera", "0,0,0,55,0,25,100", "--viewall"},
+                  "strata-render: --viewall with --camera: strata-render does not refit a given camera");
+    expectFailure(dir, {scene, "--autocenter", "--camera=1,2,3,0,0,0"}, "strata-render: --autocenter with --camera: ");
 }

@@ -42,9 +42,7 @@ TEST(StrataViewBadInput, SceneErrorsAreStrataRendersOneLiners) {
         EXPECT_NE(view.exitCode, 0) << scene;
         EXPECT_EQ(lineCount(view.err), 1) << view.err;
         EXPECT_TRUE(view.err.starts_with(scene + ":")) << view.err;
-        if (!scene.ends_with(".txt") && !scene.ends_with(".scad")) {
-            EXPECT_EQ(view.err, render.err);  // strata-view also opens .scad, so that message differs
-        }
+        EXPECT_EQ(view.err, render.err);
     }
 }
 

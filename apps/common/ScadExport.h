@@ -1,0 +1,23 @@
+#pragma once
+// A .scad turned into OpenSCAD's CSG export by the installed `openscad`
+// (`openscad -o <temporary>.csg [-D name=value ...] file.scad`), for the
+// programs that take a .scad as their scene. strata reads the export, never
+// the .scad itself.
+
+#include <string>
+#include <vector>
+
+namespace strata::apps {
+
+struct ScadExport {
+    std::string csg;                   // the CSG export, as OpenSCAD wrote it
+    std::vector<std::string> printed;  // the model's ECHO, WARNING, ... lines, as OpenSCAD printed them
+};
+
+// Runs openscad on `scad` with each of `defines` ("name=value") given to it
+// as `-D name=value`, in order. Throws strata::Error naming the .scad, in one
+// line, when openscad is not on PATH, cannot be run, or fails (with its own
+// complaint and, where it names one, the line).
+ScadExport exportScad(const std::string& scad, const std::vector<std::string>& defines = {});
+
+}  // namespace strata::apps
