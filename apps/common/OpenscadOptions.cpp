@@ -37,7 +37,7 @@ const Refused kRefused[] = {
     {"-x", true, "OpenSCAD's old DXF export: strata-render does not write DXF"},
     {"--render", false,
      "strata-render draws OpenSCAD's preview, not CGAL's render; for CGAL's exact result as a mesh use --export "
-     "FILE --export-exact"},
+     "FILE"},
 };
 
 // A definition as openscad takes it: a name (a $ may lead), '=', a value.
