@@ -21,6 +21,7 @@ packages=(
   libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
   libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)
   xvfb xauth
+  openscad                               # .scad scenes: strata runs openscad to export their CSG (optional at run time; the tests compare the two routes)
 )
 
 missing=()
