@@ -63,7 +63,7 @@ PY
 # The audit of one STL: "triangles | clean" or "triangles | what is wrong".
 audited() {
   [[ -f $1 ]] || { echo "- | -"; return; }
-  "$audit" "$1" | python3 -c '
+  { "$audit" "$1" || true; } | python3 -c '
 import json, sys
 a = json.loads(sys.stdin.read())
 faults = [(a["degenerate"], "degenerate"), (a["boundary_edges"], "open edges"),
