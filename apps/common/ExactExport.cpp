@@ -6,8 +6,10 @@
 
 #include "strata/core/Error.h"
 #include "strata/geometry/Exact.h"
+#include "strata/geometry/Flat.h"
 #include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/SurfaceColors.h"
+#include "strata/io/FlatWriter.h"
 #include "strata/io/MeshWriter.h"
 
 namespace strata::apps {
@@ -15,7 +17,7 @@ namespace strata::apps {
 void requireSolidModel(const scene::Tree& tree) {
     if (tree.isFlat()) {
         throw Error(SourceLocation{tree.source, 0, 0},
-                    "a 2D model has no solid to export (OpenSCAD exports it as DXF or SVG)");
+                    "a 2D model has no solid to export (export it as .svg or .dxf)");
     }
 }
 
@@ -46,8 +48,19 @@ void roundForFile(geometry::Mesh& mesh) {
     geometry::dropDegenerateTriangles(mesh);
 }
 
+io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path) {
+    if (!tree.isFlat()) {
+        throw Error(SourceLocation{tree.source, 0, 0},
+                    "a 3D model has no 2D drawing to export (export it as .stl, .off, .obj or .3mf)");
+    }
+    const geometry::Outlines outlines = geometry::flatResult(tree);
+    if (outlines.empty()) throw Error(SourceLocation{tree.source, 0, 0}, "the 2D result is empty: nothing to export");
+    return io::stageFlat(path, outlines);
+}
+
 ExactExport stageExactExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
                              const glm::vec4& faceColor) {
+    if (io::isFlatPath(path)) return ExactExport{stageFlatExport(tree, path), 0};
     requireSolidModel(tree);
     geometry::Mesh result;
     if (tree.root >= 0) result = geometry::exactResult(tree, tree.root, model.leafMeshes);

@@ -25,11 +25,19 @@ struct ExactExport {
     std::size_t triangles = 0;
 };
 
-// Throws strata::Error naming the scene (tree.source) for a 2D model or an
-// empty result, and naming `path` when it cannot be written. `faceColor` is
+// A 2D model's path names a drawing (.svg, .dxf): its 2D result is staged
+// as one (stageFlatExport). Throws strata::Error naming the scene
+// (tree.source) for a 2D model given a mesh path, a 3D model given a
+// drawing path, or an empty result, and naming `path` when it cannot be
+// written. `faceColor` is
 // the colour of triangles whose leaf has no color().
 ExactExport stageExactExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
                              const glm::vec4& faceColor);
+
+// The 2D result of a flat model (geometry::flatResult) staged as the drawing
+// `path` names (SVG or DXF). Throws, naming the scene, for a 3D model or an
+// empty result.
+io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path);
 
 // What every export shares (this one and ImageExport.h). Throws, naming the
 // scene, for a 2D model, which has no solid to export.

@@ -14,6 +14,7 @@
 #include "CommandLine.h"
 #include "OpenscadOptions.h"
 #include "strata/core/Error.h"
+#include "strata/io/FlatWriter.h"
 #include "strata/io/MeshWriter.h"
 #include "strata/remesh/Remesh.h"
 
@@ -135,13 +136,16 @@ void checkOutputName(const std::string& option, const std::string& path, std::st
 
 bool sameFile(const std::string& a, const std::string& b);
 
-// --export FILE: a mesh format by its extension.
+// --export FILE: a mesh or drawing format by its extension.
 void checkExport(const RenderOptions& o) {
     if (o.exportPath.empty()) throw UsageError{"--export: expected a file name"};
-    try {
-        io::meshFormatOf(o.exportPath);
-    } catch (const Error&) {
-        throw UsageError{"--export: expected a .stl, .off, .obj or .3mf file name, got '" + o.exportPath + "'"};
+    if (!io::isFlatPath(o.exportPath)) {
+        try {
+            io::meshFormatOf(o.exportPath);
+        } catch (const Error&) {
+            throw UsageError{"--export: expected a .stl, .off, .obj, .3mf, .svg or .dxf file name, got '" + o.exportPath +
+                             "'"};
+        }
     }
     for (const std::string* other : {&o.png, &o.depth, &o.normal}) {
         if (!other->empty() && sameFile(*other, o.exportPath)) {
@@ -191,7 +195,8 @@ ParseResult parseOptions(int argc, char** argv) {
                  "to compare the two on your own scenes (same outputs, same shading)");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
     app.add_option("--export", o.exportPath,
-                   "write the CSG result as a mesh (binary STL, OFF, OBJ or 3MF, by the extension); "
+                   "write the CSG result as a mesh (binary STL, OFF, OBJ or 3MF, by the extension), or a 2D model's "
+                   "as a drawing (SVG or DXF); "
                    "without -o, --depth or --normal nothing is rendered")
         ->type_name("FILE");
     app.add_flag("--export-exact", o.exportExact,
@@ -223,6 +228,8 @@ ParseResult parseOptions(int argc, char** argv) {
         if (o.exportExact && o.exportSampled) throw UsageError{"--export-exact and --export-sampled: give one of them"};
         if (o.exportExact && o.exportPath.empty()) throw UsageError{"--export-exact: give --export FILE too"};
         if (o.exportSampled && o.exportPath.empty()) throw UsageError{"--export-sampled: give --export FILE too"};
+        if (o.exportSampled && io::isFlatPath(o.exportPath))
+            throw UsageError{"--export-sampled: a drawing (.svg, .dxf) is always the exact 2D result"};
         if (app.count("--export-resolution")) {
             if (!o.exportSampled) throw UsageError{"--export-resolution: the exact export has no resolution; give --export-sampled too"};
             long long n = 0;

@@ -255,4 +255,52 @@ Outlines evaluateFlat(const scene::FlatTree& tree) {
     return root ? std::move(*root) : Outlines{};
 }
 
+namespace {
+
+// Copies node `n` of the 3D tree, and everything under it, into `out` as
+// flat nodes (parents before children, as evaluateFlat walks them).
+int copyFlat(const scene::Tree& tree, int n, scene::FlatTree& out) {
+    const scene::Node& node = tree.nodes[static_cast<std::size_t>(n)];
+    scene::FlatNode made;
+    made.where = node.where;
+    if (node.kind == scene::NodeKind::Leaf) {
+        const scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(node.leaf)];
+        made.op = scene::FlatOp::Transform;
+        made.matrix = leaf.transform;
+        made.where = leaf.where;
+        const int placed = out.add(std::move(made));
+        const scene::FlatTree& shape = std::get<scene::FlatSlab>(leaf.primitive).shape;
+        if (shape.root < 0) return placed;
+        const int nodeOffset = static_cast<int>(out.nodes.size());
+        const int shapeOffset = static_cast<int>(out.shapes.size());
+        for (scene::FlatNode f : shape.nodes) {
+            for (int& k : f.children) k += nodeOffset;
+            if (f.shape >= 0) f.shape += shapeOffset;
+            out.nodes.push_back(std::move(f));
+        }
+        out.shapes.insert(out.shapes.end(), shape.shapes.begin(), shape.shapes.end());
+        out.nodes[static_cast<std::size_t>(placed)].children.push_back(shape.root + nodeOffset);
+        return placed;
+    }
+    made.op = node.kind == scene::NodeKind::Difference     ? scene::FlatOp::Difference
+              : node.kind == scene::NodeKind::Intersection ? scene::FlatOp::Intersection
+                                                           : scene::FlatOp::Union;
+    const int at = out.add(std::move(made));
+    for (int c : node.children) {
+        const int child = copyFlat(tree, c, out);
+        out.nodes[static_cast<std::size_t>(at)].children.push_back(child);
+    }
+    return at;
+}
+
+}  // namespace
+
+Outlines flatResult(const scene::Tree& tree) {
+    if (!tree.isFlat()) return {};
+    scene::FlatTree combined;
+    combined.root = copyFlat(tree, tree.root, combined);
+    Outlines result = evaluateFlat(combined);
+    return result.sanitized ? result : detail::sanitize(result);
+}
+
 }  // namespace strata::geometry

@@ -300,6 +300,42 @@ TEST(StrataRenderExport, AnIntersectionWithAnEmptyMinkowskiSumIsEmpty) {
     EXPECT_EQ(dir.files(), std::vector<std::string>{"empty.csg"});
 }
 
+// A 2D model exported as SVG and as DXF, then read back by import() under
+// a linear_extrude of height 1: the solid's volume is the drawing's area.
+// strata reads it back always, OpenSCAD where it is installed; both give
+// the square less the hole, a 24-gon.
+TEST(StrataRenderExport, TwoDimensionalModelsExportAsDrawingsThatReadBack) {
+    TempDir dir;
+    const std::string plate = dir.write(
+        "plate.csg",
+        "difference() { square(size = [10, 6]); multmatrix([[1, 0, 0, 3], [0, 1, 0, 3], [0, 0, 1, 0], [0, 0, 0, 1]]) "
+        "circle($fn = 24, r = 1.5); }\nmultmatrix([[1, 0, 0, 12], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) "
+        "polygon(points = [[0, 0], [4, 0], [0, 3]], paths = undef, convexity = 1);\n");
+    const double pi = std::acos(-1.0);
+    const double area = 60 - 0.5 * 24 * 1.5 * 1.5 * std::sin(2 * pi / 24) + 6;
+    const bool openscad = runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode == 0;
+    for (const std::string ext : {".svg", ".dxf"}) {
+        SCOPED_TRACE(ext);
+        const std::string drawing = dir / ("plate" + ext);
+        const ProcessResult r = runProcess({kExe, plate, "--export", drawing});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const std::string back = dir.write("back" + ext + ".csg", "linear_extrude(height = 1, center = false, convexity = 1, "
+                                                                  "scale = [1, 1], $fn = 0, $fa = 12, $fs = 2) import(file = \"" +
+                                                                  drawing + "\", layer = \"\", origin = [0, 0], scale = 1, "
+                                                                  "convexity = 1, $fn = 0, $fa = 12, $fs = 2);\n");
+        const std::string ours = dir / ("back" + ext + ".off");
+        const ProcessResult readBack = runProcess({kExe, back, "--export", ours});
+        ASSERT_EQ(readBack.exitCode, 0) << readBack.err;
+        EXPECT_NEAR(PMP::volume(read(ours)), area, 1e-4 * area);
+        if (openscad) {
+            const std::string theirs = dir / ("openscad" + ext + ".off");
+            const ProcessResult o = runProcess({"/usr/bin/env", "openscad", "-o", theirs, back});
+            ASSERT_EQ(o.exitCode, 0) << o.err;
+            EXPECT_NEAR(PMP::volume(read(theirs)), area, 1e-4 * area);
+        }
+    }
+}
+
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {
     TempDir dir;
     const std::string cube = dir.write("cube.csg", "cube(size = 1);\n");
@@ -310,7 +346,10 @@ TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {
         std::string prefix;
     };
     const std::vector<Case> cases{
-        {{cube, "--export", dir / "a.ply", "--export-exact"}, "strata-render: --export: expected a .stl, .off, .obj or .3mf file name"},
+        {{cube, "--export", dir / "a.ply", "--export-exact"},
+         "strata-render: --export: expected a .stl, .off, .obj, .3mf, .svg or .dxf file name"},
+        {{cube, "--export", dir / "a.svg"}, cube + ": a 3D model has no 2D drawing to export"},
+        {{flat, "--export", dir / "a.dxf", "--export-sampled"}, "strata-render: --export-sampled: a drawing (.svg, .dxf)"},
         {{cube, "--export-exact"}, "strata-render: --export-exact: give --export FILE too"},
         {{cube, "--export", dir / "nowhere/a.stl", "--export-exact"}, (dir / "nowhere/a.stl") + ": cannot write"},
         {{flat, "--export", dir / "a.stl", "--export-exact"}, flat + ": a 2D model has no solid to export"},

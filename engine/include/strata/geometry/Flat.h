@@ -6,6 +6,7 @@
 
 #include "strata/geometry/Outlines.h"
 #include "strata/scene/Flat.h"
+#include "strata/scene/Tree.h"
 
 namespace strata::geometry {
 
@@ -13,6 +14,13 @@ namespace strata::geometry {
 // text, imports or coordinates beyond Clipper's range throw strata::Error
 // naming the node's position.
 Outlines evaluateFlat(const scene::FlatTree& tree);
+
+// The 2D result of a flat model (scene::Tree::isFlat): its slab leaves'
+// shapes, each under its transform, combined by the tree's unions,
+// differences and intersections as OpenSCAD combines 2D children, cleaned
+// by Clipper (no crossings, outer outlines counter-clockwise). What a 2D
+// export writes.
+Outlines flatResult(const scene::Tree& tree);
 
 // The outlines of one flat primitive, before any union (square and circle come
 // out as made, unsanitized shapes go through Clipper's even-odd clean-up).
