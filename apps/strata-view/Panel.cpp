@@ -146,7 +146,7 @@ void Viewer::drawPanel() {
                 exportResolution_ = std::clamp(exportResolution_, remesh::kLeastResolution, remesh::kMostResolution);
             }
         }
-        ImGui::TextDisabled(exportExact_ ? ".stl, .off, .obj or .3mf; evaluated by CGAL as OpenSCAD's render"
+        ImGui::TextDisabled(exportExact_ ? ".stl, .off, .obj or .3mf (a 2D model: .svg or .dxf); evaluated by CGAL as OpenSCAD's render"
                                          : ".stl, .off, .obj or .3mf; the result sampled on a grid of this many "
                                            "cells along its longest side, sharp edges kept");
     }

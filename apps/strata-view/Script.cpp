@@ -1,5 +1,6 @@
 #include "Script.h"
 
+#include "strata/io/FlatWriter.h"
 #include "strata/io/MeshWriter.h"
 
 #include <array>
@@ -206,11 +207,15 @@ void checkArguments(Command& c, std::string_view name) {
         if (!c.words[0].ends_with(".png")) throw fail("expected a .png file name, got '" + c.words[0] + "'", 0);
         break;
     case CommandKind::Export:
+        if (io::isFlatPath(c.words[0])) break;  // a 2D model's drawing
+        [[fallthrough]];
     case CommandKind::ExportSampled:
         try {
             io::meshFormatOf(c.words[0]);
         } catch (const Error&) {
-            throw fail("expected a .stl, .off, .obj or .3mf file name, got '" + c.words[0] + "'", 0);
+            throw fail(std::string("expected a .stl, .off, .obj or .3mf") + (c.kind == CommandKind::Export ? " (or, for a 2D model, .svg or .dxf)" : "") +
+                           " file name, got '" + c.words[0] + "'",
+                       0);
         }
         break;
     case CommandKind::SaveCsg:

@@ -72,7 +72,10 @@ TEST(Script, MistakesNameLineColumnAndWord) {
               "s.txt:1:8: preset: unknown view 'sideways' (valid: top, bottom, left, right, front, back, diagonal)");
     EXPECT_EQ(errorOf("orbit 1 nan\n"), "s.txt:1:9: orbit: expected pixels, got 'nan'");
     EXPECT_EQ(errorOf("screenshot a.jpg\n"), "s.txt:1:12: screenshot: expected a .png file name, got 'a.jpg'");
-    EXPECT_EQ(errorOf("export a.ply\n"), "s.txt:1:8: export: expected a .stl, .off, .obj or .3mf file name, got 'a.ply'");
+    EXPECT_EQ(errorOf("export a.ply\n"),
+              "s.txt:1:8: export: expected a .stl, .off, .obj or .3mf (or, for a 2D model, .svg or .dxf) file name, got 'a.ply'");
+    EXPECT_EQ(errorOf("export-sampled a.svg\n"),
+              "s.txt:1:16: export-sampled: expected a .stl, .off, .obj or .3mf file name, got 'a.svg'");
     EXPECT_EQ(errorOf("save-csg a.scad\n"), "s.txt:1:10: save-csg: expected a .csg file name, got 'a.scad'");
     EXPECT_EQ(errorOf("open \"a.csg\n"), "s.txt:1:6: unterminated quoted word");
     EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N >= 1");
