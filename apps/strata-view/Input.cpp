@@ -131,11 +131,13 @@ void Viewer::onKey(int key, int action, int mods) {
         if (ctrl) quit_ = true;
         return;
     case GLFW_KEY_ESCAPE:
-        // A running load is stopped first; Esc again quits.
+        // Stops what is running, a load first, then an export; never quits
+        // (a load that has just finished would take the window with it):
+        // Ctrl+Q quits, as in OpenSCAD.
         if (loader_.busy())
             loader_.cancel();
-        else
-            quit_ = true;
+        else if (exporter_.busy())
+            exporter_.cancel();
         return;
     default: return;
     }

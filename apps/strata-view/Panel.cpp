@@ -134,7 +134,7 @@ void Viewer::drawPanel() {
         if (ImGui::InputText("##export", buffer, sizeof buffer)) exportPath_ = buffer;
         if (exporter_.busy()) {
             ImGui::TextWrapped("exporting... %s", exporter_.progressText().c_str());
-            if (ImGui::SmallButton("cancel export")) exporter_.cancel();
+            if (ImGui::SmallButton("cancel export (Esc)")) exporter_.cancel();
         } else if (ImGui::Button("export (Ctrl+E)")) {
             startExport(exportPath_);
         }
