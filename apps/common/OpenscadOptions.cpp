@@ -21,7 +21,7 @@ struct Refused {
 const char* const kOnlyDefines = "strata-render gives openscad only -D";
 
 const Refused kRefused[] = {
-    {"--export-format", true, "strata-render picks --export's format from the file name (.stl, .off, .obj, .3mf)"},
+    {"--export-format", true, "strata-render picks --export's format from the file name (.stl, .off, .obj, .3mf, .svg, .dxf)"},
     {"--animate", true, "strata-render renders one frame; for an animation run it once a frame with -D '$t=...'"},
     {"--view", true, "strata-render draws no axes, crosshairs, edges, scales or wireframe"},
     {"--csglimit", true, "strata-render has no limit on the number of CSG elements"},
@@ -34,7 +34,7 @@ const Refused kRefused[] = {
     {"-m", true, "strata-render runs no make command"},
     {"--debug", true, "strata-render has no debug output"},
     {"-s", true, "OpenSCAD's old STL export: use --export FILE.stl"},
-    {"-x", true, "OpenSCAD's old DXF export: strata-render does not write DXF"},
+    {"-x", true, "OpenSCAD's old DXF export: use --export FILE.dxf"},
     {"--render", false,
      "strata-render draws OpenSCAD's preview, not CGAL's render; for CGAL's exact result as a mesh use --export "
      "FILE"},

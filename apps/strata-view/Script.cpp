@@ -213,9 +213,8 @@ void checkArguments(Command& c, std::string_view name) {
         try {
             io::meshFormatOf(c.words[0]);
         } catch (const Error&) {
-            throw fail(std::string("expected a .stl, .off, .obj or .3mf") + (c.kind == CommandKind::Export ? " (or, for a 2D model, .svg or .dxf)" : "") +
-                           " file name, got '" + c.words[0] + "'",
-                       0);
+            const std::string drawings = c.kind == CommandKind::Export ? " (or, for a 2D model, .svg or .dxf)" : "";
+            throw fail("expected a .stl, .off, .obj or .3mf" + drawings + " file name, got '" + c.words[0] + "'", 0);
         }
         break;
     case CommandKind::SaveCsg:

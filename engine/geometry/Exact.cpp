@@ -90,9 +90,8 @@ Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const
     if (moved.positions != world.positions || moved.triangles != world.triangles) return toSolid(world, where);
     using FT = Kernel::FT;
     using ET = FT::ET;
-    Solid s;
-    std::vector<Solid::Vertex_index> vertices;
-    vertices.reserve(object.positions.size());
+    std::vector<Kernel::Point_3> points;
+    points.reserve(object.positions.size());
     for (const glm::dvec3& p : object.positions) {
         std::array<ET, 3> q{ET(p.x), ET(p.y), ET(p.z)};
         for (auto m = chain->rbegin(); m != chain->rend(); ++m) {
@@ -103,13 +102,9 @@ Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const
             }
             q = std::move(next);
         }
-        vertices.push_back(s.add_vertex(Kernel::Point_3(FT(q[0]), FT(q[1]), FT(q[2]))));
+        points.emplace_back(FT(q[0]), FT(q[1]), FT(q[2]));
     }
-    for (const auto& t : world.triangles) {
-        if (s.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == Solid::null_face())
-            throw Error(where, "an exact evaluation cannot take this solid: it touches itself along an edge or a corner");
-    }
-    return s;
+    return detail::toExactSolid(points, world, where, "an exact evaluation");
 }
 
 // Vertices in lexicographic order, each triangle turned to start at its

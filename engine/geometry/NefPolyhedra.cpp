@@ -162,10 +162,18 @@ std::vector<std::vector<glm::dvec3>> convexParts(const Mesh& closed, const Sourc
 }
 
 ExactSolid toExactSolid(const Mesh& mesh, const SourceLocation& where, const char* who) {
+    std::vector<Exact::Point_3> points;
+    points.reserve(mesh.positions.size());
+    for (const glm::dvec3& p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
+    return toExactSolid(points, mesh, where, who);
+}
+
+ExactSolid toExactSolid(const std::vector<Exact::Point_3>& points, const Mesh& mesh, const SourceLocation& where,
+                        const char* who) {
     ExactSolid s;
     std::vector<ExactSolid::Vertex_index> vertices;
-    vertices.reserve(mesh.positions.size());
-    for (const glm::dvec3& p : mesh.positions) vertices.push_back(s.add_vertex(Exact::Point_3(p.x, p.y, p.z)));
+    vertices.reserve(points.size());
+    for (const Exact::Point_3& p : points) vertices.push_back(s.add_vertex(p));
     for (const auto& t : mesh.triangles) {
         if (s.add_face(vertices[t[0]], vertices[t[1]], vertices[t[2]]) == ExactSolid::null_face()) {
             throw Error(where, std::string(who) + " cannot take this solid: it touches itself along an edge or a corner");

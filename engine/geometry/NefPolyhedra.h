@@ -36,6 +36,10 @@ enum class Boolean { Union, Intersection, Difference };
 // `where`, "<who> cannot take this solid: it touches itself ...", where a
 // halfedge structure cannot hold it.
 ExactSolid toExactSolid(const Mesh& mesh, const SourceLocation& where, const char* who);
+// The same from exact points already made (`points[i]` is the mesh's
+// vertex i) and the mesh's triangles.
+ExactSolid toExactSolid(const std::vector<CGAL::Epeck::Point_3>& points, const Mesh& mesh, const SourceLocation& where,
+                        const char* who);
 
 // a OP b through Nef polyhedra, triangulated. Throws strata::Error naming
 // `where` when CGAL cannot take a solid.

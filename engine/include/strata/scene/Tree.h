@@ -147,9 +147,10 @@ struct Leaf {
     std::optional<glm::dvec4> color;    // RGBA in [0,1]; outermost color() wins
     Display display = Display::Normal;
     SourceLocation where;               // the primitive's line in the input
-    // The chain `transform` was multiplied from (outermost first, in
-    // doubles); null for the identity or where it is not known. Consumers
-    // check that the chain's product is `transform` before trusting it.
+    // The chain `transform` was multiplied from, in doubles: its innermost
+    // step, whose `previous` lead outward; null for the identity or where
+    // it is not known. Consumers check that the chain's product is
+    // `transform` before trusting it.
     std::shared_ptr<const TransformStep> steps;
 };
 
