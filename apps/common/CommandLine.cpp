@@ -48,4 +48,19 @@ std::string checkedColorScheme(const std::string& name) {
     }
 }
 
+void addLookOptions(CLI::App& app, LookOptions& look) {
+    app.add_option("--light", look.light,
+                   "strata (default): Lambert from beside the eye plus ambient; openscad: OpenSCAD's preview light")
+        ->type_name("strata|openscad");
+    app.add_flag("!--no-outline", look.outline, "no dark outline on creases and silhouettes (OpenSCAD draws none)");
+}
+
+render::Lighting checkedLighting(const LookOptions& look) {
+    try {
+        return render::lightingNamed(look.light);
+    } catch (const Error& e) {
+        throw UsageError{std::string("--light: ") + e.what()};
+    }
+}
+
 }  // namespace strata::apps

@@ -1,12 +1,14 @@
 #pragma once
 // What strata-render and strata-view share of their command lines: how a
 // usage mistake is reported (one line, "<program>: <message>", exit status
-// 2), help, and the --colorscheme check. Each app keeps its own options and
-// their messages.
+// 2), help, the --colorscheme check, and the look's options (--light,
+// --no-outline). Each app keeps its other options and their messages.
 
 #include <functional>
 #include <string>
 #include <string_view>
+
+#include "strata/render/ColorScheme.h"
 
 namespace CLI {
 class App;
@@ -36,5 +38,15 @@ CliOutcome parseCommandLine(CLI::App& app, int argc, char** argv, std::string_vi
 // The canonical name of the OpenSCAD colour scheme `name`; UsageError naming
 // --colorscheme when there is none.
 std::string checkedColorScheme(const std::string& name);
+
+// How the image is lit and outlined (RenderSettings::lighting, ::outline),
+// with the same options and words in every program.
+struct LookOptions {
+    std::string light = "strata";  // --light strata|openscad
+    bool outline = true;           // --no-outline clears it
+};
+void addLookOptions(CLI::App& app, LookOptions& look);
+// The light --light names; UsageError naming --light when it names none.
+render::Lighting checkedLighting(const LookOptions& look);
 
 }  // namespace strata::apps

@@ -11,7 +11,8 @@
 //   strata-bench [--scenes cheese,stack] [--k 1,8,32] [--size 1024x768,512x512]
 //                [--files model.csg,part.stl,gear.scad] [-D teeth=12] [--frames 10] [--warmup 2]
 //                [--seed 1] [--json FILE] [--no-opencsg] [--opencsg-cap-ms 2000]
-//                [--glibc-heap] [--no-groups] [--no-plain] [--opencsg-convexity openscad|measured]
+//                [--glibc-heap] [--no-groups] [--no-plain] [--light strata|openscad] [--no-outline]
+//                [--opencsg-convexity openscad|measured]
 //                [--opencsg-limit 100000] [--opencsg-context auto|glx|egl]
 
 #include <algorithm>
@@ -106,6 +107,8 @@ struct Options {
     bool steadyHeap = true;
     bool groups = true;  // RenderSettings::groupOperands
     bool plainUnions = true;  // RenderSettings::plainUnions
+    apps::LookOptions look;   // RenderSettings::lighting, ::outline
+    render::Lighting lighting = render::Lighting::Strata;
 };
 
 // llvmpipe bins each frame's triangles into blocks it mallocs and frees
@@ -184,6 +187,8 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
     render::RenderSettings settings;
     settings.groupOperands = options.groups;
     settings.plainUnions = options.plainUnions;
+    settings.lighting = options.lighting;
+    settings.outline = options.look.outline;
     std::vector<double> frame, peel, evaluate, normal, plainFrame, shade;
     render::FrameStats last;
     for (int i = 0; i < options.warmup + options.frames; ++i) {
@@ -404,6 +409,8 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     json.key("steady_heap").value(options.steadyHeap);
     json.key("convex_groups").value(options.groups);
     json.key("plain_unions").value(options.plainUnions);
+    json.key("light").value(std::string(render::lightingName(options.lighting)));
+    json.key("outline").value(options.look.outline);
     json.key("seed").value(options.seed);
     json.key("results").beginArray();
     for (const Result& r : results) {
@@ -491,6 +498,7 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
     app.add_flag("!--no-plain", options.plainUnions,
                  "run every pass on a union seen from outside too, not its plain depth-tested draw (to measure "
                  "what the plain path gains)");
+    apps::addLookOptions(app, options.look);
     return scenes;
 }
 
@@ -560,6 +568,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         apps::checkDefines(options.defines, options.files);
+        options.lighting = apps::checkedLighting(options.look);
     } catch (const apps::UsageError& e) {
         std::cerr << "strata-bench: " << e.message << '\n';
         return 2;

@@ -194,6 +194,7 @@ ParseResult parseOptions(int argc, char** argv) {
                  "find the surfaces with the CPU reference ray caster (Embree) instead of the GPU passes, "
                  "to compare the two on your own scenes (same outputs, same shading)");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
+    addLookOptions(app, o.look);
     app.add_option("--export", o.exportPath,
                    "write the CSG result as a mesh (binary STL, OFF, OBJ or 3MF, by the extension), or a 2D model's "
                    "as a drawing (SVG or DXF); "
@@ -240,6 +241,7 @@ ParseResult parseOptions(int argc, char** argv) {
             o.exportResolution = static_cast<int>(n);
         }
         if (app.count("--colorscheme")) o.colorScheme = checkedColorScheme(o.colorScheme);
+        o.lighting = checkedLighting(o.look);
     });
     return result;
 }

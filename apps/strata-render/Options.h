@@ -26,6 +26,8 @@ struct RenderOptions {
     bool quiet = false;                     // -q: errors only on stderr
     bool reference = false;                 // --reference: the CPU ray caster instead of the GPU passes
     std::string colorScheme = "Cornfield";
+    LookOptions look;                       // --light, --no-outline
+    render::Lighting lighting = render::Lighting::Strata;  // look.light, checked
     std::string exportPath;                 // --export FILE.stl|.off|.obj|.3mf; empty: none
     bool exportExact = false;               // --export-exact: the default, said aloud
     bool exportSampled = false;             // --export-sampled: contoured from the image-space result, not CGAL's exact one

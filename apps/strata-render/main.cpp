@@ -72,6 +72,8 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
     render::RenderSettings settings;
     settings.layers = options.layers;
     settings.colorScheme = options.colorScheme;
+    settings.lighting = options.lighting;
+    settings.outline = options.look.outline;
     // One frame: its layer texture is made for it alone, so smaller tiles
     // with more draws cost less than the memory they save (OpenSCAD's
     // example008 at 1024x768: 0.40 s and 150 MB instead of 0.57 s and 288 MB).

@@ -30,6 +30,8 @@ ParsedOptions parseOptions(int argc, char** argv) {
     app.add_option("--imgsize", imgsize, "window size in pixels (default 1024,768)")->type_name("W,H");
     app.add_option("--layers", layers, "depth-peel layers per operand, or auto (default)")->type_name("N|auto");
     app.add_option("--colorscheme", o.colorScheme, "OpenSCAD colour scheme (default Cornfield)")->type_name("NAME");
+    apps::LookOptions look;
+    apps::addLookOptions(app, look);
     static_cast<apps::CliOutcome&>(result) = apps::parseCommandLine(app, argc, argv, "strata-view", [&] {
         if (app.count("--imgsize")) {
             const std::size_t comma = imgsize.find(',');
@@ -43,6 +45,8 @@ ParsedOptions parseOptions(int argc, char** argv) {
                 throw apps::UsageError{"--layers: expected 'auto' or a whole number from 1 to 1024, got '" + layers + "'"};
         }
         if (app.count("--colorscheme")) o.colorScheme = apps::checkedColorScheme(o.colorScheme);
+        o.lighting = apps::checkedLighting(look);
+        o.outline = look.outline;
     });
     return result;
 }

@@ -169,6 +169,20 @@ void Viewer::drawPanel() {
                 }
             ImGui::EndCombo();
         }
+        int light = static_cast<int>(settings_.lighting);
+        ImGui::TextUnformatted("light");
+        ImGui::SameLine();
+        if (ImGui::RadioButton("strata", &light, static_cast<int>(render::Lighting::Strata))) {
+            settings_.lighting = render::Lighting::Strata;
+            viewDirty_ = true;
+        }
+        ImGui::SameLine();
+        if (ImGui::RadioButton("OpenSCAD", &light, static_cast<int>(render::Lighting::OpenScad))) {
+            settings_.lighting = render::Lighting::OpenScad;
+            viewDirty_ = true;
+        }
+        ImGui::SameLine();
+        if (ImGui::Checkbox("outline", &settings_.outline)) viewDirty_ = true;
         int debug = static_cast<int>(debugView_);
         for (int k = 0; k < static_cast<int>(kDebugNames.size()); ++k) {
             if (k != 0) ImGui::SameLine();

@@ -27,7 +27,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 32> kSyntax{{
+constexpr std::array<Syntax, 33> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -45,6 +45,7 @@ constexpr std::array<Syntax, 32> kSyntax{{
     {"toggle", CommandKind::Toggle, 1, 1},
     {"highlight", CommandKind::Highlight, 1, 1},
     {"colorscheme", CommandKind::ColorScheme, 1, -1},
+    {"light", CommandKind::Light, 1, 1},
     {"debug", CommandKind::Debug, 1, 1},
     {"panel", CommandKind::Panel, 1, 1},
     {"show", CommandKind::Show, 2, 2},
@@ -196,8 +197,9 @@ void checkArguments(Command& c, std::string_view name) {
         break;
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
     case CommandKind::Panel: oneOf({"on", "off"}); break;
+    case CommandKind::Light: oneOf({"strata", "openscad"}); break;
     case CommandKind::Show:
-        oneOf({"axes", "scale", "edges"});
+        oneOf({"axes", "scale", "edges", "outline"});
         if (c.words[1] != "on" && c.words[1] != "off") throw fail("expected on or off, got '" + c.words[1] + "'", 1);
         break;
     case CommandKind::Print: oneOf({"camera", "console", "error", "load", "stats", "title", "tree"}); break;

@@ -32,7 +32,8 @@ enum class CommandKind {
     ColorScheme,      // colorscheme NAME...
     Debug,            // debug shaded|depth|normal|peel
     Panel,            // panel on|off
-    Show,             // show axes|scale|edges on|off
+    Show,             // show axes|scale|edges|outline on|off
+    Light,            // light strata|openscad
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
     ScreenshotWindow, // screenshot-window PATH (the whole window, panel included)
     Export,           // export PATH         (the exact result, as strata-render --export; waits until written)

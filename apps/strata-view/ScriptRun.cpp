@@ -107,6 +107,10 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         case CommandKind::Toggle: toggleHidden(findNode(scene_.tree, c.words[0])); return true;
         case CommandKind::Highlight: toggleHighlight(findNode(scene_.tree, c.words[0])); return true;
+        case CommandKind::Light:
+            settings_.lighting = render::lightingNamed(c.words[0]);
+            viewDirty_ = true;
+            return true;
         case CommandKind::ColorScheme:
             settings_.colorScheme = render::colorScheme(c.words[0]).name;
             viewDirty_ = true;
@@ -126,6 +130,10 @@ bool Viewer::runCommand(const Command& c) {
             if (c.words[0] == "axes") setShowAxes(on);
             if (c.words[0] == "scale") setShowScale(on);
             if (c.words[0] == "edges") setShowEdges(on);
+            if (c.words[0] == "outline") {
+                settings_.outline = on;
+                viewDirty_ = true;
+            }
             return true;
         }
         case CommandKind::Screenshot:

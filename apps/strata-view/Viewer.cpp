@@ -60,6 +60,8 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
       scene_(std::move(initial)) {
     settings_.layers = options.layers;
     settings_.colorScheme = options.colorScheme;
+    settings_.lighting = options.lighting;
+    settings_.outline = options.outline;
     rows_ = treeRows(scene_.tree);
     installInput();
     imgui_ = std::make_unique<ImGuiSession>(window_);

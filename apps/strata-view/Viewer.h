@@ -37,6 +37,8 @@ struct ViewerOptions {
     int width = 1024, height = 768;
     int layers = 0;               // 0: auto
     std::string colorScheme = "Cornfield";
+    render::Lighting lighting = render::Lighting::Strata;  // --light
+    bool outline = true;                                    // --no-outline clears it
 };
 
 // Dear ImGui's context and its GLFW / OpenGL 3 backends, for one window.

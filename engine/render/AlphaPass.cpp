@@ -1,5 +1,6 @@
 #include "AlphaPass.h"
 
+#include "ShadePass.h"
 #include "ShaderInterface.h"
 #include "strata/gpu/Check.h"
 
@@ -7,15 +8,21 @@ namespace strata::render {
 
 AlphaPass::AlphaPass()
     : plain_(gpu::Program::fromFiles("alpha", {"common/fullscreen.vert", "csg/alpha.frag"})),
-      rear_(gpu::Program::fromFiles("alpha rear", {"csg/surface.vert", "csg/alpha.frag"},
-                                    {{"FACE_NORMAL", "1"}, {"REAR", "1"}})),
       empty_("alpha") {}
 
 void AlphaPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                    const ColorScheme& scheme, const std::vector<AlphaLeaf>& leaves) {
+                    const ColorScheme& scheme, Lighting lighting, const std::vector<AlphaLeaf>& leaves) {
     if (leaves.empty()) return;
     bool anyAlone = false;
     for (const AlphaLeaf& a : leaves) anyAlone = anyAlone || a.alone;
+    const bool openScad = lighting == Lighting::OpenScad;
+    std::optional<gpu::Program>& slot = rears_[openScad ? 1 : 0];
+    if (anyAlone && !slot) {
+        std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}, {"REAR", "1"}};
+        if (openScad) defines.push_back({"OPENSCAD_LIGHT", "1"});
+        slot.emplace(gpu::Program::fromFiles("alpha rear", {"csg/surface.vert", "csg/alpha.frag"}, defines));
+    }
+    gpu::Program* rear = anyAlone ? &*slot : nullptr;
     if (anyAlone) {
         if (depth_.width() != view.width || depth_.height() != view.height) {
             target_ = gpu::Framebuffer("alpha");
@@ -25,13 +32,17 @@ void AlphaPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         // The colour image is FrameTargets', which may have been made anew.
         target_.attachTexture(GL_COLOR_ATTACHMENT0, targets.color);
         target_.checkComplete();
-        setSurfaceView(rear_, view);
-        rear_.setUniform(shader::kAlphaBackground, glm::vec3(scheme.background));
-        rear_.setUniform(shader::kAlphaRight, view.right);
-        rear_.setUniform(shader::kAlphaUp, view.up);
-        rear_.setUniform(shader::kAlphaHalfExtent, view.halfExtent);
-        rear_.setUniform(shader::kAlphaOrthographic, view.orthographic ? 1 : 0);
-        rear_.setUniform(shader::kAlphaSize, glm::ivec2(view.width, view.height));
+        setSurfaceView(*rear, view);
+        rear->setUniform(shader::kAlphaBackground, glm::vec3(scheme.background));
+        if (openScad) {
+            rear->setUniform(shader::kAlphaToLight, ShadePass::openScadToLight(view));
+        } else {
+            rear->setUniform(shader::kAlphaRight, view.right);
+            rear->setUniform(shader::kAlphaUp, view.up);
+            rear->setUniform(shader::kAlphaHalfExtent, view.halfExtent);
+            rear->setUniform(shader::kAlphaOrthographic, view.orthographic ? 1 : 0);
+            rear->setUniform(shader::kAlphaSize, glm::ivec2(view.width, view.height));
+        }
     }
     plain_.setUniform(shader::kAlphaBackground, glm::vec3(scheme.background));
     targets.resultLeaf.bindUnit(shader::kTextureResultLeaf);
@@ -52,9 +63,9 @@ void AlphaPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
             target_.bindForDraw();
             glDepthMask(GL_TRUE);
             target_.clearDepth(1.0f);
-            rear_.setUniform(shader::kAlphaCodes, glm::ivec2(own, own));
-            rear_.setUniform(shader::kAlphaColor, a.color);
-            rear_.use();
+            rear->setUniform(shader::kAlphaCodes, glm::ivec2(own, own));
+            rear->setUniform(shader::kAlphaColor, a.color);
+            rear->use();
             scene.flatVertexArray().bind();
             glEnable(GL_CULL_FACE);
             glCullFace(GL_FRONT);

@@ -16,6 +16,8 @@
 // for the back faces the depth test and culling, while it runs; disables
 // them before returning.
 
+#include <array>
+#include <optional>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -45,11 +47,13 @@ public:
     // Reads targets.resultLeaf, which must hold kLeafMiss wherever the
     // result has no surface this frame, inside each leaf's screen rectangle.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const ColorScheme& scheme,
-             const std::vector<AlphaLeaf>& leaves);
+             Lighting lighting, const std::vector<AlphaLeaf>& leaves);
 
 private:
     gpu::Program plain_;  // fullscreen: the background behind
-    gpu::Program rear_;   // the leaf's back faces behind
+    // The leaf's back faces behind, lit by each light (Lighting's order),
+    // compiled at first use.
+    std::array<std::optional<gpu::Program>, 2> rears_;
     gpu::VertexArray empty_;
     // The back faces' depth test: the colour image and a depth image of its size.
     gpu::Texture depth_;

@@ -70,4 +70,14 @@ std::vector<std::string> colorSchemeNames() {
     return names;
 }
 
+std::string_view lightingName(Lighting lighting) { return lighting == Lighting::OpenScad ? "openscad" : "strata"; }
+
+Lighting lightingNamed(std::string_view name) {
+    const std::string wanted = key(name);
+    for (Lighting lighting : {Lighting::Strata, Lighting::OpenScad}) {
+        if (key(lightingName(lighting)) == wanted) return lighting;
+    }
+    throw Error("unknown light '" + std::string(name) + "' (valid: strata, openscad)");
+}
+
 }  // namespace strata::render

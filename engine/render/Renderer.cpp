@@ -334,15 +334,16 @@ struct Renderer::Impl {
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade, alpha and translucent passes over the G-buffer in `targets`.
     // `marked`: ShadePass::run's.
-    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const std::optional<PixelRect>& marked);
+    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
+                    const std::optional<PixelRect>& marked);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame, const RenderSettings& settings);  // what settings.read* ask, beside image and leaves
 };
 
-void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme,
+void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
                                 const std::optional<PixelRect>& marked) {
-    shade->run(targets, view, scheme, marked);
-    if (!alphaLeaves.empty()) alpha->run(targets, scene, view, scheme, alphaLeaves);
+    shade->run(targets, view, scheme, settings.lighting, settings.outline, marked);
+    if (!alphaLeaves.empty()) alpha->run(targets, scene, view, scheme, settings.lighting, alphaLeaves);
     if (!translucentLeaves.empty()) translucent->run(targets, scene, view, translucentLeaves);
     glFinish();
 }
@@ -866,7 +867,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     if (roundSink == nullptr) {
         const auto start = Clock::now();
-        shadeFrame(view, scheme, drawn);
+        shadeFrame(view, scheme, settings, drawn);
         stats.shadeMs = millisecondsSince(start);
     }
     stats.totalMs = millisecondsSince(frameStart);
@@ -948,7 +949,7 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     frame.width = w;
     frame.height = h;
     const auto start = Clock::now();
-    impl.shadeFrame(view, scheme, std::nullopt);
+    impl.shadeFrame(view, scheme, settings, std::nullopt);
     frame.stats.shadeMs = millisecondsSince(start);
     impl.readColor(frame);
     frame.depth.assign(result.depth.begin(), result.depth.end());

@@ -8,8 +8,11 @@
 
 namespace strata::render {
 
-ShadePass::ShadePass()
-    : program_(gpu::Program::fromFiles("shade", {"common/fullscreen.vert", "csg/shade.frag"})), empty_("shade") {}
+ShadePass::ShadePass() : empty_("shade") {}
+
+glm::vec3 ShadePass::openScadToLight(const ViewSetup& view) {
+    return glm::normalize(-view.right + view.up - view.forward);
+}
 
 float ShadePass::packBaseColor(const glm::vec3& rgb) {
     auto byte = [](float c) { return static_cast<std::uint32_t>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
@@ -27,16 +30,29 @@ std::vector<glm::vec2> ShadePass::baseColors(const SceneBuffers& scene, const Co
     return bases;
 }
 
-void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme,
-                    const std::optional<PixelRect>& marked) {
-    program_.setUniform(shader::kShadeBackground, scheme.background);
-    program_.setUniform(shader::kShadeForward, view.forward);
-    program_.setUniform(shader::kShadeRight, view.right);
-    program_.setUniform(shader::kShadeUp, view.up);
-    program_.setUniform(shader::kShadeHalfExtent, view.halfExtent);
-    program_.setUniform(shader::kShadeOrthographic, view.orthographic ? 1 : 0);
-    program_.setUniform(shader::kShadeSize, glm::ivec2(view.width, view.height));
-    program_.use();
+void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme, Lighting lighting,
+                    bool outline, const std::optional<PixelRect>& marked) {
+    const bool openScad = lighting == Lighting::OpenScad;
+    std::optional<gpu::Program>& slot = programs_[(openScad ? 2u : 0u) + (outline ? 1u : 0u)];
+    if (!slot) {
+        std::vector<gpu::ShaderDefine> defines;
+        if (openScad) defines.push_back({"OPENSCAD_LIGHT", "1"});
+        if (outline) defines.push_back({"OUTLINE", "1"});
+        slot.emplace(gpu::Program::fromFiles("shade", {"common/fullscreen.vert", "csg/shade.frag"}, defines));
+    }
+    gpu::Program& program = *slot;
+    program.setUniform(shader::kShadeBackground, scheme.background);
+    if (openScad) {
+        program.setUniform(shader::kShadeToLight, openScadToLight(view));
+    } else {
+        program.setUniform(shader::kShadeForward, view.forward);
+        program.setUniform(shader::kShadeRight, view.right);
+        program.setUniform(shader::kShadeUp, view.up);
+        program.setUniform(shader::kShadeHalfExtent, view.halfExtent);
+        program.setUniform(shader::kShadeOrthographic, view.orthographic ? 1 : 0);
+        program.setUniform(shader::kShadeSize, glm::ivec2(view.width, view.height));
+    }
+    program.use();
     targets.normal.bindUnit(shader::kTextureNormal);
     const gpu::Framebuffer& target = targets.shadeTarget();
     target.bindForDraw();

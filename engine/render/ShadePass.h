@@ -1,15 +1,15 @@
 #pragma once
 // The shade pass (deferred): one fullscreen draw that turns the G-buffer into
 // the colour image (shaders/csg/shade.frag): each pixel's base colour (leaf or
-// scheme colour, which the normal pass stores beside the normal), Lambert
-// light from beside the eye plus ambient, a Sobel outline on the normals, the
-// scheme's background on empty pixels.
+// scheme colour, which the normal pass stores beside the normal), lit by
+// strata's light or OpenSCAD's (Lighting), a Sobel outline on the normals
+// where asked, the scheme's background on empty pixels.
 //
 // GL state: viewport = the frame; leaves the stencil test off; expects
 // blending, depth test, culling and the scissor test off.
 
+#include <array>
 #include <optional>
-
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -32,8 +32,12 @@ public:
     // stencil), all of which lie inside that
     // rectangle; the marks outside it are not read. Without: shade every
     // pixel (a G-buffer that came from elsewhere has no marks).
-    void run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme,
-             const std::optional<PixelRect>& marked);
+    void run(FrameTargets& targets, const ViewSetup& view, const ColorScheme& scheme, Lighting lighting,
+             bool outline, const std::optional<PixelRect>& marked);
+
+    // OpenSCAD's light (Lighting::OpenScad) in world space: the unit
+    // direction (-1, 1, 1) of view space, x right, y up, z towards the eye.
+    static glm::vec3 openScadToLight(const ViewSetup& view);
 
     // A base colour as the G-buffer carries it (FrameTargets::normal's w):
     // 1 + its 8-bit RGB as the integer r * 65536 + g * 256 + b, exact in a
@@ -46,7 +50,8 @@ public:
     static std::vector<glm::vec2> baseColors(const SceneBuffers& scene, const ColorScheme& scheme);
 
 private:
-    gpu::Program program_;
+    // One program per light and outline, each compiled at its first use.
+    std::array<std::optional<gpu::Program>, 4> programs_;
     gpu::VertexArray empty_;
 };
 

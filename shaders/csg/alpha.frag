@@ -30,6 +30,9 @@ layout(location = kAlphaUp) uniform vec3 uUp;
 layout(location = kAlphaHalfExtent) uniform vec2 uHalfExtent;
 layout(location = kAlphaOrthographic) uniform int uOrthographic;
 layout(location = kAlphaSize) uniform ivec2 uSize;
+#ifdef OPENSCAD_LIGHT
+layout(location = kAlphaToLight) uniform vec3 uToLight;
+#endif
 #endif
 
 void main() {
@@ -39,8 +42,12 @@ void main() {
 #ifdef REAR
     // A back face's outward normal points away from the eye; OpenSCAD lights
     // both sides of a face alike, so it is lit here as the face seen from inside.
+#ifdef OPENSCAD_LIGHT
+    behind = mix(uBackground, litAsOpenScad(uColor.rgb, vFaceNormal, uToLight), uColor.a);
+#else
     vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
     behind = mix(uBackground, lit(uColor.rgb, -vFaceNormal, rayDir, uRight, uUp), uColor.a);
+#endif
 #endif
     outColor = vec4(behind, 1.0 - uColor.a);
 }

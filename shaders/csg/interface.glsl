@@ -67,6 +67,7 @@ SHARED int kAlphaUp = 7;
 SHARED int kAlphaHalfExtent = 8;
 SHARED int kAlphaOrthographic = 9;
 SHARED int kAlphaSize = 10;
+SHARED int kAlphaToLight = 11;     // REAR with OPENSCAD_LIGHT: as shade.frag's
 
 // shade.frag.
 SHARED int kShadeBackground = 0;
@@ -76,6 +77,7 @@ SHARED int kShadeUp = 5;
 SHARED int kShadeHalfExtent = 6;
 SHARED int kShadeOrthographic = 7;
 SHARED int kShadeSize = 8;
+SHARED int kShadeToLight = 9;      // OPENSCAD_LIGHT: the light's unit direction, world space (light.glsl)
 
 // --- Binding points ---
 

@@ -1,7 +1,16 @@
-// strata's light, one definition for every pass that lights a surface
-// (shade.frag, alpha.frag): ambient 0.35 plus 0.65 times Lambert, from a
-// light a little above and left of the eye, so faces square to the view are
-// not all equally bright.
+// The lights, one definition for every pass that lights a surface
+// (shade.frag, alpha.frag), chosen by RenderSettings::lighting.
+//
+// strata's (lit): ambient 0.35 plus 0.65 times Lambert, from a light a
+// little above and left of the eye, so faces square to the view are not all
+// equally bright. It follows each pixel's view ray.
+//
+// OpenSCAD's preview (litAsOpenScad, programs built with OPENSCAD_LIGHT):
+// 0.2 plus |n . l| for one light l, the unit direction (-1, 1, 1) in view
+// space, which the caller turns into world space once a frame. No ray: every
+// pixel of a flat face gets one colour, and both sides of a face are lit
+// alike (OpenSCAD's shaders take the absolute value; its fixed-function path
+// has a second light opposite the first, which comes to the same).
 #ifndef STRATA_LIGHT
 #define STRATA_LIGHT
 
@@ -20,6 +29,12 @@ vec3 lit(vec3 base, vec3 normal, vec3 rayDir, vec3 right, vec3 up) {
     vec3 toLight = normalize(-rayDir + 0.25 * (up - right));
     float lambert = max(dot(normal, toLight), 0.0);
     return base * (kAmbient + kDiffuse * lambert);
+}
+
+// `base` lit as OpenSCAD's preview lights it, `toLight` the light's unit
+// direction in world space (ShadePass::openScadToLight).
+vec3 litAsOpenScad(vec3 base, vec3 normal, vec3 toLight) {
+    return base * (0.2 + abs(dot(normal, toLight)));
 }
 
 #endif

@@ -3,9 +3,11 @@
 // Colour: the base colour the normal pass stored in the normal's w (the
 // leaf's color() where it has one, else the scheme's face colour, or its
 // cut-face colour where the leaf acts subtracted: ShadePass::baseColors).
-// Light: Lambert from a light beside the eye, plus ambient (light.glsl). A Sobel filter on
-// the normal buffer darkens creases and silhouettes (the look of the original
-// image-space CSG papers). Empty pixels get the scheme's background, opaque.
+// Light (light.glsl): strata's Lambert from a light beside the eye plus
+// ambient, or with OPENSCAD_LIGHT OpenSCAD's preview light. With OUTLINE a
+// Sobel filter on the normal buffer darkens creases and silhouettes (the look
+// of the original image-space CSG papers). Empty pixels get the scheme's
+// background, opaque.
 #include "csg/interface.glsl"
 #include "csg/light.glsl"
 
@@ -23,6 +25,9 @@ layout(location = kShadeUp) uniform vec3 uUp;
 layout(location = kShadeHalfExtent) uniform vec2 uHalfExtent;  // tan(fov/2) * (aspect, 1): perspective ray slopes
 layout(location = kShadeOrthographic) uniform int uOrthographic;
 layout(location = kShadeSize) uniform ivec2 uSize;
+#ifdef OPENSCAD_LIGHT
+layout(location = kShadeToLight) uniform vec3 uToLight;
+#endif
 
 // The normal (dx, dy) pixels away, the edge pixel's beyond the frame. The
 // sampler's offset and clamp cost llvmpipe less than clamping the
@@ -38,9 +43,14 @@ void main() {
     uint bits = uint(centre.w) - 1u;
     vec3 base = vec3((uvec3(bits) >> uvec3(16u, 8u, 0u)) & 255u) / 255.0;
 
+#ifdef OPENSCAD_LIGHT
+    vec3 color = litAsOpenScad(base, centre.xyz, uToLight);
+#else
     vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
     vec3 color = lit(base, centre.xyz, rayDir, uRight, uUp);
+#endif
 
+#ifdef OUTLINE
     // Sobel on the normals: |G| is about 4 |dn| across a sharp crease, so
     // creases sharper than ~30 degrees (|dn| > 0.5) and silhouettes (|dn| = 1
     // against the empty 0) get the outline; a 32-gon's facets do not.
@@ -50,5 +60,6 @@ void main() {
     vec3 gy = (highLeft + 2.0 * NORMAL_AT(0, 1) + highRight) - (lowLeft + 2.0 * NORMAL_AT(0, -1) + lowRight);
     float edge = smoothstep(1.6, 2.6, sqrt(dot(gx, gx) + dot(gy, gy)));
     color = mix(color, color * 0.3, edge);
+#endif
     outColor = vec4(color, 1.0);
 }

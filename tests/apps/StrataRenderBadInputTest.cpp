@@ -65,7 +65,7 @@ TEST(StrataRender, HelpListsTheContractsOptions) {
     EXPECT_EQ(r.exitCode, 0);
     for (const char* option : {"-o", "--depth", "--normal", "--imgsize", "--camera", "--projection", "--fov",
                                "--layers", "--stats", "--colorscheme", "-D", "--viewall", "--autocenter", "--preview",
-                               "--quiet"})
+                               "--quiet", "--light", "--no-outline"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 
@@ -108,6 +108,8 @@ TEST(StrataRender, BadProjectionFovAndLayersAreOneLine) {
     expectFailure(dir, {scene, "--layers", "some"}, "strata-render: --layers: ");
     expectFailure(dir, {scene, "--colorscheme", "Rainbow"},
                   "strata-render: --colorscheme: unknown colour scheme 'Rainbow' (valid: Cornfield");
+    expectFailure(dir, {scene, "--light", "sun"},
+                  "strata-render: --light: unknown light 'sun' (valid: strata, openscad)");
 }
 
 TEST(StrataRender, OutputNamesMustHaveTheirFormatsExtension) {

@@ -3,13 +3,16 @@
 // `openscad -D ... -o x.csg`, relative imports resolve from the .scad's
 // folder, strata-bench times a .scad with -D like any scene file, and
 // OpenSCAD's --viewall, --autocenter and --preview name what strata-render
-// draws anyway. The .scad tests are skipped where openscad is not installed
-// (scripts/deps.sh does not install it).
+// draws anyway, and `--light openscad --no-outline` gives the colours of
+// OpenSCAD's own preview image. The .scad tests are skipped where openscad is
+// not installed (scripts/deps.sh installs it), the preview comparison also
+// where there is no X display for OpenSCAD's window.
 
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -31,19 +34,117 @@ const std::string kRow = (std::filesystem::path(STRATA_TEST_DIR) / "data" / "sca
 
 bool haveOpenscad() { return runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode == 0; }
 
-// The PNG's RGBA bytes; empty when it cannot be read.
+// The PNG's RGBA bytes (opaque where it has no alpha, as OpenSCAD's images);
+// empty when it cannot be read.
 std::vector<unsigned char> readRgba(const std::string& path, int& w, int& h) {
     std::vector<unsigned char> rgba;
     auto in = OIIO::ImageInput::open(path);
     if (!in) return rgba;
     w = in->spec().width;
     h = in->spec().height;
-    rgba.resize(static_cast<std::size_t>(w) * h * 4);
-    in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, rgba.data());
+    const int channels = in->spec().nchannels;
+    if (channels != 3 && channels != 4) return rgba;
+    const std::size_t pixels = static_cast<std::size_t>(w) * h;
+    std::vector<unsigned char> read(pixels * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, read.data())) return rgba;
+    rgba.assign(pixels * 4, 255);
+    for (std::size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < channels; ++c) rgba[i * 4 + c] = read[i * channels + c];
     return rgba;
 }
 
+// How two RGB(A) images of one size compare: `face` counts the pixels inside a
+// flat face of `reference` (a pixel not of `background` whose eight
+// neighbours all have its colour), `faceOff` those of them where `image`
+// differs by more than `levels` in a channel; `off` the same over every pixel.
+struct ColourAgreement {
+    std::size_t pixels = 0, off = 0, face = 0, faceOff = 0;
+};
+
+ColourAgreement compareColours(const std::vector<unsigned char>& reference, const std::vector<unsigned char>& image,
+                               int w, int h, const unsigned char background[3], int levels) {
+    ColourAgreement a;
+    auto at = [&](const std::vector<unsigned char>& rgba, int x, int y, int c) {
+        return static_cast<int>(rgba[(static_cast<std::size_t>(y) * w + x) * 4 + c]);
+    };
+    auto same = [&](int x0, int y0, int x1, int y1) {
+        for (int c = 0; c < 3; ++c)
+            if (at(reference, x0, y0, c) != at(reference, x1, y1, c)) return false;
+        return true;
+    };
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            bool off = false;
+            for (int c = 0; c < 3; ++c) off = off || std::abs(at(reference, x, y, c) - at(image, x, y, c)) > levels;
+            ++a.pixels;
+            a.off += off ? 1 : 0;
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1) continue;
+            bool isBackground = true;
+            for (int c = 0; c < 3; ++c) isBackground = isBackground && at(reference, x, y, c) == background[c];
+            if (isBackground) continue;
+            bool flat = true;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) flat = flat && same(x, y, x + dx, y + dy);
+            if (!flat) continue;
+            ++a.face;
+            a.faceOff += off ? 1 : 0;
+        }
+    }
+    return a;
+}
+
 }  // namespace
+
+TEST(StrataRenderOpenscadGL, OpenscadLightGivesTheColoursOfOpenscadsPreview) {
+    if (!haveOpenscad()) GTEST_SKIP() << "openscad not installed";
+    if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no X display for openscad --preview";
+    TempDir dir;
+    // Own faces in the scheme's colour, cut faces in its cut colour, a leaf's
+    // own color(), faces at many angles: every kind of base colour the shade
+    // pass lights.
+    const std::string scad = dir.write("part.scad",
+                                       "difference() { cube(10, center = true); sphere(6.5); }\n"
+                                       "translate([12, 0, 0]) color([0.2, 0.4, 0.9]) cylinder(r = 3, h = 8, center = true);\n");
+    const unsigned char background[3] = {255, 255, 229};  // Cornfield's
+    struct View {
+        std::string camera, projection;
+    };
+    for (const View& view : {View{"0,0,0,55,0,25,60", "o"}, View{"3,0,0,60,0,35,70", "p"}}) {
+        SCOPED_TRACE(view.camera + " " + view.projection);
+        const std::vector<std::string> common{"--imgsize=200,150", "--camera=" + view.camera,
+                                              "--projection=" + view.projection};
+        std::vector<std::string> openscad{"/usr/bin/env", "openscad", "--preview", "-o", dir / "openscad.png"};
+        openscad.insert(openscad.end(), common.begin(), common.end());
+        openscad.push_back(scad);
+        const ProcessResult os = runProcess(openscad);
+        ASSERT_EQ(os.exitCode, 0) << os.err;
+        for (const bool openscadLook : {true, false}) {
+            std::vector<std::string> strata{kRender, scad, "-q", "-o", dir / "strata.png"};
+            strata.insert(strata.end(), common.begin(), common.end());
+            if (openscadLook) strata.insert(strata.end(), {"--light", "openscad", "--no-outline"});
+            const ProcessResult r = runProcess(strata);
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            int w = 0, h = 0, sw = 0, sh = 0;
+            const std::vector<unsigned char> reference = readRgba(dir / "openscad.png", w, h);
+            const std::vector<unsigned char> image = readRgba(dir / "strata.png", sw, sh);
+            ASSERT_EQ(w, 200);
+            ASSERT_EQ(h, 150);
+            ASSERT_EQ(sw, w);
+            ASSERT_EQ(sh, h);
+            const ColourAgreement a = compareColours(reference, image, w, h, background, 3);
+            ASSERT_GT(a.face, 1500u) << a.face << " pixels inside faces: the model should fill a good part of the image";
+            if (openscadLook) {
+                // Inside faces every pixel; over the whole image only where a
+                // silhouette or crease is rasterized a pixel apart.
+                EXPECT_EQ(a.faceOff, 0u) << "of " << a.face << " pixels inside faces";
+                EXPECT_LE(a.off * 100, a.pixels) << a.off << " of " << a.pixels << " pixels";
+            } else {
+                // strata's own light and outline: the comparison tells them apart.
+                EXPECT_GT(a.faceOff * 2, a.face) << "of " << a.face << " pixels inside faces";
+            }
+        }
+    }
+}
 
 TEST(StrataRenderOpenscadGL, AScadWithDefinesRendersAsItsCsgExport) {
     if (!haveOpenscad()) GTEST_SKIP() << "openscad not installed";

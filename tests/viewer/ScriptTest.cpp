@@ -40,9 +40,11 @@ TEST(Script, ParsesEveryCommandWithItsArguments) {
         "colorscheme Tomorrow Night\n"
         "screenshot \"my shots/a.png\"\n"
         "wait-reload\n"
+        "light openscad\n"
+        "show outline off\n"
         "quit\n",
         "s.txt");
-    ASSERT_EQ(commands.size(), 13u);
+    ASSERT_EQ(commands.size(), 15u);
     EXPECT_EQ(commands[0].kind, CommandKind::Size);
     EXPECT_EQ(commands[0].numbers, (std::vector<double>{320, 240}));
     EXPECT_EQ(commands[0].where.str(), "s.txt:2:1");
@@ -53,13 +55,17 @@ TEST(Script, ParsesEveryCommandWithItsArguments) {
     EXPECT_EQ(commands[5].numbers, (std::vector<double>{10, -2.5}));
     EXPECT_EQ(commands[9].words[0], "Tomorrow Night");
     EXPECT_EQ(commands[10].words[0], "my shots/a.png");
-    EXPECT_EQ(commands[12].kind, CommandKind::Quit);
+    EXPECT_EQ(commands[12].kind, CommandKind::Light);
+    EXPECT_EQ(commands[12].words[0], "openscad");
+    EXPECT_EQ(commands[13].kind, CommandKind::Show);
+    EXPECT_EQ(commands[13].words, (std::vector<std::string>{"outline", "off"}));
+    EXPECT_EQ(commands[14].kind, CommandKind::Quit);
 }
 
 TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("size 320 240\n  jump 3\n"),
               "s.txt:2:3: unknown command 'jump' (valid: open, size, layers, camera, projection, fov, orbit, pan, "
-              "middle-drag, zoom-drag, zoom, preset, view-all, double-click, toggle, highlight, colorscheme, debug, panel, show, screenshot, "
+              "middle-drag, zoom-drag, zoom, preset, view-all, double-click, toggle, highlight, colorscheme, light, debug, panel, show, screenshot, "
               "screenshot-window, export, export-exact, export-sampled, save-csg, copy, remove, wait-reload, print, sleep, quit)");
     EXPECT_EQ(errorOf("layers many\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got 'many'");
     EXPECT_EQ(errorOf("layers 0\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got '0'");
@@ -79,6 +85,8 @@ TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("save-csg a.scad\n"), "s.txt:1:10: save-csg: expected a .csg file name, got 'a.scad'");
     EXPECT_EQ(errorOf("open \"a.csg\n"), "s.txt:1:6: unterminated quoted word");
     EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N >= 1");
+    EXPECT_EQ(errorOf("light sun\n"), "s.txt:1:7: light: expected one of strata, openscad, got 'sun'");
+    EXPECT_EQ(errorOf("show outline maybe\n"), "s.txt:1:14: show: expected on or off, got 'maybe'");
     EXPECT_EQ(errorOf("debug xray\n"),
               "s.txt:1:7: debug: expected one of shaded, depth, normal, peel, forms, got 'xray'");
 }

@@ -176,7 +176,10 @@ TEST_F(StrataView, ScreenshotEqualsStrataRenderAtTheReportedCamera) {
                                  "layers 1\n"
                                  "projection o\n"
                                  "colorscheme Tomorrow Night\n"
-                                 "screenshot settings.png\n");
+                                 "screenshot settings.png\n"
+                                 "light openscad\n"
+                                 "show outline off\n"
+                                 "screenshot look.png\n");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto cams = cameraLines(r.out);
     ASSERT_EQ(cams.size(), 1u) << r.out;
@@ -187,6 +190,10 @@ TEST_F(StrataView, ScreenshotEqualsStrataRenderAtTheReportedCamera) {
     expectSameAsRender(settings, render(scene, {cams[0], "--layers", "1", "--projection", "o", "--colorscheme",
                                                 "Tomorrow Night"}));
     EXPECT_GT(differingPixels(settings, readPng(dir / "default.png")), 1000);  // the settings took effect
+    const Image look = readPng(dir / "look.png");
+    expectSameAsRender(look, render(scene, {cams[0], "--layers", "1", "--projection", "o", "--colorscheme",
+                                            "Tomorrow Night", "--light", "openscad", "--no-outline"}));
+    EXPECT_GT(differingPixels(look, settings), 1000);
 }
 
 TEST_F(StrataView, OrbitPanZoomEqualStrataRenderAtTheReportedCamera) {

@@ -26,6 +26,22 @@ inline constexpr glm::vec4 kBackgroundModifierColor{180.0f / 255.0f, 180.0f / 25
 
 inline constexpr std::string_view kDefaultColorScheme = "Cornfield";
 
+// How the shade pass lights the visible surface (shaders/csg/light.glsl).
+enum class Lighting {
+    // Ambient 0.35 plus 0.65 times Lambert from a light a little above and
+    // left of the eye, per pixel along its view ray.
+    Strata,
+    // OpenSCAD's preview: the colour times 0.2 + |n . l|, with l the unit
+    // direction (-1, 1, 1) in view space (up, left and towards the viewer),
+    // the same on every pixel and on both sides of a face.
+    OpenScad,
+};
+
+// "strata" or "openscad", and back; lightingNamed throws
+// strata::Error("unknown light 'x' (valid: strata, openscad)").
+std::string_view lightingName(Lighting lighting);
+Lighting lightingNamed(std::string_view name);
+
 // The scheme called `name` (OpenSCAD's spelling; case and spaces are ignored,
 // so "tomorrow-night" and "TomorrowNight" find "Tomorrow Night"). Throws
 // strata::Error("unknown colour scheme 'x' (valid: Cornfield, Metallic, ...)").

@@ -9,7 +9,7 @@
 //   normal     NormalPass      the visible leaves redrawn for face normals
 //   plain      PlainPass       in place of those three for a union seen from
 //                              outside: its front faces depth-tested into the G-buffer
-//   shade      ShadePass       colours, Lambert light, Sobel outline
+//   shade      ShadePass       colours, light, Sobel outline
 //   translucent TranslucentPass '%' and '#' leaves over the image
 // GL state on return: depth test, stencil test, culling, blending and scissor test off;
 // the viewport, bound program, vertex array, textures, storage buffers and
@@ -26,6 +26,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/camera/Camera.h"
+#include "strata/render/ColorScheme.h"
 #include "strata/geometry/Model.h"
 #include "strata/scene/Tree.h"
 
@@ -39,6 +40,10 @@ struct RenderSettings {
     // is all the result can show of it (docs/algorithm.md).
     int layers = 0;
     std::string colorScheme = "Cornfield";     // OpenSCAD colour scheme name
+    Lighting lighting = Lighting::Strata;      // how the visible surface is lit
+    // Darken creases and silhouettes: a Sobel filter on the normals, nine
+    // taps a pixel in the shade pass. OpenSCAD's preview has no outline.
+    bool outline = true;
     // Bytes the layered textures may take; above it the frame is rendered in
     // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
     std::size_t memoryBudget = std::size_t(512) << 20;
