@@ -28,7 +28,7 @@ void Viewer::drawPanel() {
     const float height = viewport->Size.y;
     ImGui::SetNextWindowPos(viewport->Pos);
     ImGui::SetNextWindowSize(ImVec2(panelWidth_, height), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSizeConstraints(ImVec2(220.0f, height), ImVec2(std::max(220.0f, viewport->Size.x * 0.5f), height));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(220.0f, height), ImVec2(std::max(220.0f, widestPanel()), height));
     const bool open = ImGui::Begin("strata-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse);
     const float width = ImGui::GetWindowWidth();
     if (width != panelWidth_) {

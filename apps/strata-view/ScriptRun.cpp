@@ -73,7 +73,7 @@ bool Viewer::runCommand(const Command& c) {
             return false;
         case CommandKind::Size:
             fixedSize_ = {static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1])};
-            glfwSetWindowSize(window_.window(), fixedSize_->first, fixedSize_->second);
+            sizeWindowToFixedView();
             viewDirty_ = true;
             return true;
         case CommandKind::Layers: setLayers(c.words[0] == "auto" ? 0 : static_cast<int>(c.numbers[0])); return true;
@@ -124,7 +124,10 @@ bool Viewer::runCommand(const Command& c) {
                                          : DebugView::Shaded);
             return true;
         }
-        case CommandKind::Panel: showPanel_ = c.words[0] == "on"; return true;
+        case CommandKind::Panel:
+            showPanel_ = c.words[0] == "on";
+            if (fixedSize_) sizeWindowToFixedView();
+            return true;
         case CommandKind::Show: {
             const bool on = c.words[1] == "on";
             if (c.words[0] == "axes") setShowAxes(on);

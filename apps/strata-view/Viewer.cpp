@@ -439,7 +439,30 @@ int Viewer::viewLeft() const {
     int ww = 1, wh = 1;
     glfwGetWindowSize(window_.window(), &ww, &wh);
     const double scale = window_.framebufferWidth() / double(std::max(ww, 1));
-    return std::min(static_cast<int>(std::lround(panelWidth_ * scale)), window_.framebufferWidth() / 2);
+    return static_cast<int>(std::lround(std::min(panelWidth_, widestPanel()) * scale));
+}
+
+float Viewer::widestPanel() const {
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.window(), &ww, &wh);
+    double widest = 0.5 * ww;
+    if (fixedSize_) {
+        const double unitsPerPixel = double(std::max(ww, 1)) / std::max(window_.framebufferWidth(), 1);
+        widest = std::max(widest, ww - fixedSize_->first * unitsPerPixel);
+    }
+    return static_cast<float>(widest);
+}
+
+void Viewer::sizeWindowToFixedView() {
+    // The panel's width is in window units, as the size of the window; the
+    // view's is in pixels, as the framebuffer's (the same on Xvfb and most
+    // screens; a HiDPI screen has more pixels than units).
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.window(), &ww, &wh);
+    const double unitsPerPixel = double(std::max(ww, 1)) / std::max(window_.framebufferWidth(), 1);
+    const int panel = showPanel_ ? static_cast<int>(std::lround(panelWidth_)) : 0;
+    glfwSetWindowSize(window_.window(), panel + static_cast<int>(std::lround(fixedSize_->first * unitsPerPixel)),
+                      static_cast<int>(std::lround(fixedSize_->second * unitsPerPixel)));
 }
 
 // "strata-view: FILE", and while the shown model is stale (its file no

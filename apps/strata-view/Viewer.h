@@ -184,6 +184,11 @@ private:
     bool showPanel_ = true;
     float panelWidth_ = 340.0f;      // the docked panel's width in window units (the user may drag its edge)
     int viewLeft() const;            // the 3D view's first framebuffer column: right of the panel
+    // The widest the panel may be, in window units: half the window, or
+    // under a script's `size` what the window holds beside the view.
+    float widestPanel() const;
+    // A script's `size`: the window as wide as the view and the panel beside it.
+    void sizeWindowToFixedView();
     bool sceneDirty_ = true, viewDirty_ = true;
     bool quit_ = false;
 

@@ -496,6 +496,33 @@ TEST_F(StrataView, ThePanelIsDockedBesideTheViewAndFramingFramesWhatIsSeen) {
     EXPECT_GT(drawnPixels(docked), 1000);
 }
 
+TEST_F(StrataView, AScriptsSizeIsTheViewsWithThePanelBesideIt) {
+    const std::string scene = dir.write("a.csg", kScene);
+    const ProcessResult r = view(scene,
+                                 "size 200 150\n"
+                                 "screenshot view.png\n"
+                                 "screenshot-window docked.png\n"
+                                 "panel off\n"
+                                 "screenshot-window alone.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image shot = readPng(dir / "view.png"), docked = readPng(dir / "docked.png"),
+                alone = readPng(dir / "alone.png");
+    ASSERT_EQ(shot.width, 200);
+    ASSERT_EQ(shot.height, 150);
+    EXPECT_GT(drawnPixels(shot), 1000);
+    // The window holds the panel (340 units, a pixel each on Xvfb) and the
+    // whole view right of it; without the panel, the view alone.
+    ASSERT_EQ(docked.width, 340 + 200);
+    ASSERT_EQ(docked.height, 150);
+    EXPECT_EQ(alone.width, 200);
+    EXPECT_EQ(alone.height, 150);
+    int differing = 0;
+    for (int y = 0; y < 150; ++y)
+        for (int x = 0; x < 200; ++x)
+            differing += !std::equal(pixelAt(shot, x, y), pixelAt(shot, x, y) + 3, pixelAt(docked, 340 + x, y));
+    EXPECT_EQ(differing, 0) << "pixels of the view that the window does not show as they are";
+}
+
 TEST_F(StrataView, ConsoleShowsOpenscadsEchoAndAStaleModelSaysSoInTheTitle) {
     if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
     const std::string scad = dir.write("a.scad", "echo(\"hello from the model\");\ncube(5);\n");
