@@ -69,6 +69,15 @@ void FrameTargets::ensurePlain() {
     plainTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
     plainTarget.checkComplete();
 
+    plainLitTarget = gpu::Framebuffer("plain lit");
+    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
+    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
+    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT2, normal);
+    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT3, color);
+    plainLitTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3});
+    plainLitTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
+    plainLitTarget.checkComplete();
+
     plainColorTarget = gpu::Framebuffer("plain colour");
     plainColorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
     plainColorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});

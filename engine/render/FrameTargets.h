@@ -76,6 +76,7 @@ public:
     // frame of a size.
     gpu::Texture plainDepth;
     gpu::Framebuffer plainTarget;       // 0: resultDepth, 1: resultLeaf, 2: normal; plainDepth
+    gpu::Framebuffer plainLitTarget;    // the same and 3: color (a plain frame lit as drawn)
     gpu::Framebuffer plainColorTarget;  // 0: color; plainDepth's stencil
     void ensurePlain();
     // This frame's choice, set by the renderer: the marks are plainDepth's.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ShadePass.h"
 #include "ShaderInterface.h"
 #include "strata/gpu/Check.h"
 
@@ -10,12 +11,6 @@ namespace strata::render {
 
 namespace {
 
-gpu::Program plainProgram(bool ties) {
-    std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}, {"GROUP_MEMBERS", ""}, {"REVERSED_DEPTH", ""}};
-    if (ties) defines.push_back({"TIE", ""});
-    return gpu::Program::fromFiles(ties ? "plain ties" : "plain nearest", {"csg/surface.vert", "csg/plain.frag"},
-                                   defines);
-}
 
 // Box comparisons mayTie may spend before it takes every leaf as one that
 // may tie: a few tens of milliseconds, once per scene and tolerance.
@@ -23,7 +18,32 @@ constexpr std::size_t kTieComparisons = std::size_t(1) << 25;
 
 }  // namespace
 
-PlainPass::PlainPass() : nearest_(plainProgram(false)), ties_(plainProgram(true)) {}
+PlainPass::PlainPass() = default;
+
+gpu::Program& PlainPass::program(bool ties, std::optional<Lighting> litAs, const ViewSetup& view) {
+    const std::size_t shading = !litAs ? 0 : *litAs == Lighting::Strata ? 1 : 2;
+    std::optional<gpu::Program>& slot = programs_[ties ? 1 : 0][shading];
+    if (!slot) {
+        std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}, {"GROUP_MEMBERS", ""}, {"REVERSED_DEPTH", ""}};
+        if (ties) defines.push_back({"TIE", ""});
+        if (shading > 0) defines.push_back({"LIT", ""});
+        if (shading == 2) defines.push_back({"OPENSCAD_LIGHT", ""});
+        slot.emplace(gpu::Program::fromFiles(ties ? "plain ties" : "plain nearest",
+                                             {"csg/surface.vert", "csg/plain.frag"}, defines));
+    }
+    gpu::Program& p = *slot;
+    setSurfaceView(p, view);
+    if (shading == 2) {
+        p.setUniform(shader::kPlainToLight, ShadePass::openScadToLight(view));
+    } else if (shading == 1) {
+        p.setUniform(shader::kPlainRight, view.right);
+        p.setUniform(shader::kPlainUp, view.up);
+        p.setUniform(shader::kPlainHalfExtent, view.halfExtent);
+        p.setUniform(shader::kPlainOrthographic, view.orthographic ? 1 : 0);
+        p.setUniform(shader::kPlainSize, glm::ivec2(view.width, view.height));
+    }
+    return p;
+}
 
 std::vector<int> PlainPass::plainLeaves(const csg::CompiledTree& compiled, const SceneBuffers& scene) {
     if (compiled.kind != csg::CompiledTree::Kind::Code) return {};
@@ -149,7 +169,7 @@ std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const in
 }
 
 void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
-                    const std::vector<glm::vec2>& baseColors) {
+                    const std::vector<glm::vec2>& baseColors, std::optional<Lighting> litAs) {
     targets.ensurePlain();
     if (drawn.empty() || nearestDraws_ == 0) return;
 
@@ -190,15 +210,16 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         depthTerms = glm::vec3(static_cast<float>(nearPlane), 0.0f, 0.0f);
         pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * reach / nearPlane));
     }
-    setSurfaceView(nearest_, view);
-    nearest_.setUniform(shader::kSurfaceReversedDepth, depthTerms);
+    gpu::Program& nearest = program(false, litAs, view);
+    nearest.setUniform(shader::kSurfaceReversedDepth, depthTerms);
 
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glScissor(drawn.x, drawn.y, drawn.width, drawn.height);
-    targets.plainTarget.bindForDraw();
-    glClearNamedFramebufferfi(targets.plainTarget.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    const gpu::Framebuffer& target = litAs ? targets.plainLitTarget : targets.plainTarget;
+    target.bindForDraw();
+    glClearNamedFramebufferfi(target.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
     colors_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferPlainColors);
     scene.leafVertexArray().bind();
 
@@ -211,7 +232,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, shader::kMarkWritten, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    nearest_.use();
+    nearest.use();
     nearestCommands_.bind(GL_DRAW_INDIRECT_BUFFER);
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, nearestDraws_, 0);
     glDisable(GL_STENCIL_TEST);
@@ -226,10 +247,10 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, nearestCopy_.id(),
                            GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, drawn.width, drawn.height, 1);
         nearestCopy_.bindUnit(shader::kTexturePlainNearest);
-        setSurfaceView(ties_, view);
-        ties_.setUniform(shader::kSurfaceReversedDepth, pulled);
-        ties_.setUniform(shader::kPlainTieTolerance, static_cast<float>(reach));
-        ties_.use();
+        gpu::Program& ties = program(true, litAs, view);
+        ties.setUniform(shader::kSurfaceReversedDepth, pulled);
+        ties.setUniform(shader::kPlainTieTolerance, static_cast<float>(reach));
+        ties.use();
         glDepthFunc(GL_GEQUAL);
         glDepthMask(GL_FALSE);
         glEnable(GL_DEPTH_CLAMP);

@@ -8,6 +8,10 @@
 // (FrameTargets: depth, leaf code, normal and base colour), and the stencil
 // marks every pixel written, for the shade pass (shaders/csg/plain.frag).
 //
+// Where the frame has no outline (RenderSettings::outline), which alone needs
+// the G-buffer around a pixel, the same draws also light each fragment and
+// write its colour (plain.frag's LIT): the frame then needs no shade pass.
+//
 // Two geometry passes at most, each one multi-draw over the leaves
 // (SceneBuffers::leafVertexArray: each fragment knows its leaf), with the
 // depth reversed (near / depth: a float's relative precision at every
@@ -39,6 +43,8 @@
 // default; expects blending off. Leaves the scene's
 // vertexArray() bound.
 
+#include <array>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -51,12 +57,13 @@
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
+#include "strata/render/ColorScheme.h"
 
 namespace strata::render {
 
 class PlainPass {
 public:
-    PlainPass();  // compiles the shaders; needs a current context
+    PlainPass();  // compiles nothing: each program at its first use (a current context then)
 
     // The leaves a plain frame of `compiled` draws (its operands' leaves, a
     // leaf identical to a lower one standing for both), or nothing when the
@@ -70,8 +77,10 @@ public:
     // Draws setLeaves' leaves into `targets` (its plain target, made here if
     // need be) inside `drawn`, which holds every pixel they cover.
     // `baseColors`: ShadePass::baseColors of this frame's colour scheme.
+    // With `litAs`, also the lit colour into targets.color (which the caller
+    // has cleared to the background).
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
-             const std::vector<glm::vec2>& baseColors);
+             const std::vector<glm::vec2>& baseColors, std::optional<Lighting> litAs);
 
     // Leaves whose tie pass ran in the last frame (0: none could tie).
     std::size_t tiedLeaves() const { return tieCount_; }
@@ -84,8 +93,11 @@ public:
                                    std::size_t budget);
 
 private:
-    gpu::Program nearest_;  // plain.frag: the nearest front face
-    gpu::Program ties_;     // plain.frag TIE: the lowest leaf tying with it
+    // plain.frag, each compiled at its first use: [ties][shading], ties the
+    // TIE variant (the lowest leaf tying with the nearest), shading 0 the
+    // G-buffer alone, 1 and 2 also lit by strata's and OpenSCAD's light.
+    std::array<std::array<std::optional<gpu::Program>, 3>, 2> programs_;
+    gpu::Program& program(bool ties, std::optional<Lighting> litAs, const ViewSetup& view);
     std::vector<int> leaves_;
     gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands
     GLsizei nearestDraws_ = 0, tieDraws_ = 0;

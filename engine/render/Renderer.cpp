@@ -285,8 +285,9 @@ struct Renderer::Impl {
 
     // A plain frame (PlainPass.h) in place of the peel, evaluate and normal passes.
     // `drawn` holds every pixel its leaves cover.
+    // `litAs`: also light it as drawn, into the cleared image (no outline).
     void drawPlain(const ViewSetup& view, const PixelRect& drawn, const std::vector<glm::vec2>& baseColors,
-                   Frame& frame);
+                   std::optional<Lighting> litAs, Frame& frame);
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
@@ -333,16 +334,17 @@ struct Renderer::Impl {
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade, alpha and translucent passes over the G-buffer in `targets`.
-    // `marked`: ShadePass::run's.
+    // `marked`: ShadePass::run's. `lit`: the image is lit already (a plain
+    // frame lit as drawn), only the alpha and translucent passes are left.
     void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
-                    const std::optional<PixelRect>& marked);
+                    const std::optional<PixelRect>& marked, bool lit = false);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame, const RenderSettings& settings);  // what settings.read* ask, beside image and leaves
 };
 
 void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
-                                const std::optional<PixelRect>& marked) {
-    shade->run(targets, view, scheme, settings.lighting, settings.outline, marked);
+                                const std::optional<PixelRect>& marked, bool lit) {
+    if (!lit) shade->run(targets, view, scheme, settings.lighting, settings.outline, marked);
     if (!alphaLeaves.empty()) alpha->run(targets, scene, view, scheme, settings.lighting, alphaLeaves);
     if (!translucentLeaves.empty()) translucent->run(targets, scene, view, translucentLeaves);
     glFinish();
@@ -756,14 +758,15 @@ void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
 }
 
 void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
-                               const std::vector<glm::vec2>& baseColors, Frame& frame) {
+                               const std::vector<glm::vec2>& baseColors, std::optional<Lighting> litAs,
+                               Frame& frame) {
     FrameStats& stats = frame.stats;
     const auto start = Clock::now();
     if (plainStale) {
         plain->setLeaves(scene, plainLeaves);
         plainStale = false;
     }
-    plain->run(targets, scene, view, drawn, baseColors);
+    plain->run(targets, scene, view, drawn, baseColors, litAs);
     glFinish();
     stats.plainMs = millisecondsSince(start);
     stats.plain = true;
@@ -856,8 +859,16 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
+    // A plain frame with no outline is lit as it is drawn (PlainPass.h):
+    // no shade pass, whose outline alone needs the G-buffer around a pixel.
+    const bool litAsDrawn = plainFrame && !settings.outline;
+    if (litAsDrawn) {
+        const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
+        glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, background);
+    }
     if (plainFrame) {
-        drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), frame);
+        drawPlain(view, drawn, ShadePass::baseColors(scene, scheme),
+                  litAsDrawn ? std::optional<Lighting>(settings.lighting) : std::nullopt, frame);
     } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
         peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {
@@ -867,7 +878,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     if (roundSink == nullptr) {
         const auto start = Clock::now();
-        shadeFrame(view, scheme, settings, drawn);
+        shadeFrame(view, scheme, settings, drawn, litAsDrawn);
         stats.shadeMs = millisecondsSince(start);
     }
     stats.totalMs = millisecondsSince(frameStart);

@@ -33,6 +33,12 @@ SHARED int kPeelTieTolerance = 6;   // GROUP_TIE: the depth within which a membe
 
 // plain.frag (after surface.vert's).
 SHARED int kPlainTieTolerance = 3;  // TIE: the depth within which a leaf ties with the nearest
+SHARED int kPlainRight = 4;         // LIT: the view, as shade.frag's (the view direction is surface.vert's)
+SHARED int kPlainUp = 5;
+SHARED int kPlainHalfExtent = 6;
+SHARED int kPlainOrthographic = 7;
+SHARED int kPlainSize = 8;
+SHARED int kPlainToLight = 9;       // LIT with OPENSCAD_LIGHT: as shade.frag's
 
 // resolve.frag.
 SHARED int kResolveFirstLayer = 0;

@@ -31,6 +31,13 @@ vec3 lit(vec3 base, vec3 normal, vec3 rayDir, vec3 right, vec3 up) {
     return base * (kAmbient + kDiffuse * lambert);
 }
 
+// The 8-bit RGB of a base colour as the G-buffer packs it
+// (ShadePass::packBaseColor: 1 + r * 65536 + g * 256 + b, exact in a float).
+vec3 unpackBaseColor(float packedColor) {
+    uint bits = uint(packedColor) - 1u;
+    return vec3((uvec3(bits) >> uvec3(16u, 8u, 0u)) & 255u) / 255.0;
+}
+
 // `base` lit as OpenSCAD's preview lights it, `toLight` the light's unit
 // direction in world space (ShadePass::openScadToLight).
 vec3 litAsOpenScad(vec3 base, vec3 normal, vec3 toLight) {

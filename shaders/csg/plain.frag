@@ -22,6 +22,11 @@
 // last, the lowest leaf there, stays: the surface the evaluator's rule names
 // for a face that several leaves share (evaluate.frag, "the surface shown").
 //
+// LIT (frames without the outline, which alone needs a pixel's neighbours):
+// each fragment also writes its lit colour into the image, as the shade pass
+// would from the same normal and base colour (light.glsl), so the frame needs
+// no shade pass. The last fragment written on a pixel writes all four.
+//
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
@@ -32,6 +37,20 @@ layout(location = 2) flat in float vMember;     // the tree leaf
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 layout(location = 2) out vec4 outNormal;
+#ifdef LIT
+#include "csg/light.glsl"
+layout(location = 3) out vec4 outColor;
+#ifdef OPENSCAD_LIGHT
+layout(location = kPlainToLight) uniform vec3 uToLight;
+#else
+layout(location = kSurfaceForward) uniform vec3 uForward;  // surface.vert's
+layout(location = kPlainRight) uniform vec3 uRight;
+layout(location = kPlainUp) uniform vec3 uUp;
+layout(location = kPlainHalfExtent) uniform vec2 uHalfExtent;
+layout(location = kPlainOrthographic) uniform int uOrthographic;
+layout(location = kPlainSize) uniform ivec2 uSize;
+#endif
+#endif
 
 // Per tree leaf, its packed base colours (ShadePass::baseColors): x its own surface.
 layout(std430, binding = kBufferPlainColors) readonly buffer BaseColors {
@@ -55,4 +74,13 @@ void main() {
     outDepth = t;
     outLeaf = leafCode(leaf, false);
     outNormal = vec4(vFaceNormal, baseColors[leaf].x);
+#ifdef LIT
+    vec3 base = unpackBaseColor(baseColors[leaf].x);
+#ifdef OPENSCAD_LIGHT
+    outColor = vec4(litAsOpenScad(base, vFaceNormal, uToLight), 1.0);
+#else
+    vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
+    outColor = vec4(lit(base, vFaceNormal, rayDir, uRight, uUp), 1.0);
+#endif
+#endif
 }

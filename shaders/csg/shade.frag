@@ -40,8 +40,7 @@ void main() {
         outColor = vec4(uBackground.rgb, 1.0);
         return;
     }
-    uint bits = uint(centre.w) - 1u;
-    vec3 base = vec3((uvec3(bits) >> uvec3(16u, 8u, 0u)) & 255u) / 255.0;
+    vec3 base = unpackBaseColor(centre.w);
 
 #ifdef OPENSCAD_LIGHT
     vec3 color = litAsOpenScad(base, centre.xyz, uToLight);

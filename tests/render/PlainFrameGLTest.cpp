@@ -96,12 +96,16 @@ protected:
     // path draws, as exact geometry has it (PlainPass.h): a ray grazing the
     // leaf's silhouette. Such a pixel shows the leaf's front face in the
     // plain frame, nothing or a surface behind it in the full one, and lies
-    // on the leaf's outline in the plain frame. Returns the plain frame.
-    static render::Frame expectPlainEqualsFull(const render::Camera& camera, const std::string& what) {
-        render::RenderSettings full;
+    // on the leaf's outline in the plain frame. `look`: the light and
+    // outline of both; without the outline the plain frame is lit as drawn,
+    // and its colours too are the full pipeline's, to the byte, wherever its
+    // surfaces are. Returns the plain frame.
+    static render::Frame expectPlainEqualsFull(const render::Camera& camera, const std::string& what,
+                                               const render::RenderSettings& look = {}) {
+        render::RenderSettings full = look;
         full.plainUnions = false;
         full.groupOperands = false;
-        render::Frame plain = renderer_->render(camera, {});
+        render::Frame plain = renderer_->render(camera, look);
         const render::Frame apart = renderer_->render(camera, full);
         EXPECT_TRUE(plain.stats.plain) << what;
         EXPECT_FALSE(apart.stats.plain) << what;
@@ -125,7 +129,12 @@ protected:
                 const bool same = plain.leaf[k] == apart.leaf[k] &&
                                   std::memcmp(&plain.depth[k], &apart.depth[k], sizeof(float)) == 0 &&
                                   std::memcmp(&plain.normal[k], &apart.normal[k], sizeof(glm::vec3)) == 0;
-                if (same) continue;
+                if (same) {
+                    if (!look.outline)
+                        EXPECT_EQ(std::memcmp(&plain.rgba[4 * k], &apart.rgba[4 * k], 4), 0)
+                            << what << ": the colour of pixel " << x << ", " << y;
+                    continue;
+                }
                 ++grazing;
                 EXPECT_GE(plain.leaf[k], 0) << what << ": pixel " << x << ", " << y;
                 EXPECT_TRUE(outline(x, y)) << what << ": pixel " << x << ", " << y << " inside leaf " << plain.leaf[k];
@@ -183,6 +192,23 @@ TEST_F(PlainFrameGLTest, RandomUnionsEqualTheFullPipeline) {
                                                    std::to_string(static_cast<int>(projection)));
                 EXPECT_GT(plain.stats.coveredPixels, std::size_t(kSize * kSize) / 10);
                 EXPECT_EQ(plain.stats.peelPasses, 0);
+            }
+        }
+    }
+}
+
+TEST_F(PlainFrameGLTest, WithoutTheOutlineLitAsDrawnInEitherLight) {
+    setScene(randomUnion(14, 40));
+    for (const render::Lighting lighting : {render::Lighting::Strata, render::Lighting::OpenScad}) {
+        render::RenderSettings look;
+        look.lighting = lighting;
+        look.outline = false;
+        for (const glm::dvec3& eye : {glm::dvec3(0.3, -0.4, 9.0), glm::dvec3(-3.0, 6.5, -4.0)}) {
+            for (render::Projection projection : kProjections) {
+                const render::Frame plain = expectPlainEqualsFull(
+                    cameraAt(eye, projection), std::string(render::lightingName(lighting)) + ", projection " +
+                                                   std::to_string(static_cast<int>(projection)), look);
+                EXPECT_GT(plain.stats.coveredPixels, std::size_t(kSize * kSize) / 10);
             }
         }
     }
