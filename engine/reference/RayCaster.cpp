@@ -120,6 +120,7 @@ struct Workspace {
     std::vector<double> placed;      // per hit: the t of its group of coincident crossings
     std::vector<char> inside;        // per leaf, while choosing the surface shown
     std::vector<char> stack;         // CsgProgram::contains
+    std::vector<const RawHit*> face; // the crossings of one face, while choosing the surface shown
     CsgProgram::Workspace evaluation;
 };
 
@@ -274,45 +275,78 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
     // group's crossings in order along the ray, the tree asked after each t;
     // the first after which the result differs from before the group marks
     // the face (crossings chained within a quarter of the tolerance) whose
-    // crossing is shown: one whose facing changes its leaf as the result
-    // changes, else one facing the other way (its normal flipped); the
-    // lowest leaf, then the nearest.
+    // crossing is shown. Of the face's crossings, those whose leaf decides
+    // the result (set back alone, with every leaf as it is after the face,
+    // it would undo the change) where some do and some do not; of those, one
+    // whose facing changes its leaf as the result changes, else one facing
+    // the other way (its normal flipped); the lowest leaf, then the nearest.
     const bool resultBefore = !change->resultEnters;
     const double faceTolerance = coincidence * 0.25;
     const RawHit* pick = nullptr;
     bool pickSame = false, changed = false;
+    std::vector<const RawHit*>& face = workspace.face;
+    face.clear();
+    auto better = [&](const RawHit& hit, bool same) {
+        return !pick || (same && !pickSame) ||
+               (same == pickSame && (hit.leaf < pick->leaf || (hit.leaf == pick->leaf && hit.t < pick->t)));
+    };
+    // `inside`: every leaf as it is after the face.
+    auto settleFace = [&] {
+        if (face.size() < 2) return;
+        const bool now = program.contains(inside, workspace.stack);
+        std::vector<const RawHit*> deciding;
+        for (const RawHit* hit : face) {
+            inside[static_cast<std::size_t>(hit->leaf)] ^= 1;
+            if (program.contains(inside, workspace.stack) != now) deciding.push_back(hit);
+            inside[static_cast<std::size_t>(hit->leaf)] ^= 1;
+        }
+        if (deciding.empty() || deciding.size() == face.size()) return;
+        pick = nullptr;
+        for (const RawHit* hit : deciding) {
+            const bool same = hit->entering == change->resultEnters;
+            if (better(*hit, same)) {
+                pick = hit;
+                pickSame = same;
+            }
+        }
+    };
     double faceEnd = -kInfinity;
-    for (std::size_t at = 0; at < order.size();) {
+    bool settled = false;
+    for (std::size_t at = 0; at < order.size() && !settled;) {
         if (placed[order[at]] != change->t) {
             ++at;
             continue;
         }
         std::size_t next = at;
-        bool done = false;
         for (; next < order.size() && hits[order[next]].t == hits[order[at]].t; ++next) {
             const RawHit& hit = hits[order[next]];
             if (placed[order[next]] != change->t) continue;
-            inside[static_cast<std::size_t>(hit.leaf)] ^= 1;
+            // Considered before it is applied: the first crossing of the
+            // next face finds every leaf as it is after this one.
             if (hit.t - faceEnd > faceTolerance) {
                 if (changed) {
-                    done = true;
-                    continue;
+                    settleFace();
+                    settled = true;
+                    break;
                 }
                 pick = nullptr;
+                face.clear();
             }
-            if (done) continue;
             faceEnd = hit.t;
+            face.push_back(&hit);
             const bool same = hit.entering == change->resultEnters;
-            if (!pick || (same && !pickSame) ||
-                (same == pickSame && (hit.leaf < pick->leaf || (hit.leaf == pick->leaf && hit.t < pick->t)))) {
+            if (better(hit, same)) {
                 pick = &hit;
                 pickSame = same;
             }
         }
-        if (done) break;
+        if (settled) break;
+        for (std::size_t k = at; k < next; ++k)
+            if (placed[order[k]] == change->t) inside[static_cast<std::size_t>(hits[order[k]].leaf)] ^= 1;
         if (program.contains(inside, workspace.stack) != resultBefore) changed = true;
         at = next;
     }
+    if (!settled) settleFace();
     if (!pick) return miss;  // cannot happen: the change has a crossing of its group
     const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(pick->leaf)];
     RayHit result;

@@ -71,6 +71,7 @@ uint trueChildren[MAX_LIVE];  // per inner node
 // (NVIDIA's) take large MAX_LIVE.
 uint slotState[MAX_LIVE];
 uint slotEntry[MAX_LIVE];  // its first literal in blockOperands
+int slotCount = 0;         // slots startWalk made: every operand with a surface here
 const uint kCursorMask = 0xffffu;
 const uint kLiteralsShift = 16u;
 const uint kInsideBit = 0x80000000u;
@@ -171,7 +172,58 @@ void startWalk(uvec4 block) {
         heapDepth[s] = d;
         heapSlot[s] = s;
     }
+    slotCount = heapSize;
     for (int i = heapSize / 2 - 1; i >= 0; --i) siftDown(i);
+}
+
+// evaluate.frag's: the counting tree is not copied; from the face's end on,
+// the slots set afterwards are listed (up to four), and set back before
+// the face is asked.
+bool keepingSlots = false;
+ivec4 slotsSince = ivec4(0);
+int slotsSinceCount = 0;
+
+void keepFaceState() {
+    keepingSlots = true;
+    slotsSinceCount = 0;
+}
+
+void noteSlotSet(int s) {
+    if (slotsSinceCount < 4) slotsSince[slotsSinceCount] = s;
+    ++slotsSinceCount;
+}
+
+bool restoreFaceState() {
+    if (slotsSinceCount > 4) return false;
+    for (int k = 0; k < slotsSinceCount; ++k) setInside(slotsSince[k], !slotInside(slotsSince[k]));
+    slotsSinceCount = 0;
+    return true;
+}
+
+// evaluate.frag's: slot `s`'s operand set the other way alone.
+bool operandDecides(int s) {
+    bool now = nodeValue(0u);
+    setInside(s, !slotInside(s));
+    bool other = nodeValue(0u);
+    setInside(s, !slotInside(s));
+    return other != now;
+}
+
+// evaluate.frag's: every slot's surfaces in the face, from its layers.
+void forEachFaceSurface() {
+    for (int s = 0; s < slotCount; ++s) {
+        uvec4 literal = blockOperands[slotEntry[s]];
+        int first = int(literal.x);
+        int n = int(literal.y & kLayerCountMask);
+        for (int j = 0; j < n; ++j) {
+            --budget;
+            vec2 layer = texelFetch(uLayers, ivec3(pixel, first + j), 0).rg;
+            if (-layer.r >= kClearedDepth) break;
+            float near = untagged(-layer.r), far = untagged(layer.g);
+            if (near >= faceStart && near <= faceEnd) weighSurface(-layer.r, int(literal.z), s);
+            if (layer.g > -layer.r && far >= faceStart && far <= faceEnd) weighSurface(layer.g, int(literal.z), s);
+        }
+    }
 }
 
 void main() {
@@ -187,6 +239,7 @@ void main() {
 #endif
     // Depth by depth, the tree asked after each, in clusters (evaluate.frag:
     // walkTo).
+    int step = kWalkOn;
     while (true) {
         if (budget < 0) {
             writeUnresolved();
@@ -197,16 +250,20 @@ void main() {
 #ifdef RESULT_PEEL
         askTree = askTree || skipping;
 #endif
-        int step = walkTo(nearest, askTree && nodeValue(0u), inside);
-        if (step == kWalkWritten) return;
-        if (step == kWalkDone) break;
+        step = walkTo(nearest, askTree && nodeValue(0u), inside);
+        if (step != kWalkOn) break;
         float depth = untagged(nearest);
         while (heapSize > 0 && untagged(heapDepth[0]) == depth) {
             --budget;
             int s = heapSlot[0];
-            setInside(s, !slotInside(s));
             uvec4 literal = blockOperands[slotEntry[s]];
             considerSurface(heapDepth[0], int(literal.z), inside);
+            if (settleDue) {  // before this surface applies (evaluate.frag)
+                keepFaceState();
+                settleDue = false;
+            }
+            if (keepingSlots) noteSlotSet(s);
+            setInside(s, !slotInside(s));
             int cursor = slotCursor(s);
             float next = nextSurface(literal, cursor);
             slotState[s] = (slotState[s] & ~kCursorMask) | uint(cursor);
@@ -221,5 +278,7 @@ void main() {
         }
         noteResult(nodeValue(0u), inside);
     }
-    discard;
+    // The write is out of the loop, so that its work runs once (evaluate.frag).
+    if (step != kWalkWritten) discard;
+    writeChosenSurface(walkEntered);
 }

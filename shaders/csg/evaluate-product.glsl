@@ -158,9 +158,53 @@ float seekProduct(uvec4 block, float from, bool target) {
     return least;
 }
 
+uvec4 productBlock = uvec4(0u);  // main's block, for the face's questions
+
+// After every surface up to the face's end (faceEnd, which stays put once
+// the face is complete, so the questions may wait for writeChosenSurface):
+// the literals not content there, and the layer they all share (-1: none
+// yet, -2: several). P is true where no literal is discontent; setting one
+// operand the other way alone changes P where P is true (its literals turn
+// discontent), or where every discontent literal is its own.
+int discontent = 0;
+int discontentLayer = -1;
+
+void keepFaceState() {}
+
+bool restoreFaceState() {
+    return true;
+}
+
+// evaluate.frag's: the operand of layer `handle` set the other way alone.
+bool operandDecides(int handle) {
+    return discontent == 0 || discontentLayer == handle;
+}
+
+// evaluate.frag's: every literal's surfaces in the face, its operand named
+// by its layer, once the literals' states there are counted.
+void forEachFaceSurface() {
+    discontent = 0;
+    discontentLayer = -1;
+    for (uint j = 0u; j < productBlock.y; ++j) {
+        uvec4 literal = blockOperands[productBlock.x + j];
+        if (stateAt(stepsOf(literal.x), faceEnd) == (literal.w != 0u)) continue;
+        discontentLayer = discontent == 0 || discontentLayer == int(literal.x) ? int(literal.x) : -2;
+        ++discontent;
+    }
+    for (uint j = 0u; j < productBlock.y; ++j) {
+        uvec4 literal = blockOperands[productBlock.x + j];
+        Steps s = stepsOf(literal.x);
+        int leaf = int(literal.z);
+        if (s.first >= faceStart && s.first <= faceEnd) weighSurface(s.firstTagged, leaf, int(literal.x));
+        if (s.second != kInfinity && s.second >= faceStart && s.second <= faceEnd)
+            weighSurface(s.secondTagged, leaf, int(literal.x));
+    }
+}
+
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     uvec4 block = vRecord;
+    productBlock = block;
     uint n = block.y;
     budget = uLoopBudget;
     float tolerance = uCoincidence;
@@ -191,8 +235,7 @@ void main() {
         }
         if ((below == kNone || d - below > tolerance) && (above == kInfinity || above - d > tolerance)) {
             // A cluster of one depth, where P == target: the answer.
-            writeChosenSurface(!resultInside);
-            return;
+            break;
         }
         // The cluster holding d: its chain of close surfaces both ways.
         float anchor = d;
@@ -217,10 +260,11 @@ void main() {
                 }
                 noteResult(productAt(block, x) != isOr, resultInside);
             }
-            writeChosenSurface(!resultInside);
-            return;
+            break;
         }
         // d lay on a sliver: seek on from the next cluster.
         d = above == kInfinity ? kInfinity : seekProduct(block, above, target);
     }
+    // Written out of the loop, so that its work runs once (evaluate.frag).
+    writeChosenSurface(!resultInside);
 }

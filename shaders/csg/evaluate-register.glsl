@@ -32,12 +32,12 @@
     }
 
 // Slot c's next surface, where it lies at the nearest depth left (`depth`,
-// untagged): it toggles its operand, is considered for the surface shown,
+// untagged): it is considered for the surface shown, toggles its operand,
 // and the slot moves on to its far surface, or is done.
 #define TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)                     \
         if (head[c] != kInfinity && untagged(head[c]) == depth) {                \
-            toggled ^= bits[c];                                                  \
             considerSurface(head[c], leaf[c], inside);                           \
+            toggled ^= bits[c];                                                  \
             head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
         }
 // Both of slot c's surfaces can lie at one depth (a ray grazing its edge).
@@ -51,24 +51,79 @@
 #define RESULT(bits) ((block.z >> (bits)) & 1u) != 0u
 #endif
 
-void main() {
-    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
-    uvec4 block = vRecord;
-    vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
-    ivec4 leafA = ivec4(vLeafA);
-    uvec4 bitA = uvec4(1u) << ((vLayerA >> kSlotLayerBits) & kSlotOperandMask);  // the slot's operand in the table
+// The block, its truth table, the slots and the operands' inside bits after
+// the depths taken so far: main's, here for the face's questions.
+uvec4 block = uvec4(0u);
+uint insideBits = 0u;
+vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
+ivec4 leafA = ivec4(0);
+uvec4 bitA = uvec4(0u);
 #if MAX_LIVE > 4
-    vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
-    ivec4 leafB = ivec4(vLeafB);
-    uvec4 bitB = uvec4(1u) << ((vLayerB >> kSlotLayerBits) & kSlotOperandMask);
-    uvec4 tableLow = vTableLow, tableHigh = vTableHigh;
+uvec4 tableLow = uvec4(0u), tableHigh = uvec4(0u);
+vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
+ivec4 leafB = ivec4(0);
+uvec4 bitB = uvec4(0u);
 #endif
 #if MAX_LIVE > 8
-    vec4 nearC = vec4(kInfinity), farC = vec4(kInfinity);
-    vec4 nearD = vec4(kInfinity), farD = vec4(kInfinity);
-    ivec4 leafC = ivec4(vLeafC), leafD = ivec4(vLeafD);
-    uvec4 bitC = uvec4(1u) << ((vLayerC >> kSlotLayerBits) & kSlotOperandMask);
-    uvec4 bitD = uvec4(1u) << ((vLayerD >> kSlotLayerBits) & kSlotOperandMask);
+vec4 nearC = vec4(kInfinity), farC = vec4(kInfinity);
+vec4 nearD = vec4(kInfinity), farD = vec4(kInfinity);
+ivec4 leafC = ivec4(0), leafD = ivec4(0);
+uvec4 bitC = uvec4(0u), bitD = uvec4(0u);
+#endif
+
+// evaluate.frag's: the inside bits after the face, and the operand of bit
+// `handle` set the other way alone in them.
+uint faceBits = 0u;
+
+void keepFaceState() {
+    faceBits = insideBits;
+}
+
+bool restoreFaceState() {
+    return true;
+}
+
+bool operandDecides(int handle) {
+    return (RESULT(faceBits ^ uint(handle))) != (RESULT(faceBits));
+}
+
+// evaluate.frag's: every slot's surfaces in the face.
+void weighBank(vec4 nearSide, vec4 farSide, ivec4 leaf, uvec4 bits) {
+    for (int c = 0; c < 4; ++c) {
+        float near = untagged(nearSide[c]), far = untagged(farSide[c]);
+        if (near >= faceStart && near <= faceEnd) weighSurface(nearSide[c], leaf[c], int(bits[c]));
+        if (farSide[c] != kInfinity && far >= faceStart && far <= faceEnd)
+            weighSurface(farSide[c], leaf[c], int(bits[c]));
+    }
+}
+
+void forEachFaceSurface() {
+    weighBank(nearA, farA, leafA, bitA);
+#if MAX_LIVE > 4
+    weighBank(nearB, farB, leafB, bitB);
+#endif
+#if MAX_LIVE > 8
+    weighBank(nearC, farC, leafC, bitC);
+    weighBank(nearD, farD, leafD, bitD);
+#endif
+}
+
+void main() {
+    pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
+    block = vRecord;
+    leafA = ivec4(vLeafA);
+    bitA = uvec4(1u) << ((vLayerA >> kSlotLayerBits) & kSlotOperandMask);  // the slot's operand in the table
+#if MAX_LIVE > 4
+    leafB = ivec4(vLeafB);
+    bitB = uvec4(1u) << ((vLayerB >> kSlotLayerBits) & kSlotOperandMask);
+    tableLow = vTableLow;
+    tableHigh = vTableHigh;
+#endif
+#if MAX_LIVE > 8
+    leafC = ivec4(vLeafC);
+    leafD = ivec4(vLeafD);
+    bitC = uvec4(1u) << ((vLayerC >> kSlotLayerBits) & kSlotOperandMask);
+    bitD = uvec4(1u) << ((vLayerD >> kSlotLayerBits) & kSlotOperandMask);
 #endif
     LOAD_SLOT(nearA, farA, vLayerA, 0, 0) LOAD_SLOT(nearA, farA, vLayerA, 1, 1)
     LOAD_SLOT(nearA, farA, vLayerA, 2, 2) LOAD_SLOT(nearA, farA, vLayerA, 3, 3)
@@ -86,7 +141,7 @@ void main() {
     // An operand is inside from the start when an odd number of its
     // surfaces lie ahead (evaluate.frag, "inside at the start").
     uvec4 odd = bitA * ((uvec4(lessThan(nearA, vec4(kInfinity))) + uvec4(lessThan(farA, vec4(kInfinity)))) & 1u);
-    uint insideBits = odd.x ^ odd.y ^ odd.z ^ odd.w;
+    insideBits = odd.x ^ odd.y ^ odd.z ^ odd.w;
     vec4 headA = nearA;
 #if MAX_LIVE > 4
     odd = bitB * ((uvec4(lessThan(nearB, vec4(kInfinity))) + uvec4(lessThan(farB, vec4(kInfinity)))) & 1u);
@@ -105,6 +160,7 @@ void main() {
     startSkipping();
 #endif
     // Depth by depth, in clusters (evaluate.frag: walkTo).
+    int step = kWalkOn;
     while (true) {
         float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
 #if MAX_LIVE > 4
@@ -114,9 +170,8 @@ void main() {
         nearest = min(nearest, min(min(min(headC.x, headC.y), min(headC.z, headC.w)),
                                    min(min(headD.x, headD.y), min(headD.z, headD.w))));
 #endif
-        int step = walkTo(nearest, RESULT(insideBits), inside);
-        if (step == kWalkWritten) return;
-        if (step == kWalkDone) break;
+        step = walkTo(nearest, RESULT(insideBits), inside);
+        if (step != kWalkOn) break;
         float depth = untagged(nearest);
         uint toggled = 0u;  // operand bits
         TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
@@ -131,8 +186,14 @@ void main() {
         TAKE_SLOT(headD, nearD, farD, leafD, bitD, 0) TAKE_SLOT(headD, nearD, farD, leafD, bitD, 1)
         TAKE_SLOT(headD, nearD, farD, leafD, bitD, 2) TAKE_SLOT(headD, nearD, farD, leafD, bitD, 3)
 #endif
+        if (settleDue) {  // before this depth's surfaces apply (evaluate.frag)
+            keepFaceState();
+            settleDue = false;
+        }
         insideBits ^= toggled;
         noteResult(RESULT(insideBits), inside);
     }
-    discard;
+    // The write is out of the loop, so that its work runs once (evaluate.frag).
+    if (step != kWalkWritten) discard;
+    writeChosenSurface(walkEntered);
 }

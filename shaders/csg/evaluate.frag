@@ -118,49 +118,140 @@ layout(location = kEvaluateCoincidence) uniform float uCoincidence;
 // where exact arithmetic would see it change (at the seam of two touching
 // blocks, the outer face; at the rim of an intersection, the member
 // entered last). Surfaces within a quarter of the tolerance of each other
-// are one face as far as rounding can tell (a chain again); of the face
-// holding that first change, the surface shown is one whose facing changes
-// its operand as the result changes (the result's own face), else one
-// facing the other way (a subtracted face, flipped); the lowest tree leaf,
-// then the nearest. So a face that several leaves share shows one leaf and
-// one colour from every view. The reference's rule too.
+// are one face as far as rounding can tell (a chain again). Of the face
+// holding that first change, the surface shown is one whose operand decides
+// the result there: with every operand as it is after the face, setting
+// that one operand back alone would undo the change. Where a surface of
+// another solid only crosses the face (a tooth's side through a cut face, a
+// hair in front of it or behind), its operand decides nothing there, and
+// it is not shown. Where every surface of the face decides, or none does
+// (the top shared by the blocks of a union: no one block alone makes it),
+// any may be shown. Among those: one whose facing changes its operand as
+// the result changes (the result's own face), else one facing the other
+// way (a subtracted face, flipped); the lowest tree leaf, then the nearest.
+// So a face that several leaves share shows one leaf and one colour from
+// every view, and a face that one leaf makes shows that leaf. The
+// reference's rule too.
+//
+// Each form says what "decides" means for its own state and where a face's
+// surfaces are: operandDecides, asked with the form's handle of an operand
+// (a truth-table bit, a heap slot, a layer) while every operand is as it is
+// after the face, and forEachFaceSurface, which hands weighSurface every
+// surface whose untagged depth lies in [faceStart, faceEnd] (the face: its
+// surfaces were walked in depth order, each within a quarter of the
+// tolerance of the one before). The forms consider a surface before they
+// apply it; once the face of the first change is complete (settleDue, set by
+// the first surface of the next face) they call keepFaceState at one place
+// of their walk, before they apply that surface, and writeChosenSurface
+// calls it where the face ends with the cluster. keepFaceState keeps what
+// operandDecides will need (the register form its inside bits; the array
+// form starts a list of the operands it sets afterwards, which
+// restoreFaceState sets back; the product form needs nothing, its state is
+// a function of depth), and writeChosenSurface settles the face. The
+// register and array forms write after their walk's loop: on llvmpipe every
+// instruction inside the loop runs on every pass, taken or not, so the
+// asking stays out of it.
+bool operandDecides(int handle);
+void forEachFaceSurface();
+void keepFaceState();
+bool restoreFaceState();  // false: the state after the face is lost, do not ask
+bool faceSettled = false;  // settleFace has run for the face of the first change
+
 const int kNoLeaf = 0x7fffffff;
 bool changed;           // the result has differed from its start in this cluster
 bool chosen;            // the face of the first change has ended: pick is final
-float faceEnd;          // untagged depth of the current face's last surface
+bool settleDue = false; // chosen, and the face's surfaces not yet asked
+float faceStart = -kInfinity;  // untagged depth of the current face's first surface
+float faceEnd = -kInfinity;    // and of its last
+int faceCount = 0;             // its surfaces
+bool faceResultInside = false; // the result's membership before the cluster (writeChosenSurface's)
 int pickLeaf;           // the current face's best surface so far
 float pickSurface;      // its tagged depth
 bool pickSame;          // it changes its operand as the result changes
 
+void startFace(float depth) {
+    pickLeaf = kNoLeaf;
+    faceStart = depth;
+    faceCount = 0;
+}
+
 void startCluster() {
+    settleDue = false;
+    faceSettled = false;
     changed = false;
     chosen = false;
     faceEnd = -kInfinity;
-    pickLeaf = kNoLeaf;
     pickSurface = kInfinity;
     pickSame = false;
+    startFace(-kInfinity);
 }
 
-// A surface of the cluster, in depth order: `tagged` its tagged depth,
-// `leaf` its operand's tree leaf (a group's: the member that makes the
-// surface is the leaf compared and kept); `resultInside` the result's
-// membership before the cluster.
+// Whether a surface (leaf, tagged, same) comes before the pick.
+bool beforePick(int leaf, float tagged, bool same) {
+    return pickLeaf == kNoLeaf || (same && !pickSame) ||
+           (same == pickSame && (leaf < pickLeaf || (leaf == pickLeaf && tagged < pickSurface)));
+}
+
+// While settleFace asks: the face's surfaces handed over, those whose
+// operand decides, and the first of those.
+int weighed = 0, deciding = 0;
+int decidingLeaf = kNoLeaf;
+float decidingSurface = kInfinity;
+bool decidingSame = false;
+
+// A surface of the face (forEachFaceSurface), as considerSurface takes it.
+void weighSurface(float tagged, int leaf, int handle) {
+    ++weighed;
+    if (!operandDecides(handle)) return;
+    ++deciding;
+    leaf = surfaceLeaf(leaf, isExit(tagged));
+    bool same = isExit(tagged) == faceResultInside;
+    bool first = decidingLeaf == kNoLeaf || (same && !decidingSame) ||
+                 (same == decidingSame &&
+                  (leaf < decidingLeaf || (leaf == decidingLeaf && tagged < decidingSurface)));
+    if (first) {
+        decidingLeaf = leaf;
+        decidingSurface = tagged;
+        decidingSame = same;
+    }
+}
+
+// The face is complete, every operand as it is after it: where some of its
+// surfaces' operands decide the result and some do not, the pick is the
+// first of those that do.
+void settleFace() {
+    faceSettled = true;
+    if (faceCount < 2 || !restoreFaceState()) return;
+    weighed = 0;
+    deciding = 0;
+    decidingLeaf = kNoLeaf;
+    forEachFaceSurface();
+    if (deciding == 0 || deciding == weighed) return;
+    pickLeaf = decidingLeaf;
+    pickSurface = decidingSurface;
+    pickSame = decidingSame;
+}
+
+// A surface of the cluster, in depth order, considered before the form
+// applies it: `tagged` its tagged depth, `leaf` its operand's tree leaf (a
+// group's: the member that makes the surface is the leaf compared and
+// kept); `resultInside` the result's membership before the cluster.
 void considerSurface(float tagged, int leaf, bool resultInside) {
     if (chosen) return;
     leaf = surfaceLeaf(leaf, isExit(tagged));
     float depth = untagged(tagged);
     if (depth - faceEnd > uCoincidence * 0.25) {
         if (changed) {  // the face of the first change is complete
+            settleDue = true;
             chosen = true;
             return;
         }
-        pickLeaf = kNoLeaf;
+        startFace(depth);
     }
     faceEnd = depth;
+    ++faceCount;
     bool same = isExit(tagged) == resultInside;
-    bool better = pickLeaf == kNoLeaf || (same && !pickSame) ||
-                  (same == pickSame && (leaf < pickLeaf || (leaf == pickLeaf && tagged < pickSurface)));
-    if (better) {
+    if (beforePick(leaf, tagged, same)) {
         pickLeaf = leaf;
         pickSurface = tagged;
         pickSame = same;
@@ -177,6 +268,9 @@ void noteResult(bool now, bool resultInside) {
 // its leaf code (leafCode in interface.glsl: flipped where its operand
 // changes against the result, as a subtracted one does).
 void writeChosenSurface(bool entered) {
+    faceResultInside = !entered;
+    if (!chosen) keepFaceState();  // the face ends with the cluster
+    if (!faceSettled) settleFace();
     bool exit = isExit(pickSurface);
     bool flip = exit == entered;
     int leaf = pickLeaf;
@@ -194,9 +288,11 @@ void writeChosenSurface(bool entered) {
 // for none) and the result's membership now, before taking the surfaces at
 // that depth. A surface beyond the open cluster's reach (the tolerance past
 // its last surface) closes it; if the result then differs from `inside`
-// (its membership at the start), the chosen surface is written.
+// (its membership at the start), the chosen surface is to be written, after
+// the walk: writeChosenSurface(walkEntered).
 const int kWalkOn = 0;       // take the surfaces at `nearest`
-const int kWalkWritten = 1;  // the surface is written: stop
+const int kWalkWritten = 1;  // the surface is chosen: stop, and write it
+bool walkEntered = false;
 const int kWalkDone = 2;     // no surface left and no change: discard
 bool clusterOpen = false;
 float clusterReach = -kInfinity;
@@ -235,7 +331,7 @@ int walkTo(float nearest, bool now, inout bool inside) {
 #endif
     if (nearest == kInfinity || untagged(nearest) > clusterReach) {
         if (clusterOpen && now != inside) {
-            writeChosenSurface(!inside);
+            walkEntered = !inside;
             return kWalkWritten;
         }
         if (nearest == kInfinity) return kWalkDone;
