@@ -54,3 +54,6 @@ step "running the find_package build"
 step "running the pkg-config build"
 "$work/pkg-config-example"
 step "both builds of the example passed"
+# An ASan build's install and the two programs take about 1.5 GB; a failed
+# run keeps them for a look.
+rm -rf "$prefix" "$work/cmake" "$work/pkg-config-example"
