@@ -1,5 +1,6 @@
-// docs/embedding.md quotes tests/embedding/EmbeddingExample.cpp (and this
-// folder's CMakeLists.txt); the quotes must stay verbatim, so the page shows
+// docs/embedding.md quotes tests/embedding/EmbeddingExample.cpp (and the
+// CMakeLists.txt files that build it, this folder's and installed/'s, the
+// host project built against an installed strata); the quotes must stay verbatim, so the page shows
 // code that the EmbeddingExample test compiles and runs. A quoted block may
 // be dedented: each of its lines must equal a run of consecutive source
 // lines with one common indentation removed.
@@ -62,6 +63,15 @@ bool quoted(const std::vector<std::string>& source, const std::vector<std::strin
     return false;
 }
 
+// A CMake block that builds the example (rather than sketching a host's own
+// project) names its target.
+bool namesExample(const std::vector<std::string>& block) {
+    for (const std::string& line : block) {
+        if (line.find("strata-embedding-example") != std::string::npos) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 TEST(EmbeddingDoc, QuotesTheExampleVerbatim) {
@@ -69,6 +79,7 @@ TEST(EmbeddingDoc, QuotesTheExampleVerbatim) {
     const std::vector<std::string> doc = readLines(dir + "/../docs/embedding.md");
     const std::vector<std::string> example = readLines(dir + "/embedding/EmbeddingExample.cpp");
     const std::vector<std::string> cmake = readLines(dir + "/embedding/CMakeLists.txt");
+    const std::vector<std::string> host = readLines(dir + "/embedding/installed/CMakeLists.txt");
     int cpp = 0;
     for (const Block& block : codeBlocks(doc)) {
         if (block.language == "cpp") {
@@ -76,11 +87,11 @@ TEST(EmbeddingDoc, QuotesTheExampleVerbatim) {
             EXPECT_TRUE(quoted(example, block.lines))
                 << "docs/embedding.md:" << block.line
                 << ": this C++ block is not in tests/embedding/EmbeddingExample.cpp as written";
-        } else if (block.language == "cmake" && !block.lines.empty() &&
-                   block.lines[0].find("strata-embedding-example") != std::string::npos) {
-            EXPECT_TRUE(quoted(cmake, block.lines))
+        } else if (block.language == "cmake" && namesExample(block.lines)) {
+            EXPECT_TRUE(quoted(cmake, block.lines) || quoted(host, block.lines))
                 << "docs/embedding.md:" << block.line
-                << ": this CMake block is not in tests/embedding/CMakeLists.txt as written";
+                << ": this CMake block is not in tests/embedding/CMakeLists.txt or"
+                   " tests/embedding/installed/CMakeLists.txt as written";
         }
     }
     // The page walks through the program: context, meshes, tree, camera, render, renderInto.
