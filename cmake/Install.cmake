@@ -77,7 +77,7 @@ install(FILES ${PROJECT_BINARY_DIR}/strata.pc DESTINATION ${CMAKE_INSTALL_LIBDIR
 # packages of their dependencies, which it suggests.
 set(CPACK_PACKAGE_NAME strata)
 set(CPACK_PACKAGE_VENDOR "strata maintainers")
-set(CPACK_PACKAGE_CONTACT "strata maintainers <maintainers@users.noreply.h-seed-91b09587.example>")
+set(CPACK_PACKAGE_CONTACT "strata maintainers <noreply@example.org>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "CSG rendered in image space on the GPU: renderer, viewer and libraries")
 set(CPACK_PACKAGE_DESCRIPTION "strata renders OpenSCAD's CSG trees on the GPU by depth peeling, \
 headless through EGL or in a window: strata-render (OpenSCAD's command line, \
