@@ -135,6 +135,7 @@ void checkOutputName(const std::string& option, const std::string& path, std::st
 }
 
 bool sameFile(const std::string& a, const std::string& b);
+void checkSceneNames(const RenderOptions& o);
 
 // --export FILE: a mesh or drawing format by its extension.
 void checkExport(const RenderOptions& o) {
@@ -154,6 +155,34 @@ void checkExport(const RenderOptions& o) {
     }
 }
 
+// A scene's name in the output names: its file name without folder and extension.
+std::string sceneName(const std::string& scene) { return std::filesystem::path(scene).stem().string(); }
+
+// The output names, with the option that gave each.
+std::vector<std::pair<const char*, std::string>> outputNames(const RenderOptions& o) {
+    std::vector<std::pair<const char*, std::string>> names;
+    if (!o.png.empty()) names.emplace_back("-o", o.png);
+    if (!o.depth.empty()) names.emplace_back("--depth", o.depth);
+    if (!o.normal.empty()) names.emplace_back("--normal", o.normal);
+    if (!o.exportPath.empty()) names.emplace_back("--export", o.exportPath);
+    return names;
+}
+
+// Several scenes: every output name holds %s, and no two scenes share a name
+// (they would write one file).
+void checkSceneNames(const RenderOptions& o) {
+    if (o.scenes.size() < 2) return;
+    for (const auto& [option, name] : outputNames(o))
+        if (name.find("%s") == std::string::npos)
+            throw UsageError{std::string(option) + ": with several scenes the name needs %s, the scene's name (got '" +
+                             name + "')"};
+    for (std::size_t i = 0; i < o.scenes.size(); ++i)
+        for (std::size_t j = i + 1; j < o.scenes.size(); ++j)
+            if (sceneName(o.scenes[i]) == sceneName(o.scenes[j]))
+                throw UsageError{"'" + o.scenes[i] + "' and '" + o.scenes[j] + "' have one name, '" +
+                                 sceneName(o.scenes[i]) + "': their outputs would be one file"};
+}
+
 // Whether two output names lead to one file (after "." , ".." and links).
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code ec;
@@ -165,6 +194,18 @@ bool sameFile(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+RenderOptions forScene(const RenderOptions& options, const std::string& scene) {
+    RenderOptions one = options;
+    one.scene = scene;
+    one.scenes = {scene};
+    const std::string name = sceneName(scene);
+    for (std::string* output : {&one.png, &one.depth, &one.normal, &one.exportPath}) {
+        for (std::size_t at = output->find("%s"); at != std::string::npos; at = output->find("%s", at + name.size()))
+            output->replace(at, 2, name);
+    }
+    return one;
+}
+
 ParseResult parseOptions(int argc, char** argv) {
     ParseResult result;
     RenderOptions& o = result.options;
@@ -172,9 +213,10 @@ ParseResult parseOptions(int argc, char** argv) {
     CLI::App app{"strata-render: image-space CSG rendering, headless (options and outputs: docs/contract.md)", "strata-render"};
     app.option_defaults()->always_capture_default(false);
     std::string imgsize, camera, projection, fov, layers;
-    app.add_option("SCENE", o.scene,
+    app.add_option("SCENE", o.scenes,
                    "a .csg file (OpenSCAD's CSG export), a .scad file (needs openscad), or one closed "
-                   ".stl/.obj/.off/.ply mesh")
+                   ".stl/.obj/.off/.ply mesh; several: each in turn in this one process, every output name "
+                   "holding %s for the scene's name")
         ->required();
     addDefineOption(app, o.defines);
     app.add_option("-o", o.png, "write the shaded image (8-bit RGBA PNG)")->type_name("FILE.png");
@@ -212,7 +254,9 @@ ParseResult parseOptions(int argc, char** argv) {
 
     static_cast<CliOutcome&>(result) = parseCommandLine(app, argc, argv, "strata-render", [&] {
         checkOpenscadOptions(app, app.count("--camera") != 0);
-        checkDefines(o.defines, {o.scene});
+        o.scene = o.scenes.front();
+        checkDefines(o.defines, o.scenes);
+        checkSceneNames(o);
         if (!imgsize.empty() || app.count("--imgsize")) parseImageSize(imgsize, o);
         if (app.count("--camera")) parseCamera(camera, o);
         if (app.count("--projection")) parseProjection(projection, o);

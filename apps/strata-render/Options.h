@@ -12,7 +12,11 @@
 namespace strata::apps {
 
 struct RenderOptions {
-    std::string scene;                      // SCENE: .csg, .scad, .stl, .obj, .off or .ply
+    std::string scene;                      // SCENE: .csg, .scad, .stl, .obj, .off or .ply (the first of scenes)
+    // SCENE...: every scene, rendered in turn by one process; with more than
+    // one, each output name holds %s, which forScene replaces by the scene's
+    // file name without its folder and extension.
+    std::vector<std::string> scenes;
     std::vector<std::string> defines;       // -D NAME=VALUE, for a .scad, in order
     std::string png;                        // -o FILE.png; empty: none
     std::string depth;                      // --depth FILE.exr
@@ -33,6 +37,10 @@ struct RenderOptions {
     bool exportSampled = false;             // --export-sampled: contoured from the image-space result, not CGAL's exact one
     int exportResolution = 512;             // --export-resolution N: cells along the result's longest side
 };
+
+// The options for one of the scenes: `scene` set, %s in the output names
+// replaced by its name (its file name without folder and extension).
+RenderOptions forScene(const RenderOptions& options, const std::string& scene);
 
 // What parsing decided: run with the options, or stop (CliOutcome).
 struct ParseResult : CliOutcome {

@@ -2,12 +2,15 @@
 // docs/contract.md says. Thin: options, then parse -> geometry -> camera
 // -> GL context -> renderer -> files. Everything is rendered before anything
 // is written, and every output is staged before any is committed, so a
-// failure leaves no output file behind.
+// failure leaves no output file behind. Several scenes are rendered in turn
+// with one GL context and one renderer (its shaders compiled once); a scene
+// that fails writes nothing and the others go on.
 
 #include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,11 +52,18 @@ void checkOutputFolder(const std::string& path) {
         throw Error(SourceLocation{path, 0, 0}, "cannot write (no folder '" + parent.string() + "')");
 }
 
+// The GL context and the renderer, made at the first scene that needs them
+// and kept for the next (the context made first, destroyed last).
+struct Gpu {
+    std::optional<gpu::Context> context;
+    std::optional<render::Renderer> renderer;
+};
+
 // The frame: camera, GL context, renderer (or the CPU reference), and the
 // images staged into `staged`.
 // The model's meshes are let go once the renderer holds them, unless the
 // CPU reference needs them (a million cubes: about 400 MB).
-void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, geometry::Model model,
+void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, geometry::Model model, Gpu& gpu,
                   io::RunStats& stats, std::vector<io::StagedFile>& staged) {
     render::Camera base;
     base.width = options.width;
@@ -82,15 +92,15 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
     settings.readDepth = !options.depth.empty();
     settings.readNormal = !options.normal.empty();
 
-    // The context is made first and destroyed last (after the renderer's GL objects).
     auto t = Clock::now();
-    gpu::Context context;
+    if (!gpu.context) gpu.context.emplace();
     stats.contextMs = msSince(t);
-    stats.renderer = context.renderer();
+    stats.renderer = gpu.context->renderer();
 
     render::Frame frame;
     {
-        render::Renderer renderer;
+        if (!gpu.renderer) gpu.renderer.emplace();
+        render::Renderer& renderer = *gpu.renderer;
         t = Clock::now();
         if (options.reference) {
             renderer.setScene(tree, model);
@@ -123,7 +133,8 @@ void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, g
     stats.writeMs = msSince(t);
 }
 
-int run(const apps::RenderOptions& options) {
+// One scene, every output staged, then committed.
+int run(const apps::RenderOptions& options, Gpu& gpu) {
     const auto start = Clock::now();
     io::RunStats stats;
     stats.scene = options.scene;
@@ -180,7 +191,7 @@ int run(const apps::RenderOptions& options) {
     // With --export alone nothing is rendered (and, for the exact export,
     // no GL context made).
     const bool images = !options.png.empty() || !options.depth.empty() || !options.normal.empty();
-    if (images || options.exportPath.empty()) renderImages(options, tree, std::move(model), stats, staged);
+    if (images || options.exportPath.empty()) renderImages(options, tree, std::move(model), gpu, stats, staged);
     t = Clock::now();
     for (io::StagedFile& file : staged) file.commit();
     stats.writeMs += msSince(t);
@@ -195,6 +206,22 @@ int run(const apps::RenderOptions& options) {
     return 0;
 }
 
+// One scene; a failure is its one line on stderr, and no output of it.
+bool runOne(const apps::RenderOptions& options, Gpu& gpu) {
+    try {
+        run(options, gpu);
+        return true;
+    } catch (const Error& e) {
+        std::cerr << e.what() << '\n';
+    } catch (const std::bad_alloc&) {
+        std::cerr << options.scene << ": out of memory (the scene needs more memory than the process may use)\n";
+    } catch (const std::exception& e) {
+        // Not ours (a library's exception): still one line, still no output.
+        std::cerr << "strata-render: " << e.what() << '\n';
+    }
+    return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -204,15 +231,21 @@ int main(int argc, char** argv) {
         (parsed.exitCode == 0 ? std::cout : std::cerr) << parsed.message << (parsed.message.ends_with('\n') ? "" : "\n");
         return parsed.exitCode;
     }
-    try {
-        return run(parsed.options);
-    } catch (const Error& e) {
-        std::cerr << e.what() << '\n';
-    } catch (const std::bad_alloc&) {
-        std::cerr << parsed.options.scene << ": out of memory (the scene needs more memory than the process may use)\n";
-    } catch (const std::exception& e) {
-        // Not ours (std::bad_alloc, a library's exception): still one line, still no output.
-        std::cerr << "strata-render: " << e.what() << '\n';
+    const apps::RenderOptions& options = parsed.options;
+    Gpu gpu;
+    if (options.scenes.size() == 1) return runOne(apps::forScene(options, options.scene), gpu) ? 0 : 1;
+    // Several scenes: each in turn; after a failure the renderer is made
+    // anew, in case the failure left it half way through a frame.
+    std::size_t failed = 0;
+    for (const std::string& scene : options.scenes) {
+        if (!runOne(apps::forScene(options, scene), gpu)) {
+            ++failed;
+            gpu.renderer.reset();
+        }
     }
-    return 1;
+    if (failed > 0) {
+        std::cerr << "strata-render: " << failed << " of " << options.scenes.size() << " scenes failed\n";
+        return 1;
+    }
+    return 0;
 }

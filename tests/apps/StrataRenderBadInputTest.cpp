@@ -108,6 +108,11 @@ TEST(StrataRender, BadProjectionFovAndLayersAreOneLine) {
     expectFailure(dir, {scene, "--layers", "some"}, "strata-render: --layers: ");
     expectFailure(dir, {scene, "--colorscheme", "Rainbow"},
                   "strata-render: --colorscheme: unknown colour scheme 'Rainbow' (valid: Cornfield");
+    // Several scenes need %s in every output name, and names of their own.
+    expectFailure(dir, {scene, dir.write("other.csg", kCube), "-o", dir / "out.png"},
+                  "strata-render: -o: with several scenes the name needs %s, the scene's name (got '");
+    expectFailure(dir, {scene, scene, "-o", dir / "%s.png", "--depth", dir / "%s.exr", "--normal", dir / "%s-n.exr"},
+                  "strata-render: '" + scene + "' and '" + scene + "' have one name, 'cube'");
     expectFailure(dir, {scene, "--light", "sun"},
                   "strata-render: --light: unknown light 'sun' (valid: strata, openscad)");
 }

@@ -402,3 +402,60 @@ TEST(StrataRenderGL, TranslucentColoursLetTheBackgroundThroughAsOpenScadsPreview
         }
     }
 }
+
+namespace {
+
+std::string fileBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+// Several scenes in one process: each writes, byte for byte, what a process
+// of its own writes (the renderer and its shaders carry over, nothing of the
+// scene before does), under the name that %s gives it.
+TEST(StrataRenderGL, SeveralScenesInOneProcessRenderAsEachAlone) {
+    const std::filesystem::path examples = std::filesystem::path(STRATA_TEST_DIR).parent_path() / "examples";
+    TempDir dir;
+    // A CSG tree, a mesh file, then a union (a plain frame) after them.
+    const std::string unionScene =
+        dir.write("pair.csg", "cube(size = 2);\nmultmatrix([[1, 0, 0, 3], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(r = 1);\n");
+    const std::vector<std::string> scenes{(examples / "gear.csg").string(), (examples / "meshes" / "twisted_star.stl").string(),
+                                          unionScene};
+    std::vector<std::string> batch{kExe};
+    batch.insert(batch.end(), scenes.begin(), scenes.end());
+    batch.insert(batch.end(), {"-o", dir / "%s.png", "--depth", dir / "%s-z.exr", "--imgsize", "80,60"});
+    const ProcessResult r = runProcess(batch);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    for (const std::string& scene : scenes) {
+        const std::string name = std::filesystem::path(scene).stem().string();
+        SCOPED_TRACE(name);
+        const ProcessResult alone = runProcess({kExe, scene, "-o", dir / "alone.png", "--depth", dir / "alone-z.exr",
+                                                "--imgsize", "80,60"});
+        ASSERT_EQ(alone.exitCode, 0) << alone.err;
+        const std::string png = fileBytes(dir / (name + ".png")), z = fileBytes(dir / (name + "-z.exr"));
+        EXPECT_GT(png.size(), 100u);
+        EXPECT_EQ(png, fileBytes(dir / "alone.png"));
+        EXPECT_EQ(z, fileBytes(dir / "alone-z.exr"));
+    }
+}
+
+// A scene that fails in a batch says its one line and writes nothing; the
+// others are written, and the run ends with a count and exit status 1.
+TEST(StrataRenderGL, ABatchGoesOnPastABadSceneAndCountsTheFailures) {
+    TempDir dir;
+    const std::string good = dir.write("good.csg", "cube(1);\n");
+    const std::string bad = dir.write("bad.csg", "cube(\n");
+    const std::string other = dir.write("other.csg", "sphere(1);\n");
+    const ProcessResult r =
+        runProcess({kExe, good, bad, other, "-o", dir / "out-%s.png", "--imgsize", "32,24"});
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 2) << r.err;
+    EXPECT_TRUE(r.err.starts_with(bad + ":2:1: ")) << r.err;
+    EXPECT_NE(r.err.find("strata-render: 1 of 3 scenes failed\n"), std::string::npos) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out-good.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "out-other.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out-bad.png"));
+}
