@@ -34,15 +34,7 @@ void AlphaPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         target_.checkComplete();
         setSurfaceView(*rear, view);
         rear->setUniform(shader::kAlphaBackground, glm::vec3(scheme.background));
-        if (openScad) {
-            rear->setUniform(shader::kAlphaToLight, ShadePass::openScadToLight(view));
-        } else {
-            rear->setUniform(shader::kAlphaRight, view.right);
-            rear->setUniform(shader::kAlphaUp, view.up);
-            rear->setUniform(shader::kAlphaHalfExtent, view.halfExtent);
-            rear->setUniform(shader::kAlphaOrthographic, view.orthographic ? 1 : 0);
-            rear->setUniform(shader::kAlphaSize, glm::ivec2(view.width, view.height));
-        }
+        ShadePass::setLight(*rear, view, lighting);
     }
     plain_.setUniform(shader::kAlphaBackground, glm::vec3(scheme.background));
     targets.resultLeaf.bindUnit(shader::kTextureResultLeaf);

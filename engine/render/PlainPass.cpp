@@ -11,7 +11,6 @@ namespace strata::render {
 
 namespace {
 
-
 // Box comparisons mayTie may spend before it takes every leaf as one that
 // may tie: a few tens of milliseconds, once per scene and tolerance.
 constexpr std::size_t kTieComparisons = std::size_t(1) << 25;
@@ -33,15 +32,7 @@ gpu::Program& PlainPass::program(bool ties, std::optional<Lighting> litAs, const
     }
     gpu::Program& p = *slot;
     setSurfaceView(p, view);
-    if (shading == 2) {
-        p.setUniform(shader::kPlainToLight, ShadePass::openScadToLight(view));
-    } else if (shading == 1) {
-        p.setUniform(shader::kPlainRight, view.right);
-        p.setUniform(shader::kPlainUp, view.up);
-        p.setUniform(shader::kPlainHalfExtent, view.halfExtent);
-        p.setUniform(shader::kPlainOrthographic, view.orthographic ? 1 : 0);
-        p.setUniform(shader::kPlainSize, glm::ivec2(view.width, view.height));
-    }
+    if (litAs) ShadePass::setLight(p, view, *litAs);
     return p;
 }
 

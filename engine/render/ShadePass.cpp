@@ -14,6 +14,19 @@ glm::vec3 ShadePass::openScadToLight(const ViewSetup& view) {
     return glm::normalize(-view.right + view.up - view.forward);
 }
 
+void ShadePass::setLight(gpu::Program& program, const ViewSetup& view, Lighting lighting) {
+    if (lighting == Lighting::OpenScad) {
+        program.setUniform(shader::kLightToLight, openScadToLight(view));
+        return;
+    }
+    program.setUniform(shader::kSurfaceForward, view.forward);
+    program.setUniform(shader::kLightRight, view.right);
+    program.setUniform(shader::kLightUp, view.up);
+    program.setUniform(shader::kLightHalfExtent, view.halfExtent);
+    program.setUniform(shader::kLightOrthographic, view.orthographic ? 1 : 0);
+    program.setUniform(shader::kLightSize, glm::ivec2(view.width, view.height));
+}
+
 float ShadePass::packBaseColor(const glm::vec3& rgb) {
     auto byte = [](float c) { return static_cast<std::uint32_t>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
     return static_cast<float>(1u + (byte(rgb.r) << 16 | byte(rgb.g) << 8 | byte(rgb.b)));
@@ -42,16 +55,7 @@ void ShadePass::run(FrameTargets& targets, const ViewSetup& view, const ColorSch
     }
     gpu::Program& program = *slot;
     program.setUniform(shader::kShadeBackground, scheme.background);
-    if (openScad) {
-        program.setUniform(shader::kShadeToLight, openScadToLight(view));
-    } else {
-        program.setUniform(shader::kShadeForward, view.forward);
-        program.setUniform(shader::kShadeRight, view.right);
-        program.setUniform(shader::kShadeUp, view.up);
-        program.setUniform(shader::kShadeHalfExtent, view.halfExtent);
-        program.setUniform(shader::kShadeOrthographic, view.orthographic ? 1 : 0);
-        program.setUniform(shader::kShadeSize, glm::ivec2(view.width, view.height));
-    }
+    setLight(program, view, lighting);
     program.use();
     targets.normal.bindUnit(shader::kTextureNormal);
     const gpu::Framebuffer& target = targets.shadeTarget();

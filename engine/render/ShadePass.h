@@ -38,6 +38,9 @@ public:
     // OpenSCAD's light (Lighting::OpenScad) in world space: the unit
     // direction (-1, 1, 1) of view space, x right, y up, z towards the eye.
     static glm::vec3 openScadToLight(const ViewSetup& view);
+    // Sets light.glsl's uniforms in `program`, one built for `lighting`
+    // (OPENSCAD_LIGHT defined for Lighting::OpenScad) that includes it.
+    static void setLight(gpu::Program& program, const ViewSetup& view, Lighting lighting);
 
     // A base colour as the G-buffer carries it (FrameTargets::normal's w):
     // 1 + its 8-bit RGB as the integer r * 65536 + g * 256 + b, exact in a

@@ -23,17 +23,6 @@ layout(binding = kTextureResultLeaf) uniform isampler2D uResultLeaf;  // leafCod
 layout(location = kAlphaCodes) uniform ivec2 uCodes;
 layout(location = kAlphaColor) uniform vec4 uColor;  // straight alpha
 layout(location = kAlphaBackground) uniform vec3 uBackground;
-#ifdef REAR
-layout(location = kSurfaceForward) uniform vec3 uForward;  // surface.vert's
-layout(location = kAlphaRight) uniform vec3 uRight;
-layout(location = kAlphaUp) uniform vec3 uUp;
-layout(location = kAlphaHalfExtent) uniform vec2 uHalfExtent;
-layout(location = kAlphaOrthographic) uniform int uOrthographic;
-layout(location = kAlphaSize) uniform ivec2 uSize;
-#ifdef OPENSCAD_LIGHT
-layout(location = kAlphaToLight) uniform vec3 uToLight;
-#endif
-#endif
 
 void main() {
     int code = texelFetch(uResultLeaf, ivec2(gl_FragCoord.xy), 0).r;
@@ -42,12 +31,7 @@ void main() {
 #ifdef REAR
     // A back face's outward normal points away from the eye; OpenSCAD lights
     // both sides of a face alike, so it is lit here as the face seen from inside.
-#ifdef OPENSCAD_LIGHT
-    behind = mix(uBackground, litAsOpenScad(uColor.rgb, vFaceNormal, uToLight), uColor.a);
-#else
-    vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
-    behind = mix(uBackground, lit(uColor.rgb, -vFaceNormal, rayDir, uRight, uUp), uColor.a);
-#endif
+    behind = mix(uBackground, lightSurface(uColor.rgb, -vFaceNormal), uColor.a);
 #endif
     outColor = vec4(behind, 1.0 - uColor.a);
 }

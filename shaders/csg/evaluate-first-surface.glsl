@@ -13,18 +13,6 @@
 // The renderer marks the leaf's front faces shown for every such block
 // (EvaluatePass.cpp), so only the rare back face needs the atomic; a
 // group's member is known here only, so it always does.
-// evaluate.frag's: never asked, one operand has no face to share.
-bool operandDecides(int handle) {
-    return true;
-}
-
-void forEachFaceSurface() {}
-void keepFaceState() {}
-
-bool restoreFaceState() {
-    return false;
-}
-
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
@@ -47,4 +35,16 @@ void main() {
     // The record carries the leaf's mark, but not a group member's.
     gl_FragStencilRefARB = grouped ? stencilMark(markSlots[leaf], face) : int(vRecord.z) + face;
 #endif
+}
+
+// evaluate.frag's: never asked, one operand has no face to share.
+bool operandDecides(int handle) {
+    return true;
+}
+
+void forEachFaceSurface() {}
+void keepFaceState() {}
+
+bool restoreFaceState() {
+    return false;
 }

@@ -186,10 +186,11 @@ void startCluster() {
     startFace(-kInfinity);
 }
 
-// Whether a surface (leaf, tagged, same) comes before the pick.
-bool beforePick(int leaf, float tagged, bool same) {
-    return pickLeaf == kNoLeaf || (same && !pickSame) ||
-           (same == pickSame && (leaf < pickLeaf || (leaf == pickLeaf && tagged < pickSurface)));
+// Whether a surface (leaf, tagged, same) is shown before another (kNoLeaf:
+// none yet): the result's own face first, then the lowest leaf, then the nearest.
+bool shownBefore(int leaf, float tagged, bool same, int otherLeaf, float otherTagged, bool otherSame) {
+    return otherLeaf == kNoLeaf || (same && !otherSame) ||
+           (same == otherSame && (leaf < otherLeaf || (leaf == otherLeaf && tagged < otherTagged)));
 }
 
 // While settleFace asks: the face's surfaces handed over, those whose
@@ -206,10 +207,7 @@ void weighSurface(float tagged, int leaf, int handle) {
     ++deciding;
     leaf = surfaceLeaf(leaf, isExit(tagged));
     bool same = isExit(tagged) == faceResultInside;
-    bool first = decidingLeaf == kNoLeaf || (same && !decidingSame) ||
-                 (same == decidingSame &&
-                  (leaf < decidingLeaf || (leaf == decidingLeaf && tagged < decidingSurface)));
-    if (first) {
+    if (shownBefore(leaf, tagged, same, decidingLeaf, decidingSurface, decidingSame)) {
         decidingLeaf = leaf;
         decidingSurface = tagged;
         decidingSame = same;
@@ -251,7 +249,7 @@ void considerSurface(float tagged, int leaf, bool resultInside) {
     faceEnd = depth;
     ++faceCount;
     bool same = isExit(tagged) == resultInside;
-    if (beforePick(leaf, tagged, same)) {
+    if (shownBefore(leaf, tagged, same, pickLeaf, pickSurface, pickSame)) {
         pickLeaf = leaf;
         pickSurface = tagged;
         pickSame = same;

@@ -31,14 +31,19 @@ SHARED int kPeelPreviousLayer = 3;  // the layer the next pass reads
 SHARED int kPeelKeyBase = 4;        // GROUP: the bits below every fragment's tagged depth
 SHARED int kPeelTieTolerance = 6;   // GROUP_TIE: the depth within which a member ties with the winner
 
+// light.glsl, in every program that lights a surface (shade.frag, plain.frag's
+// LIT, alpha.frag's REAR), above every fragment stage's own; its view
+// direction is surface.vert's kSurfaceForward. Strata's light: the view;
+// OPENSCAD_LIGHT: the light's unit direction, world space.
+SHARED int kLightRight = 13;
+SHARED int kLightUp = 14;
+SHARED int kLightHalfExtent = 15;  // tan(fov/2) * (aspect, 1)
+SHARED int kLightOrthographic = 16;
+SHARED int kLightSize = 17;        // the frame, pixels
+SHARED int kLightToLight = 18;
+
 // plain.frag (after surface.vert's).
 SHARED int kPlainTieTolerance = 3;  // TIE: the depth within which a leaf ties with the nearest
-SHARED int kPlainRight = 4;         // LIT: the view, as shade.frag's (the view direction is surface.vert's)
-SHARED int kPlainUp = 5;
-SHARED int kPlainHalfExtent = 6;
-SHARED int kPlainOrthographic = 7;
-SHARED int kPlainSize = 8;
-SHARED int kPlainToLight = 9;       // LIT with OPENSCAD_LIGHT: as shade.frag's
 
 // resolve.frag.
 SHARED int kResolveFirstLayer = 0;
@@ -68,22 +73,9 @@ SHARED int kTranslucentToLight = 5;
 SHARED int kAlphaCodes = 3;        // the leaf codes whose pixels this draw blends over
 SHARED int kAlphaColor = 4;        // the leaf's colour, straight alpha
 SHARED int kAlphaBackground = 5;   // the scheme's background
-SHARED int kAlphaRight = 6;        // REAR: the view, as shade.frag's
-SHARED int kAlphaUp = 7;
-SHARED int kAlphaHalfExtent = 8;
-SHARED int kAlphaOrthographic = 9;
-SHARED int kAlphaSize = 10;
-SHARED int kAlphaToLight = 11;     // REAR with OPENSCAD_LIGHT: as shade.frag's
 
 // shade.frag.
 SHARED int kShadeBackground = 0;
-SHARED int kShadeForward = 3;
-SHARED int kShadeRight = 4;
-SHARED int kShadeUp = 5;
-SHARED int kShadeHalfExtent = 6;
-SHARED int kShadeOrthographic = 7;
-SHARED int kShadeSize = 8;
-SHARED int kShadeToLight = 9;      // OPENSCAD_LIGHT: the light's unit direction, world space (light.glsl)
 
 // --- Binding points ---
 

@@ -1,5 +1,7 @@
 // The lights, one definition for every pass that lights a surface
-// (shade.frag, alpha.frag), chosen by RenderSettings::lighting.
+// (shade.frag, plain.frag, alpha.frag), chosen by RenderSettings::lighting:
+// the uniforms each needs (interface.glsl's kLight*, which
+// ShadePass::setLight sets) and lightSurface, which lights a fragment.
 //
 // strata's (lit): ambient 0.35 plus 0.65 times Lambert, from a light a
 // little above and left of the eye, so faces square to the view are not all
@@ -13,6 +15,17 @@
 // has a second light opposite the first, which comes to the same).
 #ifndef STRATA_LIGHT
 #define STRATA_LIGHT
+
+#ifdef OPENSCAD_LIGHT
+layout(location = kLightToLight) uniform vec3 uToLight;  // unit, world space
+#else
+layout(location = kSurfaceForward) uniform vec3 uForward;  // the unit view direction, as surface.vert's
+layout(location = kLightRight) uniform vec3 uRight;
+layout(location = kLightUp) uniform vec3 uUp;
+layout(location = kLightHalfExtent) uniform vec2 uHalfExtent;  // tan(fov/2) * (aspect, 1): perspective ray slopes
+layout(location = kLightOrthographic) uniform int uOrthographic;
+layout(location = kLightSize) uniform ivec2 uSize;
+#endif
 
 const float kAmbient = 0.35;
 const float kDiffuse = 0.65;
@@ -42,6 +55,17 @@ vec3 unpackBaseColor(float packedColor) {
 // direction in world space (ShadePass::openScadToLight).
 vec3 litAsOpenScad(vec3 base, vec3 normal, vec3 toLight) {
     return base * (0.2 + abs(dot(normal, toLight)));
+}
+
+// `base` on a surface of unit normal `normal` at this fragment, in the
+// program's light.
+vec3 lightSurface(vec3 base, vec3 normal) {
+#ifdef OPENSCAD_LIGHT
+    return litAsOpenScad(base, normal, uToLight);
+#else
+    vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
+    return lit(base, normal, rayDir, uRight, uUp);
+#endif
 }
 
 #endif

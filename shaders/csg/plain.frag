@@ -40,16 +40,6 @@ layout(location = 2) out vec4 outNormal;
 #ifdef LIT
 #include "csg/light.glsl"
 layout(location = 3) out vec4 outColor;
-#ifdef OPENSCAD_LIGHT
-layout(location = kPlainToLight) uniform vec3 uToLight;
-#else
-layout(location = kSurfaceForward) uniform vec3 uForward;  // surface.vert's
-layout(location = kPlainRight) uniform vec3 uRight;
-layout(location = kPlainUp) uniform vec3 uUp;
-layout(location = kPlainHalfExtent) uniform vec2 uHalfExtent;
-layout(location = kPlainOrthographic) uniform int uOrthographic;
-layout(location = kPlainSize) uniform ivec2 uSize;
-#endif
 #endif
 
 // Per tree leaf, its packed base colours (ShadePass::baseColors): x its own surface.
@@ -75,12 +65,6 @@ void main() {
     outLeaf = leafCode(leaf, false);
     outNormal = vec4(vFaceNormal, baseColors[leaf].x);
 #ifdef LIT
-    vec3 base = unpackBaseColor(baseColors[leaf].x);
-#ifdef OPENSCAD_LIGHT
-    outColor = vec4(litAsOpenScad(base, vFaceNormal, uToLight), 1.0);
-#else
-    vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
-    outColor = vec4(lit(base, vFaceNormal, rayDir, uRight, uUp), 1.0);
-#endif
+    outColor = vec4(lightSurface(unpackBaseColor(baseColors[leaf].x), vFaceNormal), 1.0);
 #endif
 }

@@ -19,15 +19,6 @@ layout(location = 0) out vec4 outColor;
 layout(binding = kTextureNormal) uniform sampler2D uNormal;
 
 layout(location = kShadeBackground) uniform vec4 uBackground;
-layout(location = kShadeForward) uniform vec3 uForward;
-layout(location = kShadeRight) uniform vec3 uRight;
-layout(location = kShadeUp) uniform vec3 uUp;
-layout(location = kShadeHalfExtent) uniform vec2 uHalfExtent;  // tan(fov/2) * (aspect, 1): perspective ray slopes
-layout(location = kShadeOrthographic) uniform int uOrthographic;
-layout(location = kShadeSize) uniform ivec2 uSize;
-#ifdef OPENSCAD_LIGHT
-layout(location = kShadeToLight) uniform vec3 uToLight;
-#endif
 
 // The normal (dx, dy) pixels away, the edge pixel's beyond the frame. The
 // sampler's offset and clamp cost llvmpipe less than clamping the
@@ -42,12 +33,7 @@ void main() {
     }
     vec3 base = unpackBaseColor(centre.w);
 
-#ifdef OPENSCAD_LIGHT
-    vec3 color = litAsOpenScad(base, centre.xyz, uToLight);
-#else
-    vec3 rayDir = viewRay(gl_FragCoord.xy, uSize, uForward, uRight, uUp, uHalfExtent, uOrthographic != 0);
-    vec3 color = lit(base, centre.xyz, rayDir, uRight, uUp);
-#endif
+    vec3 color = lightSurface(base, centre.xyz);
 
 #ifdef OUTLINE
     // Sobel on the normals: |G| is about 4 |dn| across a sharp crease, so

@@ -12,12 +12,7 @@ layout(location = 0) out vec4 outColor;
 layout(binding = kTextureNormal) uniform sampler2D uNormal;
 
 layout(location = kShadeBackground) uniform vec4 uBackground;
-layout(location = kShadeForward) uniform vec3 uForward;
-layout(location = kShadeRight) uniform vec3 uRight;
-layout(location = kShadeUp) uniform vec3 uUp;
-layout(location = kShadeHalfExtent) uniform vec2 uHalfExtent;
-layout(location = kShadeOrthographic) uniform int uOrthographic;
-layout(location = kShadeSize) uniform ivec2 uSize;
+#include "csg/light.glsl"
 
 void main() {
     outColor = vec4(0.5, 0.2, 0.1, 1.0);
