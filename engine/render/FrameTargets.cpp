@@ -30,7 +30,11 @@ void FrameTargets::ensure(int width, int height) {
 void FrameTargets::allocate(int width, int height) {
     plainDepth = {};
     plainTarget = {};
+    plainLitTarget = {};
     plainColorTarget = {};
+    shownDepth = {};
+    plainShownTarget = {};
+    plainShownLitTarget = {};
     resultDepth = gpu::Texture::create2D("result depth", GL_R32F, width, height);
     resultLeaf = gpu::Texture::create2D("result leaf", GL_R32I, width, height);
     normal = gpu::Texture::create2D("result normal", GL_RGBA32F, width, height);
@@ -84,6 +88,23 @@ void FrameTargets::ensurePlain() {
     plainColorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
     plainColorTarget.attachTexture(GL_STENCIL_ATTACHMENT, plainDepth);
     plainColorTarget.checkComplete();
+}
+
+void FrameTargets::ensureShown() {
+    if (shownDepth.id() != 0) return;
+    ensurePlain();
+    shownDepth = gpu::Texture::create2D("shown depth", GL_DEPTH_COMPONENT32F, width_, height_);
+    auto make = [&](gpu::Framebuffer& target, const char* name, const gpu::Texture& shown, GLenum depthAttachment,
+                    const gpu::Texture& depth) {
+        target = gpu::Framebuffer(name);
+        target.attachTexture(GL_COLOR_ATTACHMENT0, shown);
+        target.attachTexture(GL_COLOR_ATTACHMENT1, resultDepth);
+        target.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+        target.attachTexture(depthAttachment, depth);
+        target.checkComplete();
+    };
+    make(plainShownTarget, "plain shown", normal, GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
+    make(plainShownLitTarget, "plain shown lit", color, GL_DEPTH_ATTACHMENT, shownDepth);
 }
 
 void FrameTargets::clearResult(bool wholeFrame, bool wholeNormal, const PixelRect& drawn) {
@@ -173,7 +194,7 @@ bool FrameTargets::canMarkLeaves() {
 
 std::size_t FrameTargets::bytes() const {
     return resultDepth.byteSize() + resultLeaf.byteSize() + normal.byteSize() + color.byteSize() + marks.byteSize() +
-           (plainDepth.id() != 0 ? plainDepth.byteSize() : 0);
+           (plainDepth.id() != 0 ? plainDepth.byteSize() : 0) + (shownDepth.id() != 0 ? shownDepth.byteSize() : 0);
 }
 
 }  // namespace strata::render

@@ -79,6 +79,17 @@ public:
     gpu::Framebuffer plainLitTarget;    // the same and 3: color (a plain frame lit as drawn)
     gpu::Framebuffer plainColorTarget;  // 0: color; plainDepth's stencil
     void ensurePlain();
+    // A plain frame that is only shown (Renderer::renderInto, nothing read
+    // back and no pass after it that reads the G-buffer) writes only what
+    // the image needs, into one of two targets, each 0: what the frame
+    // shows, 1: resultDepth (the tie pass's input, drawn only when the pass
+    // runs). plainShownLitTarget: 0 `color`, lit as drawn, and shownDepth,
+    // D32F with no stencil (no pass after it); plainShownTarget: 0
+    // `normal`, for the shade pass's outline, and plainDepth, whose marks
+    // the shade pass tests. Made by ensureShown (with ensurePlain's).
+    gpu::Texture shownDepth;
+    gpu::Framebuffer plainShownTarget, plainShownLitTarget;
+    void ensureShown();
     // This frame's choice, set by the renderer: the marks are plainDepth's.
     bool plainFrame = false;
     // The colour image with this frame's marks as its stencil.

@@ -19,11 +19,13 @@ constexpr std::size_t kTieComparisons = std::size_t(1) << 25;
 
 PlainPass::PlainPass() = default;
 
-gpu::Program& PlainPass::program(bool ties, std::optional<Lighting> litAs, const ViewSetup& view) {
+gpu::Program& PlainPass::program(bool ties, const Output& output, const ViewSetup& view) {
+    const std::optional<Lighting>& litAs = output.litAs;
     const std::size_t shading = !litAs ? 0 : *litAs == Lighting::Strata ? 1 : 2;
-    std::optional<gpu::Program>& slot = programs_[ties ? 1 : 0][shading];
+    std::optional<gpu::Program>& slot = programs_[output.shownOnly ? 1 : 0][ties ? 1 : 0][shading];
     if (!slot) {
         std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}, {"GROUP_MEMBERS", ""}, {"REVERSED_DEPTH", ""}};
+        if (output.shownOnly) defines.push_back({"SHOWN", ""});
         if (ties) defines.push_back({"TIE", ""});
         if (shading > 0) defines.push_back({"LIT", ""});
         if (shading == 2) defines.push_back({"OPENSCAD_LIGHT", ""});
@@ -160,8 +162,29 @@ std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const in
 }
 
 void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
-                    const std::vector<glm::vec2>& baseColors, std::optional<Lighting> litAs) {
-    targets.ensurePlain();
+                    const std::vector<glm::vec2>& baseColors, const Output& output) {
+    const bool shown = output.shownOnly;
+    const std::optional<Lighting>& litAs = output.litAs;
+    shown ? targets.ensureShown() : targets.ensurePlain();
+    const gpu::Framebuffer& target = shown ? (litAs ? targets.plainShownLitTarget : targets.plainShownTarget)
+                                           : (litAs ? targets.plainLitTarget : targets.plainTarget);
+    if (shown) {
+        // The clears in the framebuffer the draws use: llvmpipe then clears
+        // each tile as it draws it, with no pass of its own.
+        glDisable(GL_SCISSOR_TEST);
+        if (litAs) {
+            glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, &output.background.r);
+        } else {
+            const PixelRect read = drawn.grown(1).intersection({0, 0, view.width, view.height});
+            if (!read.empty()) {
+                glEnable(GL_SCISSOR_TEST);
+                glScissor(read.x, read.y, read.width, read.height);
+                const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+                glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, none);
+                glDisable(GL_SCISSOR_TEST);
+            }
+        }
+    }
     if (drawn.empty() || nearestDraws_ == 0) return;
 
     // Two surfaces tie when their depths along one ray lie within a quarter
@@ -201,16 +224,27 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         depthTerms = glm::vec3(static_cast<float>(nearPlane), 0.0f, 0.0f);
         pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * reach / nearPlane));
     }
-    gpu::Program& nearest = program(false, litAs, view);
+    gpu::Program& nearest = program(false, output, view);
     nearest.setUniform(shader::kSurfaceReversedDepth, depthTerms);
 
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glScissor(drawn.x, drawn.y, drawn.width, drawn.height);
-    const gpu::Framebuffer& target = litAs ? targets.plainLitTarget : targets.plainTarget;
+    if (shown) {
+        // The depths go to the tie pass alone.
+        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, tieDraws_ > 0 ? GL_COLOR_ATTACHMENT1 : GL_NONE};
+        glNamedFramebufferDrawBuffers(target.id(), 2, buffers);
+    }
     target.bindForDraw();
-    glClearNamedFramebufferfi(target.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    // Lit and only shown, nothing reads marks: the depth has no stencil.
+    const bool marked = !(shown && litAs);
+    if (marked) {
+        glClearNamedFramebufferfi(target.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    } else {
+        const float farthest = 0.0f;
+        glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &farthest);
+    }
     colors_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferPlainColors);
     scene.leafVertexArray().bind();
 
@@ -220,9 +254,11 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, shader::kMarkWritten, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    if (marked) {
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(GL_ALWAYS, shader::kMarkWritten, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    }
     nearest.use();
     nearestCommands_.bind(GL_DRAW_INDIRECT_BUFFER);
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, nearestDraws_, 0);
@@ -238,7 +274,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, nearestCopy_.id(),
                            GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, drawn.width, drawn.height, 1);
         nearestCopy_.bindUnit(shader::kTexturePlainNearest);
-        gpu::Program& ties = program(true, litAs, view);
+        gpu::Program& ties = program(true, output, view);
         ties.setUniform(shader::kSurfaceReversedDepth, pulled);
         ties.setUniform(shader::kPlainTieTolerance, static_cast<float>(reach));
         ties.use();

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include "FrameTargets.h"
 #include "SceneBuffers.h"
@@ -74,13 +75,26 @@ public:
     // The leaves the next frames draw (plainLeaves), and the scene's boxes.
     void setLeaves(const SceneBuffers& scene, std::vector<int> leaves);
 
+    // What a frame writes.
+    struct Output {
+        // Also the colour lit by this light into targets.color (the frame
+        // then needs no shade pass).
+        std::optional<Lighting> litAs;
+        // Only what the image needs (FrameTargets::plainShownTarget and
+        // plainShownLitTarget): no leaf codes and no marks, and the depth
+        // only where the tie pass reads it. Lit, the pass clears the colour
+        // to `background` first; otherwise it clears the normals inside
+        // `drawn` grown by a pixel, all the shade pass's outline reads.
+        bool shownOnly = false;
+        glm::vec4 background{0.0f};
+    };
     // Draws setLeaves' leaves into `targets` (its plain target, made here if
     // need be) inside `drawn`, which holds every pixel they cover.
     // `baseColors`: ShadePass::baseColors of this frame's colour scheme.
-    // With `litAs`, also the lit colour into targets.color (which the caller
-    // has cleared to the background).
+    // Lit and not shownOnly, the caller has cleared targets.color to the
+    // background.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
-             const std::vector<glm::vec2>& baseColors, std::optional<Lighting> litAs);
+             const std::vector<glm::vec2>& baseColors, const Output& output);
 
     // Leaves whose tie pass ran in the last frame (0: none could tie).
     std::size_t tiedLeaves() const { return tieCount_; }
@@ -93,11 +107,12 @@ public:
                                    std::size_t budget);
 
 private:
-    // plain.frag, each compiled at its first use: [ties][shading], ties the
-    // TIE variant (the lowest leaf tying with the nearest), shading 0 the
-    // G-buffer alone, 1 and 2 also lit by strata's and OpenSCAD's light.
-    std::array<std::array<std::optional<gpu::Program>, 3>, 2> programs_;
-    gpu::Program& program(bool ties, std::optional<Lighting> litAs, const ViewSetup& view);
+    // plain.frag, each compiled at its first use: [shown][ties][shading],
+    // shown the SHOWN variant (Output::shownOnly), ties the TIE variant (the
+    // lowest leaf tying with the nearest), shading 0 the G-buffer alone, 1
+    // and 2 also lit by strata's and OpenSCAD's light.
+    std::array<std::array<std::array<std::optional<gpu::Program>, 3>, 2>, 2> programs_;
+    gpu::Program& program(bool ties, const Output& output, const ViewSetup& view);
     std::vector<int> leaves_;
     gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands
     GLsizei nearestDraws_ = 0, tieDraws_ = 0;

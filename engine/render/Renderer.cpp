@@ -287,7 +287,7 @@ struct Renderer::Impl {
     // `drawn` holds every pixel its leaves cover.
     // `litAs`: also light it as drawn, into the cleared image (no outline).
     void drawPlain(const ViewSetup& view, const PixelRect& drawn, const std::vector<glm::vec2>& baseColors,
-                   std::optional<Lighting> litAs, Frame& frame);
+                   const PlainPass::Output& output, Frame& frame);
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
@@ -758,7 +758,7 @@ void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
 }
 
 void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
-                               const std::vector<glm::vec2>& baseColors, std::optional<Lighting> litAs,
+                               const std::vector<glm::vec2>& baseColors, const PlainPass::Output& output,
                                Frame& frame) {
     FrameStats& stats = frame.stats;
     const auto start = Clock::now();
@@ -766,7 +766,7 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
         plain->setLeaves(scene, plainLeaves);
         plainStale = false;
     }
-    plain->run(targets, scene, view, drawn, baseColors, litAs);
+    plain->run(targets, scene, view, drawn, baseColors, output);
     glFinish();
     stats.plainMs = millisecondsSince(start);
     stats.plain = true;
@@ -850,8 +850,14 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     targets.ensure(view.width, view.height);
     // A pixel around `drawn` for the shade pass's Sobel filter.
     // The translucent and alpha passes read the result beyond the marked pixels.
-    targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), aovs && settings.readNormal,
-                        drawn.grown(1));
+    // A plain frame only shown (nothing read back, no pass after it that
+    // reads the G-buffer) writes what the image needs and nothing else
+    // (PlainPass::Output::shownOnly), and needs nothing cleared here.
+    const bool shownOnly = plainFrame && !aovs && translucentLeaves.empty() && alphaLeaves.empty();
+    if (!shownOnly) {
+        targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), aovs && settings.readNormal,
+                            drawn.grown(1));
+    }
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     targets.plainFrame = plainFrame;
     if (copiedLeaves > 0) {
@@ -862,13 +868,14 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // A plain frame with no outline is lit as it is drawn (PlainPass.h):
     // no shade pass, whose outline alone needs the G-buffer around a pixel.
     const bool litAsDrawn = plainFrame && !settings.outline;
-    if (litAsDrawn) {
-        const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
-        glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, background);
-    }
+    const glm::vec4 background(glm::vec3(scheme.background), 1.0f);
+    if (litAsDrawn && !shownOnly) glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, &background.r);
     if (plainFrame) {
-        drawPlain(view, drawn, ShadePass::baseColors(scene, scheme),
-                  litAsDrawn ? std::optional<Lighting>(settings.lighting) : std::nullopt, frame);
+        PlainPass::Output output;
+        if (litAsDrawn) output.litAs = settings.lighting;
+        output.shownOnly = shownOnly;
+        output.background = background;
+        drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), output, frame);
     } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
         peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
     } else {

@@ -27,6 +27,12 @@
 // would from the same normal and base colour (light.glsl), so the frame needs
 // no shade pass. The last fragment written on a pixel writes all four.
 //
+// SHOWN (a frame only shown, nothing read back: FrameTargets'
+// plainShownTarget and plainShownLitTarget): only what the image needs, at
+// 0 the lit colour (LIT) or the normal and base colour (for the shade
+// pass's outline), at 1 the depth, which only the tie pass reads (its draw
+// buffer is off when no leaves can tie); no leaf code, no stencil marks.
+//
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
@@ -34,12 +40,23 @@ layout(location = 0) in float vViewDepth;
 layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit
 layout(location = 2) flat in float vMember;     // the tree leaf
 
+#ifdef LIT
+#include "csg/light.glsl"
+#endif
+#ifdef SHOWN
+#ifdef LIT
+layout(location = 0) out vec4 outColor;
+#else
+layout(location = 0) out vec4 outNormal;
+#endif
+layout(location = 1) out float outDepth;
+#else
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
 layout(location = 2) out vec4 outNormal;
 #ifdef LIT
-#include "csg/light.glsl"
 layout(location = 3) out vec4 outColor;
+#endif
 #endif
 
 // Per tree leaf, its packed base colours (ShadePass::baseColors): x its own surface.
@@ -62,9 +79,13 @@ void main() {
 #endif
     int leaf = int(vMember);
     outDepth = t;
+#ifndef SHOWN
     outLeaf = leafCode(leaf, false);
-    outNormal = vec4(vFaceNormal, baseColors[leaf].x);
+#endif
 #ifdef LIT
     outColor = vec4(lightSurface(unpackBaseColor(baseColors[leaf].x), vFaceNormal), 1.0);
+#endif
+#if !defined(SHOWN) || !defined(LIT)
+    outNormal = vec4(vFaceNormal, baseColors[leaf].x);
 #endif
 }

@@ -317,29 +317,44 @@ TEST_F(PlainFrameGLTest, FramesThatNeedThePeelRunEveryPass) {
 }
 
 TEST_F(PlainFrameGLTest, RenderIntoAHostGivesThePlainImage) {
-    // A window's frames (renderInto) take the plain path too, and show what
-    // render() reads back.
+    // A window's frames (renderInto) take the plain path too, writing only
+    // what the image needs, and show what render() reads back, to the byte,
+    // in every look; a renderer whose first frame is a window's, too.
+    renderer_ = std::make_unique<render::Renderer>();
     setScene(randomUnion(21, 16));
-    const render::Camera camera = cameraAt({4.0, -6.0, 5.0});
-    const render::Frame read = renderer_->render(camera, {});
-    ASSERT_TRUE(read.stats.plain);
-    gpu::Texture color = gpu::Texture::create2D("host", GL_RGBA8, camera.width, camera.height);
-    gpu::Framebuffer host("host");
-    host.attachTexture(GL_COLOR_ATTACHMENT0, color);
-    host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
-    host.checkComplete();
-    const render::FrameStats stats = renderer_->renderInto(host.id(), 0, 0, camera, {});
-    EXPECT_TRUE(stats.plain);
-    std::vector<std::uint8_t> pixels(read.rgba.size());
-    color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
-    // GL's rows count from the bottom.
-    const std::size_t row = static_cast<std::size_t>(camera.width) * 4;
-    std::size_t differ = 0;
-    for (int y = 0; y < camera.height; ++y) {
-        for (std::size_t x = 0; x < row; ++x) {
-            differ += pixels[static_cast<std::size_t>(camera.height - 1 - y) * row + x] !=
-                      read.rgba[static_cast<std::size_t>(y) * row + x];
+    for (const bool outline : {true, false}) {
+        for (const render::Lighting lighting : {render::Lighting::Strata, render::Lighting::OpenScad}) {
+            for (render::Projection projection : kProjections) {
+                render::RenderSettings look;
+                look.outline = outline;
+                look.lighting = lighting;
+                const render::Camera camera = cameraAt({4.0, -6.0, 5.0}, projection);
+                const std::string what = std::string(render::lightingName(lighting)) +
+                                         (outline ? ", outline" : "") + ", projection " +
+                                         std::to_string(static_cast<int>(projection));
+                gpu::Texture color = gpu::Texture::create2D("host", GL_RGBA8, camera.width, camera.height);
+                gpu::Framebuffer host("host");
+                host.attachTexture(GL_COLOR_ATTACHMENT0, color);
+                host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+                host.checkComplete();
+                const render::FrameStats stats = renderer_->renderInto(host.id(), 0, 0, camera, look);
+                EXPECT_TRUE(stats.plain) << what;
+                EXPECT_GT(stats.tiedLeaves, 0u) << what;
+                const render::Frame read = renderer_->render(camera, look);
+                ASSERT_TRUE(read.stats.plain) << what;
+                std::vector<std::uint8_t> pixels(read.rgba.size());
+                color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
+                // GL's rows count from the bottom.
+                const std::size_t row = static_cast<std::size_t>(camera.width) * 4;
+                std::size_t differ = 0;
+                for (int y = 0; y < camera.height; ++y) {
+                    for (std::size_t x = 0; x < row; ++x) {
+                        differ += pixels[static_cast<std::size_t>(camera.height - 1 - y) * row + x] !=
+                                  read.rgba[static_cast<std::size_t>(y) * row + x];
+                    }
+                }
+                EXPECT_EQ(differ, 0u) << what;
+            }
         }
     }
-    EXPECT_EQ(differ, 0u);
 }
