@@ -11,8 +11,9 @@ namespace strata::render {
 
 namespace {
 
-// Box comparisons mayTie may spend before it takes every leaf as one that
-// may tie: a few tens of milliseconds, once per scene and tolerance.
+// Box comparisons mayTie and tyingTriangles may each spend before they give
+// up (every leaf may tie; every triangle of those): a few tens of
+// milliseconds, once per scene and tolerance.
 constexpr std::size_t kTieComparisons = std::size_t(1) << 25;
 
 }  // namespace
@@ -60,56 +61,45 @@ void PlainPass::setLeaves(const SceneBuffers& scene, std::vector<int> leaves) {
     tieMargin_ = -1.0;
     tieDraws_ = 0;
     tieCount_ = 0;
+    tieTriangles_ = 0;
     uploadedColors_.clear();
 }
 
-std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const int> leaves, double margin,
-                                   std::size_t budget) {
-    // The boxes, grown by the margin, in a grid of cells about as large as
-    // the median box: a box is compared with those that share a cell with
-    // it, so leaves apart cost no comparison (a grid of a million cubes is
-    // a few million cell entries). A box over many cells (a base plate
-    // under small parts) is compared with every box; a cell crowded past
-    // kCrowded boxes counts them all as tying. Past `budget` comparisons
-    // every leaf does.
-    constexpr std::size_t kCrowded = 64, kMostCells = 64;
-    auto box = [&](int leaf) -> const geometry::Bounds& { return scene.leaf(leaf).bounds; };
-    auto meet = [&](int a, int b) {
-        const geometry::Bounds &p = box(a), &q = box(b);
-        for (int axis = 0; axis < 3; ++axis) {
-            if (p.max[axis] + margin < q.min[axis] - margin || q.max[axis] + margin < p.min[axis] - margin)
-                return false;
-        }
-        return true;
-    };
-    std::vector<int> present;
-    present.reserve(leaves.size());
-    for (int leaf : leaves)
-        if (!box(leaf).empty()) present.push_back(leaf);
-    std::vector<int> all(present);
-    std::sort(all.begin(), all.end());
-    if (present.size() < 2) return {};
+namespace {
 
+// Calls pair(i, j), i < j, for every two of `boxes` (none empty) that may
+// meet once grown by `margin`, and for a few more, through a grid of cells
+// about as large as the median box: boxes are compared with those that
+// share a cell with them (a pair may come more than once), so boxes apart
+// cost no comparison. A box over many cells (a base plate under small
+// parts) is compared with every box. A cell crowded past `crowded` boxes
+// calls crowd(i) for each of its boxes instead of comparing them. Returns
+// false, having stopped, past `budget` comparisons.
+template <class Pair, class Crowd>
+bool nearPairs(std::span<const geometry::Bounds> boxes, double margin, std::size_t budget, std::size_t crowded,
+               Pair&& pair, Crowd&& crowd) {
+    constexpr std::size_t kMostCells = 64;
+    if (boxes.size() < 2) return true;
     std::vector<double> extents;
-    extents.reserve(present.size());
-    for (int leaf : present) {
-        const glm::dvec3 size = box(leaf).max - box(leaf).min;
+    extents.reserve(boxes.size());
+    geometry::Bounds whole;
+    for (const geometry::Bounds& b : boxes) {
+        const glm::dvec3 size = b.max - b.min;
         extents.push_back(std::max({size.x, size.y, size.z}));
+        whole.extend(b);
     }
     std::nth_element(extents.begin(), extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2),
                      extents.end());
-    geometry::Bounds whole;
-    for (int leaf : present) whole.extend(box(leaf));
     const double cell = std::max({extents[extents.size() / 2] + 2.0 * margin, whole.diagonal() * 1e-6, 1e-300});
 
-    // (cell key, leaf) for each cell a small box covers; the large ones apart.
-    std::vector<std::pair<std::uint64_t, int>> entries;
-    std::vector<int> large;
+    // (cell key, box) for each cell a small box covers; the large ones apart.
+    std::vector<std::pair<std::uint64_t, std::size_t>> entries;
+    std::vector<std::size_t> large;
     auto cellOf = [&](double v, double origin) {
         return static_cast<std::int64_t>(std::floor((v - origin) / cell));
     };
-    for (int leaf : present) {
-        const geometry::Bounds& b = box(leaf);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const geometry::Bounds& b = boxes[i];
         std::int64_t low[3], high[3];
         std::uint64_t count = 1;
         for (int axis = 0; axis < 3; ++axis) {
@@ -118,7 +108,7 @@ std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const in
             count *= static_cast<std::uint64_t>(high[axis] - low[axis] + 1);
         }
         if (count > kMostCells) {
-            large.push_back(leaf);
+            large.push_back(i);
             continue;
         }
         for (std::int64_t x = low[0]; x <= high[0]; ++x)
@@ -126,15 +116,14 @@ std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const in
                 for (std::int64_t z = low[2]; z <= high[2]; ++z) {
                     // 21 bits a coordinate, from one below the scene's corner.
                     const auto bits = [](std::int64_t c) { return static_cast<std::uint64_t>(c + 1) & 0x1fffff; };
-                    entries.emplace_back(bits(x) << 42 | bits(y) << 21 | bits(z), leaf);
+                    entries.emplace_back(bits(x) << 42 | bits(y) << 21 | bits(z), i);
                 }
     }
-    if (large.size() * present.size() > budget) return all;
-    std::vector<char> ties(scene.leaves().size(), 0);
-    std::size_t comparisons = large.size() * present.size();
-    for (int big : large) {
-        for (int other : present) {
-            if (other != big && meet(big, other)) ties[static_cast<std::size_t>(big)] = ties[static_cast<std::size_t>(other)] = 1;
+    std::size_t comparisons = large.size() * boxes.size();
+    if (comparisons > budget) return false;
+    for (std::size_t big : large) {
+        for (std::size_t other = 0; other < boxes.size(); ++other) {
+            if (other != big) pair(std::min(big, other), std::max(big, other));
         }
     }
     std::sort(entries.begin(), entries.end());
@@ -142,22 +131,141 @@ std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const in
         std::size_t last = first;
         while (last < entries.size() && entries[last].first == entries[first].first) ++last;
         const std::size_t n = last - first;
-        if (n > kCrowded) {
-            for (std::size_t i = first; i < last; ++i) ties[static_cast<std::size_t>(entries[i].second)] = 1;
+        if (n > crowded) {
+            for (std::size_t i = first; i < last; ++i) crowd(entries[i].second);
         } else {
             comparisons += n * (n - 1) / 2;
-            if (comparisons > budget) return all;
+            if (comparisons > budget) return false;
             for (std::size_t i = first; i < last; ++i)
                 for (std::size_t j = i + 1; j < last; ++j) {
-                    const int a = entries[i].second, b = entries[j].second;
-                    if (meet(a, b)) ties[static_cast<std::size_t>(a)] = ties[static_cast<std::size_t>(b)] = 1;
+                    const std::size_t a = entries[i].second, b = entries[j].second;
+                    pair(std::min(a, b), std::max(a, b));
                 }
         }
         first = last;
     }
+    return true;
+}
+
+bool boxesMeet(const geometry::Bounds& p, const geometry::Bounds& q, double margin) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (p.max[axis] + margin < q.min[axis] - margin || q.max[axis] + margin < p.min[axis] - margin) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const int> leaves, double margin,
+                                   std::size_t budget) {
+    // A cell crowded past kCrowded boxes counts them all as tying; past
+    // `budget` comparisons every leaf does.
+    constexpr std::size_t kCrowded = 64;
+    std::vector<int> present;
+    std::vector<geometry::Bounds> boxes;
+    present.reserve(leaves.size());
+    for (int leaf : leaves) {
+        if (scene.leaf(leaf).bounds.empty()) continue;
+        present.push_back(leaf);
+        boxes.push_back(scene.leaf(leaf).bounds);
+    }
+    if (present.size() < 2) return {};
+    std::vector<char> ties(present.size(), 0);
+    const bool whole = nearPairs(
+        boxes, margin, budget, kCrowded,
+        [&](std::size_t a, std::size_t b) {
+            if (boxesMeet(boxes[a], boxes[b], margin)) ties[a] = ties[b] = 1;
+        },
+        [&](std::size_t a) { ties[a] = 1; });
     std::vector<int> out;
-    for (int leaf : all)
-        if (ties[static_cast<std::size_t>(leaf)]) out.push_back(leaf);
+    for (std::size_t i = 0; i < present.size(); ++i)
+        if (!whole || ties[i]) out.push_back(present[i]);
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::optional<PlainPass::TieDraws> PlainPass::tyingTriangles(const SceneBuffers& scene, std::span<const int> leaves,
+                                                             double margin, std::size_t budget) {
+    // A cell of more triangles than this counts them all as tying: the
+    // tip of a cone, the pole of a sphere.
+    constexpr std::size_t kCrowded = 256;
+    std::size_t total = 0;
+    for (int leaf : leaves) total += scene.leaf(leaf).indexCount / 3;
+    if (total > kMostTieTriangles) return std::nullopt;
+
+    // Every triangle of the leaves, as drawn, with its leaf's place in `leaves`.
+    struct Triangle {
+        glm::vec3 corner[3];
+        glm::vec3 normal;  // unit, or 0 for a triangle with no area
+        std::uint32_t leaf;
+    };
+    std::vector<Triangle> triangles;
+    std::vector<geometry::Bounds> boxes;
+    std::vector<SceneBuffers::LeafTriangles> drawn(leaves.size());
+    std::vector<std::size_t> firstTriangle(leaves.size() + 1, 0);
+    triangles.reserve(total);
+    boxes.reserve(total);
+    for (std::size_t l = 0; l < leaves.size(); ++l) {
+        drawn[l] = scene.leafTriangles(leaves[l]);
+        firstTriangle[l] = triangles.size();
+        const std::vector<glm::vec3>& corners = drawn[l].corners;
+        for (std::size_t c = 0; c + 2 < corners.size(); c += 3) {
+            Triangle t{{corners[c], corners[c + 1], corners[c + 2]}, {}, static_cast<std::uint32_t>(l)};
+            const glm::dvec3 a(t.corner[0]);
+            const glm::dvec3 n = glm::cross(glm::dvec3(t.corner[1]) - a, glm::dvec3(t.corner[2]) - a);
+            const double length = glm::length(n);
+            t.normal = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
+            geometry::Bounds box;
+            for (const glm::vec3& p : t.corner) box.extend(glm::dvec3(p));
+            triangles.push_back(t);
+            boxes.push_back(box);
+        }
+    }
+    firstTriangle[leaves.size()] = triangles.size();
+
+    // Two triangles of different leaves hold points `margin` apart at most
+    // only if each has a corner within the margin of the other's plane on
+    // either side, or touches it (its corners' heights over it bracket
+    // that point's): the test keeps every such pair and a few more. (The
+    // unit normal in floats errs by far less than the margin's last
+    // quarter, PlainPass::run.)
+    auto reaches = [&](const Triangle& t, const Triangle& u) {
+        if (t.normal == glm::vec3(0.0f)) return true;
+        const glm::dvec3 n(t.normal), origin(t.corner[0]);
+        double low = INFINITY, high = -INFINITY;
+        for (const glm::vec3& p : u.corner) {
+            const double h = glm::dot(n, glm::dvec3(p) - origin);
+            low = std::min(low, h);
+            high = std::max(high, h);
+        }
+        return low <= margin && high >= -margin;
+    };
+    std::vector<char> ties(triangles.size(), 0);
+    const bool whole = nearPairs(
+        boxes, margin, budget, kCrowded,
+        [&](std::size_t a, std::size_t b) {
+            const Triangle &t = triangles[a], &u = triangles[b];
+            if (t.leaf == u.leaf || !boxesMeet(boxes[a], boxes[b], margin)) return;
+            if (reaches(t, u) && reaches(u, t)) ties[a] = ties[b] = 1;
+        },
+        [&](std::size_t a) { ties[a] = 1; });
+    if (!whole) return std::nullopt;
+
+    // The draws: the lowest leaf last, each leaf's tying triangles.
+    TieDraws out;
+    for (std::size_t l = leaves.size(); l-- > 0;) {
+        const std::size_t first = out.indices.size();
+        for (std::size_t k = firstTriangle[l]; k < firstTriangle[l + 1]; ++k) {
+            if (!ties[k]) continue;
+            const std::size_t c = 3 * (k - firstTriangle[l]);
+            out.indices.insert(out.indices.end(), drawn[l].indices.begin() + static_cast<std::ptrdiff_t>(c),
+                               drawn[l].indices.begin() + static_cast<std::ptrdiff_t>(c + 3));
+        }
+        if (out.indices.size() == first) continue;
+        out.commands.push_back({static_cast<GLuint>(out.indices.size() - first), 1, static_cast<GLuint>(first), 0,
+                                static_cast<GLuint>(leaves[l])});
+        out.triangles += (out.indices.size() - first) / 3;
+    }
     return out;
 }
 
@@ -190,19 +298,35 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     // Two surfaces tie when their depths along one ray lie within a quarter
     // of the tolerance; points on one ray that far apart in depth lie at
     // most that over the cosine of the ray's angle with the view direction
-    // apart in space. Twice that, so that a turning camera rarely asks again.
+    // apart in space. Twice that, so that a turning camera rarely asks
+    // again, and asked again while a quarter of the margin is left for
+    // the rounding of the shader's depths.
     const double secant = view.orthographic ? 1.0
                                             : std::sqrt(1.0 + double(view.halfExtent.x) * view.halfExtent.x +
                                                         double(view.halfExtent.y) * view.halfExtent.y);
     const double needed = 0.25 * view.coincidence * secant;
-    if (tieMargin_ < needed) {
+    if (tieMargin_ < 1.25 * needed) {
         tieMargin_ = 2.0 * needed;
+        // The leaves whose boxes meet, then of those the triangles that
+        // come near another leaf's; where those are too many to sort out,
+        // every triangle of the leaves.
         std::vector<int> tying = mayTie(scene, leaves_, tieMargin_, kTieComparisons);
-        std::reverse(tying.begin(), tying.end());  // the lowest leaf drawn last, and kept
-        const std::vector<DrawElementsIndirectCommand> commands = scene.leafCommands(tying);
-        gpu::Buffer::uploadGrowing(tieCommands_, "plain tie commands", commands);
-        tieDraws_ = static_cast<GLsizei>(commands.size());
-        tieCount_ = tying.size();
+        std::optional<TieDraws> draws = tyingTriangles(scene, tying, tieMargin_, kTieComparisons);
+        if (!draws) {
+            std::reverse(tying.begin(), tying.end());  // the lowest leaf drawn last, and kept
+            draws.emplace();
+            draws->commands = scene.leafCommands(tying);
+            draws->allOf = true;
+        }
+        gpu::Buffer::uploadGrowing(tieCommands_, "plain tie commands", draws->commands);
+        tieDraws_ = static_cast<GLsizei>(draws->commands.size());
+        tieCount_ = draws->commands.size();
+        tieTriangles_ = draws->triangles;
+        if (!draws->allOf) {
+            gpu::Buffer::uploadGrowing(tieIndices_, "plain tie triangles", draws->indices);
+            tieVertexArray_ = scene.leafVertexArrayOver(tieIndices_);
+        }
+        tieAllOf_ = draws->allOf;
     }
     if (baseColors != uploadedColors_) {
         gpu::Buffer::uploadGrowing(colors_, "plain base colours", baseColors);
@@ -233,7 +357,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glScissor(drawn.x, drawn.y, drawn.width, drawn.height);
     if (shown) {
         // The depths go to the tie pass alone.
-        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, tieDraws_ > 0 ? GL_COLOR_ATTACHMENT1 : GL_NONE};
+        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, tieDraws_ > 0 ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
         glNamedFramebufferDrawBuffers(target.id(), 2, buffers);
     }
     target.bindForDraw();
@@ -281,6 +405,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         glDepthFunc(GL_GEQUAL);
         glDepthMask(GL_FALSE);
         glEnable(GL_DEPTH_CLAMP);
+        (tieAllOf_ ? scene.leafVertexArray() : tieVertexArray_).bind();
         tieCommands_.bind(GL_DRAW_INDIRECT_BUFFER);
         glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, tieDraws_, 0);
         glDisable(GL_DEPTH_CLAMP);

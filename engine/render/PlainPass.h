@@ -44,6 +44,7 @@
 // vertexArray() bound.
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
@@ -58,6 +59,7 @@
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
+#include "strata/gpu/VertexArray.h"
 #include "strata/render/ColorScheme.h"
 
 namespace strata::render {
@@ -96,8 +98,10 @@ public:
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
              const std::vector<glm::vec2>& baseColors, const Output& output);
 
-    // Leaves whose tie pass ran in the last frame (0: none could tie).
+    // Leaves whose tie pass ran in the last frame (0: none could tie), and
+    // of how many of their triangles (0: all).
     std::size_t tiedLeaves() const { return tieCount_; }
+    std::size_t tiedTriangles() const { return tieTriangles_; }
 
     // Of `leaves`, those whose world boxes, grown by `margin`, meet another's
     // of them, ascending (and possibly a few more, never fewer: where many
@@ -105,6 +109,22 @@ public:
     // comparisons.
     static std::vector<int> mayTie(const SceneBuffers& scene, std::span<const int> leaves, double margin,
                                    std::size_t budget);
+
+    // The tie pass's draws over leafVertexArrayOver(indices): the lowest
+    // leaf last, each leaf's triangles that may tie.
+    struct TieDraws {
+        std::vector<std::uint32_t> indices;
+        std::vector<DrawElementsIndirectCommand> commands;  // base instance: the leaf
+        std::size_t triangles = 0;
+        bool allOf = false;  // commands draw whole leaves, over leafVertexArray()
+    };
+    // Of `leaves` (ascending), the triangles that come within `margin` of
+    // a triangle of another of them (and possibly a few more, never fewer:
+    // where many crowd one place), as the tie pass draws them; nothing
+    // past kMostTieTriangles triangles or `budget` comparisons.
+    static std::optional<TieDraws> tyingTriangles(const SceneBuffers& scene, std::span<const int> leaves,
+                                                  double margin, std::size_t budget);
+    static constexpr std::size_t kMostTieTriangles = std::size_t(1) << 19;  // about 100 MB at most
 
 private:
     // plain.frag, each compiled at its first use: [shown][ties][shading],
@@ -114,9 +134,12 @@ private:
     std::array<std::array<std::array<std::optional<gpu::Program>, 3>, 2>, 2> programs_;
     gpu::Program& program(bool ties, const Output& output, const ViewSetup& view);
     std::vector<int> leaves_;
-    gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands
+    gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands, TieDraws::commands
     GLsizei nearestDraws_ = 0, tieDraws_ = 0;
-    std::size_t tieCount_ = 0;
+    std::size_t tieCount_ = 0, tieTriangles_ = 0;
+    gpu::Buffer tieIndices_;         // TieDraws::indices
+    gpu::VertexArray tieVertexArray_;  // over tieIndices_
+    bool tieAllOf_ = false;
     double tieMargin_ = -1.0;  // the margin tieCommands_ was found with (-1: none yet)
     gpu::Buffer colors_;       // baseColors, as last uploaded
     std::vector<glm::vec2> uploadedColors_;

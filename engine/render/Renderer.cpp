@@ -771,6 +771,7 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
     stats.plainMs = millisecondsSince(start);
     stats.plain = true;
     stats.tiedLeaves = plain->tiedLeaves();
+    stats.tiedTriangles = plain->tiedTriangles();
     stats.operands = static_cast<int>(plainLeaves.size());
     stats.tiles = 1;
     stats.notes.push_back("drawn plainly: a union of " + std::to_string(plainLeaves.size()) +

@@ -171,15 +171,38 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
     memberVertexArray_.setBindingDivisor(1, 1);
     memberVertexArray_.setAttribute(2, 1, 1, GL_FLOAT, 0);
     memberVertexArray_.setElementBuffer(indices_);
-    leafVertexArray_ = gpu::VertexArray("scene with face normals and leaf numbers");
-    leafVertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
-    leafVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
-    leafVertexArray_.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
-    leafVertexArray_.setAttribute(1, 1, 3, GL_FLOAT, 0);
-    leafVertexArray_.setVertexBuffer(2, memberNumbers_, 0, sizeof(float));
-    leafVertexArray_.setBindingDivisor(2, 1);
-    leafVertexArray_.setAttribute(2, 2, 1, GL_FLOAT, 0);
-    leafVertexArray_.setElementBuffer(indices_);
+    leafVertexArray_ = leafVertexArrayOver(indices_);
+}
+
+gpu::VertexArray SceneBuffers::leafVertexArrayOver(const gpu::Buffer& indices) const {
+    gpu::VertexArray array("scene with face normals and leaf numbers");
+    array.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
+    array.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    array.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
+    array.setAttribute(1, 1, 3, GL_FLOAT, 0);
+    array.setVertexBuffer(2, memberNumbers_, 0, sizeof(float));
+    array.setBindingDivisor(2, 1);
+    array.setAttribute(2, 2, 1, GL_FLOAT, 0);
+    array.setElementBuffer(indices);
+    return array;
+}
+
+SceneBuffers::LeafTriangles SceneBuffers::leafTriangles(int leaf) const {
+    const auto i = static_cast<std::size_t>(leaf);
+    const LeafRange& range = leaves_[i];
+    LeafTriangles out;
+    if (range.indexCount == 0) return out;
+    out.indices.resize(range.indexCount);
+    indices_.downloadSpan(std::span(out.indices), range.firstIndex * sizeof(std::uint32_t));
+    const std::size_t first = layoutStart_[i], count = layoutStart_[i + 1] - first;
+    std::vector<float> xyz(3 * count);
+    positions_.downloadSpan(std::span(xyz), first * 3 * sizeof(float));
+    out.corners.reserve(out.indices.size());
+    for (std::uint32_t v : out.indices) {
+        const std::size_t k = 3 * (v - first);
+        out.corners.emplace_back(xyz[k], xyz[k + 1], xyz[k + 2]);
+    }
+    return out;
 }
 
 std::vector<DrawElementsIndirectCommand> SceneBuffers::leafCommands(std::span<const int> leaves) const {

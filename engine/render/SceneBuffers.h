@@ -22,6 +22,7 @@
 // shaders/csg/surface.vert as its vertex stage (setSurfaceView).
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <span>
 #include <vector>
@@ -81,6 +82,17 @@ public:
     // A multi-draw's records for `leaves` over leafVertexArray(), in order,
     // leaves without triangles left out: leaf i's draw has base instance i.
     std::vector<DrawElementsIndirectCommand> leafCommands(std::span<const int> leaves) const;
+    // leafVertexArray()'s attributes over another index buffer, one that
+    // indexes the scene's vertices as the scene's own does (a subset of
+    // its triangles, leafTriangles' indices).
+    gpu::VertexArray leafVertexArrayOver(const gpu::Buffer& indices) const;
+    // Leaf `leaf`'s triangles as drawn, read back from the buffers: three
+    // entries of the index buffer each, and their corners' positions.
+    struct LeafTriangles {
+        std::vector<std::uint32_t> indices;
+        std::vector<glm::vec3> corners;
+    };
+    LeafTriangles leafTriangles(int leaf) const;
     // Per leaf: its color() in rgba, a = -1 when it has none.
     const std::vector<glm::vec4>& leafColors() const { return leafColors_; }
     const std::vector<LeafRange>& leaves() const { return leaves_; }

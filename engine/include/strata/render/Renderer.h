@@ -112,9 +112,11 @@ struct FrameStats {
     // translucent leaves), readback (render() only).
     double peelMs = 0, evaluateMs = 0, normalMs = 0, plainMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
     // The frame was drawn plainly (RenderSettings::plainUnions): its leaves
-    // drawn depth-tested, `tiedLeaves` of them a second time for ties.
+    // drawn depth-tested, `tiedLeaves` of them a second time for ties:
+    // `tiedTriangles` of their triangles, those that come near another
+    // leaf's (0: every triangle of those leaves).
     bool plain = false;
-    std::size_t tiedLeaves = 0;
+    std::size_t tiedLeaves = 0, tiedTriangles = 0;
     // Peel passes used, per tree leaf: 0 for leaves not drawn, among them a
     // leaf identical to a lower one, which shares that one's layers
     // (IdenticalLeaves.h).
