@@ -7,30 +7,67 @@
 # triangles and audit (strata_mesh_audit: "clean", or the degenerate
 # triangles, open or non-manifold edges after welding, and crossing pairs).
 #
-#   scripts/bench-export.sh [--runs N] FILE.csg...
+#   scripts/bench-export.sh [--runs N] [--manifold] FILE.csg...
 #
-# Needs a Release build (build/, with tests/bench/strata_mesh_audit),
-# openscad 2021.01, python3 and GNU time.
+# --manifold adds a third program, as a comparator only: Manifold (the
+# manifold-3d WebAssembly package, MANIFOLD_VERSION below, run by node),
+# which reads the same .csg through scripts/manifold/csg2manifold.mjs (a
+# translator that cuts spheres, cylinders, circles and extrusions as
+# OpenSCAD 2021.01 does, so that the three evaluate the same polyhedra) and
+# writes a binary STL. Its columns, after the others: the whole process
+# (node start, loading the WebAssembly, parsing, building, evaluating,
+# writing) in wall seconds and peak MiB, Manifold's own evaluation
+# (building the Manifold tree and its booleans, timed inside the process,
+# forced by getMesh: no start, load, parse or write), the volume, triangles
+# and audit of its STL. A model it cannot read (text(), say) shows "-",
+# and the reason goes to stderr. manifold-3d is installed on first use
+# with npm into ${XDG_CACHE_HOME:-~/.cache}/strata-bench/manifold, outside
+# the repository; nothing in the build or the tests needs it.
+#
+# Needs a Release build (build/, with tests/bench/strata_mesh_audit; or
+# STRATA_RENDER and STRATA_AUDIT naming the two programs), openscad 2021.01,
+# python3 and GNU time; node and npm for --manifold.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+MANIFOLD_VERSION=3.5.4
+
 runs=3
+manifold=0
 files=()
 while (($#)); do
   case $1 in
     --runs) runs=$2; shift 2 ;;
+    --manifold) manifold=1; shift ;;
     *) files+=("$1"); shift ;;
   esac
 done
-((${#files[@]})) || { echo "usage: scripts/bench-export.sh [--runs N] FILE.csg..." >&2; exit 2; }
-for tool in openscad python3 /usr/bin/time; do
+((${#files[@]})) || { echo "usage: scripts/bench-export.sh [--runs N] [--manifold] FILE.csg..." >&2; exit 2; }
+tools=(openscad python3 /usr/bin/time)
+if ((manifold)); then tools+=(node npm); fi
+for tool in "${tools[@]}"; do
   command -v "$tool" >/dev/null || { echo "bench-export: $tool is not installed" >&2; exit 1; }
 done
-render=build/apps/strata-render/strata-render
-audit=build/tests/bench/strata_mesh_audit
+render=${STRATA_RENDER:-build/apps/strata-render/strata-render}
+audit=${STRATA_AUDIT:-build/tests/bench/strata_mesh_audit}
 for exe in "$render" "$audit"; do
   [[ -x $exe ]] || { echo "bench-export: build $exe first (scripts/build.sh release)" >&2; exit 1; }
 done
+
+# manifold-3d in a cache outside the repository, at the pinned version; npm
+# writes no package.json or lock there (--no-save), and runs no install
+# scripts: only the WebAssembly module is used.
+if ((manifold)); then
+  manifold_dir=${XDG_CACHE_HOME:-$HOME/.cache}/strata-bench/manifold
+  manifold_js=$manifold_dir/node_modules/manifold-3d/manifold.js
+  if [[ $(node -p "require('$manifold_dir/node_modules/manifold-3d/package.json').version" 2>/dev/null) != "$MANIFOLD_VERSION" ]]; then
+    echo "bench-export: installing manifold-3d@$MANIFOLD_VERSION into $manifold_dir" >&2
+    mkdir -p "$manifold_dir"
+    npm install --no-save --no-audit --no-fund --ignore-scripts --omit=optional --omit=peer \
+      --prefix "$manifold_dir" "manifold-3d@$MANIFOLD_VERSION" >&2
+  fi
+  [[ -f $manifold_js ]] || { echo "bench-export: no $manifold_js after npm install" >&2; exit 1; }
+fi
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -38,6 +75,18 @@ trap 'rm -rf "$work"' EXIT
 measure() {
   /usr/bin/time -f "%e %M" -o "$work/t" "$@" >/dev/null 2>&1 || { echo "fail fail"; return; }
   cat "$work/t"
+}
+# One Manifold run: "wall KiB evaluation", the last from the translator's
+# timing line (building and evaluating); its refusal or error, if any, is
+# kept in $work/m.why.
+measure_manifold() {
+  if /usr/bin/time -f "%e %M" -o "$work/t" node scripts/manifold/csg2manifold.mjs --module "$manifold_js" "$1" "$2" \
+      >/dev/null 2>"$work/m.err"; then
+    echo "$(cat "$work/t") $(python3 -c 'import json, sys; t = json.loads(open(sys.argv[1]).read().splitlines()[-1]); print(t["build_s"] + t["evaluate_s"])' "$work/m.err")"
+  else
+    tail -n 1 "$work/m.err" >"$work/m.why"
+    echo "fail fail fail"
+  fi
 }
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 # The volume enclosed by an STL file, binary or ASCII, by the divergence theorem.
@@ -73,14 +122,23 @@ said = ", ".join("%d %s" % (n, what) for n, what in faults if n)
 print("%d | %s" % (a["triangles"], said or "clean"))'
 }
 
-echo "| model | strata s | OpenSCAD s | strata / OpenSCAD | strata MiB | OpenSCAD MiB | strata volume | OpenSCAD volume | strata triangles | strata audit | OpenSCAD triangles | OpenSCAD audit |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- |"
+head="| model | strata s | OpenSCAD s | strata / OpenSCAD | strata MiB | OpenSCAD MiB | strata volume | OpenSCAD volume | strata triangles | strata audit | OpenSCAD triangles | OpenSCAD audit |"
+rule="| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- |"
+if ((manifold)); then
+  head+=" Manifold s | Manifold eval s | Manifold MiB | Manifold volume | Manifold triangles | Manifold audit |"
+  rule+=" ---: | ---: | ---: | ---: | ---: | --- |"
+fi
+echo "$head"
+echo "$rule"
 for f in "${files[@]}"; do
   : >"$work/s"
   : >"$work/o"
+  : >"$work/m"
+  rm -f "$work/m.why"
   for ((i = 0; i < runs; i++)); do
     measure "$render" "$f" --export "$work/s.stl" >>"$work/s"
     measure openscad -o "$work/o.stl" "$f" >>"$work/o"
+    if ((manifold)); then measure_manifold "$f" "$work/m.stl" >>"$work/m"; fi
   done
   st=$(cut -d' ' -f1 "$work/s" | median)
   ot=$(cut -d' ' -f1 "$work/o" | median)
@@ -90,7 +148,22 @@ for f in "${files[@]}"; do
   ov=$( [[ -f $work/o.stl ]] && volume "$work/o.stl" || echo "-")
   sa=$(audited "$work/s.stl")
   oa=$(audited "$work/o.stl")
-  awk -v n="$(basename "$f")" -v st="$st" -v ot="$ot" -v sm="$sm" -v om="$om" -v sv="$sv" -v ov="$ov" -v sa="$sa" -v oa="$oa" \
-    'BEGIN {printf "| `%s` | %.2f | %.2f | %.2f | %.0f | %.0f | %s | %s | %s | %s |\n", n, st, ot, (ot > 0 ? st / ot : 0), sm / 1024, om / 1024, sv, ov, sa, oa}'
-  rm -f "$work/s.stl" "$work/o.stl"
+  row=$(awk -v n="$(basename "$f")" -v st="$st" -v ot="$ot" -v sm="$sm" -v om="$om" -v sv="$sv" -v ov="$ov" -v sa="$sa" -v oa="$oa" \
+    'BEGIN {printf "| `%s` | %.2f | %.2f | %.2f | %.0f | %.0f | %s | %s | %s | %s |", n, st, ot, (ot > 0 ? st / ot : 0), sm / 1024, om / 1024, sv, ov, sa, oa}')
+  if ((manifold)); then
+    if [[ -f $work/m.why ]]; then
+      echo "bench-export: Manifold on $f: $(cat "$work/m.why")" >&2
+      row+=" - | - | - | - | - | - |"
+    else
+      mt=$(cut -d' ' -f1 "$work/m" | median)
+      mm=$(cut -d' ' -f2 "$work/m" | median)
+      me=$(cut -d' ' -f3 "$work/m" | median)
+      mv=$(volume "$work/m.stl")
+      ma=$(audited "$work/m.stl")
+      row+=$(awk -v mt="$mt" -v me="$me" -v mm="$mm" -v mv="$mv" -v ma="$ma" \
+        'BEGIN {printf " %.2f | %.3f | %.0f | %s | %s |", mt, me, mm / 1024, mv, ma}')
+    fi
+  fi
+  echo "$row"
+  rm -f "$work/s.stl" "$work/o.stl" "$work/m.stl"
 done
