@@ -134,6 +134,36 @@ std::vector<std::string> printedLines(const std::string& output) {
 
 }  // namespace
 
+std::vector<std::string> makeRuleFiles(const std::string& rule) {
+    std::vector<std::string> files;
+    std::size_t i = 0;
+    // The target, up to its colon (a colon escaped in a name does not end it).
+    for (; i < rule.size() && rule[i] != ':'; ++i)
+        if (rule[i] == '\\') ++i;
+    std::string word;
+    auto end = [&] {
+        if (!word.empty()) files.push_back(word);
+        word.clear();
+    };
+    for (++i; i < rule.size(); ++i) {
+        const char c = rule[i];
+        if (c == '\\' && i + 1 < rule.size()) {
+            const char next = rule[++i];
+            if (next == '\n' || next == '\r') {
+                end();
+            } else {
+                word += next;
+            }
+        } else if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
+            end();
+        } else {
+            word += c;
+        }
+    }
+    end();
+    return files;
+}
+
 ScadExport exportScad(const std::string& scad, const std::vector<std::string>& defines) {
     const std::string openscad = findOnPath("openscad");
     if (openscad.empty())
@@ -143,7 +173,8 @@ ScadExport exportScad(const std::string& scad, const std::vector<std::string>& d
     const TempFolder folder(scad);
     const fs::path csg = folder.path() / "scene.csg";
     const fs::path log = folder.path() / "openscad.log";
-    std::vector<std::string> args{openscad, "-o", csg.string()};
+    const fs::path rule = folder.path() / "scene.d";
+    std::vector<std::string> args{openscad, "-o", csg.string(), "-d", rule.string()};
     for (const std::string& define : defines) {
         args.push_back("-D");
         args.push_back(define);
@@ -152,7 +183,13 @@ ScadExport exportScad(const std::string& scad, const std::vector<std::string>& d
     const int code = runLogged(scad, std::move(args), log);
     const std::string output = readText(log);
     if (code != 0 || !fs::exists(csg)) throw openscadError(scad, defines, output, code);
-    return ScadExport{readText(csg), printedLines(output)};
+    ScadExport exported{readText(csg), printedLines(output), {}};
+    std::error_code ec;
+    for (const std::string& file : makeRuleFiles(readText(rule))) {
+        const fs::path absolute = fs::absolute(file, ec);
+        exported.dependencies.push_back(ec ? file : absolute.lexically_normal().string());
+    }
+    return exported;
 }
 
 }  // namespace strata::apps

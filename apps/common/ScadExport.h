@@ -12,7 +12,15 @@ namespace strata::apps {
 struct ScadExport {
     std::string csg;                   // the CSG export, as OpenSCAD wrote it
     std::vector<std::string> printed;  // the model's ECHO, WARNING, ... lines, as OpenSCAD printed them
+    // Every file the export read: the .scad, the files it uses and
+    // includes, and those it imports (openscad's -d list), as absolute paths.
+    std::vector<std::string> dependencies;
 };
+
+// The files of a make rule as openscad -d writes it ("out.csg: a.scad
+// lib/b\ c.scad ..." over lines continued by a backslash): the words after
+// the first colon, with "\ " read as a space.
+std::vector<std::string> makeRuleFiles(const std::string& rule);
 
 // Runs openscad on `scad` with each of `defines` ("name=value") given to it
 // as `-D name=value`, in order. Throws strata::Error naming the .scad, in one

@@ -44,6 +44,7 @@ SceneFile readSceneFile(const std::string& path, const std::vector<std::string>&
         file.tree.source = path;
         file.openscadOutput = std::move(exported.printed);
         file.csgExport = std::move(exported.csg);
+        file.dependencies = std::move(exported.dependencies);
     } else {
         file.tree = scene::meshFileTree(path);
     }

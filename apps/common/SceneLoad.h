@@ -20,6 +20,9 @@ struct SceneFile {
     // A .scad's CSG export as OpenSCAD wrote it, the text whose lines the
     // tree's positions name; empty for a .csg or a mesh.
     std::string csgExport;
+    // A .scad's dependencies (ScadExport::dependencies: itself, its use and
+    // include files, its imports); empty for a .csg or a mesh.
+    std::vector<std::string> dependencies;
 };
 
 // Reads `path`; a .scad with each of `defines` ("name=value") given to

@@ -18,6 +18,7 @@ LoadedScene loadSceneFile(const std::string& path) {
     scene.tree = std::move(file.tree);
     scene.openscadOutput = std::move(file.openscadOutput);
     scene.csgExport = std::move(file.csgExport);
+    scene.dependencies = std::move(file.dependencies);
     scene.model = geometry::buildModel(scene.tree);
     // What the model forgave (an inside-out polyhedron) is shown with the reader's warnings.
     scene.tree.warnings.insert(scene.tree.warnings.end(), scene.model.warnings.begin(), scene.model.warnings.end());

@@ -19,6 +19,9 @@ struct LoadedScene {
     // A .scad's CSG export as OpenSCAD wrote it, the text whose lines the
     // tree's positions name; empty for a .csg or a mesh.
     std::string csgExport;
+    // The files besides the scene's own that a reload must follow: a
+    // .scad's use and include files and imports (apps::SceneFile).
+    std::vector<std::string> dependencies;
 };
 
 // Parses and tessellates. Throws strata::Error with strata-render's one-line

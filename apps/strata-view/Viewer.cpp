@@ -63,6 +63,7 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
     settings_.lighting = options.lighting;
     settings_.outline = options.outline;
     rows_ = treeRows(scene_.tree);
+    watchDependencies();
     installInput();
     imgui_ = std::make_unique<ImGuiSession>(window_);
     overlay_ = std::make_unique<Overlay>();
@@ -130,7 +131,9 @@ void Viewer::pollReload() {
     const auto now = Clock::now();
     if (now - lastPoll_ < kReloadPoll) return;
     lastPoll_ = now;
-    if (watch_.changed()) loader_.request(path_);
+    bool changed = watch_.changed();
+    for (FileWatch& dependency : dependencyWatches_) changed = dependency.changed() || changed;
+    if (changed) loader_.request(path_);
     const bool missing = watch_.missingPolls() >= kMissingPolls;
     if (missing == fileMissing_) return;
     fileMissing_ = missing;
@@ -177,12 +180,29 @@ void Viewer::applyLoad(LoadResult result) {
         path_ = result.path;
         watch_ = FileWatch(path_);
     }
+    watchDependencies();
     updateTitle();
     sceneDirty_ = true;
     loadOnItsWay_.emplace();
     loadOnItsWay_->requested = result.requested;
     loadOnItsWay_->finished = result.finished;
     loadOnItsWay_->loadMs = result.milliseconds;
+}
+
+void Viewer::watchDependencies() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path shown = fs::absolute(path_, ec).lexically_normal();
+    std::vector<FileWatch> watches;
+    for (const std::string& file : scene_.dependencies) {
+        if (fs::path(file).lexically_normal() == shown) continue;  // watch_ has it
+        // A file watched before keeps its stamp, so a save between the load
+        // and now is still seen.
+        auto kept = std::find_if(dependencyWatches_.begin(), dependencyWatches_.end(),
+                                 [&](const FileWatch& w) { return w.path() == file; });
+        watches.push_back(kept != dependencyWatches_.end() ? std::move(*kept) : FileWatch(file));
+    }
+    dependencyWatches_ = std::move(watches);
 }
 
 void Viewer::uploadScene() {

@@ -150,6 +150,11 @@ private:
     Console console_;
     std::optional<ExportResult> lastExport_;  // the last finished export, for a waiting script
     FileWatch watch_;
+    // The shown model's other files (LoadedScene::dependencies: a .scad's
+    // use and include files and imports), as of its last good load: a
+    // change to any reloads the model, as OpenSCAD does.
+    std::vector<FileWatch> dependencyWatches_;
+    void watchDependencies();
     std::chrono::steady_clock::time_point lastPoll_;
 
     std::string path_;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "RunProcess.h"
+#include "ScadExport.h"
 #include "SceneFile.h"
 #include "TempDir.h"
 
@@ -108,4 +110,39 @@ TEST(SaveCsgExport, ALoadedScadKeepsOpenscadsExportAndACsgKeepsNone) {
     EXPECT_EQ(scene.csgExport, readText(dir / "by-openscad.csg"));
     EXPECT_FALSE(scene.csgExport.empty());
     EXPECT_TRUE(strata::view::loadSceneFile(dir / "by-openscad.csg").csgExport.empty());
+}
+
+TEST(SceneDependencies, AMakeRuleGivesItsFilesWithEscapedSpaces) {
+    EXPECT_EQ(strata::apps::makeRuleFiles("out.csg: \\\n\t/a/p.stl \\\n\t/a/my\\ lib.scad \\\n\tmain.scad\n"),
+              (std::vector<std::string>{"/a/p.stl", "/a/my lib.scad", "main.scad"}));
+    EXPECT_EQ(strata::apps::makeRuleFiles("x.csg: a.scad b.scad"), (std::vector<std::string>{"a.scad", "b.scad"}));
+    EXPECT_TRUE(strata::apps::makeRuleFiles("").empty());
+    EXPECT_TRUE(strata::apps::makeRuleFiles("no colon at all").empty());
+}
+
+TEST(SceneDependencies, AScadNamesEveryFileItUsesIncludesAndImports) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    TempDir dir;
+    const std::string lib = dir.write("my lib.scad", "module part() { cube(2); }\n");
+    const std::string size = dir.write("size.scad", "h = 3;\n");
+    // A closed tetrahedron.
+    std::string stl = "solid p\n";
+    const char* faces[4][3] = {{"0 0 0", "0 1 0", "1 0 0"}, {"0 0 0", "1 0 0", "0 0 1"},
+                               {"0 0 0", "0 0 1", "0 1 0"}, {"1 0 0", "0 1 0", "0 0 1"}};
+    for (const auto& face : faces) {
+        stl += "facet normal 0 0 0\nouter loop\n";
+        for (const char* corner : face) stl += std::string("vertex ") + corner + "\n";
+        stl += "endloop\nendfacet\n";
+    }
+    const std::string mesh = dir.write("p.stl", stl + "endsolid p\n");
+    const std::string scad =
+        dir.write("a.scad", "use <my lib.scad>\ninclude <size.scad>\npart();\n%import(\"p.stl\");\ncube(h);\n");
+    const LoadedScene scene = strata::view::loadSceneFile(scad);
+    auto has = [&](const std::string& file) {
+        return std::find(scene.dependencies.begin(), scene.dependencies.end(), file) != scene.dependencies.end();
+    };
+    EXPECT_TRUE(has(lib)) << ::testing::PrintToString(scene.dependencies);
+    EXPECT_TRUE(has(size)) << ::testing::PrintToString(scene.dependencies);
+    EXPECT_TRUE(has(mesh)) << ::testing::PrintToString(scene.dependencies);
+    EXPECT_TRUE(strata::view::loadSceneFile(dir / "p.stl").dependencies.empty());
 }

@@ -402,6 +402,35 @@ TEST_F(StrataView, OpensScadThroughOpenscad) {
     expectSameAsRender(readPng(dir / "scad.png"), render(dir / "a.csg", {"--camera=0,0,0,60,0,30,80"}));
 }
 
+TEST_F(StrataView, ASavedUseOrIncludeFileReloadsTheScad) {
+    // OpenSCAD's -d list names the files a .scad uses, includes and imports;
+    // saving one of them reloads the model, as OpenSCAD's automatic reload does.
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    dir.write("parts lib.scad", "module part() { cube(8, center = true); }\n");
+    dir.write("second lib.scad", "module part() { sphere(5, $fn = 24); }\n");
+    dir.write("size.scad", "height = 4;\n");
+    dir.write("taller.scad", "height = 12;\n");
+    const std::string scad = dir.write("a.scad", "use <parts lib.scad>\ninclude <size.scad>\npart();\n"
+                                                 "translate([12, 0, 0]) cube([3, 3, height]);\n");
+    const ProcessResult r = view(scad,
+                                 "size 320 240\n"
+                                 "camera 0,0,0,60,0,30,90\n"
+                                 "screenshot first.png\n"
+                                 "copy \"second lib.scad\" \"parts lib.scad\"\n"
+                                 "wait-reload\n"
+                                 "screenshot used.png\n"
+                                 "copy taller.scad size.scad\n"
+                                 "wait-reload\n"
+                                 "screenshot included.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string camera = "--camera=0,0,0,60,0,30,90";
+    const Image first = readPng(dir / "first.png"), used = readPng(dir / "used.png");
+    const Image included = readPng(dir / "included.png");
+    expectSameAsRender(included, render(scad, {camera}));
+    EXPECT_GT(differingPixels(first, used), 100);
+    EXPECT_GT(differingPixels(used, included), 100);
+}
+
 TEST_F(StrataView, AScadsMessagesSayTheyArePositionsInItsCsgExport) {
     if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
     // OpenSCAD exports this; strata refuses the open polyhedron, at its line in the export.
