@@ -277,10 +277,9 @@ std::string Viewer::rowLineNote(int node) const {
 void Viewer::drawPeelLabels() {
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
-    // Over the view only: never over the panel, even one dragged wider than the view's left edge.
+    // Over the view only: never over the panel.
     const float left = static_cast<float>(viewLeft()) / scale.x;
-    const float clipLeft = std::max(left, showPanel_ ? panelWidth_ : 0.0f);
-    draw->PushClipRect(ImVec2(clipLeft, 0.0f), ImGui::GetIO().DisplaySize, false);
+    draw->PushClipRect(ImVec2(viewLeftInWindow(), 0.0f), ImGui::GetIO().DisplaySize, false);
     for (const PeelTile& tile : peelTiles_) {
         std::string label =
             "leaf " + std::to_string(tile.leaf) + " L" + std::to_string(tile.layer) + (tile.far ? " far" : " near");

@@ -498,18 +498,29 @@ std::string Viewer::title() const {
 
 void Viewer::updateTitle() { glfwSetWindowTitle(window_.window(), title().c_str()); }
 
-// The stale model's badge over the view, drawn whether the panel shows or not.
+float Viewer::viewLeftInWindow() const {
+    const float left = static_cast<float>(viewLeft()) / ImGui::GetIO().DisplayFramebufferScale.x;
+    return std::max(left, showPanel_ ? panelWidth_ : 0.0f);
+}
+
+// The stale model's badge at the foot of the 3D view, beside the panel and
+// wrapped to the view's width, drawn whether the panel shows or not.
 void Viewer::drawStaleBadge() {
     if (loadError_.empty() && !fileMissing_) return;
-    const ImGuiViewport* view = ImGui::GetMainViewport();
+    const ImGuiViewport* window = ImGui::GetMainViewport();
     const std::string text = fileMissing_ ? "the file is gone, showing the last good version: " + path_
                                           : "error, showing the last good version: " + loadError_;
+    const float left = window->Pos.x + viewLeftInWindow();
+    const float wrap = std::max(window->Pos.x + window->Size.x - left - 16.0f, 40.0f);
     ImDrawList* draw = ImGui::GetForegroundDrawList();
-    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-    const ImVec2 at(view->Pos.x + 8.0f, view->Pos.y + view->Size.y - size.y - 8.0f);
+    draw->PushClipRect(ImVec2(left, window->Pos.y), ImVec2(window->Pos.x + window->Size.x, window->Pos.y + window->Size.y),
+                       false);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
+    const ImVec2 at(left + 8.0f, window->Pos.y + window->Size.y - size.y - 8.0f);
     draw->AddRectFilled(ImVec2(at.x - 4.0f, at.y - 2.0f), ImVec2(at.x + size.x + 4.0f, at.y + size.y + 2.0f),
                         IM_COL32(40, 0, 0, 200));
-    draw->AddText(at, IM_COL32(255, 90, 90, 255), text.c_str());
+    draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, IM_COL32(255, 90, 90, 255), text.c_str(), nullptr, wrap);
+    draw->PopClipRect();
 }
 
 // Beside the scene: model.csg -> model.stl.

@@ -107,6 +107,10 @@ private:
     void updateTitle();
     std::string title() const;
     void drawStaleBadge();
+    // The 3D view's left edge in window units, right of the panel (also of
+    // one dragged wider than the view's left edge): what is drawn over the
+    // view stays right of it.
+    float viewLeftInWindow() const;
     void pollExport();
     std::string defaultExportPath() const;
     std::string cameraLine() const;

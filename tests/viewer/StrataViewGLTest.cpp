@@ -862,6 +862,27 @@ TEST_F(StrataView, ADeletedFileKeepsTheModelAndSaysSo) {
 
 // The red line of a stale model lies over the debug views as over the shaded
 // one: the window's bottom rows hold its red text (255, 90, 90).
+TEST_F(StrataView, AStaleModelsRedLineStaysInsideTheViewBesideThePanel) {
+    // With the panel shown, the red line lies over the 3D view alone, wrapped
+    // to its width: none of its red left of the view's first column.
+    const std::string scene = dir.write("a.csg", kScene);
+    dir.write("broken.csg", "cube(size = [1, 1, 1]);\nsphere(r = );\n");
+    const ProcessResult r = view(scene,
+                                 "size 320 240\n"
+                                 "copy broken.csg a.csg\n"
+                                 "wait-reload\n"
+                                 "screenshot-window stale.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image window = readPng(dir / "stale.png");
+    const int viewLeft = window.width - 320;
+    ASSERT_GT(viewLeft, 100);  // the panel is shown
+    int inside = 0, outside = 0;
+    for (int y = std::max(0, window.height - 40); y < window.height; ++y)
+        for (int x = 0; x < window.width; ++x) (x < viewLeft ? outside : inside) += isRgb(window, x, y, 255, 90, 90);
+    EXPECT_GT(inside, 30);
+    EXPECT_EQ(outside, 0);
+}
+
 TEST_F(StrataView, AStaleModelsRedLineShowsOverTheDebugViews) {
     const std::string scene = dir.write("a.csg", kScene);
     const ProcessResult r = view(scene,
