@@ -20,6 +20,62 @@ const ImVec4 kErrorColor{1.0f, 0.45f, 0.4f, 1.0f};
 
 constexpr std::array<const char*, kDebugViews> kDebugNames{"shaded", "depth", "normal", "peel layers", "forms"};
 
+// Before the next item of a row: on the same line where `label` fits beside
+// the last item, else on a line of its own. `box`: a check box or radio
+// button (its square before the text), else a button.
+void nextInRow(const char* label, bool box) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float text = ImGui::CalcTextSize(label, nullptr, true).x;
+    const float width = box ? ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + text : text + 2 * style.FramePadding.x;
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+}
+
+// Text in the disabled colour, wrapped to the panel's width.
+void disabledWrapped(const std::string& text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", text.c_str());
+    ImGui::PopStyleColor();
+}
+
+// Text wrapped to the panel's width at its spaces only (ImGui's own
+// wrapping also breaks after a full stop, inside a number).
+void wrappedAtSpaces(const std::string& text) {
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    const float space = ImGui::CalcTextSize(" ").x;
+    bool first = true;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        std::size_t end = text.find(' ', at);
+        if (end == std::string::npos) end = text.size();
+        if (end > at) {
+            const std::string word = text.substr(at, end - at);
+            if (!first && ImGui::GetItemRectMax().x + space + ImGui::CalcTextSize(word.c_str()).x <= right)
+                ImGui::SameLine(0.0f, space);
+            ImGui::TextUnformatted(word.c_str());
+            first = false;
+        }
+        at = end + 1;
+    }
+}
+
+// A --camera= argument with a space after each comma, so that it wraps
+// between numbers, never inside one.
+std::string wrappableCamera(const std::string& line) {
+    std::string out;
+    for (char c : line) {
+        out += c;
+        if (c == ',') out += ' ';
+    }
+    return out;
+}
+
+std::string formatted(const char* format, auto... values) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, values...);
+    return text;
+}
+
 }  // namespace
 
 void Viewer::drawPanel() {
@@ -45,21 +101,21 @@ void Viewer::drawPanel() {
         if (ImGui::SmallButton("cancel (Esc)")) loader_.cancel();
         ImGui::SameLine();
         const std::string step = loader_.progressText();
-        ImGui::Text("loading... %.1f s%s%s", loader_.runningSeconds(), step.empty() ? "" : ": ", step.c_str());
+        ImGui::TextWrapped("loading... %.1f s%s%s", loader_.runningSeconds(), step.empty() ? "" : ": ", step.c_str());
     } else {
-        ImGui::TextDisabled("shown; reloads when the file changes (F5: now)");
+        disabledWrapped("shown; reloads when the file changes (F5: now)");
     }
     if (fileMissing_) {
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
         ImGui::TextWrapped("the file is gone (deleted or moved)");
         ImGui::PopStyleColor();
-        ImGui::TextDisabled("(showing the last good version)");
+        disabledWrapped("(showing the last good version)");
     }
     if (!loadError_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
         ImGui::TextWrapped("%s", loadError_.c_str());
         ImGui::PopStyleColor();
-        ImGui::TextDisabled("(showing the last good version)");
+        disabledWrapped("(showing the last good version)");
     }
     if (!renderError_.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
@@ -76,27 +132,27 @@ void Viewer::drawPanel() {
         constexpr std::array<Preset, 7> presets{Preset::Top,  Preset::Bottom, Preset::Left,    Preset::Right,
                                                 Preset::Front, Preset::Back,  Preset::Diagonal};
         for (std::size_t k = 0; k < presets.size(); ++k) {
-            if (k % 4 != 0) ImGui::SameLine();
+            if (k != 0) nextInRow(presetName(presets[k]), false);
             if (ImGui::Button(presetName(presets[k]))) {
                 orbit_.preset(presets[k]);
                 viewDirty_ = true;
             }
         }
-        ImGui::SameLine();
+        nextInRow("view all", false);
         if (ImGui::Button("view all")) viewAllNow();
         bool ortho = projection_ == render::Projection::Orthographic;
         if (ImGui::Checkbox("orthographic", &ortho)) toggleProjection();
-        ImGui::SameLine();
+        nextInRow("reset", false);
         if (ImGui::Button("reset")) resetView();
         bool axes = overlayOptions_.axes, scale = overlayOptions_.scale, edges = overlayOptions_.edges;
         if (ImGui::Checkbox("axes (Ctrl+2)", &axes)) setShowAxes(axes);
-        ImGui::SameLine();
+        nextInRow("scale markers", true);
         if (ImGui::Checkbox("scale markers", &scale)) setShowScale(scale);
         if (ImGui::Checkbox("edges (Ctrl+1)", &edges)) setShowEdges(edges);
     }
 
     if (ImGui::CollapsingHeader("console", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::BeginChild("console lines", ImVec2(0, 120), true, ImGuiWindowFlags_HorizontalScrollbar);
+        ImGui::BeginChild("console lines", ImVec2(0, 120), true);
         for (const ConsoleLine& line : console_.lines()) {
             const bool colored = line.kind != ConsoleLine::Kind::Info;
             if (colored) {
@@ -104,7 +160,7 @@ void Viewer::drawPanel() {
                                                      : line.kind == ConsoleLine::Kind::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
                                                                                                : ImVec4(0.6f, 0.9f, 1.0f, 1.0f));
             }
-            ImGui::TextUnformatted(line.text.c_str());
+            ImGui::TextWrapped("%s", line.text.c_str());
             if (colored) ImGui::PopStyleColor();
         }
         // Follow the newest line unless the user scrolled up.
@@ -121,9 +177,7 @@ void Viewer::drawPanel() {
         ImGui::SetNextItemWidth(-1);
         if (ImGui::InputTextWithHint("##csgexport", fallback.c_str(), csg, sizeof csg)) csgExportPath_ = csg;
         if (ImGui::Button("save CSG export")) saveChosenCsgExport();
-        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-        ImGui::TextWrapped("OpenSCAD's export of the .scad; the positions in messages and the tree are its lines");
-        ImGui::PopStyleColor();
+        disabledWrapped("OpenSCAD's export of the .scad; the positions in messages and the tree are its lines");
     }
 
     if (ImGui::CollapsingHeader("export")) {
@@ -146,9 +200,10 @@ void Viewer::drawPanel() {
                 exportResolution_ = std::clamp(exportResolution_, remesh::kLeastResolution, remesh::kMostResolution);
             }
         }
-        ImGui::TextDisabled(exportExact_ ? ".stl, .off, .obj or .3mf (a 2D model: .svg or .dxf); evaluated by CGAL as OpenSCAD's render"
-                                         : ".stl, .off, .obj or .3mf; the result sampled on a grid of this many "
-                                           "cells along its longest side, sharp edges kept");
+        disabledWrapped(exportExact_ ? ".stl, .off, .obj or .3mf (a 2D model: .svg or .dxf); evaluated by CGAL as "
+                                       "OpenSCAD's render"
+                                     : ".stl, .off, .obj or .3mf; the result sampled on a grid of this many "
+                                       "cells along its longest side, sharp edges kept");
     }
 
     if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -171,21 +226,21 @@ void Viewer::drawPanel() {
         }
         int light = static_cast<int>(settings_.lighting);
         ImGui::TextUnformatted("light");
-        ImGui::SameLine();
+        nextInRow("strata", true);
         if (ImGui::RadioButton("strata", &light, static_cast<int>(render::Lighting::Strata))) {
             settings_.lighting = render::Lighting::Strata;
             viewDirty_ = true;
         }
-        ImGui::SameLine();
+        nextInRow("OpenSCAD", true);
         if (ImGui::RadioButton("OpenSCAD", &light, static_cast<int>(render::Lighting::OpenScad))) {
             settings_.lighting = render::Lighting::OpenScad;
             viewDirty_ = true;
         }
-        ImGui::SameLine();
+        nextInRow("outline", true);
         if (ImGui::Checkbox("outline", &settings_.outline)) viewDirty_ = true;
         int debug = static_cast<int>(debugView_);
         for (int k = 0; k < static_cast<int>(kDebugNames.size()); ++k) {
-            if (k != 0) ImGui::SameLine();
+            if (k != 0) nextInRow(kDebugNames[static_cast<std::size_t>(k)], true);
             if (ImGui::RadioButton(kDebugNames[static_cast<std::size_t>(k)], &debug, k))
                 setDebugView(static_cast<DebugView>(k));
         }
@@ -195,23 +250,23 @@ void Viewer::drawPanel() {
         int used = 0;
         for (int l : stats_.layersPerLeaf) used = std::max(used, l);
         if (stats_.plain) {
-            ImGui::Text("%.1f ms  (plain %.1f, shade %.1f, copy %.1f)", stats_.totalMs, stats_.plainMs,
-                        stats_.shadeMs, stats_.readbackMs);
+            wrappedAtSpaces(formatted("%.1f ms (plain %.1f, shade %.1f, copy %.1f)", stats_.totalMs, stats_.plainMs,
+                                      stats_.shadeMs, stats_.readbackMs));
         } else {
-            ImGui::Text("%.1f ms  (peel %.1f, evaluate %.1f, normal %.1f, shade %.1f, copy %.1f)", stats_.totalMs,
-                        stats_.peelMs, stats_.evaluateMs, stats_.normalMs, stats_.shadeMs, stats_.readbackMs);
+            wrappedAtSpaces(formatted("%.1f ms (peel %.1f, evaluate %.1f, normal %.1f, shade %.1f, copy %.1f)",
+                                      stats_.totalMs, stats_.peelMs, stats_.evaluateMs, stats_.normalMs,
+                                      stats_.shadeMs, stats_.readbackMs));
         }
-        ImGui::Text("layers %s, used up to %d; %d operands", settings_.layers == 0 ? "auto" : "fixed", used,
-                    stats_.operands);
-        ImGui::Text("%d x %d px, %.1f MiB of layers, %d tile(s)", target_.width(), target_.height(),
-                    stats_.textureBytes / (1024.0 * 1024.0), stats_.tiles);
+        wrappedAtSpaces(formatted("layers %s, used up to %d; %d operands", settings_.layers == 0 ? "auto" : "fixed",
+                                  used, stats_.operands));
+        wrappedAtSpaces(formatted("%d x %d px, %.1f MiB of layers, %d tile(s)", target_.width(), target_.height(),
+                                  stats_.textureBytes / (1024.0 * 1024.0), stats_.tiles));
         if (stats_.unresolvedPixels > 0) ImGui::Text("%zu unresolved pixels", stats_.unresolvedPixels);
         for (const std::string& note : stats_.notes) ImGui::TextWrapped("%s", note.c_str());
     }
 
     if (ImGui::CollapsingHeader("camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const std::string line = cameraLine();
-        ImGui::TextWrapped("%s", line.c_str());
+        wrappedAtSpaces(wrappableCamera(cameraLine()));
         if (ImGui::Button("copy --camera=")) copyCamera();
         // Where the screenshot goes: the name typed here, or the next
         // strata-view-N.png in the current folder when it is left empty.

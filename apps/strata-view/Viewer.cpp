@@ -40,6 +40,8 @@ ImGuiSession::ImGuiSession(gpu::WindowContext& window) {
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
     ImGui::StyleColorsDark();
+    // Popups (the colour schemes' list) opaque: the view must not show through.
+    ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;
     // Our callbacks are installed first; the backend chains to them.
     ImGui_ImplGlfw_InitForOpenGL(window.window(), true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
