@@ -179,8 +179,11 @@ void Viewer::applyLoad(LoadResult result) {
     // Node numbers only mean the same nodes while the tree keeps its shape.
     if (!sameShape) edits_ = {};
     if (result.path != path_) {
+        // Another file: framed as a file opened first is (a reload of the
+        // same file keeps the camera).
         path_ = result.path;
         watch_ = FileWatch(path_);
+        resetView();
     }
     watchDependencies();
     updateTitle();

@@ -350,6 +350,25 @@ TEST_F(StrataView, DoubleClickRecentresOnTheSurfaceUnderThePixel) {
     EXPECT_EQ(cams[1], cams[0]);            // the background: nothing to centre on
 }
 
+TEST_F(StrataView, OpeningAnotherFileFramesItAsAFirstFile) {
+    // After a small cube, a large scene opened by the script is framed as if
+    // it had been opened first: the camera of the cube would put the eye
+    // inside it.
+    const std::string small = dir.write("small.csg", "cube(size = [1, 1, 1], center = true);\n");
+    const std::string large = dir.write("large.csg", kScene);
+    const ProcessResult opened = view(small,
+                                      "size 320 240\n"
+                                      "zoom 3\n"
+                                      "open large.csg\n"
+                                      "screenshot opened.png\n"
+                                      "print camera\n");
+    ASSERT_EQ(opened.exitCode, 0) << opened.err;
+    const ProcessResult first = view(large, "size 320 240\nscreenshot first.png\nprint camera\n");
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    EXPECT_EQ(opened.out, first.out);
+    EXPECT_EQ(differingPixels(readPng(dir / "opened.png"), readPng(dir / "first.png")), 0);
+}
+
 TEST_F(StrataView, AScriptOpeningAMissingFileSaysSoOnce) {
     const std::string scene = dir.write("a.csg", kScene);
     const ProcessResult r = view(scene, "size 32 32\nopen missing.csg\n");
