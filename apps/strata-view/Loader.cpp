@@ -99,4 +99,21 @@ double Loader::runningSeconds() const {
     return busy() ? std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count() : 0.0;
 }
 
+std::optional<LoadResult> Loader::waitFor(std::chrono::milliseconds limit) {
+    if (running_.valid()) running_.wait_for(limit);
+    return poll();
+}
+
+void Loader::takeOver(Loader& other) {
+    if (&other == this) return;
+    if (progress_) progress_->cancel();
+    if (running_.valid()) running_.wait();
+    running_ = std::move(other.running_);
+    progress_ = std::move(other.progress_);
+    waiting_ = std::move(other.waiting_);
+    other.waiting_.reset();
+    waitingRequested_ = other.waitingRequested_;
+    started_ = other.started_;
+}
+
 }  // namespace strata::view

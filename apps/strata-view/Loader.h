@@ -82,6 +82,12 @@ public:
     // Asks the running load to stop at its next step (the last good model
     // stays); a waiting request is dropped.
     void cancel();
+    // poll(), after waiting up to `limit` for the running load to finish.
+    std::optional<LoadResult> waitFor(std::chrono::milliseconds limit);
+    // Takes over `other`'s running load and waiting request, if any (its
+    // progress and start time with it); `other` is then idle. This one's
+    // own load, if any, is cancelled and waited for first.
+    void takeOver(Loader& other);
 
 private:
     void start(const std::string& path, std::chrono::steady_clock::time_point requested);

@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -53,7 +54,18 @@ ImGuiSession::~ImGuiSession() {
     ImGui::DestroyContext();
 }
 
-Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
+namespace {
+
+// Whether a Viewer's window exists, for wakeWindow on the loader's thread.
+std::atomic<bool> windowOpen{false};
+
+}  // namespace
+
+void Viewer::wakeWindow() {
+    if (windowOpen.load()) glfwPostEmptyEvent();
+}
+
+Viewer::Viewer(const ViewerOptions& options, LoadedScene initial, Loader* pending)
     : options_(options),
       window_(gpu::WindowOptions{options.width, options.height, "strata-view: " + options.scene, true, true, false}),
       loader_([] { glfwPostEmptyEvent(); }),
@@ -66,6 +78,11 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
     settings_.outline = options.outline;
     rows_ = treeRows(scene_.tree);
     watchDependencies();
+    windowOpen = true;
+    if (pending != nullptr && pending->busy()) {
+        loader_.takeOver(*pending);
+        awaitingFirst_ = true;
+    }
     installInput();
     imgui_ = std::make_unique<ImGuiSession>(window_);
     overlay_ = std::make_unique<Overlay>();
@@ -77,6 +94,7 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial)
 }
 
 Viewer::~Viewer() {
+    windowOpen = false;
     imgui_.reset();  // before the window's context goes
     overlay_.reset();
 }
@@ -178,12 +196,13 @@ void Viewer::applyLoad(LoadResult result) {
     rows_ = treeRows(scene_.tree);
     // Node numbers only mean the same nodes while the tree keeps its shape.
     if (!sameShape) edits_ = {};
-    if (result.path != path_) {
-        // Another file: framed as a file opened first is (a reload of the
-        // same file keeps the camera).
+    if (result.path != path_ || awaitingFirst_) {
+        // Another file, or the first: framed as a file opened first is (a
+        // reload of the same file keeps the camera).
         path_ = result.path;
         watch_ = FileWatch(path_);
         resetView();
+        awaitingFirst_ = false;
     }
     watchDependencies();
     updateTitle();

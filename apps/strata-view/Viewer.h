@@ -52,10 +52,17 @@ public:
 
 class Viewer {
 public:
-    // Opens the window on `initial`, the scene loaded (synchronously, so bad
-    // input fails before any window) from options.scene.
-    Viewer(const ViewerOptions& options, LoadedScene initial);
+    // Opens the window on `initial`, the scene loaded from options.scene
+    // (before the window, so that bad input fails before any window). With
+    // a busy `pending` loader instead, its load of options.scene still
+    // running, the window opens at once on an empty view, takes that load
+    // over (its progress and cancel in the panel) and frames the model
+    // when it arrives.
+    Viewer(const ViewerOptions& options, LoadedScene initial, Loader* pending = nullptr);
     ~Viewer();
+    // A loader's wake function for loads started before the window: wakes
+    // the window's loop once there is one, and does nothing before.
+    static void wakeWindow();
     Viewer(const Viewer&) = delete;
     Viewer& operator=(const Viewer&) = delete;
 
@@ -158,6 +165,7 @@ private:
     // use and include files and imports), as of its last good load: a
     // change to any reloads the model, as OpenSCAD does.
     std::vector<FileWatch> dependencyWatches_;
+    bool awaitingFirst_ = false;     // the window opened before its first model: frame it when it comes
     void watchDependencies();
     std::chrono::steady_clock::time_point lastPoll_;
 

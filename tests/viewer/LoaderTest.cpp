@@ -75,4 +75,33 @@ TEST(Loader, AFinishedLoadIsNotCancelled) {
     EXPECT_TRUE(loader.progressText().empty());
 }
 
+TEST(Loader, ALoadStartedBeforeTheWindowIsTakenOverWhole) {
+    // strata-view's first load waits a moment, and a slow one is handed to
+    // the window's loader, still running: its result arrives there.
+    TempDir dir;
+    const std::string slow = dir.write("slow.csg", slowScene());
+    Loader first(nullptr);
+    first.request(slow);
+    EXPECT_FALSE(first.waitFor(std::chrono::milliseconds(1)).has_value());
+    ASSERT_TRUE(first.busy());
+    Loader window(nullptr);
+    window.takeOver(first);
+    EXPECT_FALSE(first.busy());
+    EXPECT_TRUE(window.busy());
+    EXPECT_GE(window.runningSeconds(), 0.001);
+    // Its cancel reaches the running load: the progress came over with it.
+    window.cancel();
+    const LoadResult cancelled = finish(window);
+    EXPECT_TRUE(cancelled.cancelled);
+    EXPECT_EQ(cancelled.path, slow);
+    EXPECT_FALSE(first.poll().has_value());
+
+    // A quick load is there within the wait.
+    const std::string quick = dir.write("quick.csg", "cube(size = 1);\n");
+    first.request(quick);
+    const std::optional<LoadResult> soon = first.waitFor(std::chrono::seconds(30));
+    ASSERT_TRUE(soon.has_value());
+    EXPECT_TRUE(soon->scene.has_value()) << soon->error;
+}
+
 }  // namespace
