@@ -99,7 +99,8 @@ void FrameTargets::ensureShown() {
         target = gpu::Framebuffer(name);
         target.attachTexture(GL_COLOR_ATTACHMENT0, shown);
         target.attachTexture(GL_COLOR_ATTACHMENT1, resultDepth);
-        target.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+        target.attachTexture(GL_COLOR_ATTACHMENT2, resultLeaf);
+        target.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
         target.attachTexture(depthAttachment, depth);
         target.checkComplete();
     };

@@ -82,8 +82,8 @@ public:
     // A plain frame that is only shown (Renderer::renderInto, nothing read
     // back and no pass after it that reads the G-buffer) writes only what
     // the image needs, into one of two targets, each 0: what the frame
-    // shows, 1: resultDepth (the tie pass's input, drawn only when the pass
-    // runs). plainShownLitTarget: 0 `color`, lit as drawn, and shownDepth,
+    // shows, 1: resultDepth (the tie pass's input), 2: resultLeaf (drawn
+    // only where a pass reads them after: PlainPass::Output::keepResult). plainShownLitTarget: 0 `color`, lit as drawn, and shownDepth,
     // D32F with no stencil (no pass after it); plainShownTarget: 0
     // `normal`, for the shade pass's outline, and plainDepth, whose marks
     // the shade pass tests. Made by ensureShown (with ensurePlain's).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ShadePass.h"
 #include "ShaderInterface.h"
@@ -276,25 +277,6 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     shown ? targets.ensureShown() : targets.ensurePlain();
     const gpu::Framebuffer& target = shown ? (litAs ? targets.plainShownLitTarget : targets.plainShownTarget)
                                            : (litAs ? targets.plainLitTarget : targets.plainTarget);
-    if (shown) {
-        // The clears in the framebuffer the draws use: llvmpipe then clears
-        // each tile as it draws it, with no pass of its own.
-        glDisable(GL_SCISSOR_TEST);
-        if (litAs) {
-            glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, &output.background.r);
-        } else {
-            const PixelRect read = drawn.grown(1).intersection({0, 0, view.width, view.height});
-            if (!read.empty()) {
-                glEnable(GL_SCISSOR_TEST);
-                glScissor(read.x, read.y, read.width, read.height);
-                const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-                glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, none);
-                glDisable(GL_SCISSOR_TEST);
-            }
-        }
-    }
-    if (drawn.empty() || nearestDraws_ == 0) return;
-
     // Two surfaces tie when their depths along one ray lie within a quarter
     // of the tolerance; points on one ray that far apart in depth lie at
     // most that over the cosine of the ray's angle with the view direction
@@ -305,7 +287,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
                                             : std::sqrt(1.0 + double(view.halfExtent.x) * view.halfExtent.x +
                                                         double(view.halfExtent.y) * view.halfExtent.y);
     const double needed = 0.25 * view.coincidence * secant;
-    if (tieMargin_ < 1.25 * needed) {
+    if (nearestDraws_ > 0 && tieMargin_ < 1.25 * needed) {
         tieMargin_ = 2.0 * needed;
         // The leaves whose boxes meet, then of those the triangles that
         // come near another leaf's; where those are too many to sort out,
@@ -328,6 +310,38 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         }
         tieAllOf_ = draws->allOf;
     }
+    if (shown) {
+        // Only what is read after: the depths where the tie pass runs or
+        // the blending passes read them, the leaf codes for those passes.
+        const bool ties = tieDraws_ > 0 && !drawn.empty();
+        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
+                                   ties || output.keepResult ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE),
+                                   output.keepResult ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE)};
+        glNamedFramebufferDrawBuffers(target.id(), 3, buffers);
+        // The clears in the framebuffer the draws use: llvmpipe then clears
+        // each tile as it draws it, with no pass of its own.
+        glDisable(GL_SCISSOR_TEST);
+        if (litAs) {
+            glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, &output.background.r);
+        } else {
+            const PixelRect read = drawn.grown(1).intersection({0, 0, view.width, view.height});
+            if (!read.empty()) {
+                glEnable(GL_SCISSOR_TEST);
+                glScissor(read.x, read.y, read.width, read.height);
+                const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+                glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, none);
+                glDisable(GL_SCISSOR_TEST);
+            }
+        }
+        if (output.keepResult) {
+            const float miss[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
+            const GLint noLeaf[4] = {shader::kLeafMiss, 0, 0, 0};
+            glClearNamedFramebufferfv(target.id(), GL_COLOR, 1, miss);
+            glClearNamedFramebufferiv(target.id(), GL_COLOR, 2, noLeaf);
+        }
+    }
+    if (drawn.empty() || nearestDraws_ == 0) return;
+
     if (baseColors != uploadedColors_) {
         gpu::Buffer::uploadGrowing(colors_, "plain base colours", baseColors);
         uploadedColors_ = baseColors;
@@ -355,11 +369,6 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glScissor(drawn.x, drawn.y, drawn.width, drawn.height);
-    if (shown) {
-        // The depths go to the tie pass alone.
-        const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, tieDraws_ > 0 ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
-        glNamedFramebufferDrawBuffers(target.id(), 2, buffers);
-    }
     target.bindForDraw();
     // Lit and only shown, nothing reads marks: the depth has no stencil.
     const bool marked = !(shown && litAs);

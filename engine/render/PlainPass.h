@@ -89,6 +89,10 @@ public:
         // `drawn` grown by a pixel, all the shade pass's outline reads.
         bool shownOnly = false;
         glm::vec4 background{0.0f};
+        // Shown only, and a pass blends over the image after (translucent
+        // and '%' leaves): the depths and leaf codes of the whole frame
+        // too, which those passes read (a miss where nothing is drawn).
+        bool keepResult = false;
     };
     // Draws setLeaves' leaves into `targets` (its plain target, made here if
     // need be) inside `drawn`, which holds every pixel they cover.

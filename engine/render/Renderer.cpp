@@ -851,10 +851,10 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     targets.ensure(view.width, view.height);
     // A pixel around `drawn` for the shade pass's Sobel filter.
     // The translucent and alpha passes read the result beyond the marked pixels.
-    // A plain frame only shown (nothing read back, no pass after it that
-    // reads the G-buffer) writes what the image needs and nothing else
-    // (PlainPass::Output::shownOnly), and needs nothing cleared here.
-    const bool shownOnly = plainFrame && !aovs && translucentLeaves.empty() && alphaLeaves.empty();
+    // A plain frame only shown (nothing read back) writes what the image
+    // and the passes after it need and nothing else, and clears that itself
+    // (PlainPass::Output::shownOnly).
+    const bool shownOnly = plainFrame && !aovs;
     if (!shownOnly) {
         targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), aovs && settings.readNormal,
                             drawn.grown(1));
@@ -876,6 +876,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         if (litAsDrawn) output.litAs = settings.lighting;
         output.shownOnly = shownOnly;
         output.background = background;
+        output.keepResult = !translucentLeaves.empty() || !alphaLeaves.empty();
         drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), output, frame);
     } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
         peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);

@@ -30,8 +30,9 @@
 // SHOWN (a frame only shown, nothing read back: FrameTargets'
 // plainShownTarget and plainShownLitTarget): only what the image needs, at
 // 0 the lit colour (LIT) or the normal and base colour (for the shade
-// pass's outline), at 1 the depth, which only the tie pass reads (its draw
-// buffer is off when no leaves can tie); no leaf code, no stencil marks.
+// pass's outline), at 1 the depth and at 2 the leaf code, each drawn only
+// where a pass reads it after (the tie pass the depth; the passes that
+// blend translucent and '%' leaves both); no stencil marks when lit.
 //
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
@@ -50,6 +51,7 @@ layout(location = 0) out vec4 outColor;
 layout(location = 0) out vec4 outNormal;
 #endif
 layout(location = 1) out float outDepth;
+layout(location = 2) out int outLeaf;
 #else
 layout(location = 0) out float outDepth;
 layout(location = 1) out int outLeaf;
@@ -79,9 +81,7 @@ void main() {
 #endif
     int leaf = int(vMember);
     outDepth = t;
-#ifndef SHOWN
     outLeaf = leafCode(leaf, false);
-#endif
 #ifdef LIT
     outColor = vec4(lightSurface(unpackBaseColor(baseColors[leaf].x), vFaceNormal), 1.0);
 #endif

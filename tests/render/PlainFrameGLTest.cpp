@@ -132,9 +132,10 @@ protected:
                                   std::memcmp(&plain.depth[k], &apart.depth[k], sizeof(float)) == 0 &&
                                   std::memcmp(&plain.normal[k], &apart.normal[k], sizeof(glm::vec3)) == 0;
                 if (same) {
-                    if (!look.outline)
+                    if (!look.outline) {
                         EXPECT_EQ(std::memcmp(&plain.rgba[4 * k], &apart.rgba[4 * k], 4), 0)
                             << what << ": the colour of pixel " << x << ", " << y;
+                    }
                     continue;
                 }
                 ++grazing;
@@ -336,10 +337,12 @@ TEST_F(PlainFrameGLTest, LeavesApartNeedNoTiePass) {
     EXPECT_EQ(plain.stats.operands, 6);
 }
 
-TEST_F(PlainFrameGLTest, IdenticalLeavesAndModifiersDrawAsThroughEveryPass) {
-    // A leaf repeated exactly (drawn once, named by the lower), a
-    // translucent color() among the united leaves, a '#' leaf and a '%'
-    // background leaf: the shaded images agree too.
+namespace {
+
+// A union with a leaf repeated exactly (parts[3] repeats parts[1]), a
+// translucent color() among the united leaves, a '#' leaf, and a '%'
+// background leaf.
+scene::Tree modifiersScene(std::vector<int>& parts) {
     scene::Tree tree;
     scene::Leaf ball = sphereLeaf({0.4, 0, 0.2}, 0.9, 24);
     ball.color = glm::dvec4(0.9, 0.3, 0.2, 1.0);
@@ -347,11 +350,20 @@ TEST_F(PlainFrameGLTest, IdenticalLeavesAndModifiersDrawAsThroughEveryPass) {
     glass.color = glm::dvec4(0.2, 0.6, 0.9, 0.5);
     scene::Leaf marked = cylinderLeaf({1.2, 0.8, -0.5}, 0.4, 1.6);
     marked.display = scene::Display::Highlight;
-    const std::vector<int> parts{tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 0.5})), tree.addLeaf(ball),
-                                 tree.addLeaf(glass), tree.addLeaf(ball), tree.addLeaf(marked)};
+    parts = {tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 0.5})), tree.addLeaf(ball), tree.addLeaf(glass),
+             tree.addLeaf(ball), tree.addLeaf(marked)};
     tree.root = tree.addNode(NodeKind::Union, parts);
     tree.background.push_back(tree.addLeaf(sphereLeaf({-0.5, 1.5, 0.5}, 0.5)));
-    setScene(tree);
+    return tree;
+}
+
+}  // namespace
+
+TEST_F(PlainFrameGLTest, IdenticalLeavesAndModifiersDrawAsThroughEveryPass) {
+    // The repeated leaf is drawn once, named by the lower; the shaded
+    // images agree too.
+    std::vector<int> parts;
+    setScene(modifiersScene(parts));
     for (render::Projection projection : kProjections) {
         const render::Frame plain =
             expectPlainEqualsFull(cameraAt({2.0, -6.0, 5.0}, projection), "modifiers");
@@ -386,40 +398,44 @@ TEST_F(PlainFrameGLTest, RenderIntoAHostGivesThePlainImage) {
     // A window's frames (renderInto) take the plain path too, writing only
     // what the image needs, and show what render() reads back, to the byte,
     // in every look; a renderer whose first frame is a window's, too.
-    renderer_ = std::make_unique<render::Renderer>();
-    setScene(randomUnion(21, 16));
-    for (const bool outline : {true, false}) {
-        for (const render::Lighting lighting : {render::Lighting::Strata, render::Lighting::OpenScad}) {
-            for (render::Projection projection : kProjections) {
-                render::RenderSettings look;
-                look.outline = outline;
-                look.lighting = lighting;
-                const render::Camera camera = cameraAt({4.0, -6.0, 5.0}, projection);
-                const std::string what = std::string(render::lightingName(lighting)) +
-                                         (outline ? ", outline" : "") + ", projection " +
-                                         std::to_string(static_cast<int>(projection));
-                gpu::Texture color = gpu::Texture::create2D("host", GL_RGBA8, camera.width, camera.height);
-                gpu::Framebuffer host("host");
-                host.attachTexture(GL_COLOR_ATTACHMENT0, color);
-                host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
-                host.checkComplete();
-                const render::FrameStats stats = renderer_->renderInto(host.id(), 0, 0, camera, look);
-                EXPECT_TRUE(stats.plain) << what;
-                EXPECT_GT(stats.tiedLeaves, 0u) << what;
-                const render::Frame read = renderer_->render(camera, look);
-                ASSERT_TRUE(read.stats.plain) << what;
-                std::vector<std::uint8_t> pixels(read.rgba.size());
-                color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
-                // GL's rows count from the bottom.
-                const std::size_t row = static_cast<std::size_t>(camera.width) * 4;
-                std::size_t differ = 0;
-                for (int y = 0; y < camera.height; ++y) {
-                    for (std::size_t x = 0; x < row; ++x) {
-                        differ += pixels[static_cast<std::size_t>(camera.height - 1 - y) * row + x] !=
-                                  read.rgba[static_cast<std::size_t>(y) * row + x];
+    std::vector<int> parts;
+    for (const bool modifiers : {false, true}) {
+        renderer_ = std::make_unique<render::Renderer>();
+        setScene(modifiers ? modifiersScene(parts) : randomUnion(21, 16));
+        for (const bool outline : {true, false}) {
+            for (const render::Lighting lighting : {render::Lighting::Strata, render::Lighting::OpenScad}) {
+                for (render::Projection projection : kProjections) {
+                    render::RenderSettings look;
+                    look.outline = outline;
+                    look.lighting = lighting;
+                    const render::Camera camera = cameraAt({4.0, -6.0, 5.0}, projection);
+                    const std::string what = std::string(modifiers ? "modifiers, " : "") +
+                                             std::string(render::lightingName(lighting)) +
+                                             (outline ? ", outline" : "") + ", projection " +
+                                             std::to_string(static_cast<int>(projection));
+                    gpu::Texture color = gpu::Texture::create2D("host", GL_RGBA8, camera.width, camera.height);
+                    gpu::Framebuffer host("host");
+                    host.attachTexture(GL_COLOR_ATTACHMENT0, color);
+                    host.setDrawBuffers({GL_COLOR_ATTACHMENT0});
+                    host.checkComplete();
+                    const render::FrameStats stats = renderer_->renderInto(host.id(), 0, 0, camera, look);
+                    EXPECT_TRUE(stats.plain) << what;
+                    EXPECT_GT(stats.tiedLeaves, 0u) << what;
+                    const render::Frame read = renderer_->render(camera, look);
+                    ASSERT_TRUE(read.stats.plain) << what;
+                    std::vector<std::uint8_t> pixels(read.rgba.size());
+                    color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
+                    // GL's rows count from the bottom.
+                    const std::size_t row = static_cast<std::size_t>(camera.width) * 4;
+                    std::size_t differ = 0;
+                    for (int y = 0; y < camera.height; ++y) {
+                        for (std::size_t x = 0; x < row; ++x) {
+                            differ += pixels[static_cast<std::size_t>(camera.height - 1 - y) * row + x] !=
+                                      read.rgba[static_cast<std::size_t>(y) * row + x];
+                        }
                     }
+                    EXPECT_EQ(differ, 0u) << what;
                 }
-                EXPECT_EQ(differ, 0u) << what;
             }
         }
     }
