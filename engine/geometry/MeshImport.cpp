@@ -149,6 +149,22 @@ bool looksLikeText(const std::string& head) {
     return true;
 }
 
+// Turns each OBJ `mtllib` line into a comment (the same length, so that
+// line numbers and columns stay where they were).
+void withoutMaterialLibraries(std::string& text) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::size_t word = text.find_first_not_of(" \t", start);
+        if (word < end && text.compare(word, 6, "mtllib") == 0 &&
+            (word + 6 == end || text[word + 6] == ' ' || text[word + 6] == '\t' || text[word + 6] == '\r')) {
+            text[word] = '#';
+        }
+        start = end + 1;
+    }
+}
+
 std::string readAll(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -189,6 +205,14 @@ Mesh importMesh(const std::string& path) {
         try {
             std::string text;
             if (ext == ".off" && splitOffHeader(text = readAll(path))) {
+                std::istringstream in(text);
+                ok = OpenMesh::IO::read_mesh(om, in, ext, options);
+            } else if (ext == ".obj") {
+                // OpenMesh opens the material files an OBJ names, a FIFO or
+                // a device included; strata takes no colours from them, so
+                // the reader never sees those lines.
+                text = readAll(path);
+                withoutMaterialLibraries(text);
                 std::istringstream in(text);
                 ok = OpenMesh::IO::read_mesh(om, in, ext, options);
             } else {

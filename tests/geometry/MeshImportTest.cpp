@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -104,6 +107,19 @@ TEST(ImportMesh, ReadsBinaryStl) {
 TEST(ImportMesh, ReadsOffObjWithQuads) {
     expectUnitCube(importMesh(meshPath("cube.off")));
     expectUnitCube(importMesh(meshPath("cube.obj")));
+}
+
+TEST(ImportMesh, AnObjsMaterialFilesAreNeverOpened) {
+    // mtllib naming a FIFO that nobody writes would block the reader for
+    // good, and /dev/zero would be read without end: neither is opened.
+    TempDir dir;
+    ASSERT_EQ(::mkfifo(dir.file("blocks.mtl").c_str(), 0600), 0);
+    std::ifstream cube(meshPath("cube.obj"));
+    const std::string body((std::istreambuf_iterator<char>(cube)), std::istreambuf_iterator<char>());
+    std::ofstream(dir.file("fifo.obj")) << "mtllib blocks.mtl\n" << body;
+    std::ofstream(dir.file("zero.obj")) << "  mtllib /dev/zero\n" << body;
+    expectUnitCube(importMesh(dir.file("fifo.obj")));
+    expectUnitCube(importMesh(dir.file("zero.obj")));
 }
 
 TEST(ImportMesh, ReadsOffWithCountsOnTheKeywordLineAsOpenScadWritesIt) {
