@@ -144,6 +144,8 @@ private:
     gpu::Buffer tieIndices_;         // TieDraws::indices
     gpu::VertexArray tieVertexArray_;  // over tieIndices_
     bool tieAllOf_ = false;
+    std::size_t framesDrawn_ = 0;  // since setLeaves
+    bool tieRefined_ = false;      // tyingTriangles has been asked since setLeaves
     double tieMargin_ = -1.0;  // the margin tieCommands_ was found with (-1: none yet)
     gpu::Buffer colors_;       // baseColors, as last uploaded
     std::vector<glm::vec2> uploadedColors_;
