@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -358,6 +359,19 @@ TEST(CsgParser, LongRunsOfSignsNeedNoRecursion) {
     Tree t = parse(text);
     EXPECT_EQ(std::get<Sphere>(t.leaves.at(0).primitive).r, 1.0);
     EXPECT_NE(errorOf("sphere(r = " + std::string(100001, '-') + "1);").find("must not be negative"), std::string::npos);
+}
+
+TEST(CsgParser, LongTransformChainsEndWithoutRecursion) {
+    // What a million nested multmatrix() leave each leaf: a chain a million
+    // steps long, let go of without a C++ frame a step.
+    auto chain = std::make_shared<const TransformStep>(TransformStep{glm::dmat4(1.0), nullptr});
+    for (int i = 0; i < 1000000; ++i) chain = std::make_shared<const TransformStep>(TransformStep{glm::dmat4(1.0), chain});
+    auto shared = chain->previous;  // a part still held elsewhere stays whole
+    chain.reset();
+    int length = 0;
+    for (const TransformStep* s = shared.get(); s != nullptr; s = s->previous.get()) ++length;
+    EXPECT_EQ(length, 1000000);
+    shared.reset();
 }
 
 TEST(CsgParser, DeepNestingNeedsNoDeepRecursion) {
