@@ -23,7 +23,6 @@ namespace strata::scene {
 namespace {
 
 constexpr int kMaxVectorNesting = 64;
-constexpr int kMaxBlockNesting = 1000000;
 
 // OpenSCAD modules strata knows but does not render yet: their subtree is left
 // out with one warning per name.
@@ -472,8 +471,12 @@ void Parser::operationStatement(const Statement& st, Open open) {
     enterBlock(st, std::move(open));
 }
 
+// stack_ holds the top level besides the blocks: the new block is block
+// number stack_.size().
 void Parser::pushBlock(Open open, const SourceLocation& where) {
-    if (stack_.size() >= static_cast<std::size_t>(kMaxBlockNesting)) lex_.failAt(where, "nesting too deep (more than " + std::to_string(kMaxBlockNesting) + " blocks)");
+    if (stack_.size() > static_cast<std::size_t>(std::max(options_.maxNesting, 0))) {
+        lex_.failAt(where, "nesting too deep (more than " + std::to_string(options_.maxNesting) + " blocks)");
+    }
     stack_.push_back(std::move(open));
 }
 

@@ -361,6 +361,47 @@ TEST(CsgParser, LongRunsOfSignsNeedNoRecursion) {
     EXPECT_NE(errorOf("sphere(r = " + std::string(100001, '-') + "1);").find("must not be negative"), std::string::npos);
 }
 
+namespace {
+
+// `open` written `depth` times, one a line, around `inner`, each closed by `close`.
+std::string nested(int depth, const std::string& open, const std::string& inner, const std::string& close) {
+    std::string text;
+    for (int i = 0; i < depth; ++i) text += open + "\n";
+    text += inner + "\n";
+    for (int i = 0; i < depth; ++i) text += close + "\n";
+    return text;
+}
+
+std::string errorWith(const std::string& text, const ParseOptions& options) {
+    try {
+        std::istringstream in(text);
+        parseCsg(in, "t.csg", "", options);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(CsgParser, NestingLimitIsTheDocumentedOne) {
+    EXPECT_EQ(ParseOptions{}.maxNesting, 1000000);
+}
+
+TEST(CsgParser, NestingExactlyAtTheLimitIsAccepted) {
+    // The top level is not a block: a limit of 5 takes 5 blocks inside one
+    // another, and refuses the sixth where it opens.
+    ParseOptions options;
+    options.maxNesting = 5;
+    EXPECT_EQ(errorWith(nested(5, "union() {", "cube(size = 1);", "}"), options), "");
+    EXPECT_EQ(errorWith(nested(6, "union() {", "cube(size = 1);", "}"), options),
+              "t.csg:6:1: nesting too deep (more than 5 blocks)");
+    // A statement's block without braces counts as one too.
+    EXPECT_EQ(errorWith(nested(5, "color([1, 0, 0, 1])", "cube(size = 1);", ""), options), "");
+    EXPECT_EQ(errorWith(nested(6, "color([1, 0, 0, 1])", "cube(size = 1);", ""), options),
+              "t.csg:6:1: nesting too deep (more than 5 blocks)");
+}
+
 TEST(CsgParser, LongTransformChainsEndWithoutRecursion) {
     // What a million nested multmatrix() leave each leaf: a chain a million
     // steps long, let go of without a C++ frame a step.
