@@ -17,6 +17,11 @@ struct ParseOptions {
     // Blocks ({ ... } or a single child statement) open inside one another;
     // one more is refused. The parser keeps them on the heap.
     int maxNesting = 1000000;
+    // hull, minkowski, resize, projection, linear_extrude and rotate_extrude
+    // nodes (and 2D shapes among solids) open inside one another; one more
+    // is refused. Each reads its children into a shape of its own, which
+    // building the model walks on the C++ stack, about 2 KiB a level.
+    int maxNestedShapes = 1000;
 };
 
 // Parses the file at `path`. Throws strata::Error("path:line:col: message") on
