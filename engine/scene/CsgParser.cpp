@@ -1402,9 +1402,12 @@ int Parser::finishGather(const Open& open) {
         return tree_.addLeaf(std::move(leaf));
     };
     if (hull) {
+        // Each leaf is taken once, and the node it was under is left behind:
+        // moved, not copied, so that hulls inside one another cost their
+        // leaves once, not once for every hull around them.
         Hull h;
         for (const auto& child : children)
-            for (int l : child) h.parts.push_back(leafCopy(l));
+            for (int l : child) h.parts.push_back(std::move(tree_.leaves[static_cast<std::size_t>(l)]));
         return hullLeaf(std::move(h));
     }
     // minkowski: one hull per choice of a part from each child.
