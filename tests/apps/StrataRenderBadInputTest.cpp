@@ -335,3 +335,13 @@ TEST(StrataRender, DeeplyNestedShapesAreOneLine) {
     // The same refusal from --export, which evaluates the model on the CPU.
     expectFailure(dir, {hull, "--export", dir / "hull.stl"}, hull + ":1001:1" + budget);
 }
+
+TEST(StrataRender, AMistakeDeepInsideNestedShapesNamesOnePosition) {
+    // The innermost node that knows where it is names the mistake; the
+    // 999 shapes around it (the extrusion is the thousandth) add nothing to
+    // the line.
+    TempDir dir;
+    const std::string scene = dir.write(
+        "deep.csg", nested(999, "hull() { difference() {", "rotate_extrude() { square(size = [1, 1], center = true); }", "} }"));
+    expectFailure(dir, {scene}, scene + ":1000:1: all points for rotate_extrude() must have the same X coordinate sign");
+}
