@@ -9,18 +9,6 @@
 #include "strata/gpu/Check.h"
 
 namespace strata::bench {
-namespace {
-
-void collectLeaves(const scene::Tree& tree, int node, std::vector<bool>& inCsg) {
-    const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
-    if (n.kind == scene::NodeKind::Leaf) {
-        inCsg[static_cast<std::size_t>(n.leaf)] = true;
-        return;
-    }
-    for (int child : n.children) collectLeaves(tree, child, inCsg);
-}
-
-}  // namespace
 
 PlainDraw::PlainDraw(const scene::Tree& tree, const geometry::Model& model, int width, int height)
     : program_(gpu::Program::fromFiles("bench plain", {"bench/plain.vert", "bench/plain.frag"})),
@@ -31,7 +19,7 @@ PlainDraw::PlainDraw(const scene::Tree& tree, const geometry::Model& model, int 
       width_(width),
       height_(height) {
     std::vector<bool> inCsg(tree.leaves.size(), false);
-    if (tree.root >= 0) collectLeaves(tree, tree.root, inCsg);
+    for (int l : tree.leavesUnder(tree.root)) inCsg[static_cast<std::size_t>(l)] = true;
 
     std::vector<glm::vec3> positions;
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {

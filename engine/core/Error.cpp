@@ -1,5 +1,7 @@
 #include "strata/core/Error.h"
 
+#include <cctype>
+
 namespace strata {
 
 std::string SourceLocation::str() const {
@@ -15,8 +17,15 @@ Error::Error(const SourceLocation& where, const std::string& message)
     : std::runtime_error(where.str() + ": " + message) {}
 
 void rethrowAt(const SourceLocation& where, const Error& e) {
-    if (where.file.empty() || std::string(e.what()).rfind(where.str() + ":", 0) == 0) throw e;
-    throw Error(where, e.what());
+    const std::string message = e.what();
+    if (where.file.empty() || message.rfind(where.str() + ":", 0) == 0) throw e;
+    // Already named by a node inside this one (a line of the same file):
+    // shapes nested a thousand deep would otherwise put a thousand
+    // positions in front of the message.
+    const std::string file = where.file + ":";
+    if (message.size() > file.size() && message.rfind(file, 0) == 0 && std::isdigit(static_cast<unsigned char>(message[file.size()])))
+        throw e;
+    throw Error(where, message);
 }
 
 }  // namespace strata

@@ -7,6 +7,7 @@
 #include <deque>
 #include <mutex>
 #include <optional>
+#include <vector>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -289,27 +290,50 @@ Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
 namespace {
 
 // The subtree's result, exact throughout: points are rounded to doubles only
-// once, at the end (toMesh).
+// once, at the end (toMesh). Walks the subtree with an explicit stack of the
+// operations under way, so a chain of any depth costs no C++ stack.
 Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes, Steps& steps) {
-    const scene::Node& n = tree.nodes[static_cast<std::size_t>(node)];
-    if (n.kind == scene::NodeKind::Leaf) return leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where);
-    const Boolean op = n.kind == scene::NodeKind::Difference     ? Boolean::Difference
-                       : n.kind == scene::NodeKind::Intersection ? Boolean::Intersection
-                                                                 : Boolean::Union;
-    const std::string what = std::string("exact ") + scene::kindName(n.kind);
-    Solid result;
-    bool first = true;
-    for (int c : n.children) {
-        Solid operand = evaluate(tree, c, leafMeshes, steps);
-        if (first) {
-            result = std::move(operand);
-            first = false;
+    struct Pending {
+        const scene::Node* node;
+        std::size_t next = 0;  // the child to evaluate next
+        Solid result;
+        std::string what;
+    };
+    std::vector<Pending> stack;
+    std::optional<Solid> done;  // the result of the node just finished
+    auto enter = [&](int index) {
+        const scene::Node& n = tree.nodes[static_cast<std::size_t>(index)];
+        if (n.kind == scene::NodeKind::Leaf) {
+            done = leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where);
+            return;
+        }
+        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind)});
+    };
+    enter(node);
+    while (!stack.empty()) {
+        Pending& top = stack.back();
+        const scene::Node& n = *top.node;
+        if (done) {
+            // The result of child top.next - 1.
+            if (top.next == 1) {
+                top.result = std::move(*done);
+            } else {
+                const Boolean op = n.kind == scene::NodeKind::Difference     ? Boolean::Difference
+                                   : n.kind == scene::NodeKind::Intersection ? Boolean::Intersection
+                                                                             : Boolean::Union;
+                reportProgress(top.what.c_str(), steps.done++, steps.total);
+                top.result = combine(std::move(top.result), std::move(*done), op, n.where);
+            }
+            done.reset();
+        }
+        if (top.next < n.children.size()) {
+            enter(n.children[top.next++]);
             continue;
         }
-        reportProgress(what.c_str(), steps.done++, steps.total);
-        result = combine(std::move(result), std::move(operand), op, n.where);
+        done = std::move(top.result);
+        stack.pop_back();
     }
-    return result;
+    return std::move(*done);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -258,39 +259,48 @@ Outlines evaluateFlat(const scene::FlatTree& tree) {
 namespace {
 
 // Copies node `n` of the 3D tree, and everything under it, into `out` as
-// flat nodes (parents before children, as evaluateFlat walks them).
+// flat nodes (parents before children, as evaluateFlat walks them). An
+// explicit stack of (node, its copy's parent): trees may nest deeply.
 int copyFlat(const scene::Tree& tree, int n, scene::FlatTree& out) {
-    const scene::Node& node = tree.nodes[static_cast<std::size_t>(n)];
-    scene::FlatNode made;
-    made.where = node.where;
-    if (node.kind == scene::NodeKind::Leaf) {
-        const scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(node.leaf)];
-        made.op = scene::FlatOp::Transform;
-        made.matrix = leaf.transform;
-        made.where = leaf.where;
-        const int placed = out.add(std::move(made));
-        const scene::FlatTree& shape = std::get<scene::FlatSlab>(leaf.primitive).shape;
-        if (shape.root < 0) return placed;
-        const int nodeOffset = static_cast<int>(out.nodes.size());
-        const int shapeOffset = static_cast<int>(out.shapes.size());
-        for (scene::FlatNode f : shape.nodes) {
-            for (int& k : f.children) k += nodeOffset;
-            if (f.shape >= 0) f.shape += shapeOffset;
-            out.nodes.push_back(std::move(f));
+    int top = -1;
+    std::vector<std::pair<int, int>> todo{{n, -1}};
+    while (!todo.empty()) {
+        const auto [index, parent] = todo.back();
+        todo.pop_back();
+        const scene::Node& node = tree.nodes[static_cast<std::size_t>(index)];
+        scene::FlatNode made;
+        made.where = node.where;
+        int at = -1;
+        if (node.kind == scene::NodeKind::Leaf) {
+            const scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(node.leaf)];
+            made.op = scene::FlatOp::Transform;
+            made.matrix = leaf.transform;
+            made.where = leaf.where;
+            at = out.add(std::move(made));
+            const scene::FlatTree& shape = std::get<scene::FlatSlab>(leaf.primitive).shape;
+            if (shape.root >= 0) {
+                const int nodeOffset = static_cast<int>(out.nodes.size());
+                const int shapeOffset = static_cast<int>(out.shapes.size());
+                for (scene::FlatNode f : shape.nodes) {
+                    for (int& k : f.children) k += nodeOffset;
+                    if (f.shape >= 0) f.shape += shapeOffset;
+                    out.nodes.push_back(std::move(f));
+                }
+                out.shapes.insert(out.shapes.end(), shape.shapes.begin(), shape.shapes.end());
+                out.nodes[static_cast<std::size_t>(at)].children.push_back(shape.root + nodeOffset);
+            }
+        } else {
+            made.op = node.kind == scene::NodeKind::Difference     ? scene::FlatOp::Difference
+                      : node.kind == scene::NodeKind::Intersection ? scene::FlatOp::Intersection
+                                                                   : scene::FlatOp::Union;
+            at = out.add(std::move(made));
+            // Reversed on the stack, so the children are copied in order.
+            for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) todo.emplace_back(*c, at);
         }
-        out.shapes.insert(out.shapes.end(), shape.shapes.begin(), shape.shapes.end());
-        out.nodes[static_cast<std::size_t>(placed)].children.push_back(shape.root + nodeOffset);
-        return placed;
+        if (parent >= 0) out.nodes[static_cast<std::size_t>(parent)].children.push_back(at);
+        else top = at;
     }
-    made.op = node.kind == scene::NodeKind::Difference     ? scene::FlatOp::Difference
-              : node.kind == scene::NodeKind::Intersection ? scene::FlatOp::Intersection
-                                                           : scene::FlatOp::Union;
-    const int at = out.add(std::move(made));
-    for (int c : node.children) {
-        const int child = copyFlat(tree, c, out);
-        out.nodes[static_cast<std::size_t>(at)].children.push_back(child);
-    }
-    return at;
+    return top;
 }
 
 }  // namespace

@@ -23,7 +23,6 @@ namespace strata::scene {
 namespace {
 
 constexpr int kMaxVectorNesting = 64;
-constexpr int kMaxBlockNesting = 1000000;
 
 // OpenSCAD modules strata knows but does not render yet: their subtree is left
 // out with one warning per name.
@@ -67,6 +66,7 @@ struct Open {
     bool cut = false;              // projection(cut = ...)
     int flatParent = -1;           // projection() in a flat tree: the flat node its shape joins
     Context outside;               // projection() among solids: where its slab goes
+    bool shape = false;            // reads its children into a shape of its own (ParseOptions::maxNestedShapes)
 };
 
 // A leaf whose flat tree is being read: an extrusion, or a 2D shape outside one.
@@ -196,6 +196,7 @@ private:
     std::vector<PendingFlat> pending_;
     PendingFlat& pending() { return pending_.back(); }
     bool sawStatement_ = false;
+    int openShapes_ = 0;     // blocks on stack_ with Open::shape
 };
 
 Tree Parser::parse() {
@@ -359,6 +360,7 @@ void Parser::openProjection(const Statement& st, Open open, const Open& parent) 
     open.flatParent = parent.flat ? parent.flatNode : -1;
     open.outside = open.context;
     open.context = Context{};
+    open.shape = !off;
     if (!off) {
         open.node = tree_.addNode(NodeKind::Union, {});
         tree_.nodes[static_cast<std::size_t>(open.node)].where = st.where;
@@ -377,6 +379,7 @@ void Parser::openFlatLeaf(const Statement& st, Open open) {
         else leaf.primitive = FlatSlab{};
         pending_.push_back(PendingFlat{std::move(leaf), FlatTree{}});
         open.ownsFlat = true;
+        open.shape = true;
         if (std::holds_alternative<FlatSlab>(pending().leaf.primitive)) {
             pending().tree.root = flatStatement(st.name, st.args, open, false, st.where);
         } else {
@@ -464,7 +467,9 @@ void Parser::operationStatement(const Statement& st, Open open) {
     }
     if (!known || st.dropped) {
         open.node = -1;
+        open.gather = Open::Gather::None;
     } else {
+        open.shape = open.gather != Open::Gather::None;
         open.node = tree_.addNode(kind, {});
         tree_.nodes[static_cast<std::size_t>(open.node)].where = st.where;
     }
@@ -472,8 +477,17 @@ void Parser::operationStatement(const Statement& st, Open open) {
     enterBlock(st, std::move(open));
 }
 
+// stack_ holds the top level besides the blocks: the new block is block
+// number stack_.size().
 void Parser::pushBlock(Open open, const SourceLocation& where) {
-    if (stack_.size() >= static_cast<std::size_t>(kMaxBlockNesting)) lex_.failAt(where, "nesting too deep (more than " + std::to_string(kMaxBlockNesting) + " blocks)");
+    if (stack_.size() > static_cast<std::size_t>(std::max(options_.maxNesting, 0))) {
+        lex_.failAt(where, "nesting too deep (more than " + std::to_string(options_.maxNesting) + " blocks)");
+    }
+    if (open.shape && openShapes_ >= options_.maxNestedShapes) {
+        lex_.failAt(where, "nesting too deep (more than " + std::to_string(options_.maxNestedShapes) +
+                               " hull, minkowski, resize, projection or extrusion levels)");
+    }
+    if (open.shape) ++openShapes_;
     stack_.push_back(std::move(open));
 }
 
@@ -487,6 +501,7 @@ void Parser::closeBlock() {
 void Parser::closeOne() {
     Open open = std::move(stack_.back());
     stack_.pop_back();
+    if (open.shape) --openShapes_;
     int node = -1;
     if (open.ownsFlat) {
         node = finishFlat();
@@ -1387,9 +1402,12 @@ int Parser::finishGather(const Open& open) {
         return tree_.addLeaf(std::move(leaf));
     };
     if (hull) {
+        // Each leaf is taken once, and the node it was under is left behind:
+        // moved, not copied, so that hulls inside one another cost their
+        // leaves once, not once for every hull around them.
         Hull h;
         for (const auto& child : children)
-            for (int l : child) h.parts.push_back(leafCopy(l));
+            for (int l : child) h.parts.push_back(std::move(tree_.leaves[static_cast<std::size_t>(l)]));
         return hullLeaf(std::move(h));
     }
     // minkowski: one hull per choice of a part from each child.

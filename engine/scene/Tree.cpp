@@ -7,6 +7,16 @@
 
 namespace strata::scene {
 
+TransformStep::~TransformStep() {
+    std::shared_ptr<const TransformStep> next = std::move(previous);
+    // A step nothing else holds is emptied before it goes, so that its own
+    // destructor has nothing left to follow.
+    while (next && next.use_count() == 1) {
+        std::shared_ptr<const TransformStep> after = std::move(next->previous);
+        next = std::move(after);
+    }
+}
+
 int Tree::addLeaf(Leaf leaf) {
     Node node;
     node.kind = NodeKind::Leaf;

@@ -302,3 +302,46 @@ TEST(StrataRender, OpenscadOptionsItDoesNotTakeAreOneLineEach) {
                   "strata-render: --viewall with --camera: strata-render does not refit a given camera");
     expectFailure(dir, {scene, "--autocenter", "--camera=1,2,3,0,0,0"}, "strata-render: --autocenter with --camera: ");
 }
+
+namespace {
+
+// `open` written `depth` times, one a line, around `inner`, each closed by `close`.
+std::string nested(int depth, const std::string& open, const std::string& inner, const std::string& close) {
+    std::string text;
+    for (int i = 0; i < depth; ++i) text += open + "\n";
+    text += inner + "\n";
+    for (int i = 0; i < depth; ++i) text += close + "\n";
+    return text;
+}
+
+}  // namespace
+
+TEST(StrataRender, DeeplyNestedShapesAreOneLine) {
+    // Each level reads its children into a shape of its own, which building
+    // the model walks on the C++ stack: these ran out of it (a crash) far
+    // inside the nesting of blocks the parser takes. Refused where the
+    // budget runs out.
+    TempDir dir;
+    const std::string budget = ": nesting too deep (more than 1000 hull, minkowski, resize, projection or extrusion levels)";
+    const std::string projection = dir.write("projection.csg", nested(5000, "projection(cut = false) {", kCube, "}"));
+    expectFailure(dir, {projection}, projection + ":1001:1" + budget);
+    const std::string extruded = dir.write(
+        "extruded.csg", nested(5000, "linear_extrude(height = 1) { projection(cut = false) {", kCube, "} }"));
+    expectFailure(dir, {extruded}, extruded + ":501:1" + budget);
+    const std::string hull = dir.write("hull.csg", nested(50000, "hull() { difference() {", kCube, "} }"));
+    expectFailure(dir, {hull}, hull + ":1001:1" + budget);
+    const std::string resize = dir.write("resize.csg", nested(50000, "resize([1, 1, 1]) { difference() {", kCube, "} }"));
+    expectFailure(dir, {resize}, resize + ":1001:1" + budget);
+    // The same refusal from --export, which evaluates the model on the CPU.
+    expectFailure(dir, {hull, "--export", dir / "hull.stl"}, hull + ":1001:1" + budget);
+}
+
+TEST(StrataRender, AMistakeDeepInsideNestedShapesNamesOnePosition) {
+    // The innermost node that knows where it is names the mistake; the
+    // 999 shapes around it (the extrusion is the thousandth) add nothing to
+    // the line.
+    TempDir dir;
+    const std::string scene = dir.write(
+        "deep.csg", nested(999, "hull() { difference() {", "rotate_extrude() { square(size = [1, 1], center = true); }", "} }"));
+    expectFailure(dir, {scene}, scene + ":1000:1: all points for rotate_extrude() must have the same X coordinate sign");
+}

@@ -336,6 +336,22 @@ TEST(StrataRenderExport, TwoDimensionalModelsExportAsDrawingsThatReadBack) {
     }
 }
 
+TEST(StrataRenderExport, DeepChainsExportWithoutRecursion) {
+    // 50000 differences inside one another (20000 ran out of stack), each
+    // of one operand: the exact evaluation walks them with a stack of its own.
+    TempDir dir;
+    std::string text;
+    const int depth = 50000;
+    for (int i = 0; i < depth; ++i) text += "difference() {\n";
+    text += "cube(size = [1, 2, 3]);\n";
+    for (int i = 0; i < depth; ++i) text += "}\n";
+    const std::string scene = dir.write("chain.csg", text);
+    const ProcessResult r = runProcess({kExe, scene, "--export", dir / "chain.stl"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Solid s = read(dir / "chain.stl");
+    EXPECT_NEAR(PMP::volume(s), 6.0, 1e-9);
+}
+
 TEST(StrataRenderExport, BadExportsAreOneLineAndWriteNothing) {
     TempDir dir;
     const std::string cube = dir.write("cube.csg", "cube(size = 1);\n");

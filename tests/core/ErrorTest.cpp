@@ -14,3 +14,22 @@ TEST(Error, LocationLeavesOutWhatIsUnknown) {
     EXPECT_EQ((SourceLocation{"a.stl", 0, 0}.str()), "a.stl");
     EXPECT_EQ((SourceLocation{"a.csg", 3, 0}.str()), "a.csg:3");
 }
+
+TEST(Error, RethrowNamesAPositionOnce) {
+    auto rethrown = [](const SourceLocation& where, const Error& e) -> std::string {
+        try {
+            strata::rethrowAt(where, e);
+        } catch (const Error& again) {
+            return again.what();
+        }
+        return "";
+    };
+    // An error with no position in the file is named by the node.
+    EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error("hull: too many points")), "a.csg:3:1: hull: too many points");
+    EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"m.stl", 0, 0}, "not closed")), "a.csg:3:1: m.stl: not closed");
+    // One a node inside it named already keeps its own position only.
+    EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"a.csg", 9, 4}, "bad")), "a.csg:9:4: bad");
+    EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"a.csg", 3, 1}, "bad")), "a.csg:3:1: bad");
+    // A file of another name that starts the same is another file.
+    EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"a.csg.bak", 2, 2}, "bad")), "a.csg:3:1: a.csg.bak:2:2: bad");
+}

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -358,6 +359,97 @@ TEST(CsgParser, LongRunsOfSignsNeedNoRecursion) {
     Tree t = parse(text);
     EXPECT_EQ(std::get<Sphere>(t.leaves.at(0).primitive).r, 1.0);
     EXPECT_NE(errorOf("sphere(r = " + std::string(100001, '-') + "1);").find("must not be negative"), std::string::npos);
+}
+
+namespace {
+
+// `open` written `depth` times, one a line, around `inner`, each closed by `close`.
+std::string nested(int depth, const std::string& open, const std::string& inner, const std::string& close) {
+    std::string text;
+    for (int i = 0; i < depth; ++i) text += open + "\n";
+    text += inner + "\n";
+    for (int i = 0; i < depth; ++i) text += close + "\n";
+    return text;
+}
+
+std::string errorWith(const std::string& text, const ParseOptions& options) {
+    try {
+        std::istringstream in(text);
+        parseCsg(in, "t.csg", "", options);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(CsgParser, NestingLimitIsTheDocumentedOne) {
+    EXPECT_EQ(ParseOptions{}.maxNesting, 1000000);
+    EXPECT_EQ(ParseOptions{}.maxNestedShapes, 1000);
+}
+
+TEST(CsgParser, NestingExactlyAtTheLimitIsAccepted) {
+    // The top level is not a block: a limit of 5 takes 5 blocks inside one
+    // another, and refuses the sixth where it opens.
+    ParseOptions options;
+    options.maxNesting = 5;
+    EXPECT_EQ(errorWith(nested(5, "union() {", "cube(size = 1);", "}"), options), "");
+    EXPECT_EQ(errorWith(nested(6, "union() {", "cube(size = 1);", "}"), options),
+              "t.csg:6:1: nesting too deep (more than 5 blocks)");
+    // A statement's block without braces counts as one too.
+    EXPECT_EQ(errorWith(nested(5, "color([1, 0, 0, 1])", "cube(size = 1);", ""), options), "");
+    EXPECT_EQ(errorWith(nested(6, "color([1, 0, 0, 1])", "cube(size = 1);", ""), options),
+              "t.csg:6:1: nesting too deep (more than 5 blocks)");
+}
+
+TEST(CsgParser, NestedShapesHaveTheirOwnBudget) {
+    // Each of these reads its children into a shape of its own, which
+    // building the model walks on the C++ stack: N inside one another are
+    // taken, N + 1 refused where the last one opens.
+    ParseOptions options;
+    options.maxNestedShapes = 4;
+    const std::string message = ": nesting too deep (more than 4 hull, minkowski, resize, projection or extrusion levels)";
+    struct Case {
+        const char* open;
+        const char* close;
+        int perLine;  // counted nodes a line
+    };
+    for (const Case& c : {Case{"projection(cut = false) {", "}", 1}, Case{"hull() { difference() {", "} }", 1},
+                          Case{"resize(newsize = [1, 1, 1]) { difference() {", "} }", 1},
+                          Case{"minkowski() {", "}", 1}, Case{"rotate_extrude() { projection() {", "} }", 2},
+                          Case{"linear_extrude(height = 1) { projection(cut = false) {", "} }", 2}}) {
+        const int lines = 4 / c.perLine;
+        EXPECT_EQ(errorWith(nested(lines, c.open, "cube(size = 1);", c.close), options), "") << c.open;
+        EXPECT_EQ(errorWith(nested(lines + 1, c.open, "cube(size = 1);", c.close), options),
+                  "t.csg:" + std::to_string(lines + 1) + ":1" + message)
+            << c.open;
+    }
+    // Blocks that make no shape do not count, nor do 2D operations inside an extrusion.
+    EXPECT_EQ(errorWith(nested(50, "difference() {", "cube(size = 1);", "}"), options), "");
+    EXPECT_EQ(errorWith("linear_extrude(height = 1) {\n" + nested(50, "hull() {", "square(size = 1);", "}") + "}", options),
+              "");
+    // Nor do dropped ones.
+    EXPECT_EQ(errorWith(nested(50, "*hull() {", "cube(size = 1);", "}"), options), "");
+}
+
+TEST(CsgParser, DeeplyNestedShapesAreRefusedByDefault) {
+    // Far past the budget, where building the model used to run out of stack.
+    const std::string e = errorOf(nested(5000, "projection(cut = false) {", "cube(size = 1);", "}"));
+    EXPECT_EQ(e, "t.csg:1001:1: nesting too deep (more than 1000 hull, minkowski, resize, projection or extrusion levels)");
+}
+
+TEST(CsgParser, LongTransformChainsEndWithoutRecursion) {
+    // What a million nested multmatrix() leave each leaf: a chain a million
+    // steps long, let go of without a C++ frame a step.
+    auto chain = std::make_shared<const TransformStep>(TransformStep{glm::dmat4(1.0), nullptr});
+    for (int i = 0; i < 1000000; ++i) chain = std::make_shared<const TransformStep>(TransformStep{glm::dmat4(1.0), chain});
+    auto shared = chain->previous;  // a part still held elsewhere stays whole
+    chain.reset();
+    int length = 0;
+    for (const TransformStep* s = shared.get(); s != nullptr; s = s->previous.get()) ++length;
+    EXPECT_EQ(length, 1000000);
+    shared.reset();
 }
 
 TEST(CsgParser, DeepNestingNeedsNoDeepRecursion) {

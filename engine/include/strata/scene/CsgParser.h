@@ -14,6 +14,14 @@ struct ParseOptions {
     // $fn above this is clamped (with a warning), so a sphere of $fn=1e9 cannot
     // eat the machine.
     double maxFragments = 1024.0;
+    // Blocks ({ ... } or a single child statement) open inside one another;
+    // one more is refused. The parser keeps them on the heap.
+    int maxNesting = 1000000;
+    // hull, minkowski, resize, projection, linear_extrude and rotate_extrude
+    // nodes (and 2D shapes among solids) open inside one another; one more
+    // is refused. Each reads its children into a shape of its own, which
+    // building the model walks on the C++ stack, about 2 KiB a level.
+    int maxNestedShapes = 1000;
 };
 
 // Parses the file at `path`. Throws strata::Error("path:line:col: message") on

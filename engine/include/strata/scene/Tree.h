@@ -138,7 +138,12 @@ enum class Display {
 // rotation stay flush after it.
 struct TransformStep {
     glm::dmat4 matrix{1.0};
-    std::shared_ptr<const TransformStep> previous;
+    // Mutable only so that the destructor can unlink a chain it owns alone.
+    mutable std::shared_ptr<const TransformStep> previous;
+
+    // Lets go of the chain a step at a time: a million nested multmatrix()
+    // make a chain a million steps long, too long to end by recursion.
+    ~TransformStep();
 };
 
 struct Leaf {
