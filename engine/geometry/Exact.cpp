@@ -13,7 +13,9 @@
 #include <utility>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -35,6 +37,17 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 // configuration (CGAL's checks are on: a failed one throws) or cannot build
 // the result, Nef polyhedra, which take every configuration.
 Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
+    // Apart: nothing to compute. The boxes of the points' interval
+    // approximations hold the exact points, so boxes that do not even touch
+    // mean solids that do not.
+    if (a.number_of_faces() == 0 || b.number_of_faces() == 0 ||
+        !CGAL::do_overlap(PMP::bbox(a), PMP::bbox(b))) {
+        if (op == Boolean::Intersection) return Solid{};
+        if (op == Boolean::Difference) return a;
+        if (a.number_of_faces() == 0) return b;
+        CGAL::copy_face_graph(b, a);  // two closed solids apart: one mesh of both
+        return a;
+    }
     const Solid a0 = a, b0 = b;  // corefinement rewrites its operands
     Solid out;
     try {

@@ -1,0 +1,88 @@
+// The exact evaluation of a subtree (strata/geometry/Exact.h) against closed
+// forms: the volume of a result is the volumes of its leaves' meshes
+// combined as the sets are, where the leaves lie apart or one inside
+// another, and the result is one closed, oriented mesh.
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+#include "GeometryTestUtil.h"
+#include "strata/geometry/Exact.h"
+#include "strata/geometry/MeshCheck.h"
+#include "strata/geometry/Model.h"
+#include "strata/scene/CsgParser.h"
+
+using namespace strata;
+using geometry::Mesh;
+
+namespace {
+
+scene::Tree parse(const std::string& text) {
+    std::istringstream in(text);
+    return scene::parseCsg(in, "exact.csg", ".");
+}
+
+std::string ballAt(double x, double y, double z, double r) {
+    return "multmatrix([[1, 0, 0, " + std::to_string(x) + "], [0, 1, 0, " + std::to_string(y) + "], [0, 0, 1, " +
+           std::to_string(z) + "], [0, 0, 0, 1]]) sphere($fn = 16, r = " + std::to_string(r) + ");\n";
+}
+
+// The root's exact result, and the volumes of the tree's leaf meshes.
+struct Evaluated {
+    Mesh result;
+    std::vector<double> leafVolumes;
+};
+
+Evaluated evaluate(const scene::Tree& tree) {
+    const geometry::Model model = geometry::buildModel(tree);
+    Evaluated e{geometry::exactResult(tree, tree.root, model.leafMeshes), {}};
+    for (const Mesh& m : model.leafMeshes) e.leafVolumes.push_back(geometry::test::signedVolume(m));
+    return e;
+}
+
+}  // namespace
+
+TEST(ExactResult, ACubeLessBallsInsideItLosesEachBallsVolume) {
+    // Eight balls apart inside a cube.
+    std::string text = "difference() {\ncube(size = [10, 10, 10], center = false);\n";
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+            for (int k = 0; k < 2; ++k) text += ballAt(2.5 + 5 * i, 2.5 + 5 * j, 2.5 + 5 * k, 1.5);
+    const Evaluated e = evaluate(parse(text + "}\n"));
+    double expected = e.leafVolumes[0];
+    for (std::size_t i = 1; i < e.leafVolumes.size(); ++i) expected -= e.leafVolumes[i];
+    EXPECT_NEAR(geometry::test::signedVolume(e.result), expected, 1e-9 * e.leafVolumes[0]);
+    EXPECT_TRUE(geometry::checkMesh(e.result).ok()) << geometry::checkMesh(e.result).describe();
+}
+
+TEST(ExactResult, SolidsApartUniteWithTheirVolumesSummed) {
+    // Joined with no boolean: their boxes do not meet.
+    std::string text = "union() {\n";
+    for (int i = 0; i < 5; ++i) text += ballAt(4.0 * i, 0, 0, 1.0 + 0.2 * i);
+    const Evaluated e = evaluate(parse(text + "}\n"));
+    double expected = 0;
+    for (double v : e.leafVolumes) expected += v;
+    EXPECT_NEAR(geometry::test::signedVolume(e.result), expected, 1e-9 * expected);
+    EXPECT_TRUE(geometry::checkMesh(e.result).ok()) << geometry::checkMesh(e.result).describe();
+}
+
+TEST(ExactResult, SolidsApartHaveNoIntersectionAndTakeNothingAway) {
+    const Evaluated apart = evaluate(parse("intersection() {\n" + ballAt(0, 0, 0, 1) + ballAt(5, 0, 0, 1) + "}\n"));
+    EXPECT_TRUE(apart.result.triangles.empty());
+    const Evaluated outside = evaluate(parse("difference() {\n" + ballAt(0, 0, 0, 1) + ballAt(5, 0, 0, 1) +
+                                             ballAt(0, 5, 0, 1) + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(outside.result), outside.leafVolumes[0], 1e-9);
+}
+
+TEST(ExactResult, OverlappingSubtrahendsAreTakenAwayOnce) {
+    // Two balls that overlap each other and the cube's corner: the cube
+    // loses their union, whose volume the overlapping pair's own exact union gives.
+    const std::string balls = ballAt(0, 0, 0, 2) + ballAt(1, 0, 0, 2);
+    const Evaluated cut = evaluate(parse("difference() {\ncube(size = [4, 4, 4], center = false);\n" + balls + "}\n"));
+    const Evaluated both = evaluate(parse("intersection() {\ncube(size = [4, 4, 4], center = false);\nunion() {\n" +
+                                          balls + "}\n}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(cut.result) + geometry::test::signedVolume(both.result), 64.0, 1e-9);
+    EXPECT_TRUE(geometry::checkMesh(cut.result).ok()) << geometry::checkMesh(cut.result).describe();
+}
