@@ -272,13 +272,7 @@ std::optional<PlainPass::TieDraws> PlainPass::tyingTriangles(const SceneBuffers&
     return out;
 }
 
-void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
-                    const std::vector<glm::vec2>& baseColors, const Output& output) {
-    const bool shown = output.shownOnly;
-    const std::optional<Lighting>& litAs = output.litAs;
-    shown ? targets.ensureShown() : targets.ensurePlain();
-    const gpu::Framebuffer& target = shown ? (litAs ? targets.plainShownLitTarget : targets.plainShownTarget)
-                                           : (litAs ? targets.plainLitTarget : targets.plainTarget);
+void PlainPass::findTies(const SceneBuffers& scene, const ViewSetup& view) {
     // Two surfaces tie when their depths along one ray lie within a quarter
     // of the tolerance; points on one ray that far apart in depth lie at
     // most that over the cosine of the ray's angle with the view direction
@@ -321,36 +315,49 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         }
         tieAllOf_ = draws->allOf;
     }
-    if (shown) {
-        // Only what is read after: the depths where the tie pass runs or
-        // the blending passes read them, the leaf codes for those passes.
-        const bool ties = tieDraws_ > 0 && !drawn.empty();
-        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
-                                   ties || output.keepResult ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE),
-                                   output.keepResult ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE)};
-        glNamedFramebufferDrawBuffers(target.id(), 3, buffers);
-        // The clears in the framebuffer the draws use: llvmpipe then clears
-        // each tile as it draws it, with no pass of its own.
-        glDisable(GL_SCISSOR_TEST);
-        if (litAs) {
-            glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, &output.background.r);
-        } else {
-            const PixelRect read = drawn.grown(1).intersection({0, 0, view.width, view.height});
-            if (!read.empty()) {
-                glEnable(GL_SCISSOR_TEST);
-                glScissor(read.x, read.y, read.width, read.height);
-                const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-                glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, none);
-                glDisable(GL_SCISSOR_TEST);
-            }
-        }
-        if (output.keepResult) {
-            const float miss[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
-            const GLint noLeaf[4] = {shader::kLeafMiss, 0, 0, 0};
-            glClearNamedFramebufferfv(target.id(), GL_COLOR, 1, miss);
-            glClearNamedFramebufferiv(target.id(), GL_COLOR, 2, noLeaf);
+}
+
+void PlainPass::prepareShown(const gpu::Framebuffer& target, const ViewSetup& view, const PixelRect& drawn,
+                             const Output& output) {
+    // Only what is read after: the depths where the tie pass runs or
+    // the blending passes read them, the leaf codes for those passes.
+    const bool ties = tieDraws_ > 0 && !drawn.empty();
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
+                               ties || output.keepResult ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE),
+                               output.keepResult ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE)};
+    glNamedFramebufferDrawBuffers(target.id(), 3, buffers);
+    // The clears in the framebuffer the draws use: llvmpipe then clears
+    // each tile as it draws it, with no pass of its own.
+    glDisable(GL_SCISSOR_TEST);
+    if (output.litAs) {
+        glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, &output.background.r);
+    } else {
+        const PixelRect read = drawn.grown(1).intersection({0, 0, view.width, view.height});
+        if (!read.empty()) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(read.x, read.y, read.width, read.height);
+            const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            glClearNamedFramebufferfv(target.id(), GL_COLOR, 0, none);
+            glDisable(GL_SCISSOR_TEST);
         }
     }
+    if (output.keepResult) {
+        const float miss[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
+        const GLint noLeaf[4] = {shader::kLeafMiss, 0, 0, 0};
+        glClearNamedFramebufferfv(target.id(), GL_COLOR, 1, miss);
+        glClearNamedFramebufferiv(target.id(), GL_COLOR, 2, noLeaf);
+    }
+}
+
+void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
+                    const std::vector<glm::vec2>& baseColors, const Output& output) {
+    const bool shown = output.shownOnly;
+    const std::optional<Lighting>& litAs = output.litAs;
+    shown ? targets.ensureShown() : targets.ensurePlain();
+    const gpu::Framebuffer& target = shown ? (litAs ? targets.plainShownLitTarget : targets.plainShownTarget)
+                                           : (litAs ? targets.plainLitTarget : targets.plainTarget);
+    findTies(scene, view);
+    if (shown) prepareShown(target, view, drawn, output);
     if (drawn.empty() || nearestDraws_ == 0) return;
     ++framesDrawn_;
 

@@ -137,6 +137,12 @@ private:
     // and 2 also lit by strata's and OpenSCAD's light.
     std::array<std::array<std::array<std::optional<gpu::Program>, 3>, 2>, 2> programs_;
     gpu::Program& program(bool ties, const Output& output, const ViewSetup& view);
+    // The tie pass's draws for this view, found again when the view needs a
+    // wider margin, and sorted by triangle at the second frame.
+    void findTies(const SceneBuffers& scene, const ViewSetup& view);
+    // A shown frame's draw buffers (only what is read after) and clears.
+    void prepareShown(const gpu::Framebuffer& target, const ViewSetup& view, const PixelRect& drawn,
+                      const Output& output);
     std::vector<int> leaves_;
     gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands, TieDraws::commands
     GLsizei nearestDraws_ = 0, tieDraws_ = 0;
