@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../scene/NestedText.h"
 #include "RunProcess.h"
 #include "TempDir.h"
 
@@ -305,14 +306,7 @@ TEST(StrataRender, OpenscadOptionsItDoesNotTakeAreOneLineEach) {
 
 namespace {
 
-// `open` written `depth` times, one a line, around `inner`, each closed by `close`.
-std::string nested(int depth, const std::string& open, const std::string& inner, const std::string& close) {
-    std::string text;
-    for (int i = 0; i < depth; ++i) text += open + "\n";
-    text += inner + "\n";
-    for (int i = 0; i < depth; ++i) text += close + "\n";
-    return text;
-}
+using strata::test::nested;
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "NestedText.h"
 #include "strata/scene/CsgParser.h"
 
 using namespace strata;
@@ -363,14 +364,7 @@ TEST(CsgParser, LongRunsOfSignsNeedNoRecursion) {
 
 namespace {
 
-// `open` written `depth` times, one a line, around `inner`, each closed by `close`.
-std::string nested(int depth, const std::string& open, const std::string& inner, const std::string& close) {
-    std::string text;
-    for (int i = 0; i < depth; ++i) text += open + "\n";
-    text += inner + "\n";
-    for (int i = 0; i < depth; ++i) text += close + "\n";
-    return text;
-}
+using strata::test::nested;
 
 std::string errorWith(const std::string& text, const ParseOptions& options) {
     try {
