@@ -12,6 +12,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "ImageExport.h"
 #include "SceneLoad.h"
 #include "StderrProgress.h"
+#include "Worker.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
 #include "strata/geometry/Model.h"
@@ -222,16 +224,8 @@ bool runOne(const apps::RenderOptions& options, Gpu& gpu) {
     return false;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    io::removeTemporariesOnSignals();
-    const apps::ParseResult parsed = apps::parseOptions(argc, argv);
-    if (parsed.exitNow) {
-        (parsed.exitCode == 0 ? std::cout : std::cerr) << parsed.message << (parsed.message.ends_with('\n') ? "" : "\n");
-        return parsed.exitCode;
-    }
-    const apps::RenderOptions& options = parsed.options;
+// Every scene in turn; the exit status.
+int renderAll(const apps::RenderOptions& options) {
     Gpu gpu;
     if (options.scenes.size() == 1) return runOne(apps::forScene(options, options.scene), gpu) ? 0 : 1;
     // Several scenes: each in turn; after a failure the renderer is made
@@ -248,4 +242,24 @@ int main(int argc, char** argv) {
         return 1;
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    io::removeTemporariesOnSignals();
+    const apps::ParseResult parsed = apps::parseOptions(argc, argv);
+    if (parsed.exitNow) {
+        (parsed.exitCode == 0 ? std::cout : std::cerr) << parsed.message << (parsed.message.ends_with('\n') ? "" : "\n");
+        return parsed.exitCode;
+    }
+    // On a thread with a stack of a known size: building a model recurses
+    // once a nested shape (Worker.h), and the main thread's stack is what
+    // the environment gives it.
+    try {
+        return apps::startWorker([&] { return renderAll(parsed.options); }).get();
+    } catch (const std::system_error& e) {
+        std::cerr << "strata-render: " << e.what() << '\n';
+        return 1;
+    }
 }

@@ -18,7 +18,7 @@ bool Exporter::start(const LoadedScene& scene, const std::string& path, const gl
                      int resolution) {
     if (busy()) return false;
     progress_ = std::make_shared<LoadProgress>();
-    running_ = startWorker([scene, path, faceColor, exact, resolution, progress = progress_] {
+    running_ = apps::startWorker([scene, path, faceColor, exact, resolution, progress = progress_] {
         ExportResult result;
         result.path = path;
         const WorkOutcome outcome = runReporting(*progress, path, "export cancelled", [&] {

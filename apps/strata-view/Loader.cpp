@@ -51,7 +51,7 @@ Loader::~Loader() {
 void Loader::start(const std::string& path, std::chrono::steady_clock::time_point requested) {
     started_ = std::chrono::steady_clock::now();
     progress_ = std::make_shared<LoadProgress>();
-    running_ = startWorker([path, requested, wake = wake_, progress = progress_] {
+    running_ = apps::startWorker([path, requested, wake = wake_, progress = progress_] {
         LoadResult result;
         result.path = path;
         result.requested = requested;

@@ -3,7 +3,10 @@
 // builds its model, which recurses once for every hull, minkowski, resize,
 // projection or extrusion inside another (the parser's budget caps how many,
 // docs/limits.md); a thread from std::async gets whatever stack the
-// environment gives new threads (`ulimit -s`), which may be less.
+// environment gives new threads (`ulimit -s`), which may be less, and the
+// main thread whatever `ulimit -s` gives it (sanitizer builds use several
+// times the stack a level). strata-view loads and exports on such threads;
+// strata-render does all its work on one.
 
 #include <pthread.h>
 
@@ -14,7 +17,7 @@
 #include <system_error>
 #include <utility>
 
-namespace strata::view {
+namespace strata::apps {
 
 inline constexpr std::size_t kWorkerStackBytes = std::size_t(64) << 20;
 
@@ -54,4 +57,4 @@ auto startWorker(F work) -> std::future<decltype(work())> {
     return result;
 }
 
-}  // namespace strata::view
+}  // namespace strata::apps
