@@ -4,10 +4,36 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <numeric>
+#include <span>
+#include <vector>
 
 namespace strata::render {
+
+namespace {
+
+// A framebuffer that draws into `colors` (colour attachment k holds
+// colors[k], every one a draw buffer, the first the read buffer), with
+// `depth` at `depthAttachment` (depth, stencil or both).
+gpu::Framebuffer framebufferOf(const char* name, std::initializer_list<const gpu::Texture*> colors,
+                               GLenum depthAttachment, const gpu::Texture& depth) {
+    gpu::Framebuffer target(name);
+    std::vector<GLenum> buffers;
+    for (const gpu::Texture* texture : colors) {
+        const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
+        target.attachTexture(attachment, *texture);
+        buffers.push_back(attachment);
+    }
+    target.setDrawBuffers(std::span<const GLenum>(buffers));
+    target.setReadBuffer(GL_COLOR_ATTACHMENT0);
+    target.attachTexture(depthAttachment, depth);
+    target.checkComplete();
+    return target;
+}
+
+}  // namespace
 
 void FrameTargets::ensure(int width, int height) {
     if (width == width_ && height == height_) return;
@@ -40,72 +66,28 @@ void FrameTargets::allocate(int width, int height) {
     normal = gpu::Texture::create2D("result normal", GL_RGBA32F, width, height);
     color = gpu::Texture::create2D("colour", GL_RGBA8, width, height);
     marks = gpu::Texture::create2D("marks", GL_STENCIL_INDEX8, width, height);
-
-    evaluateTarget = gpu::Framebuffer("evaluate");
-    evaluateTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
-    evaluateTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
-    evaluateTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
-    evaluateTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
-    evaluateTarget.checkComplete();
-
-    normalTarget = gpu::Framebuffer("normal");
-    normalTarget.attachTexture(GL_COLOR_ATTACHMENT0, normal);
-    normalTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
-    normalTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
-    normalTarget.checkComplete();
-
-    colorTarget = gpu::Framebuffer("colour");
-    colorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
-    colorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
-    colorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
-    colorTarget.attachTexture(GL_STENCIL_ATTACHMENT, marks);
-    colorTarget.checkComplete();
+    evaluateTarget = framebufferOf("evaluate", {&resultDepth, &resultLeaf}, GL_STENCIL_ATTACHMENT, marks);
+    normalTarget = framebufferOf("normal", {&normal}, GL_STENCIL_ATTACHMENT, marks);
+    colorTarget = framebufferOf("colour", {&color}, GL_STENCIL_ATTACHMENT, marks);
 }
 
 void FrameTargets::ensurePlain() {
     if (plainDepth.id() != 0) return;
     plainDepth = gpu::Texture::create2D("plain depth", GL_DEPTH32F_STENCIL8, width_, height_);
-    plainTarget = gpu::Framebuffer("plain");
-    plainTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
-    plainTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
-    plainTarget.attachTexture(GL_COLOR_ATTACHMENT2, normal);
-    plainTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
-    plainTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
-    plainTarget.checkComplete();
-
-    plainLitTarget = gpu::Framebuffer("plain lit");
-    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT0, resultDepth);
-    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT1, resultLeaf);
-    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT2, normal);
-    plainLitTarget.attachTexture(GL_COLOR_ATTACHMENT3, color);
-    plainLitTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3});
-    plainLitTarget.attachTexture(GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
-    plainLitTarget.checkComplete();
-
-    plainColorTarget = gpu::Framebuffer("plain colour");
-    plainColorTarget.attachTexture(GL_COLOR_ATTACHMENT0, color);
-    plainColorTarget.setDrawBuffers({GL_COLOR_ATTACHMENT0});
-    plainColorTarget.setReadBuffer(GL_COLOR_ATTACHMENT0);
-    plainColorTarget.attachTexture(GL_STENCIL_ATTACHMENT, plainDepth);
-    plainColorTarget.checkComplete();
+    plainTarget = framebufferOf("plain", {&resultDepth, &resultLeaf, &normal}, GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
+    plainLitTarget =
+        framebufferOf("plain lit", {&resultDepth, &resultLeaf, &normal, &color}, GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
+    plainColorTarget = framebufferOf("plain colour", {&color}, GL_STENCIL_ATTACHMENT, plainDepth);
 }
 
 void FrameTargets::ensureShown() {
     if (shownDepth.id() != 0) return;
     ensurePlain();
     shownDepth = gpu::Texture::create2D("shown depth", GL_DEPTH_COMPONENT32F, width_, height_);
-    auto make = [&](gpu::Framebuffer& target, const char* name, const gpu::Texture& shown, GLenum depthAttachment,
-                    const gpu::Texture& depth) {
-        target = gpu::Framebuffer(name);
-        target.attachTexture(GL_COLOR_ATTACHMENT0, shown);
-        target.attachTexture(GL_COLOR_ATTACHMENT1, resultDepth);
-        target.attachTexture(GL_COLOR_ATTACHMENT2, resultLeaf);
-        target.setDrawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
-        target.attachTexture(depthAttachment, depth);
-        target.checkComplete();
-    };
-    make(plainShownTarget, "plain shown", normal, GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
-    make(plainShownLitTarget, "plain shown lit", color, GL_DEPTH_ATTACHMENT, shownDepth);
+    plainShownTarget = framebufferOf("plain shown", {&normal, &resultDepth, &resultLeaf}, GL_DEPTH_STENCIL_ATTACHMENT,
+                                     plainDepth);
+    plainShownLitTarget =
+        framebufferOf("plain shown lit", {&color, &resultDepth, &resultLeaf}, GL_DEPTH_ATTACHMENT, shownDepth);
 }
 
 void FrameTargets::clearResult(bool wholeFrame, bool wholeNormal, const PixelRect& drawn) {

@@ -357,7 +357,11 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     const gpu::Framebuffer& target = shown ? (litAs ? targets.plainShownLitTarget : targets.plainShownTarget)
                                            : (litAs ? targets.plainLitTarget : targets.plainTarget);
     findTies(scene, view);
-    if (shown) prepareShown(target, view, drawn, output);
+    if (shown) {
+        prepareShown(target, view, drawn, output);
+    } else if (litAs) {
+        glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, &output.background.r);
+    }
     if (drawn.empty() || nearestDraws_ == 0) return;
     ++framesDrawn_;
 

@@ -79,14 +79,14 @@ public:
 
     // What a frame writes.
     struct Output {
-        // Also the colour lit by this light into targets.color (the frame
-        // then needs no shade pass).
+        // Also the colour lit by this light into targets.color, cleared to
+        // `background` first (the frame then needs no shade pass).
         std::optional<Lighting> litAs;
         // Only what the image needs (FrameTargets::plainShownTarget and
         // plainShownLitTarget): no leaf codes and no marks, and the depth
-        // only where the tie pass reads it. Lit, the pass clears the colour
-        // to `background` first; otherwise it clears the normals inside
-        // `drawn` grown by a pixel, all the shade pass's outline reads.
+        // only where the tie pass reads it. Not lit, the pass clears the
+        // normals inside `drawn` grown by a pixel, all the shade pass's
+        // outline reads.
         bool shownOnly = false;
         glm::vec4 background{0.0f};
         // Shown only, and a pass blends over the image after (translucent
@@ -97,8 +97,6 @@ public:
     // Draws setLeaves' leaves into `targets` (its plain target, made here if
     // need be) inside `drawn`, which holds every pixel they cover.
     // `baseColors`: ShadePass::baseColors of this frame's colour scheme.
-    // Lit and not shownOnly, the caller has cleared targets.color to the
-    // background.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
              const std::vector<glm::vec2>& baseColors, const Output& output);
 

@@ -869,13 +869,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // A plain frame with no outline is lit as it is drawn (PlainPass.h):
     // no shade pass, whose outline alone needs the G-buffer around a pixel.
     const bool litAsDrawn = plainFrame && !settings.outline;
-    const glm::vec4 background(glm::vec3(scheme.background), 1.0f);
-    if (litAsDrawn && !shownOnly) glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, &background.r);
     if (plainFrame) {
         PlainPass::Output output;
         if (litAsDrawn) output.litAs = settings.lighting;
         output.shownOnly = shownOnly;
-        output.background = background;
+        output.background = glm::vec4(glm::vec3(scheme.background), 1.0f);
         output.keepResult = !translucentLeaves.empty() || !alphaLeaves.empty();
         drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), output, frame);
     } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
