@@ -18,9 +18,13 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:intercept_tls_get_addr=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 # The window tests need an X display: give them a virtual one when there is none.
+# -noreset: by default Xvfb resets itself whenever its last client leaves, and
+# a client that connects during that reset is dropped before its setup is
+# answered ("Failed to open display"). Parallel tests open and close the
+# display all the time, so without it a window test fails now and then.
 run_ctest=(ctest)
 if [[ -z ${DISPLAY:-} ]] && command -v xvfb-run >/dev/null; then
-  run_ctest=(xvfb-run -a -s "-screen 0 1280x1024x24" ctest)
+  run_ctest=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest)
 fi
 
 for flavour in release asan; do
