@@ -4,7 +4,7 @@
 // three layers each and two blocks): a slot per layer, each holding at most
 // two surfaces here, the layer's near and far, and the block's tree is a
 // truth table over the operands' inside bits. No arrays and no loops but
-// the walk over depths: every slot is one component of a vector (bank A
+// the walk over surfaces: every slot is one component of a vector (bank A
 // holds slots 0-3, bank B slots 4-7, banks C and D slots 8-15). Compiled for
 // 4, 8 and 16 slots (MAX_LIVE).
 //
@@ -31,20 +31,6 @@
         }                                                                                   \
     }
 
-// Slot c's next surface, where it lies at the nearest depth left (`depth`,
-// untagged): it is considered for the surface shown, toggles its operand,
-// and the slot moves on to its far surface, or is done.
-#define TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)                     \
-        if (head[c] != kInfinity && untagged(head[c]) == depth) {                \
-            considerSurface(head[c], leaf[c], inside);                           \
-            toggled ^= bits[c];                                                  \
-            head[c] = head[c] == nearSide[c] ? farSide[c] : kInfinity;           \
-        }
-// Both of slot c's surfaces can lie at one depth (a ray grazing its edge).
-#define TAKE_SLOT(head, nearSide, farSide, leaf, bits, c)    \
-        TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c) \
-        TAKE_SURFACE(head, nearSide, farSide, leaf, bits, c)
-
 #if MAX_LIVE > 4
 #define RESULT(bits) ((((bits) < 128u ? tableLow : tableHigh)[((bits) >> 5) & 3u] >> ((bits) & 31u)) & 1u) != 0u
 #else
@@ -70,6 +56,11 @@ vec4 nearD = vec4(kInfinity), farD = vec4(kInfinity);
 ivec4 leafC = ivec4(0), leafD = ivec4(0);
 uvec4 bitC = uvec4(0u), bitD = uvec4(0u);
 #endif
+
+// A bank's depths with the facing bit cleared (surface.glsl's untagged).
+vec4 untaggedBank(vec4 tagged) {
+    return uintBitsToFloat(floatBitsToUint(tagged) & uvec4(~1u));
+}
 
 // evaluate.frag's: the inside bits after the face, and the operand of bit
 // `handle` set the other way alone in them.
@@ -159,8 +150,14 @@ void main() {
 #ifdef RESULT_PEEL
     startSkipping();
 #endif
-    // Depth by depth, in clusters (evaluate.frag: walkTo).
+    // Surface by surface in depth order, in clusters (evaluate.frag:
+    // walkTo). One surface a step: the loop's body holds one
+    // considerSurface, whatever the number of slots (llvmpipe runs all of a
+    // loop's body on every step). The surfaces at one depth are taken in
+    // slot order, and the result is asked only once they all are.
     int step = kWalkOn;
+    float depthTaken = -kInfinity;  // the depth whose surfaces are being taken
+    bool depthOpen = false;
     while (true) {
         float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
 #if MAX_LIVE > 4
@@ -170,28 +167,53 @@ void main() {
         nearest = min(nearest, min(min(min(headC.x, headC.y), min(headC.z, headC.w)),
                                    min(min(headD.x, headD.y), min(headD.z, headD.w))));
 #endif
-        step = walkTo(nearest, RESULT(insideBits), inside);
-        if (step != kWalkOn) break;
         float depth = untagged(nearest);
-        uint toggled = 0u;  // operand bits
-        TAKE_SLOT(headA, nearA, farA, leafA, bitA, 0) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 1)
-        TAKE_SLOT(headA, nearA, farA, leafA, bitA, 2) TAKE_SLOT(headA, nearA, farA, leafA, bitA, 3)
+        if (depthOpen && depth != depthTaken) {
+            noteResult(RESULT(insideBits), inside);
+            depthOpen = false;
+        }
+        if (!depthOpen) {
+            step = walkTo(nearest, RESULT(insideBits), inside);
+            if (step != kWalkOn) break;
+            depthOpen = true;
+            depthTaken = depth;
+        }
+        // The first slot, in slot order, whose next surface lies at `depth`.
+        vec4 head = headA, near = nearA, far = farA;
+        ivec4 leaf = leafA;
+        uvec4 bits = bitA;
+        int bank = 0;
 #if MAX_LIVE > 4
-        TAKE_SLOT(headB, nearB, farB, leafB, bitB, 0) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 1)
-        TAKE_SLOT(headB, nearB, farB, leafB, bitB, 2) TAKE_SLOT(headB, nearB, farB, leafB, bitB, 3)
+        if (!any(equal(untaggedBank(headA), vec4(depth)))) {
+            head = headB; near = nearB; far = farB; leaf = leafB; bits = bitB; bank = 1;
+        }
 #endif
 #if MAX_LIVE > 8
-        TAKE_SLOT(headC, nearC, farC, leafC, bitC, 0) TAKE_SLOT(headC, nearC, farC, leafC, bitC, 1)
-        TAKE_SLOT(headC, nearC, farC, leafC, bitC, 2) TAKE_SLOT(headC, nearC, farC, leafC, bitC, 3)
-        TAKE_SLOT(headD, nearD, farD, leafD, bitD, 0) TAKE_SLOT(headD, nearD, farD, leafD, bitD, 1)
-        TAKE_SLOT(headD, nearD, farD, leafD, bitD, 2) TAKE_SLOT(headD, nearD, farD, leafD, bitD, 3)
+        if (bank == 1 && !any(equal(untaggedBank(headB), vec4(depth)))) {
+            head = headC; near = nearC; far = farC; leaf = leafC; bits = bitC; bank = 2;
+            if (!any(equal(untaggedBank(headC), vec4(depth)))) {
+                head = headD; near = nearD; far = farD; leaf = leafD; bits = bitD; bank = 3;
+            }
+        }
 #endif
+        bvec4 at = equal(untaggedBank(head), vec4(depth));
+        int c = at.x ? 0 : at.y ? 1 : at.z ? 2 : 3;
+        float surface = head[c];
+        considerSurface(surface, leaf[c], inside);
         if (settleDue) {  // before this depth's surfaces apply (evaluate.frag)
             keepFaceState();
             settleDue = false;
         }
-        insideBits ^= toggled;
-        noteResult(RESULT(insideBits), inside);
+        insideBits ^= bits[c];
+        head[c] = surface == near[c] ? far[c] : kInfinity;
+        if (bank == 0) headA = head;
+#if MAX_LIVE > 4
+        if (bank == 1) headB = head;
+#endif
+#if MAX_LIVE > 8
+        if (bank == 2) headC = head;
+        if (bank == 3) headD = head;
+#endif
     }
     // The write is out of the loop, so that its work runs once (evaluate.frag).
     if (step != kWalkWritten) discard;
