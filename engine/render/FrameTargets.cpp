@@ -90,7 +90,7 @@ void FrameTargets::ensureShown() {
         framebufferOf("plain shown lit", {&color, &resultDepth, &resultLeaf}, GL_DEPTH_ATTACHMENT, shownDepth);
 }
 
-void FrameTargets::clearResult(bool wholeFrame, bool wholeNormal, const PixelRect& drawn) {
+void FrameTargets::clearResult(bool wholeFrame, NormalClear normals, const PixelRect& drawn) {
     glDisable(GL_SCISSOR_TEST);
     if (wholeFrame) {
         const float depth[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
@@ -99,12 +99,12 @@ void FrameTargets::clearResult(bool wholeFrame, bool wholeNormal, const PixelRec
         evaluateTarget.clearColorInt(1, leaf);
     }
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    if (wholeNormal) normalTarget.clearColor(0, zero);
+    if (normals == NormalClear::WholeFrame) normalTarget.clearColor(0, zero);
     const PixelRect r = drawn.intersection({0, 0, width_, height_});
     if (r.empty()) return;
     glEnable(GL_SCISSOR_TEST);
     glScissor(r.x, r.y, r.width, r.height);
-    if (!wholeNormal) normalTarget.clearColor(0, zero);
+    if (normals == NormalClear::Drawn) normalTarget.clearColor(0, zero);
     const GLint noMark = 0;
     glClearNamedFramebufferiv(evaluateTarget.id(), GL_STENCIL, 0, &noMark);
     glDisable(GL_SCISSOR_TEST);

@@ -44,18 +44,20 @@ public:
     // "renderer: not enough memory for a W x H image (...)" when they cannot
     // be made, and is then empty again.
     void ensure(int width, int height);
-    // Sets pixels to "miss": marks 0 and normal 0 inside `drawn`; where
-    // `wholeFrame`, depth +inf and leaf -1 everywhere, and where
-    // `wholeNormal` normal 0 everywhere too. The passes read the marks only
-    // where an operand can be drawn, depth and leaf only where the evaluator
-    // marked a pixel this frame, and the shade pass reads normals there and
-    // at their eight neighbours. So `drawn` need only hold every pixel the
-    // evaluator may mark and a pixel around them; depth and leaf need
-    // clearing everywhere only for their read-back or a pass that reads
-    // every pixel (translucent, alpha), and normals only for their
-    // read-back: clearing the RGBA32F normals of a whole 1024 x 768 frame
-    // costs llvmpipe about 3 ms of CPU.
-    void clearResult(bool wholeFrame, bool wholeNormal, const PixelRect& drawn);
+    // Which normals a frame clears: none (no pass reads them: the normal
+    // pass lights its surfaces as drawn), those inside `drawn`, or all.
+    enum class NormalClear { None, Drawn, WholeFrame };
+    // Sets pixels to "miss": marks 0 inside `drawn`; where `wholeFrame`,
+    // depth +inf and leaf -1 everywhere; normal 0 where `normals` says. The
+    // passes read the marks only where an operand can be drawn, depth and
+    // leaf only where the evaluator marked a pixel this frame, and the shade
+    // pass reads normals there and at their eight neighbours. So `drawn`
+    // need only hold every pixel the evaluator may mark and a pixel around
+    // them; depth and leaf need clearing everywhere only for their read-back
+    // or a pass that reads every pixel (translucent, alpha), and normals
+    // only for their read-back: clearing the RGBA32F normals of a whole
+    // 1024 x 768 frame costs llvmpipe about 3 ms of CPU.
+    void clearResult(bool wholeFrame, NormalClear normals, const PixelRect& drawn);
     // Every target of the evaluate and normal passes cleared inside `region`
     // only (a round of the result peel over one tile).
     void clearRegion(const PixelRect& region);

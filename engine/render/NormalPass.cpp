@@ -4,6 +4,7 @@
 
 #include "EvaluatePass.h"
 #include "ShaderInterface.h"
+#include "ShadePass.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::render {
@@ -48,16 +49,33 @@ std::vector<char> marksOwnedInRect(const FrameTargets& targets, std::span<const 
 
 }  // namespace
 
-NormalPass::NormalPass()
-    : checked_(gpu::Program::fromFiles("normal", {"csg/surface.vert", "csg/normal.frag"}, {{"FACE_NORMAL", "1"}})),
-      trusted_(gpu::Program::fromFiles("normal (trusting marks)", {"csg/surface.vert", "csg/normal.frag"},
-                                       {{"FACE_NORMAL", "1"}, {"TRUST_MARKS", "1"}})) {}
+NormalPass::NormalPass() = default;
+
+gpu::Program& NormalPass::program(bool trusted, const std::optional<Lighting>& litAs) {
+    const std::size_t shading = !litAs ? 0 : *litAs == Lighting::Strata ? 1 : 2;
+    std::optional<gpu::Program>& slot = programs_[shading][trusted ? 1 : 0];
+    if (!slot) {
+        std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}};
+        if (trusted) defines.push_back({"TRUST_MARKS", "1"});
+        if (shading > 0) defines.push_back({"LIT", "1"});
+        if (shading == 2) defines.push_back({"OPENSCAD_LIGHT", "1"});
+        slot.emplace(gpu::Program::fromFiles(trusted ? "normal (trusting marks)" : "normal",
+                                             {"csg/surface.vert", "csg/normal.frag"}, defines));
+    }
+    return *slot;
+}
 
 void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
                      const csg::CompiledTree& tree, const std::vector<PixelRect>& rects,
                      const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
-                     std::span<const int> markLeaves, std::span<const PixelRect> markRects) {
-    for (gpu::Program* program : {&checked_, &trusted_}) setSurfaceView(*program, view);
+                     std::span<const int> markLeaves, std::span<const PixelRect> markRects,
+                     const std::optional<Lighting>& litAs) {
+    gpu::Program& checked = program(false, litAs);
+    gpu::Program& trusted = program(true, litAs);
+    for (gpu::Program* p : {&checked, &trusted}) {
+        setSurfaceView(*p, view);
+        if (litAs) ShadePass::setLight(*p, view, *litAs);
+    }
     const std::vector<char> ownMarks =
         targets.leafMarks ? marksOwnedInRect(targets, markLeaves, markRects, tile) : std::vector<char>{};
     auto ownsMarks = [&](int leaf) {
@@ -66,7 +84,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     const gpu::Program* inUse = nullptr;
     targets.resultDepth.bindUnit(shader::kTextureResultDepth);
     targets.resultLeaf.bindUnit(shader::kTextureResultLeaf);
-    targets.normalTarget.bindForDraw();
+    (litAs ? targets.colorTarget : targets.normalTarget).bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_STENCIL_TEST);
@@ -81,7 +99,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
         for (const int leaf : tree.leavesOf(k)) {
             const std::uint32_t shown = shownFaces[static_cast<std::size_t>(leaf)];
             if (shown == 0 || scene.leaf(leaf).indexCount == 0) continue;
-            gpu::Program& program = ownsMarks(leaf) && scene.leaf(leaf).convex ? trusted_ : checked_;
+            gpu::Program& program = ownsMarks(leaf) && scene.leaf(leaf).convex ? trusted : checked;
             if (&program != inUse) {
                 program.use();
                 inUse = &program;
@@ -104,7 +122,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
                 }
                 glStencilFuncSeparate(GL_FRONT, GL_EQUAL, targets.mark(leaf, false, flip != 0), 0xff);
                 glStencilFuncSeparate(GL_BACK, GL_EQUAL, targets.mark(leaf, true, flip != 0), 0xff);
-                if (&program == &trusted_) program.setUniform(shader::kNormalFlip, flip);
+                if (&program == &trusted) program.setUniform(shader::kNormalFlip, flip);
                 scene.drawLeaf(leaf);
             }
         }

@@ -24,9 +24,16 @@
 // each of its surfaces (the group's peel kept it: GroupPeel.h); here its
 // members are leaves like any other.
 //
+// Lit (a frame without the outline, RenderSettings::outline): the fragment
+// writes its lit colour into FrameTargets::color instead of the normal
+// (normal.frag's LIT), as the shade pass would have lit it; the frame then
+// needs no shade pass, only the image cleared to the background first.
+//
 // GL state: uses the scissor and stencil tests and turns them off before
 // returning, and face culling; expects blending and depth test off.
 
+#include <array>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -39,6 +46,7 @@
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
+#include "strata/render/ColorScheme.h"
 
 namespace strata::render {
 
@@ -54,14 +62,20 @@ public:
     // leaf of their own within the group's rectangle. `markLeaves` and
     // `markRects`: the leaves that hold mark slots this frame and their
     // screen rectangles, as FrameTargets::assignMarkSlots got them.
+    // `litAs`: light the surfaces in that light into the image instead.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile,
              const csg::CompiledTree& tree, const std::vector<PixelRect>& rects,
              const std::vector<std::uint32_t>& shownFaces, const std::vector<glm::vec2>& baseColors,
-             std::span<const int> markLeaves, std::span<const PixelRect> markRects);
+             std::span<const int> markLeaves, std::span<const PixelRect> markRects,
+             const std::optional<Lighting>& litAs);
 
 private:
-    gpu::Program checked_;  // compares leaf, facing and depth with the evaluator's
-    gpu::Program trusted_;  // TRUST_MARKS: the stencil test has done that
+    // The variant for a leaf: `trusted` (TRUST_MARKS: the stencil test has
+    // compared leaf, facing and depth with the evaluator's) or the checking
+    // one, writing normals or lit (`litAs`); made at its first use.
+    gpu::Program& program(bool trusted, const std::optional<Lighting>& litAs);
+    // [unlit, strata's light, OpenSCAD's][checking, trusting]
+    std::array<std::array<std::optional<gpu::Program>, 2>, 3> programs_;
 };
 
 }  // namespace strata::render

@@ -295,9 +295,12 @@ struct Renderer::Impl {
     // `markLeaves`, `markRects`: the leaves that hold mark slots (operands,
     // and a group's members in its place) and their screen rectangles.
     // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
+    // `litAs`: the normal pass lights the surfaces into the image, which
+    // the caller has cleared to the background (NormalPass.h).
     void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const std::vector<int>& markLeaves,
                          const std::vector<PixelRect>& markRects, const RenderSettings& settings,
-                         const std::vector<glm::vec2>& baseColors, Frame& frame);
+                         const std::vector<glm::vec2>& baseColors, const std::optional<Lighting>& litAs,
+                         Frame& frame);
     // What every tile of a frame reads (peelAndEvaluate's arguments).
     struct TileInputs {
         const ViewSetup& view;
@@ -307,6 +310,7 @@ struct Renderer::Impl {
         const RenderSettings& settings;
         const std::vector<glm::vec2>& baseColors;
         const PeelRequest& request;
+        const std::optional<Lighting>& litAs;
     };
     struct TileCounts {
         int drawn = 0;   // tiles peeled, evaluated and given normals
@@ -334,8 +338,8 @@ struct Renderer::Impl {
     void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
                     const std::vector<OperandLayers>& layers, Frame& frame);
     // Shade, alpha and translucent passes over the G-buffer in `targets`.
-    // `marked`: ShadePass::run's. `lit`: the image is lit already (a plain
-    // frame lit as drawn), only the alpha and translucent passes are left.
+    // `marked`: ShadePass::run's. `lit`: the image is lit already (a frame
+    // lit as drawn), only the alpha and translucent passes are left.
     void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
                     const std::optional<PixelRect>& marked, bool lit = false);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
@@ -415,7 +419,7 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const geometry::Model& mo
 void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects,
                                      const std::vector<int>& markLeaves, const std::vector<PixelRect>& markRects,
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
-                                     Frame& frame) {
+                                     const std::optional<Lighting>& litAs, Frame& frame) {
     FrameStats& stats = frame.stats;
     const csg::CompiledTree& compiled = current->tree;
     const std::vector<int>& operands = compiled.operandLeaf;
@@ -427,7 +431,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers && roundSink == nullptr) {
         request.firstLayerOnly = current->unionsOnly;
     }
-    const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request};
+    const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request, litAs};
     const TilePlan plan = planTiles(in);
     const std::vector<PixelRect>& grid = plan.grid;
     const TileCounts counts = runTiles(in, grid, frame);
@@ -605,7 +609,8 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
     const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
     stats.evaluateMs += millisecondsSince(start);
     start = Clock::now();
-    normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects);
+    normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects,
+                 in.litAs);
     glFinish();
     stats.normalMs += millisecondsSince(start);
 }
@@ -630,7 +635,7 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
         stats.evaluateMs += millisecondsSince(start);
         start = Clock::now();
         normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves,
-                    in.markRects);
+                     in.markRects, std::nullopt);  // the normals are read back
         glFinish();
         stats.normalMs += millisecondsSince(start);
 
@@ -855,8 +860,20 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     // and the passes after it need and nothing else, and clears that itself
     // (PlainPass::Output::shownOnly).
     const bool shownOnly = plainFrame && !aovs;
+    const bool evaluated = !plainFrame && compiled.kind == csg::CompiledTree::Kind::Code;
+    // A frame with no outline is lit as its surfaces are drawn: no shade
+    // pass, whose outline alone needs the G-buffer around a pixel. A plain
+    // frame by the plain pass (PlainPass.h), an evaluated one by the normal
+    // pass (NormalPass.h), where its normals are not read back.
+    const bool aovNormals = aovs && settings.readNormal;
+    const bool litAsDrawn =
+        !settings.outline && (plainFrame || (evaluated && !aovNormals && roundSink == nullptr));
     if (!shownOnly) {
-        targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(), aovs && settings.readNormal,
+        using NormalClear = FrameTargets::NormalClear;
+        targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(),
+                            aovNormals                  ? NormalClear::WholeFrame
+                            : evaluated && litAsDrawn ? NormalClear::None
+                                                        : NormalClear::Drawn,
                             drawn.grown(1));
     }
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
@@ -866,18 +883,24 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
-    // A plain frame with no outline is lit as it is drawn (PlainPass.h):
-    // no shade pass, whose outline alone needs the G-buffer around a pixel.
-    const bool litAsDrawn = plainFrame && !settings.outline;
+    std::optional<Lighting> litAs;
+    if (litAsDrawn) litAs = settings.lighting;
+    stats.litAsDrawn = litAsDrawn;
     if (plainFrame) {
         PlainPass::Output output;
-        if (litAsDrawn) output.litAs = settings.lighting;
+        output.litAs = litAs;
         output.shownOnly = shownOnly;
         output.background = glm::vec4(glm::vec3(scheme.background), 1.0f);
         output.keepResult = !translucentLeaves.empty() || !alphaLeaves.empty();
         drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), output, frame);
-    } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
-        peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), frame);
+    } else if (evaluated) {
+        if (litAsDrawn) {
+            // The normal pass lights only the pixels the result covers.
+            const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
+            glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, background);
+        }
+        peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), litAs,
+                        frame);
     } else {
         stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");

@@ -11,6 +11,11 @@
 // (llvmpipe tests late, after the shader, in a shader that may discard,
 // unless told otherwise). Two variants: TRUST_MARKS (below) for convex
 // leaves whose marks are their own, and the checking one.
+//
+// LIT (frames without the outline, which alone needs a pixel's
+// neighbours): the fragment writes the lit colour into the image instead,
+// as the shade pass would from the same normal and base colour
+// (light.glsl), and the frame needs no shade pass.
 layout(early_fragment_tests) in;
 
 #include "csg/interface.glsl"
@@ -18,7 +23,12 @@ layout(early_fragment_tests) in;
 
 layout(location = 0) in float vViewDepth;
 layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit
+#ifdef LIT
+#include "csg/light.glsl"
+layout(location = 0) out vec4 outColor;
+#else
 layout(location = 0) out vec4 outNormal;
+#endif
 
 layout(binding = kTextureResultDepth) uniform sampler2D uResultDepth;  // tagged depth, +inf on a miss
 layout(binding = kTextureResultLeaf) uniform isampler2D uResultLeaf;   // leafCode (interface.glsl)
@@ -26,6 +36,16 @@ layout(binding = kTextureResultLeaf) uniform isampler2D uResultLeaf;   // leafCo
 layout(location = kNormalLeaf) uniform int uLeaf;  // the leaf being drawn
 // The leaf's packed base colours (ShadePass::baseColors): x its own surface, y cut.
 layout(location = kNormalBaseColor) uniform vec2 uBaseColor;
+
+// The visible surface: its outward normal and packed base colour, for the
+// shade pass, or (LIT) lit.
+void writeSurface(vec3 normal, float baseColor) {
+#ifdef LIT
+    outColor = vec4(lightSurface(unpackBaseColor(baseColor), normal), 1.0);
+#else
+    outNormal = vec4(normal, baseColor);
+#endif
+}
 
 #ifdef TRUST_MARKS
 // A convex leaf whose marks no other leaf shares in its rectangle
@@ -37,7 +57,7 @@ layout(location = kNormalFlip) uniform int uFlip;
 
 void main() {
     bool cut = uFlip != 0;
-    outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
+    writeSurface(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #else
 void main() {
@@ -52,6 +72,6 @@ void main() {
     // rounding that an offset viewport or another fragment shader may bring.
     if (abs(t - result) > 1.0e-6 * result) discard;
     bool cut = flipOfCode(code);
-    outNormal = vec4(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
+    writeSurface(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #endif

@@ -117,6 +117,10 @@ struct FrameStats {
     // leaf's (0: every triangle of those leaves).
     bool plain = false;
     std::size_t tiedLeaves = 0, tiedTriangles = 0;
+    // The surfaces were lit as they were drawn (no outline: by the plain
+    // pass, or by the normal pass where no normal is read back), and no
+    // shade pass ran.
+    bool litAsDrawn = false;
     // Peel passes used, per tree leaf: 0 for leaves not drawn, among them a
     // leaf identical to a lower one, which shares that one's layers
     // (IdenticalLeaves.h).
