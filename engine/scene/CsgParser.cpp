@@ -145,6 +145,8 @@ private:
     int finishGather(const Open& open);
     int emptyNode(SourceLocation where);  // by value: `where` may lie in the nodes it adds to
     bool flatChildren(int node) const;
+    int dimensionOf(int node) const;
+    int keepOneDimension(int node);
     bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
     FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
     Square square(const std::vector<CsgArgument>& args);
@@ -229,7 +231,9 @@ Tree Parser::parse() {
         // blank line: an empty scene, not an error.
         tree_.warnings.push_back(Warning{tree_.source + ": warning: the scene has no statements; nothing to draw"});
     }
-    // Flat objects side by side at the top level are one flat result, as in OpenSCAD.
+    // The top level is a union like any other: one dimension, then flat
+    // objects side by side are one flat result, as in OpenSCAD.
+    keepOneDimension(top.node);
     const bool severalAtTop = tree_.nodes[static_cast<std::size_t>(top.node)].children.size() > 1;
     if (const int merged = severalAtTop ? mergeFlatChildren(top.node) : -1; merged >= 0) {
         tree_.nodes[static_cast<std::size_t>(top.node)].children = {merged};
@@ -508,10 +512,12 @@ void Parser::closeOne() {
     } else if (open.node >= 0 && open.gather != Open::Gather::None) {
         node = finishGather(open);
     } else if (open.node >= 0) {
-        node = open.node;
-        Node& n = tree_.nodes[static_cast<std::size_t>(node)];
-        if (open.collapsible && n.children.size() == 1) node = n.children.front();
-        else if (const int merged = mergeFlatChildren(node); merged >= 0) node = merged;
+        node = keepOneDimension(open.node);
+        if (node == open.node) {
+            const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
+            if (open.collapsible && n.children.size() == 1) node = n.children.front();
+            else if (const int merged = mergeFlatChildren(node); merged >= 0) node = merged;
+        }
     }
     if (node >= 0) {
         if (open.isRoot) rootNode_ = node;
@@ -1099,6 +1105,60 @@ int Parser::mergeFlatChildren(int node, std::optional<FlatOp> op, const glm::dma
     leaf.transform = placement;
     leaf.steps = nullptr;
     return tree_.addLeaf(std::move(leaf));
+}
+
+// What a node holds once closed: 2 for a flat slab leaf or a node of them
+// (a 2D operation), 0 for a node with no children (nothing, which has no
+// dimension), 3 for anything else.
+int Parser::dimensionOf(int node) const {
+    const Node& n = tree_.nodes[static_cast<std::size_t>(node)];
+    if (n.kind == NodeKind::Leaf) {
+        return std::holds_alternative<FlatSlab>(tree_.leaves[static_cast<std::size_t>(n.leaf)].primitive) ? 2 : 3;
+    }
+    if (n.children.empty()) return 0;
+    return flatChildren(node) ? 2 : 3;
+}
+
+// A union, intersection or difference is a 3D or a 2D operation by its
+// first child with a dimension, and OpenSCAD's exact evaluation (F6) takes
+// a child of the other dimension as empty, with a warning: it drops from a
+// union and from a difference's subtrahends, and empties an intersection.
+// Children of the other dimension are left out of `node` here; returns
+// `node`, or an empty node in its place for such an intersection.
+// (OpenSCAD's preview draws a 2D child among solids as a thin slab; the
+// exact result, and the export, have none.)
+int Parser::keepOneDimension(int node) {
+    Node& n = tree_.nodes[static_cast<std::size_t>(node)];
+    if (n.kind == NodeKind::Leaf || n.children.size() < 2) return node;
+    int dimension = 0;
+    bool mixed = false;
+    for (int c : n.children) {
+        const int d = dimensionOf(c);
+        if (d == 0) continue;
+        if (dimension == 0) dimension = d;
+        mixed = mixed || d != dimension;
+    }
+    if (!mixed) return node;
+    const std::string op = n.kind == NodeKind::Intersection ? "an intersection"
+                           : n.kind == NodeKind::Difference ? "a difference"
+                                                            : "a union";
+    std::vector<int> kept;
+    for (int c : n.children) {
+        const int d = dimensionOf(c);
+        if (d == 0 || d == dimension) {
+            kept.push_back(c);
+            continue;
+        }
+        const Node& child = tree_.nodes[static_cast<std::size_t>(c)];
+        const SourceLocation& at =
+            child.kind == NodeKind::Leaf ? tree_.leaves[static_cast<std::size_t>(child.leaf)].where : child.where;
+        warnOnce(dimension == 3 ? "2d-in-3d" : "3d-in-2d", at,
+                 dimension == 3 ? "a 2D object in " + op + " of solids is ignored, as OpenSCAD ignores it"
+                                : "a solid in " + op + " of 2D objects is ignored, as OpenSCAD ignores it");
+    }
+    if (n.kind == NodeKind::Intersection) return emptyNode(n.where);
+    n.children = std::move(kept);
+    return node;
 }
 
 // Whether every child of `node` is a flat slab leaf: a 2D operation in OpenSCAD.

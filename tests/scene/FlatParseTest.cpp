@@ -134,11 +134,51 @@ TEST(FlatParse, FlatObjectsOutsideExtrusionsAreOneSlab) {
     EXPECT_EQ(node(s, placed.children.at(0)).op, FlatOp::Difference);
 }
 
-TEST(FlatParse, FlatAndSolidSideBySideStayApart) {
-    const Tree t = parse("square(size = 4);\ncube(size = 2);\n");
-    ASSERT_EQ(t.leaves.size(), 2u);
-    EXPECT_FALSE(t.isFlat());
-    EXPECT_TRUE(std::holds_alternative<FlatSlab>(t.leaves[0].primitive));
+TEST(FlatParse, AnOperationTakesItsFirstChildsDimension) {
+    // OpenSCAD's exact evaluation: an operation, the top level included, is
+    // 2D or 3D by its first child, and a child of the other dimension is
+    // empty, with a warning naming it.
+    const Tree flatFirst = parse("square(size = 4);\ncube(size = 2);\n");
+    ASSERT_EQ(flatFirst.leaves.size(), 1u);
+    EXPECT_TRUE(flatFirst.isFlat());
+    ASSERT_EQ(flatFirst.warnings.size(), 1u);
+    EXPECT_EQ(flatFirst.warnings[0].message.rfind("t.csg:2:1: warning: a solid in a union of 2D objects is ignored", 0), 0u)
+        << flatFirst.warnings[0].message;
+
+    const Tree solidFirst = parse("cube(size = 2);\nsquare(size = 4);\n");
+    ASSERT_EQ(solidFirst.leaves.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<Cube>(solidFirst.leaves[0].primitive));
+    ASSERT_EQ(solidFirst.warnings.size(), 1u);
+    EXPECT_EQ(solidFirst.warnings[0].message.rfind("t.csg:2:1: warning: a 2D object in a union of solids is ignored", 0),
+              0u)
+        << solidFirst.warnings[0].message;
+
+    // A difference loses a flat subtrahend; an intersection with one is empty.
+    const Tree cut = parse("difference() {\n\tcube(size = 10);\n\tcircle(r = 3);\n\tsphere(r = 2);\n}\n");
+    ASSERT_EQ(cut.leaves.size(), 2u);
+    EXPECT_TRUE(std::holds_alternative<Cube>(cut.leaves[0].primitive));
+    EXPECT_TRUE(std::holds_alternative<Sphere>(cut.leaves[1].primitive));
+    EXPECT_EQ(cut.nodes[static_cast<std::size_t>(cut.root)].kind, NodeKind::Difference);
+    ASSERT_EQ(cut.warnings.size(), 1u);
+    EXPECT_EQ(cut.warnings[0].message.rfind("t.csg:3:2: warning: a 2D object in a difference of solids", 0), 0u)
+        << cut.warnings[0].message;
+    const Tree meet = parse("intersection() {\n\tcube(size = 10);\n\tcircle(r = 3);\n}\n");
+    EXPECT_TRUE(meet.leaves.empty());
+    EXPECT_EQ(meet.warnings.size(), 1u);
+
+    // A 2D difference loses a solid subtrahend and stays flat.
+    const Tree flatCut = parse("difference() {\n\tsquare(size = 10);\n\tcube(size = 3);\n\tcircle(r = 2);\n}\n");
+    ASSERT_EQ(flatCut.leaves.size(), 1u);
+    EXPECT_TRUE(flatCut.isFlat());
+    const FlatTree& shape = std::get<FlatSlab>(flatCut.leaves[0].primitive).shape;
+    EXPECT_EQ(node(shape, shape.root).op, FlatOp::Difference);
+    EXPECT_EQ(node(shape, shape.root).children.size(), 2u);
+
+    // Nothing has no dimension: an empty group first changes nothing.
+    const Tree afterNothing = parse("group();\ncube(size = 2);\nsquare(size = 4);\n");
+    ASSERT_EQ(afterNothing.leaves.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<Cube>(afterNothing.leaves[0].primitive));
+
     // A flat object lifted out of its plane is drawn where it is, not merged.
     const Tree lifted = parse("union() {\n\tsquare(size = 4);\n"
                               "\tmultmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]) square(size = 4);\n}\n");
@@ -457,9 +497,8 @@ TEST(FlatParse, ProjectionReadsSolidsIntoATreeOfTheirOwn) {
     const Tree t = parse(
         "linear_extrude(height = 1) {\n\tprojection(cut = true, convexity = 0) {\n"
         "\t\tdifference() { sphere(r = 5); linear_extrude(height = 20, center = true) circle(r = 1); }\n"
-        "\t}\n}\n"
-        "projection(cut = false) { multmatrix([[1, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = 2); }\n");
-    ASSERT_EQ(t.leaves.size(), 2u);
+        "\t}\n}\n");
+    ASSERT_EQ(t.leaves.size(), 1u);
     const FlatTree& s = std::get<LinearExtrude>(t.leaves[0].primitive).shape;
     ASSERT_EQ(s.shapes.size(), 1u);
     const auto& cut = std::get<Projection>(s.shapes[0]);
@@ -467,8 +506,11 @@ TEST(FlatParse, ProjectionReadsSolidsIntoATreeOfTheirOwn) {
     ASSERT_TRUE(cut.solid);
     EXPECT_EQ(cut.solid->leaves.size(), 2u);  // the sphere and the extruded circle
     EXPECT_EQ(cut.solid->nodes[static_cast<std::size_t>(cut.solid->root)].kind, NodeKind::Union);
-    // Among solids, a projection is a flat slab.
-    const FlatTree& slab = std::get<FlatSlab>(t.leaves[1].primitive).shape;
+    // Outside an extrusion, a projection is a flat result.
+    const Tree shadowed = parse(
+        "projection(cut = false) { multmatrix([[1, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = 2); }\n");
+    ASSERT_EQ(shadowed.leaves.size(), 1u);
+    const FlatTree& slab = std::get<FlatSlab>(shadowed.leaves[0].primitive).shape;
     const auto& shadow = std::get<Projection>(slab.shapes.at(0));
     EXPECT_FALSE(shadow.cut);
     EXPECT_EQ(shadow.solid->leaves.at(0).transform[3][0], 9.0);  // placed inside the projection's frame
