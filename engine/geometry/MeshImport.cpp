@@ -6,13 +6,17 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <mutex>
 #include <vector>
 
@@ -76,46 +80,26 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-// OpenSCAD writes OFF files with the counts on the keyword's line
-// ("OFF 8 6 0"); OpenMesh's reader takes the whole first line as the keyword
-// and then reads coordinates as counts. Moves such counts to a line of their
-// own; returns false when the text needs no change.
-bool splitOffHeader(std::string& text) {
-    const std::size_t lineEnd = std::min(text.find('\n'), text.size());
-    std::size_t i = text.find_first_not_of(" \t\r");
-    const std::size_t keyword = i;
-    while (i < lineEnd && std::isalpha(static_cast<unsigned char>(text[i]))) ++i;
-    if (i == keyword || i - keyword < 3 || text.compare(i - 3, 3, "OFF") != 0) return false;
-    const std::size_t rest = text.find_first_not_of(" \t\r", i);
-    if (rest >= lineEnd || !std::isdigit(static_cast<unsigned char>(text[rest]))) return false;
-    text[i] = '\n';  // the separator after the keyword
-    return true;
+// Whether an OFF file is binary: its keyword line holds BINARY.
+bool binaryOff(const std::string& head) {
+    const std::size_t end = std::min(head.find('\n'), head.size());
+    return head.compare(0, end, "BINARY") != 0 && head.substr(0, end).find("BINARY") != std::string::npos;
 }
 
-// Element counts an OFF header declares (vertices, faces), so a corrupt
-// header cannot make OpenMesh reserve gigabytes: every element takes at
-// least one byte of the file. Empty when the header cannot be parsed
-// (OpenMesh then reports the file itself) or has no counts.
-std::vector<unsigned long long> declaredOffCounts(const std::string& head) {
-    std::vector<unsigned long long> counts;
-    std::istringstream in(head);
-    std::string line;
-    std::string keyword;
-    if (!(in >> keyword) || keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return {};
-    std::getline(in, line);  // rest of the keyword line
-    if (line.find("BINARY") != std::string::npos) return {};
-    std::string numbers = line;
-    while (std::getline(in, line)) {  // counts may follow comments and blank lines
-        const auto first = line.find_first_not_of(" \t\r");
-        if (first == std::string::npos || line[first] == '#') continue;
-        numbers += " " + line;
-        break;
+// A binary OFF's counts of vertices and faces, 32-bit integers after the
+// keyword line, read in this machine's byte order as OpenMesh reads them,
+// each checked against the file's size: every element takes at least one
+// byte, and a corrupt header must not make OpenMesh reserve gigabytes.
+void checkBinaryOffCounts(const std::string& head, const std::string& path, std::uintmax_t size) {
+    auto fail = [&path](const std::string& why) { return Error(path + ": cannot read mesh: " + why); };
+    const std::size_t start = head.find('\n');
+    if (start == std::string::npos || head.size() < start + 1 + 8) throw fail("the binary header is cut short");
+    for (int i = 0; i < 2; ++i) {
+        std::int32_t n = 0;
+        std::memcpy(&n, head.data() + start + 1 + 4 * i, 4);
+        const unsigned long long count = n < 0 ? ~0ull : static_cast<unsigned long long>(n);
+        if (count > size) throw fail("header declares " + std::to_string(count) + " elements, more than the file can hold");
     }
-    std::istringstream words(numbers);
-    unsigned long long dimension = 0, vertices = 0, faces = 0;
-    if (keyword.find('n') != std::string::npos && !(words >> dimension)) return {};
-    if (words >> vertices >> faces) counts = {vertices, faces};
-    return counts;
 }
 
 // The line of the first word of `text` that spells a non-finite number
@@ -149,20 +133,217 @@ bool looksLikeText(const std::string& head) {
     return true;
 }
 
-// Turns each OBJ `mtllib` line into a comment (the same length, so that
-// line numbers and columns stay where they were).
-void withoutMaterialLibraries(std::string& text) {
-    std::size_t start = 0;
-    while (start < text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string::npos) end = text.size();
-        std::size_t word = text.find_first_not_of(" \t", start);
-        if (word < end && text.compare(word, 6, "mtllib") == 0 &&
-            (word + 6 == end || text[word + 6] == ' ' || text[word + 6] == '\t' || text[word + 6] == '\r')) {
-            text[word] = '#';
+// A word of a file as a message quotes it: printable ASCII as it is, other
+// bytes as \xNN (a terminal never sees a control byte from the file), and
+// at most 32 characters of it.
+std::string quotedWord(std::string_view word) {
+    std::string out = "'";
+    for (std::size_t i = 0; i < word.size() && i < 32; ++i) {
+        const auto c = static_cast<unsigned char>(word[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            out.push_back(static_cast<char>(c));
+        } else {
+            static const char kHex[] = "0123456789abcdef";
+            out += "\\x";
+            out.push_back(kHex[c >> 4]);
+            out.push_back(kHex[c & 15]);
         }
-        start = end + 1;
     }
+    if (word.size() > 32) out += "...";
+    return out + "'";
+}
+
+// A Wavefront OBJ's polygons, read by strata itself: its vertices (`v x y z`,
+// any further numbers ignored) and faces (`f` with one reference a corner,
+// `v`, `v/vt`, `v//vn` or `v/vt/vn`, counted from 1, or back from the last
+// vertex read when negative). Every other statement (texture coordinates,
+// normals, groups, objects, smoothing, materials, lines, points) carries
+// nothing strata draws and is skipped; a line ending in a backslash goes on
+// on the next. OpenMesh's reader opens the material files an OBJ names (a
+// FIFO or a device included) and asserts on a face whose corners it cannot
+// find; this one opens nothing and names the line of any fault.
+struct Polygons {
+    std::vector<glm::dvec3> positions;
+    std::vector<std::vector<uint32_t>> faces;
+};
+
+Polygons readObj(const std::string& text, const std::string& path) {
+    Polygons obj;
+    std::size_t lineNumber = 0, start = 0;
+    std::string line;
+    auto fail = [&](const std::string& why) {
+        return Error(path + ":" + std::to_string(lineNumber) + ": cannot read mesh: " + why);
+    };
+    while (start < text.size()) {
+        // One logical line, joined across backslash-newlines.
+        ++lineNumber;
+        const std::size_t first = lineNumber;
+        line.clear();
+        while (start < text.size()) {
+            std::size_t end = text.find('\n', start);
+            if (end == std::string::npos) end = text.size();
+            std::string_view part(text.data() + start, end - start);
+            start = end + 1;
+            if (!part.empty() && part.back() == '\r') part.remove_suffix(1);
+            if (!part.empty() && part.back() == '\\') {
+                line.append(part.substr(0, part.size() - 1)).push_back(' ');
+                ++lineNumber;
+                continue;
+            }
+            line.append(part);
+            break;
+        }
+        const std::size_t last = lineNumber;
+        lineNumber = first;
+        std::istringstream words(line);
+        std::string keyword;
+        if (!(words >> keyword) || keyword[0] == '#') {
+            lineNumber = last;
+            continue;
+        }
+        if (keyword == "v") {
+            glm::dvec3 p;
+            for (int i = 0; i < 3; ++i) {
+                std::string word;
+                if (!(words >> word)) throw fail("a vertex needs three coordinates");
+                const char* begin = word.data();
+                const auto [rest, error] = std::from_chars(begin, begin + word.size(), p[i]);
+                if (error != std::errc() || rest != begin + word.size()) throw fail(quotedWord(word) + " is not a number");
+                if (!std::isfinite(p[i])) throw fail("a coordinate is not a finite number");
+            }
+            obj.positions.push_back(p);
+        } else if (keyword == "f") {
+            std::vector<uint32_t> face;
+            for (std::string corner; words >> corner;) {
+                long long index = 0;
+                const char* begin = corner.data();
+                const char* stop = begin + corner.size();
+                const auto [rest, error] = std::from_chars(begin, stop, index);
+                if (error != std::errc() || (rest != stop && *rest != '/') || index == 0) {
+                    throw fail(quotedWord(corner) + " is not a vertex reference");
+                }
+                const auto count = static_cast<long long>(obj.positions.size());
+                const long long at = index > 0 ? index - 1 : count + index;
+                if (at < 0 || at >= count) {
+                    throw fail("a face refers to vertex " + std::to_string(index) + ", but " + std::to_string(count) +
+                               (count == 1 ? " vertex is" : " vertices are") + " defined before it");
+                }
+                face.push_back(static_cast<uint32_t>(at));
+            }
+            if (face.size() < 3) throw fail("a face needs at least three corners");
+            obj.faces.push_back(std::move(face));
+        }
+        lineNumber = last;
+    }
+    return obj;
+}
+
+// A text OFF's polygons, read by strata itself: the keyword (OFF with
+// Geomview's prefixes: ST, C, N, 4, n), the counts of vertices, faces and
+// edges (on the keyword's line, as OpenSCAD writes them, or after it), each
+// vertex on a line of its own (x y z, or x y z w for 4OFF; whatever follows,
+// a normal or a colour, is skipped), then each face (its corner count and
+// corners, counted from 0; a colour after them is skipped). '#' starts a
+// comment. OpenMesh's reader reserved gigabytes for a header it could not
+// read; this one checks every count against the file and names the line of
+// any fault.
+Polygons readOff(const std::string& text, const std::string& path) {
+    Polygons off;
+    std::size_t lineNumber = 0, start = 0;
+    auto fail = [&](const std::string& why) {
+        return Error(path + ":" + std::to_string(lineNumber) + ": cannot read mesh: " + why);
+    };
+    // The next line with something on it, its comment cut off; false at the end.
+    std::string line;
+    auto nextLine = [&]() {
+        while (start < text.size()) {
+            std::size_t end = text.find('\n', start);
+            if (end == std::string::npos) end = text.size();
+            line.assign(text, start, end - start);
+            start = end + 1;
+            ++lineNumber;
+            if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+            if (line.find_first_not_of(" \t\r") != std::string::npos) return true;
+        }
+        return false;
+    };
+    auto number = [&](const std::string& word, auto& value) {
+        const char* begin = word.data();
+        const auto [rest, error] = std::from_chars(begin, begin + word.size(), value);
+        if (error != std::errc() || rest != begin + word.size()) throw fail(quotedWord(word) + " is not a number");
+    };
+    if (!nextLine()) throw fail("no OFF keyword");
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    std::size_t at = 0;
+    if (keyword.compare(at, 2, "ST") == 0) at += 2;
+    if (keyword.compare(at, 1, "C") == 0) at += 1;
+    if (keyword.compare(at, 1, "N") == 0) at += 1;
+    const bool homogeneous = keyword.compare(at, 1, "4") == 0;
+    if (homogeneous) at += 1;
+    const bool dimensioned = keyword.compare(at, 1, "n") == 0;
+    if (dimensioned) at += 1;
+    if (keyword.compare(at, std::string::npos, "OFF") != 0) throw fail(quotedWord(keyword) + " is not an OFF keyword");
+    // The header's numbers: the dimension (nOFF), then the three counts.
+    std::vector<unsigned long long> header;
+    const std::size_t wanted = dimensioned ? 4 : 3;
+    for (;;) {
+        for (std::string word; header.size() < wanted && words >> word;) {
+            unsigned long long value = 0;
+            number(word, value);
+            header.push_back(value);
+        }
+        if (header.size() == wanted) break;
+        if (!nextLine()) throw fail("the header has no vertex, face and edge counts");
+        words = std::istringstream(line);
+    }
+    if (dimensioned && header[0] != 3) throw fail("only three dimensions can be read, not " + std::to_string(header[0]));
+    const unsigned long long vertices = header[wanted - 3], faces = header[wanted - 2];
+    for (const unsigned long long n : {vertices, faces}) {
+        if (n > text.size()) {
+            throw fail("header declares " + std::to_string(n) + " elements, more than the file can hold");
+        }
+    }
+    const int coordinates = homogeneous ? 4 : 3;
+    off.positions.reserve(vertices);
+    for (unsigned long long v = 0; v < vertices; ++v) {
+        if (!nextLine()) throw fail("the file ends after " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
+        words = std::istringstream(line);
+        double c[4] = {0, 0, 0, 1};
+        for (int i = 0; i < coordinates; ++i) {
+            std::string word;
+            if (!(words >> word)) throw fail("a vertex needs " + std::to_string(coordinates) + " coordinates");
+            number(word, c[i]);
+        }
+        const glm::dvec3 p = glm::dvec3(c[0], c[1], c[2]) / c[3];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) throw fail("a coordinate is not a finite number");
+        off.positions.push_back(p);
+    }
+    for (unsigned long long f = 0; f < faces; ++f) {
+        if (!nextLine()) throw fail("the file ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
+        words = std::istringstream(line);
+        std::string word;
+        unsigned long long corners = 0;
+        words >> word;
+        number(word, corners);
+        if (corners < 3) throw fail("a face needs at least three corners");
+        if (corners > vertices) throw fail("a face of " + std::to_string(corners) + " corners, more than the vertices");
+        std::vector<uint32_t> face;
+        face.reserve(corners);
+        for (unsigned long long k = 0; k < corners; ++k) {
+            unsigned long long index = 0;
+            if (!(words >> word)) throw fail("a face has fewer corners than it declares");
+            number(word, index);
+            if (index >= vertices) {
+                throw fail("a face refers to vertex " + std::to_string(index) + ", past the " + std::to_string(vertices) +
+                           " vertices");
+            }
+            face.push_back(static_cast<uint32_t>(index));
+        }
+        off.faces.push_back(std::move(face));
+    }
+    return off;
 }
 
 std::string readAll(const std::string& path) {
@@ -185,15 +366,22 @@ Mesh importMesh(const std::string& path) {
     if (size == 0) throw fail("empty file");
     const std::string head = detail::readHead(path, 1 << 16);
     if (ext == ".ply") detail::checkPly(path, size);
-    if (ext == ".off") {
-        for (unsigned long long n : declaredOffCounts(head)) {
-            if (n > size) throw fail("header declares " + std::to_string(n) + " elements, more than the file can hold");
-        }
-    }
+    const bool binary = ext == ".off" && binaryOff(head);
+    if (binary) checkBinaryOffCounts(head, path, size);
     if (looksLikeText(head)) {
         if (const std::size_t line = lineOfNonFiniteWord(readAll(path)); line > 0) {
             throw Error(path + ":" + std::to_string(line) + ": cannot read mesh: a coordinate is not a finite number");
         }
+    }
+
+    if (ext == ".obj" || (ext == ".off" && !binary)) {
+        Polygons read = ext == ".obj" ? readObj(readAll(path), path) : readOff(readAll(path), path);
+        if (read.faces.empty()) throw fail("no faces (not a valid " + ext.substr(1) + " file?)");
+        Mesh mesh;
+        mesh.positions = std::move(read.positions);
+        for (const std::vector<uint32_t>& face : read.faces) detail::triangulatePolygon(mesh.positions, face, mesh.triangles);
+        mergeCoincidentVertices(mesh);
+        return mesh;
     }
 
     PolyMesh om;
@@ -203,21 +391,7 @@ Mesh importMesh(const std::string& path) {
         SilencedOpenMeshLog silence;
         OpenMesh::IO::Options options;
         try {
-            std::string text;
-            if (ext == ".off" && splitOffHeader(text = readAll(path))) {
-                std::istringstream in(text);
-                ok = OpenMesh::IO::read_mesh(om, in, ext, options);
-            } else if (ext == ".obj") {
-                // OpenMesh opens the material files an OBJ names, a FIFO or
-                // a device included; strata takes no colours from them, so
-                // the reader never sees those lines.
-                text = readAll(path);
-                withoutMaterialLibraries(text);
-                std::istringstream in(text);
-                ok = OpenMesh::IO::read_mesh(om, in, ext, options);
-            } else {
-                ok = OpenMesh::IO::read_mesh(om, path, options);
-            }
+            ok = OpenMesh::IO::read_mesh(om, path, options);
         } catch (const std::exception& e) {
             ok = false;
             exception = e.what();

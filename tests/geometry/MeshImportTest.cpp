@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "GeometryTestUtil.h"
@@ -122,6 +123,66 @@ TEST(ImportMesh, AnObjsMaterialFilesAreNeverOpened) {
     expectUnitCube(importMesh(dir.file("zero.obj")));
 }
 
+TEST(ImportMesh, AnObjsCornersMayNameTextureAndNormalAndCountBack) {
+    // The unit tetrahedron with every form of corner reference: plain,
+    // v/vt, v//vn, v/vt/vn, negative (from the last vertex read), vertex
+    // colours after the coordinates, a line continued with a backslash,
+    // and statements strata skips. Its volume is 1/6 whichever way the
+    // corners are written, and the faces point outward.
+    TempDir dir;
+    std::ofstream(dir.file("forms.obj")) << "# forms\r\no t\ng a b\ns off\nusemtl m\n"
+                                         << "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvn 0 0 1\n"
+                                         << "f 1 3 2\nf 1/1 2/1 4/1\nf 1//1 \\\n 4//1 3//1\nf -3/1/1 -2/1/1 -1/1/1\nl 1 2\n";
+    const Mesh m = importMesh(dir.file("forms.obj"));
+    EXPECT_EQ(m.positions.size(), 4u);
+    EXPECT_EQ(m.triangles.size(), 4u);
+    EXPECT_TRUE(checkMesh(m).ok()) << checkMesh(m).describe();
+    EXPECT_NEAR(signedVolume(m), 1.0 / 6.0, 1e-15);
+}
+
+TEST(ImportMesh, AnObjsBadFaceOrVertexIsOneLineNamingIt) {
+    // A face naming vertices that do not exist made OpenMesh's reader
+    // assert (found by the OBJ fuzzer); each fault is one line here.
+    TempDir dir;
+    const std::pair<const char*, const char*> cases[] = {
+        {"mtllmtllib /dev/zero\nv0 0 1\nf 1 3 2\n", ":3: cannot read mesh: a face refers to vertex 1, but 0 vertices are defined before it"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", ":4: cannot read mesh: a face refers to vertex -4, but 3 vertices are defined before it"},
+        {"v 0 0 0\nv 1 0 0\nf 1 2\n", ":3: cannot read mesh: a face needs at least three corners"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 x 3\n", ":4: cannot read mesh: 'x' is not a vertex reference"},
+        {"v 0 0\n", ":1: cannot read mesh: a vertex needs three coordinates"},
+        {"v 0 0 0\nv 1 0 one\n", ":2: cannot read mesh: 'one' is not a number"},
+        {"v 0 0 0\n", ": cannot read mesh: no faces (not a valid obj file?)"},
+    };
+    for (const auto& [text, message] : cases) {
+        { std::ofstream(dir.file("bad.obj")) << text; }
+        try {
+            importMesh(dir.file("bad.obj"));
+            ADD_FAILURE() << text << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()), dir.file("bad.obj") + message) << text;
+        }
+    }
+}
+
+TEST(ImportMesh, ReadsOffsWithGeomviewsPrefixesAndComments) {
+    // The unit tetrahedron as COFF (a colour after each vertex and face),
+    // nOFF (its dimension first), 4OFF (homogeneous: every coordinate
+    // doubled, w = 2) and with comments and blank lines between everything.
+    TempDir dir;
+    const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3 1 0 0\n";
+    std::ofstream(dir.file("c.off")) << "COFF\n4 4 6\n0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 1\n0 0 1 1 1 1 1\n" << faces;
+    std::ofstream(dir.file("n.off")) << "nOFF 3\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" << faces;
+    std::ofstream(dir.file("4.off")) << "4OFF\n4 4 0\n0 0 0 2\n2 0 0 2\n0 2 0 2\n0 0 2 2\n" << faces;
+    std::ofstream(dir.file("comments.off")) << "# a tetrahedron\nOFF # keyword\n\n4 4 0\n# vertices\n0 0 0\n1 0 0\n\n0 1 0\n0 0 1 # last\n"
+                                            << faces;
+    for (const char* name : {"c.off", "n.off", "4.off", "comments.off"}) {
+        const Mesh m = importMesh(dir.file(name));
+        EXPECT_EQ(m.triangles.size(), 4u) << name;
+        EXPECT_TRUE(checkMesh(m).ok()) << name << ": " << checkMesh(m).describe();
+        EXPECT_NEAR(signedVolume(m), 1.0 / 6.0, 1e-15) << name;
+    }
+}
+
 TEST(ImportMesh, ReadsOffWithCountsOnTheKeywordLineAsOpenScadWritesIt) {
     expectUnitCube(importMesh(meshPath("cube_openscad.off")));
 }
@@ -187,6 +248,8 @@ TEST(ImportMesh, BadFilesThrow) {
     { std::ofstream(dir.file("cube.xyz")) << "1 2 3\n"; }
     { std::ofstream(dir.file("huge.off")) << "OFF\n4000000000 4000000000 0\n0 0 0\n"; }
     { std::ofstream(dir.file("huge_inline.off")) << "OFF 99999999999 1 0\n0 0 0\n3 0 0 0\n"; }
+    // The vertices' count alone reads as a number: OpenMesh made them all (found by the OFF fuzzer).
+    { std::ofstream(dir.file("huge_vertices.off")) << "OFF\n21474836\xaa" "47 1 0\n0 0 0\n3 0 1 2\n"; }
     {
         std::ofstream(dir.file("huge.ply")) << "ply\nformat ascii 1.0\nelement vertex 4000000000\n"
                                               "property float x\nproperty float y\nproperty float z\n"
@@ -194,12 +257,36 @@ TEST(ImportMesh, BadFilesThrow) {
     }
     for (const std::string& p : {meshPath("garbage.off"), dir.file("empty.stl"), dir.file("short.stl"), dir.file("cube.xyz"),
                                  dir.file(""), dir.file("huge.off"), dir.file("huge_inline.off"),
-                                 dir.file("huge.ply")}) {
+                                 dir.file("huge_vertices.off"), dir.file("huge.ply")}) {
         try {
             importMesh(p);
             ADD_FAILURE() << p << ": expected an error";
         } catch (const Error& e) {
             EXPECT_TRUE(namesTheFile(e.what(), p)) << e.what();
+        }
+    }
+    // Found by the OFF fuzzer: a header whose counts do not read as numbers
+    // (OpenMesh reserved 6 GB for it), and binary counts past the file.
+    { std::ofstream(dir.file("no_counts.off"), std::ios::binary) << "OFF OF\xf8"; }
+    {
+        std::ofstream out(dir.file("binary.off"), std::ios::binary);
+        const std::int32_t counts[3] = {1 << 30, 1, 0};
+        out << "OFF BINARY\n";
+        out.write(reinterpret_cast<const char*>(counts), sizeof counts);
+    }
+    // Each with the line named where there is one; bytes that are not
+    // printable are written out.
+    const std::tuple<const char*, const char*, const char*> refused[] = {
+        {"huge_vertices.off", ":2: ", "'21474836\\xaa47' is not a number"},
+        {"no_counts.off", ":1: ", "'OF\\xf8' is not a number"},
+        {"binary.off", ": ", "header declares 1073741824 elements, more than the file can hold"},
+    };
+    for (const auto& [name, where, why] : refused) {
+        try {
+            importMesh(dir.file(name));
+            ADD_FAILURE() << name << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()), dir.file(name) + where + "cannot read mesh: " + why);
         }
     }
 }
