@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up, builds both flavours (Release, and ASan+UBSan) and runs the whole
-# test suite in each, then the parser fuzzer for a bounded time.
-#   STRATA_FUZZ_SECONDS=0 scripts/test.sh   skips the fuzzer
+# test suite in each, then the parsers' fuzzers for a bounded time each.
+#   STRATA_FUZZ_SECONDS=0 scripts/test.sh   skips the fuzzers
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -37,7 +37,7 @@ done
 
 fuzz_seconds=${STRATA_FUZZ_SECONDS:-60}
 if [[ $fuzz_seconds != 0 && -x scripts/fuzz.sh ]]; then
-  echo "== strata: fuzzing the .csg parser for ${fuzz_seconds}s"
+  echo "== strata: fuzzing the .csg parser for ${fuzz_seconds}s and each file reader for ${STRATA_FUZZ_READER_SECONDS:-10}s"
   scripts/fuzz.sh "$fuzz_seconds"
 fi
 echo "== strata: all tests passed"
