@@ -2,6 +2,7 @@
 
 #include "strata/io/FlatWriter.h"
 #include "strata/io/MeshWriter.h"
+#include "strata/core/InputFile.h"
 
 #include <array>
 #include <cmath>
@@ -278,6 +279,16 @@ std::vector<Command> parseScript(const std::string& text, const std::string& nam
 }
 
 std::vector<Command> parseScriptFile(const std::string& path) {
+    // A regular file of a bounded size: a FIFO would block the viewer before
+    // its window opens, and a device (/dev/zero) would feed it for good.
+    constexpr std::uintmax_t kMostBytes = std::uintmax_t(16) << 20;
+    if (const std::string why = unreadableReason(path); !why.empty()) {
+        throw Error(SourceLocation{path, 0, 0}, "cannot read script: " + why);
+    }
+    std::error_code ec;
+    if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMostBytes) {
+        throw Error(SourceLocation{path, 0, 0}, "cannot read script: larger than 16 MiB");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(SourceLocation{path, 0, 0}, "cannot open script");
     std::ostringstream text;

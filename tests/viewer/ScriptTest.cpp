@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <cstdio>
 #include <string>
+#include <utility>
 
 #include "Script.h"
 
@@ -99,4 +103,21 @@ TEST(Script, RelativePathsAreFromTheScriptsFolder) {
 
 TEST(Script, MissingFileIsAnError) {
     EXPECT_THROW(view::parseScriptFile("/nonexistent/strata-view-script.txt"), Error);
+}
+
+TEST(Script, AScriptIsARegularFile) {
+    // A FIFO nobody writes would block the viewer, /dev/zero feed it for
+    // good: each is one line naming the file, before anything is read.
+    const std::string fifo = ::testing::TempDir() + "strata-view-script-fifo";
+    std::remove(fifo.c_str());
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const auto& [path, why] : {std::pair<std::string, std::string>{fifo, "it is a FIFO"}, {"/dev/zero", "it is a device"}}) {
+        try {
+            view::parseScriptFile(path);
+            ADD_FAILURE() << path << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()), path + ": cannot read script: " + why);
+        }
+    }
+    std::remove(fifo.c_str());
 }
