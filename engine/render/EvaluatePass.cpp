@@ -258,18 +258,34 @@ std::vector<int> EvaluatePass::groupTable(std::size_t leafCount, const csg::Comp
 
 std::vector<std::vector<std::uint32_t>> EvaluatePass::operandsPerBlock(
     const PixelRect& tile, int blocksX, const std::vector<OperandLayers>& operandLayers,
-    const std::vector<PixelRect>& rects) const {
+    const std::vector<PixelRect>& rects, const std::vector<ScreenHull>& hulls) const {
     const int blocksY = (tile.height + kBlock - 1) / kBlock;
     std::vector<std::vector<std::uint32_t>> operands(static_cast<std::size_t>(blocksX) *
                                                      static_cast<std::size_t>(blocksY));
+    // A pixel of margin around a hull, as around a rectangle: the peel
+    // rasterizes in float.
+    constexpr double kMargin = 1.0;
     for (std::size_t k = 0; k < operandLeaf_.size(); ++k) {
         if (operandLayers[k].count == 0 || !rects[k].intersects(tile)) continue;
         const PixelRect valid = PeelPass::region(rects[k], tile, kBlock);
         // `valid` starts on a block corner and ends on one or at the tile's edge.
-        const int bx1 = (valid.x + valid.width + kBlock - 1) / kBlock;
+        const int bx0 = valid.x / kBlock, bx1 = (valid.x + valid.width + kBlock - 1) / kBlock;
         const int by1 = (valid.y + valid.height + kBlock - 1) / kBlock;
+        const ScreenHull* hull = k < hulls.size() && !hulls[k].empty() ? &hulls[k] : nullptr;
         for (int by = valid.y / kBlock; by < by1; ++by) {
-            for (int bx = valid.x / kBlock; bx < bx1; ++bx) {
+            int first = bx0, last = bx1 - 1;
+            if (hull != nullptr) {
+                // Only the blocks of this row whose pixel centres the hull can reach.
+                const double y0 = tile.y + by * kBlock + 0.5 - kMargin;
+                const double y1 = tile.y + std::min((by + 1) * kBlock, tile.height) - 0.5 + kMargin;
+                double x0 = 0.0, x1 = 0.0;
+                if (!hullSpan(*hull, y0, y1, x0, x1)) continue;
+                const double px0 = std::ceil(x0 - kMargin - tile.x - 0.5), px1 = std::floor(x1 + kMargin - tile.x - 0.5);
+                if (px1 < 0.0 || px0 >= tile.width) continue;
+                first = std::max(first, static_cast<int>(std::max(px0, 0.0)) / kBlock);
+                last = std::min(last, static_cast<int>(std::min(px1, tile.width - 1.0)) / kBlock);
+            }
+            for (int bx = first; bx <= last; ++bx) {
                 operands[static_cast<std::size_t>(by * blocksX + bx)].push_back(static_cast<std::uint32_t>(k));
             }
         }
@@ -280,10 +296,12 @@ std::vector<std::vector<std::uint32_t>> EvaluatePass::operandsPerBlock(
 EvaluatePass::BlockPlan EvaluatePass::planBlocks(const FrameTargets& targets, const PixelRect& tile,
                                                  const std::vector<OperandLayers>& operandLayers,
                                                  const std::vector<PixelRect>& rects,
+                                                 const std::vector<ScreenHull>& hulls,
                                                  const std::vector<int>& groupTable, Forms forms) const {
     BlockPlan plan;
     plan.blocksX = (tile.width + kBlock - 1) / kBlock;
-    const std::vector<std::vector<std::uint32_t>> operands = operandsPerBlock(tile, plan.blocksX, operandLayers, rects);
+    const std::vector<std::vector<std::uint32_t>> operands =
+        operandsPerBlock(tile, plan.blocksX, operandLayers, rects, hulls);
     // Blocks with the same operands share one specialised tree.
     plan.blocks.assign(operands.size(), glm::uvec4(0u));
     std::map<std::vector<std::uint32_t>, BlockTree> trees;  // operand list -> its tree
@@ -399,11 +417,11 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
 
 void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                        const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                       const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly,
+                       const std::vector<ScreenHull>& hulls, const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly,
                        double coincidence, FrameStats& stats, std::vector<BlockForm>* forms) {
     if (operandLeaf_.empty()) return;
     const BlockPlan plan =
-        planBlocks(targets, tile, operandLayers, rects, groupTable, generalOnly ? Forms::ArrayOnly : Forms::Any);
+        planBlocks(targets, tile, operandLayers, rects, hulls, groupTable, generalOnly ? Forms::ArrayOnly : Forms::Any);
     if (forms != nullptr) {
         forms->assign(plan.blocks.size(), BlockForm::None);
         for (const auto& [variant, list] : plan.blocksOf) {
@@ -415,11 +433,12 @@ void EvaluatePass::run(FrameTargets& targets, const gpu::Texture& layers, const 
 
 void EvaluatePass::runResultRound(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                                   const std::vector<OperandLayers>& operandLayers,
-                                  const std::vector<PixelRect>& rects, const std::vector<int>& groupTable,
-                                  const gpu::Texture& groupIds, const gpu::Texture& start, bool samePlan,
+                                  const std::vector<PixelRect>& rects, const std::vector<ScreenHull>& hulls,
+                                  const std::vector<int>& groupTable, const gpu::Texture& groupIds,
+                                  const gpu::Texture& start, bool samePlan,
                                   double coincidence, FrameStats& stats) {
     if (operandLeaf_.empty()) return;
-    if (!samePlan) roundPlan_ = planBlocks(targets, tile, operandLayers, rects, groupTable, Forms::WalkOn);
+    if (!samePlan) roundPlan_ = planBlocks(targets, tile, operandLayers, rects, hulls, groupTable, Forms::WalkOn);
     draw(targets, layers, tile, roundPlan_, groupTable, groupIds, coincidence, stats, &start);
 }
 

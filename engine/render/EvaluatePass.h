@@ -54,8 +54,10 @@ public:
     // marks or not (`leafMarks`, as the frames will ask: FrameTargets::leafMarks).
     void setTree(const csg::CompiledTree& tree, bool leafMarks);
 
-    // `rects[k]` is operand k's screen rectangle (frame pixels): the shader
-    // gathers, per 16x16 block, only the operands whose rectangle meets it.
+    // `rects[k]` is operand k's screen rectangle (frame pixels), and
+    // `hulls[k]` its screen hull where it has one (screenHull; missing or
+    // empty: the rectangle alone): each 16x16 block's tree is specialised
+    // to the operands whose rectangle and hull reach its pixels.
     // `generalOnly` draws every block with the array form (tests compare the
     // forms). Adds the blocks drawn in each form to `stats`, and where
     // `forms` is given sets it to each block's form (blocks of the tile
@@ -64,7 +66,7 @@ public:
     // no texture without groups) name the member of a group that makes a surface.
     void run(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
              const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-             const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly, double coincidence,
+             const std::vector<ScreenHull>& hulls, const std::vector<int>& groupTable, const gpu::Texture& groupIds, bool generalOnly, double coincidence,
              FrameStats& stats, std::vector<BlockForm>* forms = nullptr);
 
     // One round of peeling the result (Renderer::sampleResult): as run(),
@@ -76,7 +78,7 @@ public:
     // plan is reused.
     void runResultRound(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile,
                         const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                        const std::vector<int>& groupTable, const gpu::Texture& groupIds, const gpu::Texture& start,
+                        const std::vector<ScreenHull>& hulls, const std::vector<int>& groupTable, const gpu::Texture& groupIds, const gpu::Texture& start,
                         bool samePlan, double coincidence, FrameStats& stats);
 
     // The tile's groups of convex operands for run() (evaluate.frag:
@@ -146,11 +148,14 @@ private:
     enum class Forms { Any, WalkOn, ArrayOnly };
     BlockPlan planBlocks(const FrameTargets& targets, const PixelRect& tile,
                          const std::vector<OperandLayers>& operandLayers, const std::vector<PixelRect>& rects,
-                         const std::vector<int>& groupTable, Forms forms) const;
-    // Per block of the tile (`blocksX` per row), the operands whose rectangle meets it.
+                         const std::vector<ScreenHull>& hulls, const std::vector<int>& groupTable,
+                         Forms forms) const;
+    // Per block of the tile (`blocksX` per row), the operands whose rectangle
+    // meets it and whose hull (where it has one) reaches its pixel centres.
     std::vector<std::vector<std::uint32_t>> operandsPerBlock(const PixelRect& tile, int blocksX,
                                                              const std::vector<OperandLayers>& operandLayers,
-                                                             const std::vector<PixelRect>& rects) const;
+                                                             const std::vector<PixelRect>& rects,
+                                                             const std::vector<ScreenHull>& hulls) const;
     // Uploads `plan`, binds the pass's inputs and draws each variant's runs.
     // `start`: the result peel's start texture (runResultRound), or null.
     void draw(FrameTargets& targets, const gpu::Texture& layers, const PixelRect& tile, const BlockPlan& plan,

@@ -305,6 +305,7 @@ struct Renderer::Impl {
     struct TileInputs {
         const ViewSetup& view;
         const std::vector<PixelRect>& rects;
+        const std::vector<ScreenHull>& hulls;
         const std::vector<int>& markLeaves;
         const std::vector<PixelRect>& markRects;
         const RenderSettings& settings;
@@ -431,7 +432,17 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers && roundSink == nullptr) {
         request.firstLayerOnly = current->unionsOnly;
     }
-    const TileInputs in{view, rects, markLeaves, markRects, settings, baseColors, request, litAs};
+    // Each single leaf's hull on the screen, which the evaluator's blocks
+    // test besides the rectangle: a thin bar seen aslant (a Menger sponge's)
+    // reaches a few blocks of the many its rectangle holds. Groups, and
+    // leaves of many vertices, keep their rectangle alone.
+    constexpr std::size_t kMostHullVertices = 4096;
+    std::vector<ScreenHull> hulls(operands.size());
+    for (std::size_t k = 0; k < operands.size() && settings.screenHulls; ++k) {
+        if (compiled.leavesOf(k).size() != 1 || compiled.isUnionGroup(k)) continue;
+        hulls[k] = screenHull(view, scene.leafVertices(operands[k]), kMostHullVertices);
+    }
+    const TileInputs in{view, rects, hulls, markLeaves, markRects, settings, baseColors, request, litAs};
     const TilePlan plan = planTiles(in);
     const std::vector<PixelRect>& grid = plan.grid;
     const TileCounts counts = runTiles(in, grid, frame);
@@ -602,7 +613,7 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
     const csg::CompiledTree& compiled = current->tree;
     auto start = Clock::now();
     std::vector<BlockForm> forms;
-    evaluate->run(targets, peel->layers(), tile, layers, in.rects, EvaluatePass::groupTable(leafCount, compiled, layers),
+    evaluate->run(targets, peel->layers(), tile, layers, in.rects, in.hulls, EvaluatePass::groupTable(leafCount, compiled, layers),
                  peel->groupIds(), in.settings.generalEvaluator, in.view.coincidence, stats,
                  in.settings.keepBlockForms ? &forms : nullptr);
     if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
@@ -629,7 +640,7 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
     for (int round = 0;; ++round) {
         auto start = Clock::now();
         targets.clearRegion(tile);
-        evaluate->runResultRound(targets, peel->layers(), tile, layers, in.rects, groups, peel->groupIds(), resultStart,
+        evaluate->runResultRound(targets, peel->layers(), tile, layers, in.rects, in.hulls, groups, peel->groupIds(), resultStart,
                                 round > 0, in.view.coincidence, stats);
         const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
         stats.evaluateMs += millisecondsSince(start);

@@ -141,4 +141,54 @@ PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices)
     return builder.rect();
 }
 
+ScreenHull screenHull(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostVertices) {
+    if (vertices.size() > mostVertices) return {};
+    std::vector<glm::dvec2> points;
+    points.reserve(vertices.size());
+    for (const glm::vec3& v : vertices) {
+        const glm::dvec3 p(v);
+        if (glm::dot(p - view.eyeD, view.forwardD) <= view.nearPlane) return {};
+        const glm::dvec4 clip = view.viewProjectionD * glm::dvec4(p, 1.0);
+        points.emplace_back((clip.x / clip.w + 1.0) * 0.5 * view.width, (clip.y / clip.w + 1.0) * 0.5 * view.height);
+    }
+    // Andrew's monotone chain: the lower hull left to right, then the upper
+    // right to left, collinear points dropped.
+    std::sort(points.begin(), points.end(),
+              [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    if (points.size() < 3) return points;
+    auto cross = [](const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    ScreenHull hull(2 * points.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+    }
+    for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+    }
+    hull.resize(k - 1);  // the last point is the first
+    return hull;
+}
+
+bool hullSpan(const ScreenHull& hull, double y0, double y1, double& x0, double& x1) {
+    x0 = std::numeric_limits<double>::infinity();
+    x1 = -x0;
+    // Every edge (a point for a hull of one) clipped to the rows.
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+        const glm::dvec2 a = hull[i], b = hull[(i + 1) % hull.size()];
+        const double lo = std::max(std::min(a.y, b.y), y0), hi = std::min(std::max(a.y, b.y), y1);
+        if (lo > hi) continue;
+        for (const double y : {lo, hi}) {
+            const double x = a.y == b.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
+            x0 = std::min({x0, x, a.y == b.y ? b.x : x});
+            x1 = std::max({x1, x, a.y == b.y ? b.x : x});
+        }
+    }
+    return x0 <= x1;
+}
+
 }  // namespace strata::render

@@ -4,7 +4,9 @@
 // screen rectangles. OpenGL's window coordinates: rows count from the bottom.
 
 #include <algorithm>
+#include <cstddef>
 #include <span>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -72,5 +74,17 @@ PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box);
 // margin): tighter than the box's rectangle. The whole frame when a vertex
 // lies at or before the near plane.
 PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices);
+
+// The convex hull of `vertices` on the screen (frame pixels, counter-
+// clockwise): every pixel centre their triangles cover lies inside it. A
+// long, thin solid seen aslant covers a small part of its rectangle, and
+// the hull says which. Empty (unknown: use the rectangle) when a vertex lies
+// at or before the near plane, or past `mostVertices` of them.
+using ScreenHull = std::vector<glm::dvec2>;
+ScreenHull screenHull(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostVertices);
+
+// The least and greatest x of `hull` within the rows y0 <= y <= y1; false
+// when the hull does not reach those rows.
+bool hullSpan(const ScreenHull& hull, double y0, double y1, double& x0, double& x1);
 
 }  // namespace strata::render

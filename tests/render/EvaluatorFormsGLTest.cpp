@@ -15,6 +15,7 @@
 #include <random>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -208,6 +209,56 @@ INSTANTIATE_TEST_SUITE_P(Trees, EvaluatorForms,
                              return std::string(scene::kindName(info.param.kind)) + std::to_string(info.param.count) +
                                     (info.param.shells > 0 ? "Shells" + std::to_string(info.param.shells) : "");
                          });
+
+// Screen hulls (RenderSettings::screenHulls): a block's tree leaves out the
+// operands whose hull does not reach it, where their rectangles would have
+// kept them. Slabs drilled by thin bars lying aslant: the frames with hulls
+// and with rectangles alone must be the same to the bit, and the hulls
+// must have left operands out (fewer blocks in the forms for many operands).
+TEST(EvaluatorFormsHulls, ThinBarsAslantGiveTheFrameOfTheirRectangles) {
+    gpu::Context context;
+    render::Renderer renderer;
+    for (const unsigned seed : {77u, 78u}) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> pos(-1.2, 1.2), angle(0.0, 360.0);
+        scene::Tree tree;
+        scene::Leaf slab;
+        slab.primitive = scene::Cube{{3.0, 3.0, 0.6}, true};
+        std::vector<int> parts{tree.addLeaf(slab)};
+        for (int i = 0; i < 24; ++i) {
+            scene::Leaf bar;
+            bar.primitive = scene::Cube{{0.12, 0.12, 4.0}, true};
+            // Lying nearly flat (turned 80 degrees about x), at any heading.
+            bar.transform = glm::translate(glm::dmat4(1.0), {pos(rng), pos(rng), 0.2 * pos(rng)}) *
+                            glm::rotate(glm::dmat4(1.0), glm::radians(angle(rng)), {0.0, 0.0, 1.0}) *
+                            glm::rotate(glm::dmat4(1.0), glm::radians(80.0), {1.0, 0.0, 0.0});
+            parts.push_back(tree.addLeaf(bar));
+        }
+        tree.root = tree.addNode(NodeKind::Difference, parts);
+        renderer.setScene(tree, geometry::buildModel(tree));
+        for (int which = 0; which < 3; ++which) {
+            render::Camera camera = cameraFor(which, rng);
+            camera.width = camera.height = 160;  // blocks enough for the hulls to leave some out
+            render::RenderSettings settings;
+            settings.groupOperands = false;
+            settings.keepBlockForms = true;
+            const render::Frame hulls = renderer.render(camera, settings);
+            settings.screenHulls = false;
+            const render::Frame rects = renderer.render(camera, settings);
+            const std::string what = "seed " + std::to_string(seed) + ", camera " + std::to_string(which);
+            expectSameFrame(hulls, rects, what);
+            EXPECT_GT(hulls.stats.coveredPixels, 160u * 160u / 10u) << what;
+            // Leaving operands out moves blocks to the forms for fewer of them.
+            const std::size_t many = hulls.stats.productBlocks + hulls.stats.arrayBlocks;
+            const std::size_t manyRects = rects.stats.productBlocks + rects.stats.arrayBlocks;
+            if (which < 2) {
+                EXPECT_LT(many, manyRects) << what;
+            } else {
+                EXPECT_LE(many, manyRects) << what;  // from inside, a bar may reach the near plane: no hull
+            }
+        }
+    }
+}
 
 // Coincident faces: the forms must settle ties alike. A cube minus copies of
 // itself leaves nothing; a union of cubes that share faces shows them once.

@@ -65,6 +65,12 @@ struct RenderSettings {
     // not the fastest form that holds its block: slower, the same image
     // (tests compare the forms).
     bool generalEvaluator = false;
+    // Specialise each evaluator block's tree to the operands whose screen
+    // hull (the convex hull of a leaf's projected vertices) reaches it, not
+    // only its screen rectangle: fewer operands per block where thin solids
+    // lie aslant. false: rectangles alone. The same image either way (tests
+    // compare them).
+    bool screenHulls = true;
     // Mark each pixel's leaf in the stencil where the driver can
     // (ARB_shader_stencil_export), so the normal pass skips other leaves'
     // pixels early; false: one mark for all (tests compare the two).
