@@ -266,7 +266,8 @@ TEST(ImportMesh, BadFilesThrow) {
         }
     }
     // Found by the OFF fuzzer: a header whose counts do not read as numbers
-    // (OpenMesh reserved 6 GB for it), and binary counts past the file.
+    // (OpenMesh reserved 6 GB for it), a text header holding the word BINARY
+    // (OpenMesh read it as text and reserved 2 GB), and binary OFF.
     { std::ofstream(dir.file("no_counts.off"), std::ios::binary) << "OFF OF\xf8"; }
     {
         std::ofstream out(dir.file("binary.off"), std::ios::binary);
@@ -274,12 +275,14 @@ TEST(ImportMesh, BadFilesThrow) {
         out << "OFF BINARY\n";
         out.write(reinterpret_cast<const char*>(counts), sizeof counts);
     }
+    { std::ofstream(dir.file("binary_in_text.off"), std::ios::binary) << "OFF 8 6\xef\xbf\xbf" "BINARY\xff\n0 0 0\n"; }
     // Each with the line named where there is one; bytes that are not
     // printable are written out.
     const std::tuple<const char*, const char*, const char*> refused[] = {
         {"huge_vertices.off", ":2: ", "'21474836\\xaa47' is not a number"},
         {"no_counts.off", ":1: ", "'OF\\xf8' is not a number"},
-        {"binary.off", ": ", "header declares 1073741824 elements, more than the file can hold"},
+        {"binary.off", ": ", "binary OFF is not read (write the mesh as text OFF, STL or PLY)"},
+        {"binary_in_text.off", ":1: ", "'6\\xef\\xbf\\xbfBINARY\\xff' is not a number"},
     };
     for (const auto& [name, where, why] : refused) {
         try {
