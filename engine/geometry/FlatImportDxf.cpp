@@ -283,6 +283,17 @@ private:
         }
     }
 
+    // A curve that goes round more than once (the file's angles lie further
+    // apart than a turn, which no drawing program writes) would trace the
+    // same points again and again: 2021.01 draws every turn, and the
+    // outlines that make cost Clipper time that grows with their square.
+    static void checkSweep(double turns, const char* entity) {
+        if (turns > 1.0 + 1e-9) {
+            throw Error(std::string("import: ") + entity + " in the DXF file sweeps " + std::to_string(turns) +
+                        " turns; at most one is drawn");
+        }
+    }
+
     // The while loops that bring an end angle past the start, bounded.
     static void unwrap(double start, double& stop, double turn) {
         if (start > stop && (start - stop) / turn > 1.0e7) {
@@ -323,6 +334,7 @@ private:
             int n = fragments(radius_);
             unwrap(arcStart_, arcStop_, 360.0);
             const double arcAngle = arcStop_ - arcStart_;
+            checkSweep(arcAngle / 360.0, "an ARC");
             n = toIntX86(std::ceil(n * arcAngle / 360));
             checkCount(n);
             for (int i = 0; i < n; ++i) {
@@ -347,6 +359,7 @@ private:
             // The axis ratio is in the radius (scaled like one), as in 2021.01.
             const double rMinor = rMajor * radius_;
             const double sweep = ellipseStop_ - ellipseStart_;
+            checkSweep(sweep / (2 * kPi), "an ELLIPSE");
             int n = fragments(rMajor);
             n = toIntX86(std::ceil(n * sweep / (2 * kPi)));
             checkCount(n);
@@ -417,23 +430,31 @@ private:
         selfCount_.assign(nLines, {0, 0});
         occurrences_.assign(nLines, {});
         walk_.resize(nCells);
+        // In one pass over the cells (linear in their entries: a file can put
+        // a hundred thousand segment ends in one cell): each cell's walk list,
+        // each segment once in first-listed order; and, for every segment end
+        // in the cell, how often the cell lists that segment (its own ends,
+        // and stale numbers of blocks that happen to equal it).
+        std::vector<int> listedIn(nLines, -1), timesListed(nLines, 0);
         for (std::size_t c = 0; c < nCells; ++c) {
             for (int k : grid_.entries[c]) {
                 if (!valid(k)) continue;
                 ++activeCount_[c];
                 occurrences_[std::size_t(k)].push_back(static_cast<int>(c));
-                // The walk needs each segment once, in first-listed order.
-                if (std::find(walk_[c].begin(), walk_[c].end(), k) == walk_[c].end()) walk_[c].push_back(k);
+                ++timesListed[std::size_t(k)];
+                if (listedIn[std::size_t(k)] != static_cast<int>(c)) {
+                    listedIn[std::size_t(k)] = static_cast<int>(c);
+                    walk_[c].push_back(k);
+                }
             }
-        }
-        for (std::size_t l = 0; l < nLines; ++l) {
-            for (int j = 0; j < 2; ++j) {
-                const std::size_t c = std::size_t(cellOf(int(l), j));
-                int self = 0;
-                for (int k : grid_.entries[c]) self += k == int(l);
-                selfCount_[l][std::size_t(j)] = self;
-                maxSelf_[c] = std::max(maxSelf_[c], self);
+            for (int k : walk_[c]) {
+                for (int j = 0; j < 2; ++j) {
+                    if (cellOf(k, j) != static_cast<int>(c)) continue;
+                    selfCount_[std::size_t(k)][std::size_t(j)] = timesListed[std::size_t(k)];
+                    maxSelf_[c] = std::max(maxSelf_[c], timesListed[std::size_t(k)]);
+                }
             }
+            for (int k : walk_[c]) timesListed[std::size_t(k)] = 0;
         }
 
         // Open paths, from the lowest-numbered enabled segment with a free end.
