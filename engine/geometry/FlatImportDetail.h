@@ -2,6 +2,7 @@
 // Private to FlatImport*.cpp: the two readers behind importFlat() and what
 // they share.
 
+#include <climits>
 #include <string>
 #include <string_view>
 
@@ -20,5 +21,13 @@ Outlines importSvg(const scene::FlatImport& import, const std::string& text);
 
 // "'path'", quoted for messages.
 std::string quotedPath(std::string_view path);
+
+// What an x86-64 build's double -> int conversion gives, as OpenSCAD's
+// readers convert: the value truncated, or INT_MIN when it is NaN or out of
+// range (cvttsd2si). A C++ cast of such a value is undefined.
+inline int toIntX86(double v) {
+    if (!(v > -2147483649.0 && v < 2147483648.0)) return INT_MIN;
+    return static_cast<int>(v);
+}
 
 }  // namespace strata::geometry::detail

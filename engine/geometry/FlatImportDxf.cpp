@@ -90,13 +90,6 @@ bool castInt(std::string_view s, int& out) {
     return true;
 }
 
-// What an x86-64 build's double -> int conversion gives: the value truncated,
-// or INT_MIN when it is NaN or out of range (cvttsd2si).
-int toIntX86(double v) {
-    if (!(v > -2147483649.0 && v < 2147483648.0)) return INT_MIN;
-    return static_cast<int>(v);
-}
-
 struct BadValue {};  // boost::bad_lexical_cast
 
 double number(std::string_view s) {

@@ -397,7 +397,7 @@ std::vector<std::string> tokenize(std::string_view s, std::string_view dropped, 
 // libsvg's tan_degrees / atan2_degrees (src/degree_trig.cc).
 double tanDegrees(double x) {
     const double huge = double(1L << 26) * 360.0 * double(1L << 26);
-    int cycles = static_cast<int>(std::floor(x / 180.0));
+    const int cycles = toIntX86(std::floor(x / 180.0));  // 2021.01's int conversion
     if (x < 180.0 && x >= 0.0) {
     } else if (x < huge && x > -huge) {
         x -= 180.0 * cycles;

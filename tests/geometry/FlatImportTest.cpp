@@ -432,6 +432,21 @@ TEST(ImportSvg, ComesBackSanitized) {
     }
 }
 
+TEST(ImportSvg, SkewsBeyondAnIntsTurnsAreNoUndefinedConversion) {
+    // Found by the SVG fuzzer: skewY(4e21) counted its half turns in an int
+    // (undefined past 2^31; UBSan stopped there). They are converted as an
+    // x86-64 build of OpenSCAD converts them; the angle means nothing, and
+    // whatever the rectangle becomes, the reader either reads it or says why.
+    for (const char* angle : {"4e21", "1e12", "-1e12"}) {
+        const std::string svg = std::string("<svg xmlns=\"http://www.w3.org/2000/svg\"><g transform=\"skewY(") + angle +
+                                ")\"><rect width=\"2\" height=\"1\"/></g></svg>";
+        try {
+            importFlat(tempImport("skew.svg", svg));
+        } catch (const Error&) {
+        }
+    }
+}
+
 TEST(ImportSvg, Errors) {
     EXPECT_NE(errorOf(flatImport("no_such_file.svg")).find("import: cannot read"), std::string::npos);
     EXPECT_NE(errorOf(flatImport("broken.svg")).find("cannot parse"), std::string::npos);
