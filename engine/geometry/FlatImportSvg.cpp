@@ -232,7 +232,9 @@ bool spiritReal(const char*& first, const char* last, double& attr) {
         std::size_t digits = 0;
         bool overflow = false;
         while (it != last && isDigit(*it)) {
-            exp = exp * 10 + (*it - '0');
+            // Past int's range the digits are only counted: the value is
+            // refused anyway, and more of them would overflow `exp` itself.
+            if (!overflow) exp = exp * 10 + (*it - '0');
             if (exp > 2147483648LL) overflow = true;
             ++it, ++digits;
         }

@@ -437,7 +437,8 @@ TEST(ImportSvg, SkewsBeyondAnIntsTurnsAreNoUndefinedConversion) {
     // (undefined past 2^31; UBSan stopped there). They are converted as an
     // x86-64 build of OpenSCAD converts them; the angle means nothing, and
     // whatever the rectangle becomes, the reader either reads it or says why.
-    for (const char* angle : {"4e21", "1e12", "-1e12"}) {
+    // And an exponent of twenty digits (its value overflowed while read).
+    for (const char* angle : {"4e21", "1e12", "-1e12", "4E44444444444444444444"}) {
         const std::string svg = std::string("<svg xmlns=\"http://www.w3.org/2000/svg\"><g transform=\"skewY(") + angle +
                                 ")\"><rect width=\"2\" height=\"1\"/></g></svg>";
         try {
