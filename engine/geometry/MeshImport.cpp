@@ -138,6 +138,15 @@ std::string quotedWord(std::string_view word) {
     return out + "'";
 }
 
+// Whether all of `word` is one number, read into `value` (from_chars: no
+// locale, doubles in full precision; "inf" and "nan" read as numbers).
+template <class T>
+bool wholeNumber(const std::string& word, T& value) {
+    const char* begin = word.data();
+    const auto [rest, error] = std::from_chars(begin, begin + word.size(), value);
+    return error == std::errc() && rest == begin + word.size();
+}
+
 // A Wavefront OBJ's polygons, read by strata itself: its vertices (`v x y z`,
 // any further numbers ignored) and faces (`f` with one reference a corner,
 // `v`, `v/vt`, `v//vn` or `v/vt/vn`, counted from 1, or back from the last
@@ -191,9 +200,7 @@ Polygons readObj(const std::string& text, const std::string& path) {
             for (int i = 0; i < 3; ++i) {
                 std::string word;
                 if (!(words >> word)) throw fail("a vertex needs three coordinates");
-                const char* begin = word.data();
-                const auto [rest, error] = std::from_chars(begin, begin + word.size(), p[i]);
-                if (error != std::errc() || rest != begin + word.size()) throw fail(quotedWord(word) + " is not a number");
+                if (!wholeNumber(word, p[i])) throw fail(quotedWord(word) + " is not a number");
                 if (!std::isfinite(p[i])) throw fail("a coordinate is not a finite number");
             }
             obj.positions.push_back(p);
@@ -253,9 +260,7 @@ Polygons readOff(const std::string& text, const std::string& path) {
         return false;
     };
     auto number = [&](const std::string& word, auto& value) {
-        const char* begin = word.data();
-        const auto [rest, error] = std::from_chars(begin, begin + word.size(), value);
-        if (error != std::errc() || rest != begin + word.size()) throw fail(quotedWord(word) + " is not a number");
+        if (!wholeNumber(word, value)) throw fail(quotedWord(word) + " is not a number");
     };
     if (!nextLine()) throw fail("no OFF keyword");
     std::istringstream words(line);
@@ -352,14 +357,17 @@ Mesh importMesh(const std::string& path) {
     const std::string head = detail::readHead(path, 1 << 16);
     if (ext == ".ply") detail::checkPly(path, size);
     if (ext == ".off" && binaryOff(head)) throw fail("binary OFF is not read (write the mesh as text OFF, STL or PLY)");
+    std::string text;  // the whole file, read once where it is read as text
     if (looksLikeText(head)) {
-        if (const std::size_t line = lineOfNonFiniteWord(readAll(path)); line > 0) {
+        text = readAll(path);
+        if (const std::size_t line = lineOfNonFiniteWord(text); line > 0) {
             throw Error(path + ":" + std::to_string(line) + ": cannot read mesh: a coordinate is not a finite number");
         }
     }
 
     if (ext == ".obj" || ext == ".off") {
-        Polygons read = ext == ".obj" ? readObj(readAll(path), path) : readOff(readAll(path), path);
+        if (text.empty()) text = readAll(path);  // one that does not look like text
+        Polygons read = ext == ".obj" ? readObj(text, path) : readOff(text, path);
         if (read.faces.empty()) throw fail("no faces (not a valid " + ext.substr(1) + " file?)");
         Mesh mesh;
         mesh.positions = std::move(read.positions);
