@@ -1,12 +1,13 @@
-// Extrusions of flat shapes, hulls, Minkowski sums, resizes and projections
-// against OpenSCAD 2021.01's own meshes of the same models
-// (tests/data/flat/extrude, hull, resize and projection: NAME.scad, its CSG
+// Extrusions of flat shapes, hulls, Minkowski sums, resizes, projections and
+// polyhedra with non-planar faces against OpenSCAD 2021.01's own meshes of the
+// same models (tests/data/flat/extrude, hull, resize, projection and
+// polyhedron: NAME.scad, its CSG
 // export NAME.csg that
 // strata reads, and OpenSCAD's mesh NAME.off; scripts/export-openscad-flat.sh
 // makes them). OpenSCAD writes six significant digits, so points are matched
-// to that precision; the side walls' triangles (where OpenSCAD's choice of
-// diagonal shapes the surface) must be the same triangles, and the solid the
-// same volume.
+// to that precision; the side walls' triangles and a polyhedron's non-planar
+// faces (where OpenSCAD's choice of diagonal shapes the surface) must be the
+// same triangles, and the solid the same volume.
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -59,6 +61,29 @@ Mesh readOff(const std::string& path) {
         for (std::size_t k = 1; k + 1 < n; ++k) mesh.triangles.push_back({loop[0], loop[k], loop[k + 1]});
     }
     EXPECT_TRUE(in) << path;
+    return mesh;
+}
+
+// ASCII STL as OpenSCAD writes it, corners that print alike taken as one point.
+Mesh readAsciiStl(const std::string& path) {
+    std::ifstream in(path);
+    Mesh mesh;
+    std::map<std::string, uint32_t> points;
+    std::array<uint32_t, 3> triangle{};
+    int corner = 0;
+    for (std::string word; in >> word;) {
+        if (word != "vertex") continue;
+        std::string x, y, z;
+        in >> x >> y >> z;
+        const auto [at, added] = points.emplace(x + " " + y + " " + z, static_cast<uint32_t>(mesh.positions.size()));
+        if (added) mesh.positions.emplace_back(std::stod(x), std::stod(y), std::stod(z));
+        triangle[static_cast<std::size_t>(corner)] = at->second;
+        if (++corner == 3) {
+            mesh.triangles.push_back(triangle);
+            corner = 0;
+        }
+    }
+    EXPECT_FALSE(mesh.triangles.empty()) << path;
     return mesh;
 }
 
@@ -116,14 +141,16 @@ TEST_P(FlatExports, MeshMatchesOpenScad) {
     const std::string name = GetParam().name;
     const std::string base = kData + GetParam().dir + "/" + name;
     // Hull faces may be split any way; so may a resized twist or hull.
-    const bool hullFaces = (GetParam().dir != "extrude" && name.rfind("flat_", 0) != 0) || name.rfind("cut_", 0) == 0 ||
+    const bool hullFaces = (GetParam().dir != "extrude" && GetParam().dir != "polyhedron" && name.rfind("flat_", 0) != 0) || name.rfind("cut_", 0) == 0 ||
                            name.rfind("shadow_difference", 0) == 0;
     const scene::Tree tree = scene::parseCsgFile(base + ".csg");
     ASSERT_TRUE(tree.warnings.empty()) << tree.warnings.front().message;
     ASSERT_EQ(tree.leaves.size(), 1u);
     const Model model = buildModel(tree);
     const Mesh& ours = model.leafMeshes[0];
-    const Mesh theirs = readOff(base + ".off");
+    // OpenSCAD's OFF keeps a polyhedron's faces as given; its STL shows how
+    // it splits them.
+    const Mesh theirs = GetParam().dir == "polyhedron" ? readAsciiStl(base + ".stl") : readOff(base + ".off");
 
     EXPECT_TRUE(checkMesh(ours).ok()) << checkMesh(ours).describe();
     // A cut's corners where it crosses a face depend on how OpenSCAD's CGAL
@@ -205,5 +232,6 @@ INSTANTIATE_TEST_SUITE_P(Extrusions, FlatExports, ::testing::ValuesIn(cases("ext
 INSTANTIATE_TEST_SUITE_P(Hulls, FlatExports, ::testing::ValuesIn(cases("hull")), caseName);
 INSTANTIATE_TEST_SUITE_P(Resizes, FlatExports, ::testing::ValuesIn(cases("resize")), caseName);
 INSTANTIATE_TEST_SUITE_P(Projections, FlatExports, ::testing::ValuesIn(cases("projection")), caseName);
+INSTANTIATE_TEST_SUITE_P(NonPlanarPolyhedra, FlatExports, ::testing::ValuesIn(cases("polyhedron")), caseName);
 
 }  // namespace
