@@ -3,12 +3,17 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 #include "ScadExport.h"
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/scene/CsgParser.h"
+#include "strata/scene/ScadTrace.h"
 
 namespace strata::apps {
 
@@ -19,6 +24,46 @@ std::string lowerExtension(const std::string& path) {
 }
 
 bool isMeshExtension(const std::string& ext) { return ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply"; }
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A source's text, or nothing when it is not a plain file of at most 16 MiB.
+std::optional<std::string> sourceText(const std::string& path) {
+    std::error_code ec;
+    if (!unreadableReason(path).empty() || fs::file_size(path, ec) > (std::size_t(16) << 20) || ec) return std::nullopt;
+    std::ifstream in(path, std::ios::binary);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (!in && !in.eof()) return std::nullopt;
+    return text;
+}
+
+// How messages name a file the .scad `main` uses or includes: beside or below
+// the .scad's folder, through that folder as the user wrote it; else whole.
+std::string sourceName(const std::string& dependency, const std::string& main) {
+    std::error_code ec;
+    const fs::path folder = fs::path(main).parent_path();
+    const fs::path relative = fs::proximate(dependency, fs::absolute(folder.empty() ? fs::path(".") : folder, ec), ec);
+    if (ec || relative.empty() || *relative.begin() == "..") return dependency;
+    return folder.empty() ? relative.string() : (folder / relative).string();
+}
+
+// The .scad's positions for the nodes of its export (ScadTrace): the .scad
+// and the .scad files it uses and includes, as openscad -d listed them.
+std::shared_ptr<const scene::ScadTrace> scadTrace(const std::string& path, const ScadExport& exported) {
+    std::vector<scene::ScadTrace::Source> sources;
+    if (std::optional<std::string> text = sourceText(path)) sources.push_back({path, std::move(*text)});
+    std::error_code ec;
+    for (const std::string& dependency : exported.dependencies) {
+        if (lowerExtension(dependency) != ".scad" || fs::equivalent(dependency, path, ec)) continue;
+        if (std::optional<std::string> text = sourceText(dependency))
+            sources.push_back({sourceName(dependency, path), std::move(*text)});
+    }
+    return std::make_shared<const scene::ScadTrace>(exported.csg, sources);
+}
+
+}  // namespace
 
 void checkReadable(const std::string& path) {
     const std::string why = unreadableReason(path);
@@ -36,11 +81,14 @@ SceneFile readSceneFile(const std::string& path, const std::vector<std::string>&
         file.tree = scene::parseCsgFile(path);
     } else if (ext == ".scad") {
         ScadExport exported = exportScad(path, defines);
-        // Positions are in OpenSCAD's CSG export, not in the .scad: messages
-        // say so ("a.scad (CSG export):9:6: ..."). Relative imports resolve
-        // from the .scad's folder.
+        // A node that traces back to one call in the .scad's sources is
+        // positioned there; any other keeps its line in OpenSCAD's CSG
+        // export, and messages say so ("a.scad (CSG export):9:6: ...").
+        // Relative imports resolve from the .scad's folder.
+        scene::ParseOptions options;
+        options.locate = [trace = scadTrace(path, exported)](int line) { return trace->locate(line); };
         std::istringstream in(exported.csg);
-        file.tree = scene::parseCsg(in, path + " (CSG export)", std::filesystem::path(path).parent_path().string());
+        file.tree = scene::parseCsg(in, path + " (CSG export)", std::filesystem::path(path).parent_path().string(), options);
         file.tree.source = path;
         file.openscadOutput = std::move(exported.printed);
         file.csgExport = std::move(exported.csg);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
 #include <string>
 
 #include "strata/render/ColorScheme.h"
@@ -169,7 +170,8 @@ void Viewer::drawPanel() {
     }
 
     // A .scad is shown through OpenSCAD's CSG export, whose lines the
-    // messages and the tree name: it can be saved to read them.
+    // messages and the tree name where a node cannot be traced back to the
+    // .scad: it can be saved to read them.
     if (!scene_.csgExport.empty() && ImGui::CollapsingHeader("CSG export", ImGuiTreeNodeFlags_DefaultOpen)) {
         const std::string fallback = defaultCsgExportPath(path_);
         char csg[1024];
@@ -177,7 +179,8 @@ void Viewer::drawPanel() {
         ImGui::SetNextItemWidth(-1);
         if (ImGui::InputTextWithHint("##csgexport", fallback.c_str(), csg, sizeof csg)) csgExportPath_ = csg;
         if (ImGui::Button("save CSG export")) saveChosenCsgExport();
-        disabledWrapped("OpenSCAD's export of the .scad; the positions in messages and the tree are its lines");
+        disabledWrapped("OpenSCAD's export of the .scad: where a node cannot be traced back to one call in the .scad, "
+                        "messages and the tree name its line here");
     }
 
     if (ImGui::CollapsingHeader("export")) {
@@ -323,10 +326,14 @@ void Viewer::drawTreePanel() {
 }
 
 std::string Viewer::rowLineNote(int node) const {
-    const int line = scene_.tree.nodes[static_cast<std::size_t>(node)].where.line;
-    if (line <= 0) return {};
-    // A .scad's nodes are positioned in OpenSCAD's CSG export of it, not in the .scad.
-    return (scene_.csgExport.empty() ? " (line " : " (CSG line ") + std::to_string(line) + ")";
+    const SourceLocation& where = scene_.tree.nodes[static_cast<std::size_t>(node)].where;
+    if (where.line <= 0) return {};
+    // A .scad's node is positioned in the .scad (or a file it uses) where it
+    // traces back to one call there, else in OpenSCAD's CSG export of it.
+    const std::string line = std::to_string(where.line);
+    if (scene_.csgExport.empty() || where.file == path_) return " (line " + line + ")";
+    if (where.file == path_ + " (CSG export)") return " (CSG line " + line + ")";
+    return " (" + std::filesystem::path(where.file).filename().string() + " line " + line + ")";
 }
 
 void Viewer::drawPeelLabels() {

@@ -14,8 +14,9 @@ bool isDigit(int c) { return c >= '0' && c <= '9'; }
 bool isIdentChar(int c) { return isIdentStart(c) || isDigit(c); }
 }  // namespace
 
-CsgLexer::CsgLexer(std::istream& in, std::string file) : in_(in), buffer_(kChunk) {
-    where_.file = std::move(file);
+CsgLexer::CsgLexer(std::istream& in, std::string file, Locate locate)
+    : in_(in), buffer_(kChunk), file_(std::move(file)), locate_(std::move(locate)) {
+    where_.file = file_;
 }
 
 bool CsgLexer::refill() {
@@ -57,7 +58,7 @@ void CsgLexer::skipSpaceAndComments() {
         if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v') {
             get();
         } else if (c == '/') {
-            SourceLocation start{where_.file, line_, column_};
+            SourceLocation start{file_, line_, column_};
             get();
             int d = peek();
             if (d == '/') {
@@ -84,6 +85,17 @@ Token CsgLexer::next() {
     skipSpaceAndComments();
     where_.line = line_;
     where_.column = column_;
+    if (locate_) {
+        if (line_ != locatedLine_) {
+            locatedLine_ = line_;
+            located_ = locate_(line_);
+        }
+        if (located_) {
+            where_ = *located_;
+        } else if (where_.file != file_) {
+            where_.file = file_;
+        }
+    }
     int c = peek();
     if (c < 0) return token_ = Token::End;
     if (isDigit(c) || c == '.') {
@@ -136,7 +148,9 @@ void CsgLexer::lexNumber() {
     // from_chars takes no leading '.', so give it "0" in front.
     std::string withZero;
     if (digits[0] == '.') {
-        withZero = "0" + std::string(digits, n);
+        withZero.reserve(n + 1);
+        withZero.push_back('0');
+        withZero.append(digits, n);
         first = withZero.data();
         n = withZero.size();
     }

@@ -3,7 +3,9 @@
 // the text is never held whole (real exports reach hundreds of MB).
 
 #include <cstddef>
+#include <functional>
 #include <istream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,7 +23,11 @@ enum class Token {
 
 class CsgLexer {
 public:
-    CsgLexer(std::istream& in, std::string file);
+    // `locate`, when given, says where messages about a line of the input
+    // should point instead (the .scad a CSG export was made of), or nothing
+    // to keep the input's own line and column.
+    using Locate = std::function<std::optional<SourceLocation>(int line)>;
+    CsgLexer(std::istream& in, std::string file, Locate locate = {});
 
     // Reads the next token; text()/number()/punct() describe it.
     Token next();
@@ -33,7 +39,6 @@ public:
     // Where the current token starts, and where the lexer is now.
     const SourceLocation& where() const { return where_; }
     int column() const { return column_; }  // column of the next unread character
-    bool atColumnOne() const { return where_.column == 1; }
 
     [[noreturn]] void fail(const std::string& message) const;
     [[noreturn]] void failAt(const SourceLocation& where, const std::string& message) const;
@@ -62,6 +67,10 @@ private:
     double number_ = 0.0;
     char punct_ = 0;
     SourceLocation where_;
+    std::string file_;
+    Locate locate_;
+    int locatedLine_ = 0;
+    std::optional<SourceLocation> located_;
 };
 
 }  // namespace strata::scene

@@ -91,7 +91,7 @@ bool isFlatImportPath(const std::string& file) {
 class Parser {
 public:
     Parser(std::istream& in, const std::string& name, std::string baseDir, const ParseOptions& options)
-        : lex_(in, name), baseDir_(std::move(baseDir)), options_(options) {
+        : lex_(in, name, options.locate), baseDir_(std::move(baseDir)), options_(options) {
         tree_.source = name;
     }
 

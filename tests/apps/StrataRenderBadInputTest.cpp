@@ -284,9 +284,19 @@ TEST(StrataRender, ScadMistakesNameTheScad) {
     // A bad value in a -D is named as the -D, not as a line past the .scad's end.
     const std::string good = dir.write("good.scad", "n = 1;\ncube(n);\n");
     expectFailure(dir, {good, "-D", "n=1", "-D", "m=2+"}, good + ": openscad could not export CSG: in -D m=2+: ERROR");
-    // An error in the export's geometry names the .scad's CSG export.
-    const std::string open = dir.write("open.scad", "polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n");
-    expectFailure(dir, {open}, open + " (CSG export):1:1: polyhedron is not a closed solid");
+    // An error in the export's geometry names the .scad's line where the node
+    // traces back to one call there (a file it uses included), else the
+    // line of the .scad's CSG export.
+    const std::string open = dir.write("open.scad", "\n\n  polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n");
+    expectFailure(dir, {open}, open + ":3:3: polyhedron is not a closed solid");
+    dir.write("shapes.scad", "module flat() {\n  polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n}\n");
+    const std::string user = dir.write("user.scad", "use <shapes.scad>\ncube(1);\nflat();\n");
+    expectFailure(dir, {user}, (dir / "shapes.scad") + ":2:3: polyhedron is not a closed solid");
+    const std::string twice =
+        dir.write("twice.scad", "polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], faces = [[0, 1, 2]]);\n"
+                                "if (false) polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], faces = "
+                                "[[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]]);\n");
+    expectFailure(dir, {twice}, twice + " (CSG export):1:1: polyhedron is not a closed solid");
 }
 
 TEST(StrataRender, OpenscadOptionsItDoesNotTakeAreOneLineEach) {

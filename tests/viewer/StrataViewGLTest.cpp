@@ -450,14 +450,25 @@ TEST_F(StrataView, ASavedUseOrIncludeFileReloadsTheScad) {
     EXPECT_GT(differingPixels(used, included), 100);
 }
 
-TEST_F(StrataView, AScadsMessagesSayTheyArePositionsInItsCsgExport) {
+TEST_F(StrataView, AScadsMessagesNameItsLines) {
     if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
-    // OpenSCAD exports this; strata refuses the open polyhedron, at its line in the export.
+    // OpenSCAD exports this; strata refuses the open polyhedron, at its line in
+    // the .scad (the first line of the export).
     const std::string scad = dir.write("open.scad", "\n\n// three lines down\npolyhedron(points = [[0, 0, 0], [1, 0, 0], "
                                                     "[0, 1, 0]], faces = [[0, 1, 2]]);\n");
     const ProcessResult r = runProcess({kView, scad}, {{"DISPLAY", ":4999"}});
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_TRUE(r.err.starts_with(scad + " (CSG export):1:1: polyhedron is not a closed solid")) << r.err;
+    EXPECT_TRUE(r.err.starts_with(scad + ":4:1: polyhedron is not a closed solid")) << r.err;
+}
+
+TEST_F(StrataView, TreeRowsNameTheScadLinesOfTheirCalls) {
+    if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
+    dir.write("parts.scad", "module peg() {\n  cylinder(r = 1, h = 4);\n}\n");
+    const std::string scad = dir.write("a.scad", "use <parts.scad>\n\ntranslate([20, 0, 0]) sphere(3);\npeg();\n");
+    const ProcessResult r = view(scad, "size 64 64\nprint tree\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\d+ sphere \(line 3\)\n)"))) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\d+ cylinder \(parts\.scad line 2\)\n)"))) << r.out;
 }
 
 // The line of `text` numbered `number` (from 1); empty past the end.
@@ -483,8 +494,11 @@ int csgLineOfRow(const std::string& out, const std::string& label) {
 TEST_F(StrataView, SaveCsgWritesTheExportWhoseLinesTheTreeNames) {
     if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
     // The sphere and the cube land on different lines of the export (2 and 4),
-    // neither of them the .scad's line.
-    const std::string scad = dir.write("a.scad", "echo(\"two solids\");\n\ntranslate([20, 0, 0]) sphere(3);\ncube(5);\n");
+    // neither of them the .scad's line. Each name is called twice in the
+    // .scad, so neither node can be traced to its call, and the rows name
+    // the export's lines.
+    const std::string scad = dir.write("a.scad", "echo(\"two solids\");\n\ntranslate([20, 0, 0]) sphere(3);\ncube(5);\n"
+                                                 "if (false) { sphere(1); cube(1); }\n");
     const ProcessResult r = view(scad, "size 64 64\nprint tree\nsave-csg out.csg\nprint console\n");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     // The file is OpenSCAD's export, byte for byte, and strata-render reads it.

@@ -3,7 +3,9 @@
 // dialect and the newer one. Streams its input: memory grows with the tree, not
 // with the size of the text.
 
+#include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 #include "strata/scene/Tree.h"
@@ -22,6 +24,10 @@ struct ParseOptions {
     // is refused. Each reads its children into a shape of its own, which
     // building the model walks on the C++ stack, about 2 KiB a level.
     int maxNestedShapes = 1000;
+    // Where messages and positions about the node on a line of the input
+    // should point instead (a .scad's own lines, from ScadTrace), or nothing
+    // to keep the input's line and column.
+    std::function<std::optional<SourceLocation>(int line)> locate;
 };
 
 // Parses the file at `path`. Throws strata::Error("path:line:col: message") on
