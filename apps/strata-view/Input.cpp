@@ -110,7 +110,14 @@ void Viewer::onKey(int key, int action, int mods) {
     case GLFW_KEY_0: orbit_.preset(Preset::Diagonal); break;
     case GLFW_KEY_V: viewAllNow(); return;              // OpenSCAD: Ctrl+Shift+V
     case GLFW_KEY_R: resetView(); return;
-    case GLFW_KEY_O: toggleProjection(); return;
+    case GLFW_KEY_O:
+        if (ctrl) {  // OpenSCAD: Ctrl+O, Open
+            focusOpen_ = true;
+            showPanel_ = true;
+        } else {
+            toggleProjection();
+        }
+        return;
     case GLFW_KEY_EQUAL:
     case GLFW_KEY_KP_ADD: changeLayers(+1); return;      // '+' is shift+'=' on most layouts
     case GLFW_KEY_MINUS:

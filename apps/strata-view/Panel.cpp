@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <string>
 
+#include "SceneLoad.h"
 #include "strata/render/ColorScheme.h"
 
 namespace strata::view {
@@ -128,6 +130,8 @@ void Viewer::drawPanel() {
                                 ImGuiTreeNodeFlags_DefaultOpen)) {
         for (const Warning& w : scene_.tree.warnings) ImGui::TextWrapped("%s", w.message.c_str());
     }
+
+    drawOpenPanel();
 
     if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
         constexpr std::array<Preset, 7> presets{Preset::Top,  Preset::Bottom, Preset::Left,    Preset::Right,
@@ -322,6 +326,89 @@ void Viewer::drawTreePanel() {
             ImGui::Text("%s%d %s%s", row.background ? "% " : "", row.node, row.label.c_str(), rowLineNote(row.node).c_str());
             ImGui::PopID();
         }
+    }
+}
+
+void Viewer::drawOpenPanel() {
+    namespace fs = std::filesystem;
+    if (focusOpen_) ImGui::SetNextItemOpen(true);
+    if (!ImGui::CollapsingHeader("open (Ctrl+O)")) {
+        focusOpen_ = false;
+        return;
+    }
+    std::error_code ec;
+    if (openPath_.empty()) {
+        const fs::path folder = fs::path(path_).parent_path();  // as the file was named
+        openPath_ = folder.empty() ? std::string("./") : folder.string() + "/";
+    }
+    char field[1024];
+    std::snprintf(field, sizeof field, "%s", openPath_.c_str());
+    ImGui::SetNextItemWidth(-1);
+    if (focusOpen_) {
+        ImGui::SetKeyboardFocusHere();
+        focusOpen_ = false;
+    }
+    const bool entered = ImGui::InputTextWithHint("##open", "a .scad, .csg or mesh file, or a folder", field, sizeof field,
+                                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    openPath_ = field;
+    const bool isFile = fs::is_regular_file(openPath_, ec);
+    ImGui::BeginDisabled(!isFile);
+    const bool clicked = ImGui::Button("open");
+    ImGui::EndDisabled();
+    if (isFile && (entered || clicked)) openFile(openPath_);
+
+    // The folder of the field: its subfolders and the files strata opens;
+    // after a partial name, those that begin with it.
+    const bool isFolder = fs::is_directory(openPath_, ec);
+    const fs::path folder = isFolder ? fs::path(openPath_) : fs::path(openPath_).parent_path();
+    const std::string prefix = isFolder ? std::string() : fs::path(openPath_).filename().string();
+    const auto now = std::chrono::steady_clock::now();
+    if (folder.string() != listedFolder_ || now - listedAt_ > std::chrono::seconds(2)) {
+        listedFolder_ = folder.string();
+        listedAt_ = now;
+        listed_.clear();
+        if (fs::absolute(folder, ec).has_relative_path()) listed_.push_back({"..", true});
+        for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, fs::directory_options::skip_permission_denied, ec), end;
+             !ec && it != end && listed_.size() < 500; it.increment(ec)) {
+            const std::string name = it->path().filename().string();
+            if (name.empty() || name.front() == '.') continue;
+            const bool sub = it->is_directory(ec);
+            const std::string ext = apps::lowerExtension(name);
+            if (sub || ext == ".scad" || ext == ".csg" || apps::isMeshExtension(ext)) listed_.push_back({name, sub});
+        }
+        std::sort(listed_.begin() + (listed_.empty() || listed_.front().name != ".." ? 0 : 1), listed_.end(),
+                  [](const FolderEntry& a, const FolderEntry& b) { return a.folder != b.folder ? a.folder : a.name < b.name; });
+    }
+    ImGui::BeginChild("open files", ImVec2(0, 120), true);
+    for (const FolderEntry& entry : listed_) {
+        if (!prefix.empty() && entry.name.rfind(prefix, 0) != 0) continue;
+        const std::string label = entry.folder ? entry.name + "/" : entry.name;
+        if (!ImGui::Selectable(label.c_str())) continue;
+        if (entry.name == "..") {
+            fs::path here = fs::absolute(folder, ec).lexically_normal();
+            if (here.filename().empty()) here = here.parent_path();  // "a/b/" names b
+            const fs::path up = here.parent_path();
+            openPath_ = up.string() + (up.string().ends_with('/') ? "" : "/");
+        } else if (entry.folder) {
+            openPath_ = (folder / entry.name).string() + "/";
+        } else {
+            openPath_ = (folder / entry.name).string();
+            openFile(openPath_);
+        }
+    }
+    ImGui::EndChild();
+
+    if (recent_.files().empty()) return;
+    disabledWrapped("recent");
+    for (const std::string& file : recent_.files()) {
+        const bool there = fs::is_regular_file(file, ec);
+        const fs::path p(file);
+        const std::string label = p.filename().string() + "  (" + p.parent_path().filename().string() + ")" + (there ? "" : ", gone");
+        ImGui::BeginDisabled(!there);
+        const bool chosen = ImGui::Selectable((label + "##" + file).c_str());
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", file.c_str());
+        if (chosen) openFile(file);
     }
 }
 

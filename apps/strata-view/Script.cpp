@@ -197,13 +197,13 @@ void checkArguments(Command& c, std::string_view name) {
         }
         break;
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
-    case CommandKind::Panel: oneOf({"on", "off"}); break;
+    case CommandKind::Panel: oneOf({"on", "off", "open"}); break;
     case CommandKind::Light: oneOf({"strata", "openscad"}); break;
     case CommandKind::Show:
         oneOf({"axes", "scale", "edges", "outline"});
         if (c.words[1] != "on" && c.words[1] != "off") throw fail("expected on or off, got '" + c.words[1] + "'", 1);
         break;
-    case CommandKind::Print: oneOf({"camera", "console", "error", "load", "stats", "title", "tree"}); break;
+    case CommandKind::Print: oneOf({"camera", "console", "error", "load", "recent", "stats", "title", "tree"}); break;
     case CommandKind::Sleep: whole(0, 0, 600000, "milliseconds from 0 to 600000"); break;
     case CommandKind::Screenshot:
     case CommandKind::ScreenshotWindow:

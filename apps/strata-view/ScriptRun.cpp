@@ -125,7 +125,8 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         }
         case CommandKind::Panel:
-            showPanel_ = c.words[0] == "on";
+            showPanel_ = c.words[0] != "off";
+            focusOpen_ = c.words[0] == "open";  // as Ctrl+O
             if (fixedSize_) sizeWindowToFixedView();
             return true;
         case CommandKind::Show: {
@@ -186,6 +187,8 @@ bool Viewer::runCommand(const Command& c) {
             if (what == "console") std::cout << console_.text();
             if (what == "title") std::cout << title() << std::endl;
             if (what == "load") std::cout << loadLine() << std::endl;
+            if (what == "recent")
+                for (const std::string& file : recent_.files()) std::cout << file << '\n';
             if (what == "tree")
                 for (const TreeRow& row : rows_)
                     std::cout << std::string(static_cast<std::size_t>(row.depth) * 2, ' ') << row.node << ' '

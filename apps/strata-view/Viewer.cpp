@@ -91,6 +91,18 @@ Viewer::Viewer(const ViewerOptions& options, LoadedScene initial, Loader* pendin
     console_.add(ConsoleLine::Kind::Info, "loaded " + path_);
     for (const std::string& line : scene_.openscadOutput) console_.addOpenscad(line);
     for (const Warning& w : scene_.tree.warnings) console_.add(ConsoleLine::Kind::Warning, w.message);
+    if (!awaitingFirst_) rememberOpened();
+}
+
+void Viewer::rememberOpened() {
+    const std::string why = recent_.add(path_);
+    if (!why.empty()) console_.add(ConsoleLine::Kind::Warning, why);
+}
+
+void Viewer::openFile(const std::string& path) {
+    if (path.empty()) return;
+    console_.add(ConsoleLine::Kind::Info, "opening " + path);
+    loader_.request(path);
 }
 
 Viewer::~Viewer() {
@@ -203,6 +215,7 @@ void Viewer::applyLoad(LoadResult result) {
         watch_ = FileWatch(path_);
         resetView();
         awaitingFirst_ = false;
+        rememberOpened();
     }
     watchDependencies();
     updateTitle();

@@ -18,6 +18,7 @@
 #include "Loader.h"
 #include "Orbit.h"
 #include "Overlay.h"
+#include "RecentFiles.h"
 #include "Script.h"
 #include "TreeEdit.h"
 #include "ViewTarget.h"
@@ -135,6 +136,12 @@ private:
     // Panel.cpp
     void drawPanel();
     void drawTreePanel();
+    // The "open" section: a path field with the folder's model files, and
+    // the recent files; a click opens.
+    void drawOpenPanel();
+    void openFile(const std::string& path);
+    // A file shown first, or in place of another: first in the recent files.
+    void rememberOpened();
     // " (line N)", or " (CSG line N)" for a .scad's node: where the node is written; empty when unknown.
     std::string rowLineNote(int node) const;
     void drawPeelLabels();
@@ -156,6 +163,17 @@ private:
     std::string exportPath_;         // the panel's export file name
     std::string screenshotPath_;     // the panel's screenshot file name; empty: strata-view-N.png
     std::string csgExportPath_;      // the panel's file name for a .scad's CSG export; empty: beside the .scad
+    std::string openPath_;           // the panel's "open" field: a file to open, or a folder to list
+    bool focusOpen_ = false;         // Ctrl+O: unfold the "open" section and put the cursor in its field
+    // The folder the "open" section lists, read at most every two seconds.
+    struct FolderEntry {
+        std::string name;
+        bool folder = false;
+    };
+    std::string listedFolder_;
+    std::vector<FolderEntry> listed_;
+    std::chrono::steady_clock::time_point listedAt_;
+    RecentFiles recent_;
     bool exportExact_ = true;        // the panel exports CGAL's exact result, not the sampled one
     int exportResolution_ = remesh::kDefaultResolution;  // the sampled export's cells along the longest side
     Console console_;

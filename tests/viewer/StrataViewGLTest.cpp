@@ -137,6 +137,8 @@ class StrataView : public ::testing::Test {
 protected:
     void SetUp() override {
         if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY (run under xvfb-run)";
+        // The viewer keeps its recent files under XDG_STATE_HOME: the test's own.
+        setenv("XDG_STATE_HOME", (dir / "state").c_str(), 1);
     }
 
     ProcessResult view(const std::string& scene, const std::string& script) {
@@ -448,6 +450,20 @@ TEST_F(StrataView, ASavedUseOrIncludeFileReloadsTheScad) {
     expectSameAsRender(included, render(scad, {camera}));
     EXPECT_GT(differingPixels(first, used), 100);
     EXPECT_GT(differingPixels(used, included), 100);
+}
+
+TEST_F(StrataView, OpenedFilesAreKeptAsRecentFilesNewestFirst) {
+    const std::string a = dir.write("a.csg", kScene), b = dir.write("b.csg", kScene);
+    const ProcessResult first = view(a, "size 32 32\nopen b.csg\nopen a.csg\nopen b.csg\nprint recent\n");
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    EXPECT_EQ(first.out, b + "\n" + a + "\n");
+    // Kept for the next session, in the state folder; a file gone since stays
+    // listed (the panel greys it).
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "state/strata/recent-files"));
+    std::filesystem::remove(b);
+    const ProcessResult second = view(a, "size 32 32\nprint recent\n");
+    ASSERT_EQ(second.exitCode, 0) << second.err;
+    EXPECT_EQ(second.out, a + "\n" + b + "\n");
 }
 
 TEST_F(StrataView, AScadsMessagesNameItsLines) {
