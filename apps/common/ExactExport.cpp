@@ -9,6 +9,7 @@
 #include "strata/geometry/Flat.h"
 #include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/SurfaceColors.h"
+#include "strata/io/ExportFormats.h"
 #include "strata/io/FlatWriter.h"
 #include "strata/io/MeshWriter.h"
 
@@ -17,7 +18,7 @@ namespace strata::apps {
 void requireSolidModel(const scene::Tree& tree) {
     if (tree.isFlat()) {
         throw Error(SourceLocation{tree.source, 0, 0},
-                    "a 2D model has no solid to export (export it as .svg or .dxf)");
+                    "a 2D model has no solid to export (export it as " + io::extensionList(io::ExportKind::Drawing) + ")");
     }
 }
 
@@ -26,7 +27,7 @@ io::StagedFile stageResultMesh(const scene::Tree& tree, const geometry::Model& m
     if (result.triangles.empty())
         throw Error(SourceLocation{tree.source, 0, 0}, "the CSG result is empty: nothing to export");
     std::vector<glm::vec4> colors;
-    if (io::meshFormatOf(path) == io::MeshFormat::ThreeMf)
+    if (const io::ExportFormat* format = io::exportFormatOf(path); format != nullptr && format->colors)
         colors = geometry::surfaceColors(result, tree, model, faceColor, reach);
     return io::stageMesh(path, result, colors);
 }
@@ -51,7 +52,7 @@ void roundForFile(geometry::Mesh& mesh) {
 io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path) {
     if (!tree.isFlat()) {
         throw Error(SourceLocation{tree.source, 0, 0},
-                    "a 3D model has no 2D drawing to export (export it as .stl, .off, .obj or .3mf)");
+                    "a 3D model has no 2D drawing to export (export it as " + io::extensionList(io::ExportKind::Mesh) + ")");
     }
     const geometry::Outlines outlines = geometry::flatResult(tree);
     if (outlines.empty()) throw Error(SourceLocation{tree.source, 0, 0}, "the 2D result is empty: nothing to export");

@@ -14,8 +14,8 @@
 #include "CommandLine.h"
 #include "OpenscadOptions.h"
 #include "strata/core/Error.h"
+#include "strata/io/ExportFormats.h"
 #include "strata/io/FlatWriter.h"
-#include "strata/io/MeshWriter.h"
 #include "strata/remesh/Remesh.h"
 
 namespace strata::apps {
@@ -140,14 +140,8 @@ void checkSceneNames(const RenderOptions& o);
 // --export FILE: a mesh or drawing format by its extension.
 void checkExport(const RenderOptions& o) {
     if (o.exportPath.empty()) throw UsageError{"--export: expected a file name"};
-    if (!io::isFlatPath(o.exportPath)) {
-        try {
-            io::meshFormatOf(o.exportPath);
-        } catch (const Error&) {
-            throw UsageError{"--export: expected a .stl, .off, .obj, .3mf, .svg or .dxf file name, got '" + o.exportPath +
-                             "'"};
-        }
-    }
+    if (io::exportFormatOf(o.exportPath) == nullptr)
+        throw UsageError{"--export: expected a " + io::extensionList() + " file name, got '" + o.exportPath + "'"};
     for (const std::string* other : {&o.png, &o.depth, &o.normal}) {
         if (!other->empty() && sameFile(*other, o.exportPath)) {
             throw UsageError{"--export and another output name the same file '" + o.exportPath + "'"};

@@ -30,8 +30,8 @@ class Exporter {
 public:
     ~Exporter();  // cancels a running export and waits for it to stop at its next step
 
-    // Starts exporting `scene` (copied) into `path` (.stl, .off, .obj or
-    // .3mf): exact, or sampled at `resolution` cells along the result's
+    // Starts exporting `scene` (copied) into `path` (a mesh format of
+    // io::exportFormats()): exact, or sampled at `resolution` cells along the result's
     // longest side; false, with nothing started, while another export runs.
     bool start(const LoadedScene& scene, const std::string& path, const glm::vec4& faceColor, bool exact,
                int resolution);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "SceneLoad.h"
+#include "strata/io/ExportFormats.h"
 #include "strata/render/ColorScheme.h"
 
 namespace strata::view {
@@ -207,10 +208,11 @@ void Viewer::drawPanel() {
                 exportResolution_ = std::clamp(exportResolution_, remesh::kLeastResolution, remesh::kMostResolution);
             }
         }
-        disabledWrapped(exportExact_ ? ".stl, .off, .obj or .3mf (a 2D model: .svg or .dxf); evaluated by CGAL as "
-                                       "OpenSCAD's render"
-                                     : ".stl, .off, .obj or .3mf; the result sampled on a grid of this many "
-                                       "cells along its longest side, sharp edges kept");
+        const std::string meshes = io::extensionList(io::ExportKind::Mesh);
+        disabledWrapped(exportExact_ ? meshes + " (a 2D model: " + io::extensionList(io::ExportKind::Drawing) +
+                                           "); evaluated by CGAL as OpenSCAD's render"
+                                     : meshes + "; the result sampled on a grid of this many cells along its longest "
+                                                "side, sharp edges kept");
     }
 
     if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -1,7 +1,6 @@
 #include "Script.h"
 
-#include "strata/io/FlatWriter.h"
-#include "strata/io/MeshWriter.h"
+#include "strata/io/ExportFormats.h"
 #include "strata/core/InputFile.h"
 
 #include <array>
@@ -210,14 +209,14 @@ void checkArguments(Command& c, std::string_view name) {
         if (!c.words[0].ends_with(".png")) throw fail("expected a .png file name, got '" + c.words[0] + "'", 0);
         break;
     case CommandKind::Export:
-        if (io::isFlatPath(c.words[0])) break;  // a 2D model's drawing
+        if (const io::ExportFormat* format = io::exportFormatOf(c.words[0]); format && format->kind == io::ExportKind::Drawing)
+            break;  // a 2D model's drawing
         [[fallthrough]];
     case CommandKind::ExportSampled:
-        try {
-            io::meshFormatOf(c.words[0]);
-        } catch (const Error&) {
-            const std::string drawings = c.kind == CommandKind::Export ? " (or, for a 2D model, .svg or .dxf)" : "";
-            throw fail("expected a .stl, .off, .obj or .3mf" + drawings + " file name, got '" + c.words[0] + "'", 0);
+        if (const io::ExportFormat* format = io::exportFormatOf(c.words[0]); !format || format->kind != io::ExportKind::Mesh) {
+            const std::string drawings =
+                c.kind == CommandKind::Export ? " (or, for a 2D model, " + io::extensionList(io::ExportKind::Drawing) + ")" : "";
+            throw fail("expected a " + io::extensionList(io::ExportKind::Mesh) + drawings + " file name, got '" + c.words[0] + "'", 0);
         }
         break;
     case CommandKind::SaveCsg:

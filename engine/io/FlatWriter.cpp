@@ -1,4 +1,5 @@
 #include "strata/io/FlatWriter.h"
+#include "strata/io/ExportFormats.h"
 
 #include <algorithm>
 #include <cctype>
@@ -91,8 +92,8 @@ std::string dxf(const geometry::Outlines& shape) {
 }  // namespace
 
 bool isFlatPath(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    return ext == ".svg" || ext == ".dxf";
+    const ExportFormat* format = exportFormatOf(path);
+    return format != nullptr && format->kind == ExportKind::Drawing;
 }
 
 FlatFormat flatFormatOf(const std::string& path) { return lowerExtension(path) == ".svg" ? FlatFormat::Svg : FlatFormat::Dxf; }

@@ -1,4 +1,5 @@
 #include "strata/io/MeshWriter.h"
+#include "strata/io/ExportFormats.h"
 
 #include <Model/COM/NMR_DLLInterfaces.h>
 
@@ -182,14 +183,16 @@ Bytes threeMf(const geometry::Mesh& mesh, std::span<const glm::vec4> colors) {
 }  // namespace
 
 MeshFormat meshFormatOf(const std::string& path) {
+    const ExportFormat* format = exportFormatOf(path);
+    if (format != nullptr && format->kind == ExportKind::Mesh) {
+        if (format->extension == ".stl") return MeshFormat::Stl;
+        if (format->extension == ".off") return MeshFormat::Off;
+        if (format->extension == ".obj") return MeshFormat::Obj;
+        return MeshFormat::ThreeMf;
+    }
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".stl") return MeshFormat::Stl;
-    if (ext == ".off") return MeshFormat::Off;
-    if (ext == ".obj") return MeshFormat::Obj;
-    if (ext == ".3mf") return MeshFormat::ThreeMf;
-    throw Error(SourceLocation{path, 0, 0},
-                "cannot export to '" + ext + "' (expected .stl, .off, .obj or .3mf)");
+    throw Error(SourceLocation{path, 0, 0}, "cannot export to '" + ext + "' (expected " + extensionList(ExportKind::Mesh) + ")");
 }
 
 std::vector<unsigned char> meshBytes(const geometry::Mesh& mesh, MeshFormat format, std::span<const glm::vec4> colors) {
