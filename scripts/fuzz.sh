@@ -3,13 +3,14 @@
 # LeakSanitizer and UndefinedBehaviorSanitizer for a bounded time each, and
 # fails on any finding: the .csg parser, then the file readers behind
 # import() and surface(), one target per format (STL, OBJ, OFF, PLY, DXF,
-# SVG, surface .dat and PNG).
+# SVG, surface .dat and PNG), text()'s glyphs, and strata-view's script
+# language.
 #
 #   scripts/fuzz.sh [SECONDS [READER_SECONDS]]
 #
 # SECONDS for the .csg parser (default 60, or STRATA_FUZZ_SECONDS),
-# READER_SECONDS for each reader (default 10, or STRATA_FUZZ_READER_SECONDS;
-# 0 leaves them out). Builds tests/fuzz (targets strata_fuzz_csg and
+# READER_SECONDS for each of the others (default 10, or
+# STRATA_FUZZ_READER_SECONDS; 0 leaves them out). Builds tests/fuzz (targets strata_fuzz_csg and
 # strata_fuzz_<format>) in build-fuzz/ with clang, every library instrumented
 # (see tests/fuzz/CMakeLists.txt), then runs each on its seeds
 # (tests/fuzz/corpus/ for the parser, tests/fuzz/seeds/<format>/ for the
@@ -23,7 +24,7 @@ set -eu
 
 seconds=${1:-${STRATA_FUZZ_SECONDS:-60}}
 reader_seconds=${2:-${STRATA_FUZZ_READER_SECONDS:-10}}
-readers="stl obj off ply dxf svg dat png"
+readers="stl obj off ply dxf svg dat png text script"
 [ "$reader_seconds" = 0 ] && readers=""
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build-fuzz

@@ -31,7 +31,7 @@ enum class CommandKind {
     Highlight,        // highlight NODE      (toggle '#')
     ColorScheme,      // colorscheme NAME...
     Debug,            // debug shaded|depth|normal|peel
-    Panel,            // panel on|off
+    Panel,            // panel on|off|open
     Show,             // show axes|scale|edges|outline on|off
     Light,            // light strata|openscad
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
@@ -42,7 +42,7 @@ enum class CommandKind {
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
-    Print,            // print camera|console|error|load|stats|title|tree
+    Print,            // print camera|console|error|load|recent|stats|title|tree
     Sleep,            // sleep MS
     Quit,             // quit
 };
