@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "strata/core/Timing.h"
 #include "strata/camera/ViewBounds.h"
 #include "strata/contour/Contour.h"
 #include "strata/core/Error.h"
@@ -22,10 +23,6 @@ namespace strata::apps {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 contour::Dexels sample(const scene::Tree& tree, const geometry::Model& model, const contour::DexelGrid& grid,
                        const ImageExportSettings& settings) {

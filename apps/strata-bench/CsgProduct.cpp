@@ -67,11 +67,6 @@ unsigned convexityOnLine(const std::string& line) {
     return 1;
 }
 
-unsigned openScadConvexity(const scene::Leaf& leaf) {
-    SourceLines sources;
-    return convexityOf(leaf, sources);
-}
-
 CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, std::size_t renderingLimit) {
     CsgProducts out;
     std::vector<std::optional<LeafBox>> boxes(tree.leaves.size());

@@ -38,10 +38,6 @@ struct CsgProducts {
 CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model,
                         std::size_t renderingLimit = kOpenScadRenderingLimit);
 
-// OpenSCAD's convexity of `leaf` (ProductLeaf::convexity); reads the leaf's
-// line from the file its SourceLocation names, where there is one.
-unsigned openScadConvexity(const scene::Leaf& leaf);
-
 // The `convexity = N` argument on one line of a .csg, else 1 (OpenSCAD's
 // default; values below 1 become 1, as OpenSCAD makes them).
 unsigned convexityOnLine(const std::string& line);

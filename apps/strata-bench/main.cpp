@@ -40,6 +40,7 @@
 #include "PlainDraw.h"
 #include "SceneLoad.h"
 #include "Scenes.h"
+#include "strata/core/Timing.h"
 #include "strata/camera/Camera.h"
 #include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
@@ -55,10 +56,6 @@ namespace {
 
 using namespace strata;
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 double median(std::vector<double> v) {
     if (v.empty()) return 0.0;

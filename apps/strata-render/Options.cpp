@@ -13,6 +13,7 @@
 
 #include "CommandLine.h"
 #include "OpenscadOptions.h"
+#include "strata/render/Limits.h"
 #include "strata/core/Error.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/io/FlatWriter.h"
@@ -74,8 +75,8 @@ void parseImageSize(const std::string& text, RenderOptions& options) {
         throw UsageError{"--imgsize: expected W,H (two whole numbers), got '" + text + "'"};
     if (w <= 0 || h <= 0)
         throw UsageError{"--imgsize: width and height must be positive, got '" + text + "'"};
-    if (w > kMaxImageSide || h > kMaxImageSide)
-        throw UsageError{"--imgsize: at most " + std::to_string(kMaxImageSide) + " pixels a side, got '" + text +
+    if (w > render::kMaxImageSide || h > render::kMaxImageSide)
+        throw UsageError{"--imgsize: at most " + std::to_string(render::kMaxImageSide) + " pixels a side, got '" + text +
                          "'"};
     options.width = static_cast<int>(w);
     options.height = static_cast<int>(h);
@@ -120,8 +121,8 @@ void parseLayers(const std::string& text, RenderOptions& options) {
         return;
     }
     long long n = 0;
-    if (!parseInt(text, n) || n < 1 || n > kMaxLayers)
-        throw UsageError{"--layers: expected 'auto' or a whole number from 1 to " + std::to_string(kMaxLayers) +
+    if (!parseInt(text, n) || n < 1 || n > render::kMaxLayers)
+        throw UsageError{"--layers: expected 'auto' or a whole number from 1 to " + std::to_string(render::kMaxLayers) +
                          ", got '" + text + "'"};
     options.layers = static_cast<int>(n);
 }

@@ -50,10 +50,4 @@ struct ParseResult : CliOutcome {
 // argv[0] is ignored. Never throws.
 ParseResult parseOptions(int argc, char** argv);
 
-// Largest --imgsize side: llvmpipe's and most drivers' GL_MAX_TEXTURE_SIZE.
-inline constexpr int kMaxImageSide = 16384;
-// Largest --layers: llvmpipe's GL_MAX_ARRAY_TEXTURE_LAYERS is 2048, and dual
-// peeling fills two layers per pass.
-inline constexpr int kMaxLayers = 1024;
-
 }  // namespace strata::apps

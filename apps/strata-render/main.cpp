@@ -22,6 +22,7 @@
 #include "SceneLoad.h"
 #include "StderrProgress.h"
 #include "Worker.h"
+#include "strata/core/Timing.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
 #include "strata/geometry/Model.h"
@@ -39,10 +40,6 @@ namespace {
 
 using namespace strata;
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Fails before the (possibly long) render when an output's folder is missing;
 // the writers check again when they write.

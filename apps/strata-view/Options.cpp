@@ -6,6 +6,7 @@
 
 #include "CommandLine.h"
 #include "Script.h"
+#include "strata/render/Limits.h"
 
 namespace strata::view {
 namespace {
@@ -37,11 +38,11 @@ ParsedOptions parseOptions(int argc, char** argv) {
             const std::size_t comma = imgsize.find(',');
             if (comma == std::string::npos || !parseWhole(std::string_view(imgsize).substr(0, comma), o.width) ||
                 !parseWhole(std::string_view(imgsize).substr(comma + 1), o.height) || o.width <= 0 ||
-                o.height <= 0 || o.width > kMaxViewSide || o.height > kMaxViewSide)
+                o.height <= 0 || o.width > render::kMaxImageSide || o.height > render::kMaxImageSide)
                 throw apps::UsageError{"--imgsize: expected W,H (two whole numbers from 1 to 16384), got '" + imgsize + "'"};
         }
         if (app.count("--layers") && layers != "auto") {
-            if (!parseWhole(layers, o.layers) || o.layers < 1 || o.layers > kMaxLayers)
+            if (!parseWhole(layers, o.layers) || o.layers < 1 || o.layers > render::kMaxLayers)
                 throw apps::UsageError{"--layers: expected 'auto' or a whole number from 1 to 1024, got '" + layers + "'"};
         }
         if (app.count("--colorscheme")) o.colorScheme = apps::checkedColorScheme(o.colorScheme);

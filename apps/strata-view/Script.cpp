@@ -1,5 +1,6 @@
 #include "Script.h"
 
+#include "strata/render/Limits.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/core/InputFile.h"
 
@@ -115,7 +116,7 @@ void checkArguments(Command& c, std::string_view name) {
         if (!readNumber(c.words[k], v)) throw fail(std::string("expected ") + what + ", got '" + c.words[k] + "'", k);
         c.numbers.push_back(v);
     };
-    auto whole = [&](int k, double lo, double hi, const char* what) {
+    auto whole = [&](int k, double lo, double hi, const std::string& what) {
         double v = 0;
         if (!readWhole(c.words[k], v) || v < lo || v > hi)
             throw fail(std::string("expected ") + what + ", got '" + c.words[k] + "'", k);
@@ -132,11 +133,11 @@ void checkArguments(Command& c, std::string_view name) {
 
     switch (c.kind) {
     case CommandKind::Size:
-        whole(0, 1, kMaxViewSide, "a width from 1 to 16384");
-        whole(1, 1, kMaxViewSide, "a height from 1 to 16384");
+        whole(0, 1, render::kMaxImageSide, "a width from 1 to " + std::to_string(render::kMaxImageSide));
+        whole(1, 1, render::kMaxImageSide, "a height from 1 to " + std::to_string(render::kMaxImageSide));
         break;
     case CommandKind::Layers:
-        if (c.words[0] != "auto") whole(0, 1, kMaxLayers, "'auto' or a whole number from 1 to 1024");
+        if (c.words[0] != "auto") whole(0, 1, render::kMaxLayers, "'auto' or a whole number from 1 to " + std::to_string(render::kMaxLayers));
         break;
     case CommandKind::Camera: {
         std::stringstream parts(c.words[0]);
@@ -181,8 +182,8 @@ void checkArguments(Command& c, std::string_view name) {
         }
         break;
     case CommandKind::DoubleClick:
-        whole(0, 0, kMaxViewSide, "a pixel column");
-        whole(1, 0, kMaxViewSide, "a pixel row");
+        whole(0, 0, render::kMaxImageSide, "a pixel column");
+        whole(1, 0, render::kMaxImageSide, "a pixel row");
         break;
     case CommandKind::Toggle:
     case CommandKind::Highlight:

@@ -67,9 +67,4 @@ std::vector<Command> parseScriptFile(const std::string& path);
 // A script's relative path means relative to the script's folder.
 std::string resolveScriptPath(const std::string& scriptPath, const std::string& path);
 
-// Largest layers value, as strata-render's --layers.
-inline constexpr int kMaxLayers = 1024;
-// Largest view side, as strata-render's --imgsize.
-inline constexpr int kMaxViewSide = 16384;
-
 }  // namespace strata::view

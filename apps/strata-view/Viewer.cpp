@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "strata/render/Limits.h"
 #include "strata/core/Error.h"
 #include "strata/io/MeshWriter.h"
 #include "strata/gpu/Gl.h"
@@ -340,7 +341,7 @@ void Viewer::drawWindow() {
 }
 
 void Viewer::setLayers(int layers) {
-    settings_.layers = std::clamp(layers, 0, kMaxLayers);
+    settings_.layers = std::clamp(layers, 0, render::kMaxLayers);
     viewDirty_ = true;
 }
 

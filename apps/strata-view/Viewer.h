@@ -124,7 +124,6 @@ private:
     std::string cameraLine() const;
     // print load: the last shown load's figures, or "no load".
     std::string loadLine() const;
-    void viewChanged() { viewDirty_ = true; }
 
     // Input.cpp
     void installInput();

@@ -29,13 +29,6 @@ void VertexArray::setAttribute(GLuint location, GLuint binding, int components, 
     glVertexArrayAttribBinding(id(), location, binding);
 }
 
-void VertexArray::setIntegerAttribute(GLuint location, GLuint binding, int components, GLenum type,
-                                      std::size_t relativeOffset) {
-    glEnableVertexArrayAttrib(id(), location);
-    glVertexArrayAttribIFormat(id(), location, components, type, static_cast<GLuint>(relativeOffset));
-    glVertexArrayAttribBinding(id(), location, binding);
-}
-
 void VertexArray::bind() const { glBindVertexArray(id()); }
 
 }  // namespace strata::gpu

@@ -75,7 +75,6 @@ void WindowContext::makeCurrent() {
 
 bool WindowContext::shouldClose() const { return glfwWindowShouldClose(impl_->window) != 0; }
 void WindowContext::swapBuffers() { glfwSwapBuffers(impl_->window); }
-void WindowContext::pollEvents() { glfwPollEvents(); }
 
 int WindowContext::framebufferWidth() const {
     int w = 0, h = 0;

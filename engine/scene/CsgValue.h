@@ -29,7 +29,6 @@ struct CsgValue {
     void append(CsgValue element);
     // Turns Numbers/Rows into a general List (used when a vector's elements mix types).
     void toList();
-    bool isVector() const { return type == Type::Numbers || type == Type::Rows || type == Type::List; }
     std::size_t size() const;  // elements of a vector
 };
 

@@ -29,9 +29,6 @@ public:
     // within the vertex, from binding point `binding`.
     void setAttribute(GLuint location, GLuint binding, int components, GLenum type,
                       std::size_t relativeOffset, bool normalized = false);
-    // As setAttribute, for integer inputs (ivec/uvec in GLSL; glVertexArrayAttribIFormat).
-    void setIntegerAttribute(GLuint location, GLuint binding, int components, GLenum type,
-                             std::size_t relativeOffset);
 
     void bind() const;
 

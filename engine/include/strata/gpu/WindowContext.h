@@ -32,7 +32,6 @@ public:
     void makeCurrent();
     bool shouldClose() const;
     void swapBuffers();
-    void pollEvents();
     // Size of the default framebuffer in pixels (may differ from the window's
     // size in screen units on high-DPI displays).
     int framebufferWidth() const;
