@@ -28,7 +28,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 33> kSyntax{{
+constexpr std::array<Syntax, 34> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -60,6 +60,7 @@ constexpr std::array<Syntax, 33> kSyntax{{
     {"remove", CommandKind::Remove, 1, 1},
     {"wait-reload", CommandKind::WaitReload, 0, 0},
     {"print", CommandKind::Print, 1, 1},
+    {"key", CommandKind::Key, 1, 1},
     {"sleep", CommandKind::Sleep, 1, 1},
     {"quit", CommandKind::Quit, 0, 0},
 }};
@@ -199,6 +200,14 @@ void checkArguments(Command& c, std::string_view name) {
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
     case CommandKind::Panel: oneOf({"on", "off", "open"}); break;
     case CommandKind::Light: oneOf({"strata", "openscad"}); break;
+    case CommandKind::Key: {
+        std::string_view name = c.words[0];
+        if (name.starts_with("ctrl+")) name.remove_prefix(5);
+        const bool letterOrDigit = name.size() == 1 && ((name[0] >= 'a' && name[0] <= 'z') || (name[0] >= '0' && name[0] <= '9'));
+        if (!letterOrDigit && name != "escape" && name != "f5" && name != "f12")
+            throw fail("expected [ctrl+] and a lower-case letter, a digit, escape, f5 or f12, got '" + c.words[0] + "'", 0);
+        break;
+    }
     case CommandKind::Show:
         oneOf({"axes", "scale", "edges", "outline"});
         if (c.words[1] != "on" && c.words[1] != "off") throw fail("expected on or off, got '" + c.words[1] + "'", 1);

@@ -43,6 +43,7 @@ enum class CommandKind {
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
     Print,            // print camera|console|error|load|recent|stats|title|tree
+    Key,              // key [ctrl+]NAME     (a key pressed in the window: a letter, a digit, escape, f5 or f12)
     Sleep,            // sleep MS
     Quit,             // quit
 };

@@ -199,6 +199,18 @@ bool Viewer::runCommand(const Command& c) {
         case CommandKind::Sleep:
             std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<long long>(c.numbers[0])));
             return true;
+        case CommandKind::Key: {
+            // As the window's key callback gets it (the panel has no text field focused).
+            std::string_view name = c.words[0];
+            const bool ctrl = name.starts_with("ctrl+");
+            if (ctrl) name.remove_prefix(5);
+            int key = GLFW_KEY_ESCAPE;
+            if (name.size() == 1) key = name[0] >= 'a' ? GLFW_KEY_A + (name[0] - 'a') : GLFW_KEY_0 + (name[0] - '0');
+            if (name == "f5") key = GLFW_KEY_F5;
+            if (name == "f12") key = GLFW_KEY_F12;
+            onKey(key, GLFW_PRESS, ctrl ? GLFW_MOD_CONTROL : 0);
+            return true;
+        }
         case CommandKind::Quit: quit_ = true; return true;
         }
     } catch (const Error& e) {

@@ -46,9 +46,10 @@ TEST(Script, ParsesEveryCommandWithItsArguments) {
         "wait-reload\n"
         "light openscad\n"
         "show outline off\n"
+        "key ctrl+q\n"
         "quit\n",
         "s.txt");
-    ASSERT_EQ(commands.size(), 15u);
+    ASSERT_EQ(commands.size(), 16u);
     EXPECT_EQ(commands[0].kind, CommandKind::Size);
     EXPECT_EQ(commands[0].numbers, (std::vector<double>{320, 240}));
     EXPECT_EQ(commands[0].where.str(), "s.txt:2:1");
@@ -63,14 +64,16 @@ TEST(Script, ParsesEveryCommandWithItsArguments) {
     EXPECT_EQ(commands[12].words[0], "openscad");
     EXPECT_EQ(commands[13].kind, CommandKind::Show);
     EXPECT_EQ(commands[13].words, (std::vector<std::string>{"outline", "off"}));
-    EXPECT_EQ(commands[14].kind, CommandKind::Quit);
+    EXPECT_EQ(commands[14].kind, CommandKind::Key);
+    EXPECT_EQ(commands[14].words[0], "ctrl+q");
+    EXPECT_EQ(commands[15].kind, CommandKind::Quit);
 }
 
 TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("size 320 240\n  jump 3\n"),
               "s.txt:2:3: unknown command 'jump' (valid: open, size, layers, camera, projection, fov, orbit, pan, "
               "middle-drag, zoom-drag, zoom, preset, view-all, double-click, toggle, highlight, colorscheme, light, debug, panel, show, screenshot, "
-              "screenshot-window, export, export-exact, export-sampled, save-csg, copy, remove, wait-reload, print, sleep, quit)");
+              "screenshot-window, export, export-exact, export-sampled, save-csg, copy, remove, wait-reload, print, key, sleep, quit)");
     EXPECT_EQ(errorOf("layers many\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got 'many'");
     EXPECT_EQ(errorOf("layers 0\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got '0'");
     EXPECT_EQ(errorOf("size 320\n"), "s.txt:1:1: size: expected 2 arguments, got 1");
@@ -93,6 +96,11 @@ TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("show outline maybe\n"), "s.txt:1:14: show: expected on or off, got 'maybe'");
     EXPECT_EQ(errorOf("debug xray\n"),
               "s.txt:1:7: debug: expected one of shaded, depth, normal, peel, forms, got 'xray'");
+    EXPECT_EQ(errorOf("key Escape\n"),
+              "s.txt:1:5: key: expected [ctrl+] and a lower-case letter, a digit, escape, f5 or f12, got 'Escape'");
+    EXPECT_EQ(errorOf("key ctrl+\n"),
+              "s.txt:1:5: key: expected [ctrl+] and a lower-case letter, a digit, escape, f5 or f12, got 'ctrl+'");
+    EXPECT_EQ(errorOf("panel half\n"), "s.txt:1:7: panel: expected one of on, off, open, got 'half'");
 }
 
 TEST(Script, RelativePathsAreFromTheScriptsFolder) {

@@ -452,6 +452,22 @@ TEST_F(StrataView, ASavedUseOrIncludeFileReloadsTheScad) {
     EXPECT_GT(differingPixels(used, included), 100);
 }
 
+TEST_F(StrataView, EscCancelsALoadButNeverQuitsAndCtrlQQuits) {
+    // A save that makes the model slow to load (the exact hull of a
+    // difference: seconds); Esc while it loads cancels it and keeps the
+    // last good model, Esc with nothing running does nothing, Ctrl+Q ends
+    // the session before the next command.
+    const std::string a = dir.write("a.csg", kScene);
+    dir.write("slow.csg", "hull() {\n\tdifference() {\n\t\tsphere($fn = 200, $fa = 12, $fs = 2, r = 10);\n"
+                          "\t\tcube(size = [10, 10, 10], center = false);\n\t}\n}\n");
+    const ProcessResult r = view(a, "size 64 64\ncopy slow.csg a.csg\nsleep 400\nkey escape\nwait-reload\nprint console\n"
+                                    "key escape\nprint title\nkey ctrl+q\nscreenshot after-quit.png\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find(a + ": loading cancelled\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("strata-view: " + a + "\n"), std::string::npos) << r.out;  // still there after the idle Esc
+    EXPECT_FALSE(std::filesystem::exists(dir / "after-quit.png"));
+}
+
 TEST_F(StrataView, OpenedFilesAreKeptAsRecentFilesNewestFirst) {
     const std::string a = dir.write("a.csg", kScene), b = dir.write("b.csg", kScene);
     const ProcessResult first = view(a, "size 32 32\nopen b.csg\nopen a.csg\nopen b.csg\nprint recent\n");
