@@ -154,7 +154,17 @@ render::Camera Orbit::camera(const render::Camera& base) const {
 }
 
 Orbit fittedOrbit(const geometry::Bounds& bounds, const render::Camera& base) {
-    return orbitFromCamera(render::defaultCamera(bounds, base));
+    Orbit orbit = orbitFromCamera(render::defaultCamera(bounds, base));
+    // OpenSCAD backs off until the box's sphere fits the vertical field of
+    // view. A view narrower than it is tall (beside a wide panel) would then
+    // cut the sphere off at its sides: there the distance fits the
+    // horizontal field instead, the narrower of the two.
+    if (base.width > 0 && base.width < base.height) {
+        const double half = base.fovDegrees * std::numbers::pi / 360.0;
+        const double halfAcross = std::atan(double(base.width) / base.height * std::tan(half));
+        orbit.eye = orbit.center + (orbit.eye - orbit.center) * (std::sin(half) / std::sin(halfAcross));
+    }
+    return orbit;
 }
 
 Orbit viewAll(const Orbit& orbit, const geometry::Bounds& bounds, const render::Camera& base) {

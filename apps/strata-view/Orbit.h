@@ -84,7 +84,9 @@ struct Orbit {
     render::Camera camera(const render::Camera& base) const;
 };
 
-// OpenSCAD's default view fitted to `bounds` (render::defaultCamera).
+// OpenSCAD's default view fitted to `bounds` (render::defaultCamera); in a
+// view narrower than it is tall, backed off further until the box's sphere
+// fits the width too.
 Orbit fittedOrbit(const geometry::Bounds& bounds, const render::Camera& base);
 // "View all": the fitted centre and distance, but this orbit's angles.
 Orbit viewAll(const Orbit& orbit, const geometry::Bounds& bounds, const render::Camera& base);

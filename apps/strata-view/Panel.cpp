@@ -87,7 +87,12 @@ void Viewer::drawPanel() {
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
     const float height = viewport->Size.y;
     ImGui::SetNextWindowPos(viewport->Pos);
-    ImGui::SetNextWindowSize(ImVec2(panelWidth_, height), ImGuiCond_FirstUseEver);
+    if (requestedPanelWidth_) {
+        ImGui::SetNextWindowSize(ImVec2(*requestedPanelWidth_, height), ImGuiCond_Always);
+        requestedPanelWidth_.reset();
+    } else {
+        ImGui::SetNextWindowSize(ImVec2(panelWidth_, height), ImGuiCond_FirstUseEver);
+    }
     ImGui::SetNextWindowSizeConstraints(ImVec2(220.0f, height), ImVec2(std::max(220.0f, widestPanel()), height));
     const bool open = ImGui::Begin("strata-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse);
     const float width = ImGui::GetWindowWidth();

@@ -198,7 +198,15 @@ void checkArguments(Command& c, std::string_view name) {
         }
         break;
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
-    case CommandKind::Panel: oneOf({"on", "off", "open"}); break;
+    case CommandKind::Panel: {
+        const std::string& w = c.words[0];
+        if (w == "on" || w == "off" || w == "open") break;
+        double width = 0;
+        if (!readWhole(w, width) || width < 220 || width > render::kMaxImageSide)
+            throw fail("expected on, off, open or a width from 220 to " + std::to_string(render::kMaxImageSide) + ", got '" + w + "'", 0);
+        c.numbers.push_back(width);
+        break;
+    }
     case CommandKind::Light: oneOf({"strata", "openscad"}); break;
     case CommandKind::Key: {
         std::string_view name = c.words[0];

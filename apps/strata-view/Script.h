@@ -31,7 +31,7 @@ enum class CommandKind {
     Highlight,        // highlight NODE      (toggle '#')
     ColorScheme,      // colorscheme NAME...
     Debug,            // debug shaded|depth|normal|peel
-    Panel,            // panel on|off|open
+    Panel,            // panel on|off|open|WIDTH
     Show,             // show axes|scale|edges|outline on|off
     Light,            // light strata|openscad
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)

@@ -125,6 +125,18 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         }
         case CommandKind::Panel:
+            if (!c.numbers.empty()) {
+                // As a drag of the panel's edge: the panel takes the width (within
+                // its bounds) on the next frame, and the view follows on the one after.
+                if (panelSettling_ < 0) {
+                    showPanel_ = true;
+                    requestedPanelWidth_ = static_cast<float>(c.numbers[0]);
+                    panelSettling_ = 2;
+                }
+                if (panelSettling_-- > 0) return false;
+                viewDirty_ = true;
+                return true;
+            }
             showPanel_ = c.words[0] != "off";
             focusOpen_ = c.words[0] == "open";  // as Ctrl+O
             if (fixedSize_) sizeWindowToFixedView();

@@ -217,6 +217,8 @@ private:
     std::optional<std::pair<int, int>> fixedSize_;  // a script's `size`; else the window's
     bool showPanel_ = true;
     float panelWidth_ = 340.0f;      // the docked panel's width in window units (the user may drag its edge)
+    std::optional<float> requestedPanelWidth_;  // a script's `panel WIDTH`, for the next frame
+    int panelSettling_ = -1;         // frames a script's `panel WIDTH` still waits for the view to follow; -1: none
     int viewLeft() const;            // the 3D view's first framebuffer column: right of the panel
     // The widest the panel may be, in window units: half the window, or
     // under a script's `size` what the window holds beside the view.

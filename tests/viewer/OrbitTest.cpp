@@ -218,6 +218,28 @@ TEST(Orbit, FittedViewIsStrataRendersDefaultCamera) {
     EXPECT_NEAR(all.tiltDegrees(), 0.0, 1e-6);
 }
 
+TEST(Orbit, AViewNarrowerThanTallFitsTheBoxsSphereAcross) {
+    geometry::Bounds b;
+    b.extend(glm::dvec3(-30, -3, -3));
+    b.extend(glm::dvec3(30, 3, 3));
+    const double radius = glm::length(b.max - b.min) / 2;
+    render::Camera base;
+    base.width = 300;
+    base.height = 600;
+    // The sphere's edge touches the view's sides: its angular radius seen
+    // from the eye is half the horizontal field.
+    const double halfAcross = std::atan(300.0 / 600.0 * std::tan(base.fovDegrees * std::numbers::pi / 360.0));
+    const Orbit fitted = view::fittedOrbit(b, base);
+    EXPECT_NEAR(fitted.distance(), radius / std::sin(halfAcross), 1e-9 * radius);
+    expectNear(fitted.center, b.center());
+    // The direction is OpenSCAD's default all the same.
+    const render::Camera openscad = render::defaultCamera(b, base);
+    expectNear(glm::normalize(fitted.eye - fitted.center), glm::normalize(openscad.eye - openscad.center));
+    // As wide as tall or wider: OpenSCAD's distance exactly.
+    base.width = 600;
+    EXPECT_EQ(view::fittedOrbit(b, base).eye, render::defaultCamera(b, base).eye);
+}
+
 TEST(Orbit, CameraArgumentReadsBackToTheSameDoubles) {
     render::Camera cam;
     cam.eye = {0.1 + 0.2, -1.0 / 3.0, 1e-300};

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -588,6 +589,44 @@ TEST_F(StrataView, ThePanelIsDockedBesideTheViewAndFramingFramesWhatIsSeen) {
     EXPECT_GT(docked.width, 500);
     EXPECT_LT(docked.width, 800);
     EXPECT_GT(drawnPixels(docked), 1000);
+}
+
+// The drawn pixels' box: {left, top, right, bottom}, or all -1 when none.
+std::array<int, 4> drawnBox(const Image& image) {
+    std::array<int, 4> box{-1, -1, -1, -1};
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const unsigned char* p = pixelAt(image, x, y);
+            if (std::equal(p, p + 4, image.rgba.begin())) continue;
+            if (box[0] < 0 || x < box[0]) box[0] = x;
+            if (box[1] < 0) box[1] = y;
+            box[2] = std::max(box[2], x);
+            box[3] = y;
+        }
+    }
+    return box;
+}
+
+TEST_F(StrataView, ViewAllAndResetFitTheModelBesideAPanelOfAnyWidth) {
+    // A long bar: fitted to the whole window it would run under the panel.
+    const std::string scene = dir.write("bar.csg", "cube(size = [60, 6, 6], center = true);\n");
+    const ProcessResult r = runProcess({kView, scene, "--imgsize", "1000,600", "--script",
+                                        dir.write("s.txt", "panel 260\nview-all\nscreenshot narrow.png\nkey r\nscreenshot narrow-reset.png\n"
+                                                           "panel 480\nview-all\nscreenshot wide.png\nkey r\nscreenshot wide-reset.png\n")});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const auto& [name, width] : std::vector<std::pair<std::string, int>>{
+             {"narrow.png", 740}, {"narrow-reset.png", 740}, {"wide.png", 520}, {"wide-reset.png", 520}}) {
+        const Image shot = readPng(dir / name);
+        // The view is what the panel leaves of the window, and the whole bar
+        // is inside it, clear of its edges.
+        EXPECT_EQ(shot.width, width) << name;
+        const std::array<int, 4> box = drawnBox(shot);
+        EXPECT_GT(box[0], 2) << name;
+        EXPECT_GT(box[1], 2) << name;
+        EXPECT_LT(box[2], shot.width - 3) << name;
+        EXPECT_LT(box[3], shot.height - 3) << name;
+        EXPECT_GT(box[2] - box[0], shot.width / 3) << name << ": the bar is fitted, not lost in the view";
+    }
 }
 
 TEST_F(StrataView, AScriptsSizeIsTheViewsWithThePanelBesideIt) {
