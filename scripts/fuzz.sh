@@ -7,6 +7,7 @@
 # language.
 #
 #   scripts/fuzz.sh [SECONDS [READER_SECONDS]]
+#   scripts/fuzz.sh --geometry SECONDS
 #
 # SECONDS for the .csg parser (default 60, or STRATA_FUZZ_SECONDS),
 # READER_SECONDS for each of the others (default 10, or
@@ -19,8 +20,18 @@
 # a non-zero status and leaves the input that caused it in
 # build-fuzz/findings/<target>-*; replay it with
 #   build-fuzz/tests/fuzz/strata_fuzz_<target> build-fuzz/findings/<file>
+# --geometry builds and runs only strata_fuzz_geometry (small random trees
+# built into meshes: 2D, extrusions, hulls, Minkowski sums, projections),
+# for SECONDS. It instruments strata_geometry and CGAL, many minutes of
+# building, so CI does not run it; it is for long runs by hand.
 # Needs Debian's clang and libclang-rt-14-dev (installed here when run as root).
 set -eu
+
+geometry=
+if [ "${1:-}" = --geometry ]; then
+    geometry=1
+    shift
+fi
 
 seconds=${1:-${STRATA_FUZZ_SECONDS:-60}}
 reader_seconds=${2:-${STRATA_FUZZ_READER_SECONDS:-10}}
@@ -50,11 +61,12 @@ flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefin
 # Configure every time (a few seconds): picks up new sources and keeps the flags.
 mkdir -p "$build"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DSTRATA_BUILD_FUZZERS=ON -DSTRATA_BUILD_TESTS=ON -DSTRATA_SANITIZE=OFF \
+    -DSTRATA_BUILD_FUZZERS=ON -DSTRATA_BUILD_TESTS=ON -DSTRATA_SANITIZE=OFF -DSTRATA_FUZZ_GEOMETRY="${geometry:-OFF}" \
     -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" >"$build/configure.log" 2>&1 ||
     { cat "$build/configure.log" >&2; echo "fuzz.sh: configuring $build failed" >&2; exit 2; }
 targets=strata_fuzz_csg
 for r in $readers; do targets="$targets strata_fuzz_$r"; done
+[ -n "$geometry" ] && targets=strata_fuzz_geometry
 # shellcheck disable=SC2086 # one word per target
 cmake --build "$build" --target $targets -j "$jobs"
 
@@ -85,6 +97,13 @@ fuzz() {
     grep -E '^(Done|stat::number_of_executed_units|stat::peak_rss_mb)' "$build/fuzz-$name.log" >&2 || true
 }
 
+if [ -n "$geometry" ]; then
+    # An exact evaluation under the sanitizers takes up to minutes; more
+    # memory than a parser.
+    fuzz geometry "$seconds" "$root/tests/fuzz/seeds/geometry" -timeout=300 -rss_limit_mb=4096 -max_len=256
+    echo "fuzz.sh: no findings (geometry $seconds s)" >&2
+    exit 0
+fi
 fuzz csg "$seconds" "$root/tests/fuzz/corpus" -dict="$root/tests/fuzz/csg.dict"
 for r in $readers; do
     fuzz "$r" "$reader_seconds" "$root/tests/fuzz/seeds/$r"

@@ -1,5 +1,7 @@
 // libFuzzer target for the geometry evaluation of small trees: the input's
-// bytes choose a .csg of at most a dozen nodes (solids, 2D shapes and their
+// bytes choose a .csg of at most a dozen nodes, curves of at most a dozen
+// fragments (an exact Minkowski sum of larger ones takes minutes under the
+// sanitizers) (solids, 2D shapes and their
 // booleans, offsets, linear and rotate extrusions, hulls, Minkowski sums,
 // projections, resizes, transforms), which is parsed and built into meshes
 // as strata-render builds a scene (geometry::buildModel).
@@ -69,7 +71,7 @@ public:
         case 4: return "linear_extrude(height = " + c_.number(3) + ", center = " + boolean() + ", twist = " +
                        c_.number(30) + ", slices = " + std::to_string(c_.below(5)) + ", scale = " + c_.number(1) +
                        ") {\n" + flat(depth + 1) + "}\n";
-        case 5: return "rotate_extrude(angle = " + c_.number(90) + ", $fn = " + std::to_string(3 + c_.below(20)) +
+        case 5: return "rotate_extrude(angle = " + c_.number(90) + ", $fn = " + std::to_string(3 + c_.below(10)) +
                        ") {\n" + transformed("multmatrix([[1, 0, 0, " + c_.number(3) +
                                                  "], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])",
                                              flat(depth + 1)) +
@@ -104,8 +106,8 @@ private:
     std::string leaf3() {
         switch (c_.below(5)) {
         case 0: return "cube(size = " + c_.vec(3, 2) + ", center = " + boolean() + ");\n";
-        case 1: return "sphere($fn = " + std::to_string(c_.below(24)) + ", $fa = 12, $fs = 2, r = " + c_.number(2) + ");\n";
-        case 2: return "cylinder($fn = " + std::to_string(c_.below(24)) + ", $fa = 12, $fs = 2, h = " + c_.number(3) +
+        case 1: return "sphere($fn = " + std::to_string(c_.below(12)) + ", $fa = 12, $fs = 2, r = " + c_.number(2) + ");\n";
+        case 2: return "cylinder($fn = " + std::to_string(c_.below(12)) + ", $fa = 12, $fs = 2, h = " + c_.number(3) +
                        ", r1 = " + c_.number(1) + ", r2 = " + c_.number(1) + ", center = " + boolean() + ");\n";
         case 3: return "polyhedron(points = [[0, 0, 0], [" + c_.number(3) + ", 0, 0], [0, " + c_.number(3) +
                        ", 0], [0, 0, " + c_.number(3) + "]], faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]], convexity = 1);\n";
@@ -116,7 +118,7 @@ private:
     std::string leaf2() {
         switch (c_.below(4)) {
         case 0: return "square(size = " + c_.vec(2, 2) + ", center = " + boolean() + ");\n";
-        case 1: return "circle($fn = " + std::to_string(c_.below(20)) + ", $fa = 12, $fs = 2, r = " + c_.number(1) + ");\n";
+        case 1: return "circle($fn = " + std::to_string(c_.below(12)) + ", $fa = 12, $fs = 2, r = " + c_.number(1) + ");\n";
         case 2: {
             std::string points = "[";
             const int n = 3 + c_.below(6);
@@ -160,6 +162,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     Choices choices(data, size);
     Writer writer(choices);
     const std::string csg = choices.below(4) == 0 ? writer.flat(0) : writer.solid(0);
+    // To see what a reproducer builds: STRATA_FUZZ_PRINT=1 strata_fuzz_geometry FILE
+    static const bool print = std::getenv("STRATA_FUZZ_PRINT") != nullptr;
+    if (print) std::fprintf(stderr, "%s", csg.c_str());
     try {
         std::istringstream in(csg);
         const scene::Tree tree = scene::parseCsg(in, "fuzz.csg", ".");
