@@ -15,6 +15,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
@@ -55,6 +56,15 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
         if (op == Boolean::Difference) ok = PMP::corefine_and_compute_difference(a, b, out);
         else if (op == Boolean::Intersection) ok = PMP::corefine_and_compute_intersection(a, b, out);
         else ok = PMP::corefine_and_compute_union(a, b, out);
+        // Where the result touches itself at a corner (a tetrahedron less a
+        // cube that holds its apex leaves parts meeting at single points),
+        // CGAL reports success with a vertex shared by two parts, which a
+        // halfedge mesh cannot hold: the next boolean or conversion would
+        // crash on it. Each part gets its own copy of such a vertex.
+        if (ok && !CGAL::is_valid_polygon_mesh(out)) {
+            PMP::duplicate_non_manifold_vertices(out);
+            ok = CGAL::is_valid_polygon_mesh(out);
+        }
         if (ok) return out;
     } catch (const std::exception&) {
         // Fall through to the slower, robust way.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -11,7 +12,9 @@
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/convex_decomposition_3.h>
@@ -75,6 +78,10 @@ private:
 // (a void's shell turned the right way out first), which also keeps an
 // island inside a void.
 Nef nefOf(const ExactSolid& solid) {
+    // CGAL takes a mesh that is not a valid closed halfedge mesh on trust
+    // (its checks are off in a release build) and may crash on it.
+    if (!CGAL::is_valid_polygon_mesh(solid) || !CGAL::is_closed(solid))
+        throw std::runtime_error("the solid is not a closed manifold mesh");
     std::vector<ExactSolid> shells;
     CGAL::Polygon_mesh_processing::split_connected_components(solid, shells);
     if (shells.size() <= 1) return Nef(solid);
@@ -87,6 +94,23 @@ Nef nefOf(const ExactSolid& solid) {
     return result;
 }
 
+
+// The mesh of a Nef polyhedron's boundary. A result may touch itself at a
+// corner or along an edge (two parts of a difference meeting at a point),
+// which a halfedge mesh cannot hold as one vertex or edge: there the soup's
+// point is duplicated, one for each part, so that the mesh stays valid,
+// its parts touching (CGAL's own conversion builds an invalid mesh there).
+// The Nef's faces are already oriented outward; orienting the soup only
+// splits what touches.
+ExactSolid meshOfNef(const Nef& nef) {
+    std::vector<Exact::Point_3> points;
+    std::vector<std::vector<std::size_t>> polygons;
+    CGAL::convert_nef_polyhedron_to_polygon_soup(nef, points, polygons, /*triangulate_all_faces=*/true);
+    CGAL::Polygon_mesh_processing::orient_polygon_soup(points, polygons);
+    ExactSolid out;
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, out);
+    return out;
+}
 
 }  // namespace
 
@@ -184,10 +208,7 @@ ExactSolid toExactSolid(const std::vector<Exact::Point_3>& points, const Mesh& m
 
 ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
     try {
-        const Nef nef = nefOf(solid);
-        ExactSolid out;
-        CGAL::convert_nef_polyhedron_to_polygon_mesh(nef, out, /*triangulate_all_faces=*/true);
-        return out;
+        return meshOfNef(nefOf(solid));
     } catch (const std::exception& e) {
         failed(where, "the exact evaluation failed: ", e);
     }
@@ -200,9 +221,7 @@ ExactSolid nefBoolean(const ExactSolid& a, const ExactSolid& b, Boolean op, cons
         if (op == Boolean::Union) left += right;
         else if (op == Boolean::Intersection) left *= right;
         else left -= right;
-        ExactSolid out;
-        CGAL::convert_nef_polyhedron_to_polygon_mesh(left, out, /*triangulate_all_faces=*/true);
-        return out;
+        return meshOfNef(left);
     } catch (const std::exception& e) {
         failed(where, "the exact evaluation failed: ", e);
     }

@@ -42,15 +42,22 @@ bool isPlanar(const std::vector<glm::dvec3>& positions, const std::vector<uint32
     return true;
 }
 
-// Ear clipping of the counter-clockwise 2D loop `p`; appends triangles of
-// positions in `p` (0-based) to `tris`.
-void earClip(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 3>>& tris) {
-    const std::size_t count = p.size();
-    std::vector<std::size_t> next(count), prev(count);
+// The corners of a loop of `count` as a ring: each one's next and previous.
+void ringLinks(std::size_t count, std::vector<std::size_t>& next, std::vector<std::size_t>& prev) {
+    next.resize(count);
+    prev.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
         next[i] = (i + 1) % count;
         prev[i] = (i + count - 1) % count;
     }
+}
+
+// Ear clipping of the counter-clockwise 2D loop `p`; appends triangles of
+// positions in `p` (0-based) to `tris`.
+void earClip(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 3>>& tris) {
+    const std::size_t count = p.size();
+    std::vector<std::size_t> next, prev;
+    ringLinks(count, next, prev);
     auto strictlyConvex = [&](std::size_t i) { return cross2(p[prev[i]], p[i], p[next[i]]) > 0.0; };
     auto isEar = [&](std::size_t i) {
         const std::size_t a = prev[i], c = next[i];
@@ -137,11 +144,8 @@ int libtessDroppedAxis(const std::vector<glm::vec3>& q) {
 // upper or the lower chain, whichever reaches further left.
 void monotoneTriangles(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 3>>& tris) {
     const std::size_t count = p.size();
-    std::vector<std::size_t> next(count), prev(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        next[i] = (i + 1) % count;
-        prev[i] = (i + count - 1) % count;
-    }
+    std::vector<std::size_t> next, prev;
+    ringLinks(count, next, prev);
     auto leq = [&](std::size_t a, std::size_t b) { return p[a].x < p[b].x || (p[a].x == p[b].x && p[a].y <= p[b].y); };
     auto edgeSign = [&](std::size_t u, std::size_t v, std::size_t w) {
         const double gapL = p[v].x - p[u].x, gapR = p[w].x - p[v].x;

@@ -57,6 +57,29 @@ TEST(ExactResult, ACubeLessBallsInsideItLosesEachBallsVolume) {
     EXPECT_TRUE(geometry::checkMesh(e.result).ok()) << geometry::checkMesh(e.result).describe();
 }
 
+TEST(ExactResult, AResultTouchingItselfAtPointsIsExactAndGoesOnToTheNextBoolean) {
+    // The tetrahedron x, y, z >= 0, x + y + z <= 3 less the box |x|, |y| <= 1,
+    // |z| <= 2, which holds its apex: what is left is three parts, two of
+    // which meet the third at the single points (1, 0, 2) and (0, 1, 2).
+    // The box takes away 1 (below x + y = 1, two high) + 5/6 (above it,
+    // under the slanted face), so 9/2 - 11/6 = 8/3 is left. Found by the
+    // geometry fuzzer: the exact export crashed on it.
+    const std::string tetra = "polyhedron(points = [[0, 0, 0], [3, 0, 0], [0, 3, 0], [0, 0, 3]], "
+                              "faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]], convexity = 1);\n";
+    const std::string box = "cube(size = [2, 2, 4], center = true);\n";
+    const Evaluated e = evaluate(parse("difference() {\n" + tetra + box + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(e.result), 8.0 / 3.0, 1e-12);
+    EXPECT_TRUE(geometry::checkMesh(e.result).ok()) << geometry::checkMesh(e.result).describe();
+    // ... and such a result takes part in a further boolean: less the box
+    // [2, 3] x [-1, 1] x [-1, 1], which cuts the tip (3 - x)^2 / 2 over
+    // x in [2, 3], 1/6, off the part beyond x = 1.
+    const std::string tip = "multmatrix([[1, 0, 0, 2], [0, 1, 0, -1], [0, 0, 1, -1], [0, 0, 0, 1]]) {\n"
+                            "cube(size = [1, 2, 2], center = false);\n}\n";
+    const Evaluated next = evaluate(parse("difference() {\n" + tetra + box + tip + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(next.result), 5.0 / 2.0, 1e-12);
+    EXPECT_TRUE(geometry::checkMesh(next.result).ok()) << geometry::checkMesh(next.result).describe();
+}
+
 TEST(ExactResult, SolidsApartUniteWithTheirVolumesSummed) {
     // Joined with no boolean: their boxes do not meet.
     std::string text = "union() {\n";
