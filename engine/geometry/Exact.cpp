@@ -15,6 +15,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
@@ -37,7 +38,14 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 // a OP b. Corefinement first (fast); where it fails on a degenerate
 // configuration (CGAL's checks are on: a failed one throws) or cannot build
 // the result, Nef polyhedra, which take every configuration.
+// A closed mesh that encloses nothing (faces back to back, as a polyhedron
+// whose points coincide makes) is the empty solid: the booleans are
+// regularized, and CGAL's Nef overlay is not defined on such a mesh.
+bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && PMP::volume(s) == 0; }
+
 Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
+    if (enclosesNothing(a)) a.clear();
+    if (enclosesNothing(b)) b.clear();
     // Apart: nothing to compute. The boxes of the points' interval
     // approximations hold the exact points, so boxes that do not even touch
     // mean solids that do not.

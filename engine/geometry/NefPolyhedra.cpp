@@ -207,6 +207,8 @@ ExactSolid toExactSolid(const std::vector<Exact::Point_3>& points, const Mesh& m
 }
 
 ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where) {
+    // Nothing to join on an empty solid, nor on one that encloses nothing.
+    if (solid.number_of_faces() == 0 || CGAL::Polygon_mesh_processing::volume(solid) == 0) return ExactSolid{};
     try {
         return meshOfNef(nefOf(solid));
     } catch (const std::exception& e) {

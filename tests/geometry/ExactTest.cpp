@@ -80,6 +80,21 @@ TEST(ExactResult, AResultTouchingItselfAtPointsIsExactAndGoesOnToTheNextBoolean)
     EXPECT_TRUE(geometry::checkMesh(next.result).ok()) << geometry::checkMesh(next.result).describe();
 }
 
+TEST(ExactResult, AClosedMeshThatEnclosesNothingIsEmpty) {
+    // Two of the points coincide: the faces lie back to back and enclose no
+    // volume. Booleans are regularized, so it is the empty solid wherever it
+    // stands (CGAL's Nef overlay asserted on it; found by the geometry fuzzer).
+    const std::string flat = "polyhedron(points = [[0, 0, 0], [6, 0, 0], [0, 0, 0], [0, 0, 8]], "
+                             "faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]], convexity = 1);\n";
+    const std::string box = "cube(size = [2, 2, 2], center = false);\n";
+    EXPECT_TRUE(evaluate(parse("difference() {\n" + flat + box + "}\n")).result.triangles.empty());
+    EXPECT_TRUE(evaluate(parse("intersection() {\n" + box + flat + "}\n")).result.triangles.empty());
+    const Evaluated united = evaluate(parse("union() {\n" + box + flat + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(united.result), 8.0, 1e-12);
+    const Evaluated less = evaluate(parse("difference() {\n" + box + flat + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(less.result), 8.0, 1e-12);
+}
+
 TEST(ExactResult, SolidsApartUniteWithTheirVolumesSummed) {
     // Joined with no boolean: their boxes do not meet.
     std::string text = "union() {\n";
