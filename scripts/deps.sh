@@ -20,7 +20,7 @@ packages=(
   libgtest-dev libgmock-dev
   libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
   libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)
-  xvfb xauth
+  xvfb xauth x11-utils                   # a display for the window tests; xwininfo sees their windows
   openscad                               # .scad scenes: strata runs openscad to export their CSG (optional at run time; the tests compare the two routes)
 )
 

@@ -469,6 +469,53 @@ TEST_F(StrataView, EscCancelsALoadButNeverQuitsAndCtrlQQuits) {
     EXPECT_FALSE(std::filesystem::exists(dir / "after-quit.png"));
 }
 
+// An exact Minkowski sum of non-convex parts (found by the geometry fuzzer):
+// its load takes minutes here in a release build.
+const std::string kMinutesToLoad =
+    "minkowski() {\n"
+    "sphere($fn = 7, $fa = 12, $fs = 2, r = 10);\n"
+    "intersection() {\n"
+    "linear_extrude(height = 1.5, center = false, twist = 3, slices = 2, scale = -1) {\n"
+    "hull() {\n"
+    "polygon(points = [[8, 2], [0, 6], [6, 6], [6, 6], [6, 6], [6, 6], [6, 6], [6, 6]], paths = undef, convexity = 1);\n"
+    "difference() {\n"
+    "square(size = [2, 1], center = true);\n"
+    "}\n"
+    "}\n"
+    "}\n"
+    "}\n"
+    "rotate_extrude(angle = 270, $fn = 8) {\n"
+    "multmatrix([[1, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+    "difference() {\n"
+    "difference() {\n"
+    "difference() {\n"
+    "square(size = [2, 1], center = true);\n"
+    "}\n"
+    "}\n"
+    "}\n"
+    "}\n"
+    "}\n"
+    "}\n";
+
+TEST_F(StrataView, ASlowFirstLoadOpensTheWindowAtOnce) {
+    if (runProcess({"/bin/sh", "-c", "command -v xwininfo"}).exitCode != 0) GTEST_SKIP() << "xwininfo not installed";
+    // No script: a user's session. The window must be there within 8 s while
+    // the model takes minutes to load; then the session is killed.
+    const std::string slow = dir.write("slow.csg", kMinutesToLoad);
+    const std::string shell =
+        "'" + std::string(kView) + "' '" + slow + "' --imgsize 320,240 & pid=$!\n"
+        "i=0\n"
+        "while [ $i -lt 80 ]; do\n"
+        "  if xwininfo -root -tree 2>/dev/null | grep -q 'strata-view: .*slow.csg'; then kill -9 $pid; echo shown; exit 0; fi\n"
+        "  if ! kill -0 $pid 2>/dev/null; then echo exited; exit 1; fi\n"
+        "  sleep 0.1; i=$((i + 1))\n"
+        "done\n"
+        "kill -9 $pid; echo 'no window'; exit 1\n";
+    const ProcessResult r = runProcess({"/bin/sh", "-c", shell});
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_EQ(r.out, "shown\n") << r.err;
+}
+
 TEST_F(StrataView, OpenedFilesAreKeptAsRecentFilesNewestFirst) {
     const std::string a = dir.write("a.csg", kScene), b = dir.write("b.csg", kScene);
     const ProcessResult first = view(a, "size 32 32\nopen b.csg\nopen a.csg\nopen b.csg\nprint recent\n");
