@@ -35,17 +35,16 @@ using Solid = detail::ExactSolid;
 using detail::Boolean;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-// a OP b. Corefinement first (fast); where it fails on a degenerate
-// configuration (CGAL's checks are on: a failed one throws) or cannot build
-// the result, Nef polyhedra, which take every configuration.
 // A closed mesh that encloses nothing (faces back to back, as a polyhedron
 // whose points coincide makes) is the empty solid: the booleans are
 // regularized, and CGAL's Nef overlay is not defined on such a mesh.
 bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && PMP::volume(s) == 0; }
 
+// a OP b. Corefinement first (fast); where it fails on a degenerate
+// configuration (CGAL's checks are on: a failed one throws) or cannot build
+// the result, Nef polyhedra, which take every configuration but a solid
+// that encloses nothing, taken as empty there.
 Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
-    if (enclosesNothing(a)) a.clear();
-    if (enclosesNothing(b)) b.clear();
     // Apart: nothing to compute. The boxes of the points' interval
     // approximations hold the exact points, so boxes that do not even touch
     // mean solids that do not.
@@ -77,6 +76,10 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
     } catch (const std::exception&) {
         // Fall through to the slower, robust way.
     }
+    // Only here is the exact volume worth its cost (a few per cent of a
+    // whole export when asked at every boolean).
+    const bool aEmpty = enclosesNothing(a0), bEmpty = enclosesNothing(b0);
+    if (aEmpty || bEmpty) return combine(aEmpty ? Solid{} : a0, bEmpty ? Solid{} : b0, op, where);
     return detail::nefBoolean(a0, b0, op, where);
 }
 
