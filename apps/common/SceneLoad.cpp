@@ -3,8 +3,6 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -29,14 +27,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A source's text, or nothing when it is not a plain file of at most 16 MiB.
+// A source's text, or nothing when it is not a plain file of at most 16 MiB
+// (the trace then does without it).
 std::optional<std::string> sourceText(const std::string& path) {
-    std::error_code ec;
-    if (!unreadableReason(path).empty() || fs::file_size(path, ec) > (std::size_t(16) << 20) || ec) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (!in && !in.eof()) return std::nullopt;
-    return text;
+    try {
+        return readInputFile(path, "use", 16);
+    } catch (const Error&) {
+        return std::nullopt;
+    }
 }
 
 // How messages name a file the .scad `main` uses or includes: beside or below

@@ -4,7 +4,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+
+#include "strata/core/Error.h"
 
 namespace strata {
 
@@ -20,6 +26,22 @@ std::string unreadableReason(const std::string& path) {
     if (!S_ISREG(st.st_mode)) return "it is not a regular file";
     if (::access(path.c_str(), R_OK) != 0) return std::strerror(errno);
     return {};
+}
+
+std::string readInputFile(const std::string& path, const char* what, unsigned maxMiB) {
+    auto fail = [&](const std::string& why) {
+        throw Error(std::string(what) + ": cannot read '" + path + "': " + why);
+    };
+    std::error_code ec;
+    if (const std::string why = unreadableReason(path); !why.empty()) fail(why);
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) fail(ec.message());
+    if (size > (std::uintmax_t(maxMiB) << 20)) fail("larger than " + std::to_string(maxMiB) + " MiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot open it");
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    if (size > 0 && !in.read(bytes.data(), static_cast<std::streamsize>(size))) fail("read error");
+    return bytes;
 }
 
 }  // namespace strata

@@ -1,10 +1,10 @@
+#include "strata/core/InputFile.h"
 #include "strata/geometry/FlatImport.h"
 
 #include <filesystem>
 #include <string>
 
 #include "FlatImportDetail.h"
-#include "InputFile.h"
 #include "strata/core/Error.h"
 
 // import() of a 2D file, dispatched on the file name's extension (compared in
@@ -31,7 +31,7 @@ Outlines importFlat(const scene::FlatImport& import) {
     if (ext != ".dxf" && ext != ".svg") {
         throw Error("import: " + detail::quotedPath(import.path) + " is not a 2D file (.dxf or .svg)");
     }
-    const std::string text = detail::readInputFile(import.path, "import");
+    const std::string text = readInputFile(import.path, "import");
     return ext == ".dxf" ? detail::importDxf(import, text) : detail::importSvg(import, text);
 }
 

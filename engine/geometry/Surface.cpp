@@ -1,3 +1,4 @@
+#include "strata/core/InputFile.h"
 #include "strata/geometry/Surface.h"
 
 #include <png.h>
@@ -13,7 +14,6 @@
 
 #include <locale.h>
 
-#include "InputFile.h"
 #include "LexicalCast.h"
 #include "strata/core/Error.h"
 
@@ -396,7 +396,7 @@ bool isPng(const std::string& bytes) {
 }  // namespace
 
 Mesh tessellate(const scene::Surface& surface) {
-    const std::string bytes = detail::readInputFile(surface.path, "surface");
+    const std::string bytes = readInputFile(surface.path, "surface");
     const HeightMap map = isPng(bytes) ? readPng(surface.path, bytes, surface.invert) : readDat(surface.path, bytes);
     if (map.lines < 2 || map.columns < 2) return {};
     return SurfaceBuilder(map, surface.center).build();

@@ -1,8 +1,8 @@
 #pragma once
 // What strata accepts as an input file (a scene, a mesh, an imported drawing,
-// a height map): a regular file, symbolic links followed. Anything else is
-// refused before it is opened, so that a FIFO cannot block a reader and a
-// device (/dev/zero, /dev/urandom) cannot feed one forever.
+// a height map, a .scad's sources): a regular file, symbolic links followed.
+// Anything else is refused before it is opened, so that a FIFO cannot block
+// a reader and a device (/dev/zero, /dev/urandom) cannot feed one forever.
 
 #include <string>
 
@@ -12,5 +12,10 @@ namespace strata {
 // file", "it is a folder", "it is a FIFO", "it is a device", "it is a
 // socket", "its name holds a NUL byte", "permission denied", ...
 std::string unreadableReason(const std::string& path);
+
+// The whole of the input file at `path`. Throws strata::Error "WHAT: cannot
+// read 'PATH': why" (no position: the caller adds its own) where
+// unreadableReason names a reason, or the file is larger than `maxMiB`.
+std::string readInputFile(const std::string& path, const char* what, unsigned maxMiB = 256);
 
 }  // namespace strata
