@@ -52,6 +52,11 @@ void ringLinks(std::size_t count, std::vector<std::size_t>& next, std::vector<st
     }
 }
 
+// The triangle of corners a, b, c of a loop, as indices.
+void appendTriangle(std::vector<std::array<uint32_t, 3>>& tris, std::size_t a, std::size_t b, std::size_t c) {
+    tris.push_back({static_cast<uint32_t>(a), static_cast<uint32_t>(b), static_cast<uint32_t>(c)});
+}
+
 // Ear clipping of the counter-clockwise 2D loop `p`; appends triangles of
 // positions in `p` (0-based) to `tris`.
 void earClip(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 3>>& tris) {
@@ -71,9 +76,6 @@ void earClip(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 
         }
         return true;
     };
-    auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
-        tris.push_back({static_cast<uint32_t>(a), static_cast<uint32_t>(b), static_cast<uint32_t>(c)});
-    };
 
     std::size_t remaining = count;
     std::size_t i = 0;
@@ -92,7 +94,7 @@ void earClip(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 
             clip = true;
         }
         if (clip) {
-            emit(prev[i], i, next[i]);
+            appendTriangle(tris, prev[i], i, next[i]);
             next[prev[i]] = next[i];
             prev[next[i]] = prev[i];
             i = prev[i];  // the neighbours' status changed; look at them first
@@ -103,7 +105,7 @@ void earClip(const std::vector<glm::dvec2>& p, std::vector<std::array<uint32_t, 
             ++sinceLastClip;
         }
     }
-    emit(prev[i], i, next[i]);
+    appendTriangle(tris, prev[i], i, next[i]);
 }
 
 // The plane a face is tessellated in, chosen as OpenSCAD's tessellator
@@ -151,12 +153,9 @@ void monotoneTriangles(const std::vector<glm::dvec2>& p, std::vector<std::array<
         const double gapL = p[v].x - p[u].x, gapR = p[w].x - p[v].x;
         return gapL + gapR > 0.0 ? (p[v].y - p[w].y) * gapL + (p[v].y - p[u].y) * gapR : 0.0;
     };
-    auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
-        tris.push_back({static_cast<uint32_t>(a), static_cast<uint32_t>(b), static_cast<uint32_t>(c)});
-    };
     auto cutAfter = [&](std::size_t a) {  // cuts off the triangle (a, next a, next next a)
         const std::size_t b = next[a], c = next[b];
-        emit(a, b, c);
+        appendTriangle(tris, a, b, c);
         next[a] = c;
         prev[c] = a;
     };
@@ -180,7 +179,7 @@ void monotoneTriangles(const std::vector<glm::dvec2>& p, std::vector<std::array<
         }
     }
     while (next[next[lo]] != up && next[lo] != up) cutAfter(lo);
-    if (next[next[next[lo]]] == lo) emit(lo, next[lo], next[next[lo]]);
+    if (next[next[next[lo]]] == lo) appendTriangle(tris, lo, next[lo], next[next[lo]]);
 }
 
 double angleAt(const glm::dvec2& apex, const glm::dvec2& a, const glm::dvec2& b) {
