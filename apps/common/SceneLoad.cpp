@@ -23,6 +23,8 @@ std::string lowerExtension(const std::string& path) {
 
 bool isMeshExtension(const std::string& ext) { return ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply"; }
 
+bool isSceneExtension(const std::string& ext) { return ext == ".csg" || ext == ".scad" || isMeshExtension(ext); }
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -70,7 +72,7 @@ void checkReadable(const std::string& path) {
 
 SceneFile readSceneFile(const std::string& path, const std::vector<std::string>& defines) {
     const std::string ext = lowerExtension(path);
-    if (ext != ".csg" && ext != ".scad" && !isMeshExtension(ext))
+    if (!isSceneExtension(ext))
         throw Error(SourceLocation{path, 0, 0},
                     "unknown scene type '" + ext + "' (expected .csg, .scad, .stl, .obj, .off or .ply)");
     checkReadable(path);

@@ -39,6 +39,8 @@ scene::Tree loadSceneFile(const std::string& path, const std::vector<std::string
 // unless `path` is a file that can be opened.
 std::string lowerExtension(const std::string& path);
 bool isMeshExtension(const std::string& ext);
+// Whether it names a scene file: .csg, .scad or a mesh format.
+bool isSceneExtension(const std::string& ext);
 void checkReadable(const std::string& path);
 
 }  // namespace strata::apps

@@ -374,17 +374,16 @@ void Viewer::drawOpenPanel() {
         listedFolder_ = folder.string();
         listedAt_ = now;
         listed_.clear();
-        if (fs::absolute(folder, ec).has_relative_path()) listed_.push_back({"..", true});
         for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, fs::directory_options::skip_permission_denied, ec), end;
              !ec && it != end && listed_.size() < 500; it.increment(ec)) {
             const std::string name = it->path().filename().string();
             if (name.empty() || name.front() == '.') continue;
             const bool sub = it->is_directory(ec);
-            const std::string ext = apps::lowerExtension(name);
-            if (sub || ext == ".scad" || ext == ".csg" || apps::isMeshExtension(ext)) listed_.push_back({name, sub});
+            if (sub || apps::isSceneExtension(apps::lowerExtension(name))) listed_.push_back({name, sub});
         }
-        std::sort(listed_.begin() + (listed_.empty() || listed_.front().name != ".." ? 0 : 1), listed_.end(),
+        std::sort(listed_.begin(), listed_.end(),
                   [](const FolderEntry& a, const FolderEntry& b) { return a.folder != b.folder ? a.folder : a.name < b.name; });
+        if (fs::absolute(folder, ec).has_relative_path()) listed_.insert(listed_.begin(), {"..", true});
     }
     ImGui::BeginChild("open files", ImVec2(0, 120), true);
     for (const FolderEntry& entry : listed_) {
