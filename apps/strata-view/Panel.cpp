@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <algorithm>
 #include <array>
@@ -27,12 +28,15 @@ constexpr std::array<const char*, kDebugViews> kDebugNames{"shaded", "depth", "n
 // Before the next item of a row: on the same line where `label` fits beside
 // the last item, else on a line of its own. `box`: a check box or radio
 // button (its square before the text), else a button.
+void nextInRow(float width) {
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right) ImGui::SameLine();
+}
+
 void nextInRow(const char* label, bool box) {
     const ImGuiStyle& style = ImGui::GetStyle();
     const float text = ImGui::CalcTextSize(label, nullptr, true).x;
-    const float width = box ? ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + text : text + 2 * style.FramePadding.x;
-    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
-    if (ImGui::GetItemRectMax().x + style.ItemSpacing.x + width <= right) ImGui::SameLine();
+    nextInRow(box ? ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + text : text + 2 * style.FramePadding.x);
 }
 
 // Text in the disabled colour, wrapped to the panel's width.
@@ -54,9 +58,12 @@ void wrappedAtSpaces(const std::string& text) {
         if (end == std::string::npos) end = text.size();
         if (end > at) {
             const std::string word = text.substr(at, end - at);
-            if (!first && ImGui::GetItemRectMax().x + space + ImGui::CalcTextSize(word.c_str()).x <= right)
-                ImGui::SameLine(0.0f, space);
-            ImGui::TextUnformatted(word.c_str());
+            const float width = ImGui::CalcTextSize(word.c_str()).x;
+            if (!first && ImGui::GetItemRectMax().x + space + width <= right) ImGui::SameLine(0.0f, space);
+            if (width > ImGui::GetContentRegionAvail().x)
+                ImGui::TextWrapped("%s", word.c_str());  // a word wider than the panel: broken where ImGui breaks it
+            else
+                ImGui::TextUnformatted(word.c_str());
             first = false;
         }
         at = end + 1;
@@ -72,6 +79,25 @@ std::string wrappableCamera(const std::string& line) {
         if (c == ',') out += ' ';
     }
     return out;
+}
+
+// `text` as it fits in `width`: whole, or with its middle replaced by "..."
+// (a file's name keeps its start and its extension), cut between UTF-8
+// characters.
+std::string ellipsized(const std::string& text, float width) {
+    if (ImGui::CalcTextSize(text.c_str()).x <= width) return text;
+    const auto shortened = [&](std::size_t keep) {
+        std::size_t head = (keep + 1) / 2, tail = text.size() - keep / 2;
+        while (head > 0 && (static_cast<unsigned char>(text[head]) & 0xC0) == 0x80) --head;
+        while (tail < text.size() && (static_cast<unsigned char>(text[tail]) & 0xC0) == 0x80) ++tail;
+        return text.substr(0, head) + "..." + text.substr(tail);
+    };
+    std::size_t fits = 0, over = text.size();  // the most characters kept that fit, found by halving
+    while (over - fits > 1) {
+        const std::size_t mid = (fits + over) / 2;
+        (ImGui::CalcTextSize(shortened(mid).c_str()).x <= width ? fits : over) = mid;
+    }
+    return shortened(fits);
 }
 
 std::string formatted(const char* format, auto... values) {
@@ -100,7 +126,9 @@ void Viewer::drawPanel() {
         panelWidth_ = width;  // the view is sized to what is left on the next frame
         viewDirty_ = true;
     }
+    overflowThisFrame_.clear();
     if (!open) {
+        panelOverflow_.clear();
         ImGui::End();
         return;
     }
@@ -136,8 +164,10 @@ void Viewer::drawPanel() {
                                 ImGuiTreeNodeFlags_DefaultOpen)) {
         for (const Warning& w : scene_.tree.warnings) ImGui::TextWrapped("%s", w.message.c_str());
     }
+    noteOverflow("the file's state");
 
     drawOpenPanel();
+    noteOverflow("open");
 
     if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) {
         constexpr std::array<Preset, 7> presets{Preset::Top,  Preset::Bottom, Preset::Left,    Preset::Right,
@@ -161,6 +191,7 @@ void Viewer::drawPanel() {
         if (ImGui::Checkbox("scale markers", &scale)) setShowScale(scale);
         if (ImGui::Checkbox("edges (Ctrl+1)", &edges)) setShowEdges(edges);
     }
+    noteOverflow("view");
 
     if (ImGui::CollapsingHeader("console", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::BeginChild("console lines", ImVec2(0, 120), true);
@@ -176,8 +207,10 @@ void Viewer::drawPanel() {
         }
         // Follow the newest line unless the user scrolled up.
         if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 1.0f) ImGui::SetScrollHereY(1.0f);
+        noteOverflow("console");
         ImGui::EndChild();
     }
+    noteOverflow("console");
 
     // A .scad is shown through OpenSCAD's CSG export, whose lines the
     // messages and the tree name where a node cannot be traced back to the
@@ -192,7 +225,10 @@ void Viewer::drawPanel() {
         disabledWrapped("OpenSCAD's export of the .scad: where a node cannot be traced back to one call in the .scad, "
                         "messages and the tree name its line here");
     }
+    noteOverflow("CSG export");
 
+    if (unfoldExport_) ImGui::SetNextItemOpen(true);
+    unfoldExport_ = false;
     if (ImGui::CollapsingHeader("export")) {
         if (exportPath_.empty()) exportPath_ = defaultExportPath();
         char buffer[1024];
@@ -207,8 +243,13 @@ void Viewer::drawPanel() {
         }
         ImGui::Checkbox("exact (CGAL)", &exportExact_);
         if (!exportExact_) {
-            ImGui::SameLine();
-            ImGui::SetNextItemWidth(-1);
+            // Beside the box where a field of a few digits, its two step
+            // buttons and its label fit; the field takes what they leave.
+            const ImGuiStyle& style = ImGui::GetStyle();
+            const float label = ImGui::CalcTextSize("cells").x + style.ItemInnerSpacing.x;
+            nextInRow(ImGui::CalcTextSize("00000").x + 2 * style.FramePadding.x +
+                      2 * (ImGui::GetFrameHeight() + style.ItemInnerSpacing.x) + label);
+            ImGui::SetNextItemWidth(-label);
             if (ImGui::InputInt("cells", &exportResolution_, 64, 256)) {
                 exportResolution_ = std::clamp(exportResolution_, remesh::kLeastResolution, remesh::kMostResolution);
             }
@@ -219,17 +260,21 @@ void Viewer::drawPanel() {
                                      : meshes + "; the result sampled on a grid of this many cells along its longest "
                                                 "side, sharp edges kept");
     }
+    noteOverflow("export");
 
     if (ImGui::CollapsingHeader("render", ImGuiTreeNodeFlags_DefaultOpen)) {
         bool autoLayers = settings_.layers == 0;
         if (ImGui::Checkbox("auto layers", &autoLayers)) autoLayers ? setLayers(0) : changeLayers(0);
         if (!autoLayers) {
-            ImGui::SameLine();
+            nextInRow(100 + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize("layers").x);
             int layers = settings_.layers;
             ImGui::SetNextItemWidth(100);
             if (ImGui::InputInt("layers", &layers)) setLayers(std::max(1, layers));
         }
         const std::string scheme = settings_.colorScheme;
+        ImGui::SetNextItemWidth(std::min(ImGui::CalcItemWidth(), ImGui::GetContentRegionAvail().x -
+                                                                     ImGui::GetStyle().ItemInnerSpacing.x -
+                                                                     ImGui::CalcTextSize("colours").x));
         if (ImGui::BeginCombo("colours", scheme.c_str())) {
             for (const std::string& name : render::colorSchemeNames())
                 if (ImGui::Selectable(name.c_str(), name == scheme)) {
@@ -259,6 +304,7 @@ void Viewer::drawPanel() {
                 setDebugView(static_cast<DebugView>(k));
         }
     }
+    noteOverflow("render");
 
     if (ImGui::CollapsingHeader("frame", ImGuiTreeNodeFlags_DefaultOpen)) {
         int used = 0;
@@ -278,6 +324,7 @@ void Viewer::drawPanel() {
         if (stats_.unresolvedPixels > 0) ImGui::Text("%zu unresolved pixels", stats_.unresolvedPixels);
         for (const std::string& note : stats_.notes) ImGui::TextWrapped("%s", note.c_str());
     }
+    noteOverflow("frame");
 
     if (ImGui::CollapsingHeader("camera", ImGuiTreeNodeFlags_DefaultOpen)) {
         wrappedAtSpaces(wrappableCamera(cameraLine()));
@@ -291,9 +338,22 @@ void Viewer::drawPanel() {
         if (ImGui::Button("screenshot (Ctrl+S)")) saveChosenScreenshot();
         if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
     }
+    noteOverflow("camera");
 
     if (ImGui::CollapsingHeader("tree", ImGuiTreeNodeFlags_DefaultOpen)) drawTreePanel();
+    noteOverflow("tree");
+    panelOverflow_ = overflowThisFrame_;
     ImGui::End();
+}
+
+// Notes the first section of the frame whose items reach past where the
+// window being drawn (the panel, or a scrolled box inside it) clips them on
+// the right: text that the panel cuts.
+void Viewer::noteOverflow(const char* section) {
+    const ImGuiWindow* window = ImGui::GetCurrentWindow();
+    const float over = window->DC.CursorMaxPos.x - window->InnerClipRect.Max.x;
+    if (over > 0.5f && overflowThisFrame_.empty())
+        overflowThisFrame_ = formatted("%s passes the panel's right edge by %.0f px", section, over);
 }
 
 void Viewer::drawTreePanel() {
@@ -330,7 +390,10 @@ void Viewer::drawTreePanel() {
             ImGui::EndDisabled();
             ImGui::SameLine();
             ImGui::SetCursorPosX(ImGui::GetCursorPosX() + 12.0f * static_cast<float>(row.depth));
-            ImGui::Text("%s%d %s%s", row.background ? "% " : "", row.node, row.label.c_str(), rowLineNote(row.node).c_str());
+            const std::string text = (row.background ? "% " : "") + std::to_string(row.node) + " " + row.label + rowLineNote(row.node);
+            const std::string fitted = ellipsized(text, ImGui::GetContentRegionAvail().x);
+            ImGui::TextUnformatted(fitted.c_str());
+            if (fitted != text && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text.c_str());
             ImGui::PopID();
         }
     }
@@ -388,8 +451,11 @@ void Viewer::drawOpenPanel() {
     ImGui::BeginChild("open files", ImVec2(0, 120), true);
     for (const FolderEntry& entry : listed_) {
         if (!prefix.empty() && entry.name.rfind(prefix, 0) != 0) continue;
-        const std::string label = entry.folder ? entry.name + "/" : entry.name;
-        if (!ImGui::Selectable(label.c_str())) continue;
+        const std::string name = entry.folder ? entry.name + "/" : entry.name;
+        const std::string label = ellipsized(name, ImGui::GetContentRegionAvail().x);
+        const bool chosen = ImGui::Selectable((label + "##" + name).c_str());
+        if (label != name && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", name.c_str());
+        if (!chosen) continue;
         if (entry.name == "..") {
             fs::path here = fs::absolute(folder, ec).lexically_normal();
             if (here.filename().empty()) here = here.parent_path();  // "a/b/" names b
@@ -402,6 +468,7 @@ void Viewer::drawOpenPanel() {
             openFile(openPath_);
         }
     }
+    noteOverflow("open");
     ImGui::EndChild();
 
     if (recent_.files().empty()) return;
@@ -409,7 +476,9 @@ void Viewer::drawOpenPanel() {
     for (const std::string& file : recent_.files()) {
         const bool there = fs::is_regular_file(file, ec);
         const fs::path p(file);
-        const std::string label = p.filename().string() + "  (" + p.parent_path().filename().string() + ")" + (there ? "" : ", gone");
+        const std::string label = ellipsized(p.filename().string() + "  (" + p.parent_path().filename().string() + ")" +
+                                                 (there ? "" : ", gone"),
+                                             ImGui::GetContentRegionAvail().x);
         ImGui::BeginDisabled(!there);
         const bool chosen = ImGui::Selectable((label + "##" + file).c_str());
         ImGui::EndDisabled();

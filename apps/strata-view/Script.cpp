@@ -200,10 +200,10 @@ void checkArguments(Command& c, std::string_view name) {
     case CommandKind::Debug: oneOf({"shaded", "depth", "normal", "peel", "forms"}); break;
     case CommandKind::Panel: {
         const std::string& w = c.words[0];
-        if (w == "on" || w == "off" || w == "open") break;
+        if (w == "on" || w == "off" || w == "open" || w == "export") break;
         double width = 0;
         if (!readWhole(w, width) || width < 220 || width > render::kMaxImageSide)
-            throw fail("expected on, off, open or a width from 220 to " + std::to_string(render::kMaxImageSide) + ", got '" + w + "'", 0);
+            throw fail("expected on, off, open, export or a width from 220 to " + std::to_string(render::kMaxImageSide) + ", got '" + w + "'", 0);
         c.numbers.push_back(width);
         break;
     }
@@ -220,7 +220,7 @@ void checkArguments(Command& c, std::string_view name) {
         oneOf({"axes", "scale", "edges", "outline"});
         if (c.words[1] != "on" && c.words[1] != "off") throw fail("expected on or off, got '" + c.words[1] + "'", 1);
         break;
-    case CommandKind::Print: oneOf({"camera", "console", "error", "load", "recent", "stats", "title", "tree"}); break;
+    case CommandKind::Print: oneOf({"camera", "console", "error", "load", "panel", "recent", "stats", "title", "tree"}); break;
     case CommandKind::Sleep: whole(0, 0, 600000, "milliseconds from 0 to 600000"); break;
     case CommandKind::Screenshot:
     case CommandKind::ScreenshotWindow:

@@ -139,6 +139,7 @@ bool Viewer::runCommand(const Command& c) {
             }
             showPanel_ = c.words[0] != "off";
             focusOpen_ = c.words[0] == "open";  // as Ctrl+O
+            unfoldExport_ = c.words[0] == "export";
             if (fixedSize_) sizeWindowToFixedView();
             return true;
         case CommandKind::Show: {
@@ -172,7 +173,8 @@ bool Viewer::runCommand(const Command& c) {
             // Started once, then waited for; its error is the script's error.
             if (!waitingSince_) {
                 lastExport_.reset();
-                startExport(path(0), c.kind == CommandKind::Export);
+                exportExact_ = c.kind == CommandKind::Export;  // as the panel's box would be for it
+                startExport(path(0));
                 waitingSince_ = Clock::now();
             }
             if (lastExport_ && !exporter_.busy()) {
@@ -199,6 +201,7 @@ bool Viewer::runCommand(const Command& c) {
             if (what == "console") std::cout << console_.text();
             if (what == "title") std::cout << title() << std::endl;
             if (what == "load") std::cout << loadLine() << std::endl;
+            if (what == "panel") std::cout << (panelOverflow_.empty() ? "the panel's text fits its width" : panelOverflow_) << std::endl;
             if (what == "recent")
                 for (const std::string& file : recent_.files()) std::cout << file << '\n';
             if (what == "tree")

@@ -164,6 +164,12 @@ private:
     std::string csgExportPath_;      // the panel's file name for a .scad's CSG export; empty: beside the .scad
     std::string openPath_;           // the panel's "open" field: a file to open, or a folder to list
     bool focusOpen_ = false;         // Ctrl+O: unfold the "open" section and put the cursor in its field
+    bool unfoldExport_ = false;      // a script's `panel export`: unfold the "export" section
+    // Whether the panel's content kept inside its width on the last frame:
+    // empty when it did, else the first section that passed its right edge.
+    std::string panelOverflow_;
+    std::string overflowThisFrame_;
+    void noteOverflow(const char* section);
     // The folder the "open" section lists, read at most every two seconds.
     struct FolderEntry {
         std::string name;

@@ -100,8 +100,8 @@ TEST(Script, MistakesNameLineColumnAndWord) {
               "s.txt:1:5: key: expected [ctrl+] and a lower-case letter, a digit, escape, f5 or f12, got 'Escape'");
     EXPECT_EQ(errorOf("key ctrl+\n"),
               "s.txt:1:5: key: expected [ctrl+] and a lower-case letter, a digit, escape, f5 or f12, got 'ctrl+'");
-    EXPECT_EQ(errorOf("panel half\n"), "s.txt:1:7: panel: expected on, off, open or a width from 220 to 16384, got 'half'");
-    EXPECT_EQ(errorOf("panel 100\n"), "s.txt:1:7: panel: expected on, off, open or a width from 220 to 16384, got '100'");
+    EXPECT_EQ(errorOf("panel half\n"), "s.txt:1:7: panel: expected on, off, open, export or a width from 220 to 16384, got 'half'");
+    EXPECT_EQ(errorOf("panel 100\n"), "s.txt:1:7: panel: expected on, off, open, export or a width from 220 to 16384, got '100'");
 }
 
 TEST(Script, RelativePathsAreFromTheScriptsFolder) {

@@ -668,6 +668,39 @@ TEST_F(StrataView, ViewAllAndResetFitTheModelBesideAPanelOfAnyWidth) {
     }
 }
 
+TEST_F(StrataView, ThePanelsTextFitsItsDefaultAndItsNarrowestWidth) {
+    // Long words where the panel shows names and messages: the file (its
+    // path, the open section's list, the recent files, the export field),
+    // an error naming it, the tree, a sampled export's row, fixed layers.
+    const std::string name = "a_model_whose_name_is_far_longer_than_any_panel_is_wide_at_first.csg";
+    const std::string scene = dir.write(name, kScene);
+    dir.write("bad.csg", kScene + "frobnicate(a_parameter_with_a_long_name = 12345678901234567890);\n");
+    const ProcessResult r = runProcess({kView, scene, "--imgsize", "640,900", "--script", dir.write("s.txt",
+                                 "panel open\n"
+                                 "panel export\n"
+                                 "export-sampled out.stl\n"
+                                 "layers 3\n"
+                                 "print panel\n"
+                                 "copy bad.csg " + name + "\n"
+                                 "wait-reload\n"
+                                 "print error\n"
+                                 "print panel\n"
+                                 "panel 220\n"
+                                 "print panel\n"
+                                 "screenshot narrow.png\n")});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find(name + ":9:1: unknown module 'frobnicate'"), std::string::npos) << r.out;
+    const std::string fits = "the panel's text fits its width\n";
+    std::size_t at = 0;
+    for (int k = 0; k < 3; ++k) {
+        at = r.out.find(fits, at);
+        ASSERT_NE(at, std::string::npos) << "check " << k << ":\n" << r.out;
+        at += fits.size();
+    }
+    EXPECT_EQ(r.out.find("passes the panel's right edge"), std::string::npos) << r.out;
+    EXPECT_EQ(readPng(dir / "narrow.png").width, 640 - 220);  // the panel did narrow, the view took the rest
+}
+
 TEST_F(StrataView, AScriptsSizeIsTheViewsWithThePanelBesideIt) {
     const std::string scene = dir.write("a.csg", kScene);
     const ProcessResult r = view(scene,
