@@ -35,6 +35,7 @@
 #endif
 
 #include "CommandLine.h"
+#include "HugePages.h"
 #include "OpenCsgRun.h"
 #include "OpenscadOptions.h"
 #include "PlainDraw.h"
@@ -404,6 +405,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
     json.key("frames").value(options.frames);
     json.key("warmup").value(options.warmup);
     json.key("steady_heap").value(options.steadyHeap);
+    json.key("huge_pages").value(apps::startedWithHugePages());
     json.key("convex_groups").value(options.groups);
     json.key("plain_unions").value(options.plainUnions);
     json.key("light").value(std::string(render::lightingName(options.lighting)));
@@ -559,6 +561,7 @@ std::vector<Result> runAll(const Options& options, gpu::Context& context, OpenCs
 }  // namespace
 
 int main(int argc, char** argv) {
+    apps::runWithHugePages(argv);  // as strata-render and strata-view run
     Options options;
     CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
     const CLI::Option* scenes = addOptions(app, options);
@@ -570,7 +573,8 @@ int main(int argc, char** argv) {
         std::cerr << "strata-bench: " << e.message << '\n';
         return 2;
     }
-    const std::string heap = steadyHeap(options.steadyHeap);
+    const std::string heap = steadyHeap(options.steadyHeap) +
+                             (apps::startedWithHugePages() ? "; transparent huge pages on request (glibc.malloc.hugetlb=1)" : "");
     if (!options.files.empty() && scenes->count() == 0) options.scenes.clear();
 
     try {

@@ -18,6 +18,7 @@
 
 #include "Options.h"
 #include "ExactExport.h"
+#include "HugePages.h"
 #include "ImageExport.h"
 #include "SceneLoad.h"
 #include "StderrProgress.h"
@@ -244,6 +245,7 @@ int renderAll(const apps::RenderOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    apps::runWithHugePages(argv);
     io::removeTemporariesOnSignals();
     const apps::ParseResult parsed = apps::parseOptions(argc, argv);
     if (parsed.exitNow) {
