@@ -193,7 +193,7 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
     const bool images = !options.png.empty() || !options.depth.empty() || !options.normal.empty();
     if (images || options.exportPath.empty()) renderImages(options, tree, std::move(model), gpu, stats, staged);
     t = Clock::now();
-    for (io::StagedFile& file : staged) file.commit();
+    io::commitAll(staged);
     stats.writeMs += msSince(t);
     stats.totalMs = msSince(start);
 

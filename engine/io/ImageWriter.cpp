@@ -94,15 +94,32 @@ std::string temporaryName(const fs::path& folder) {
         .string();
 }
 
+// The process id of a name temporaryName gives (".strata-<pid>-<n>.tmp",
+// both numbers in decimal and nothing else), or 0 for any other name.
+long temporaryOwner(const std::string& name) {
+    const auto digits = [&](std::size_t from, char end) -> std::size_t {  // past them, at `end`; 0 if none
+        std::size_t at = from;
+        while (at < name.size() && name[at] >= '0' && name[at] <= '9') ++at;
+        return at > from && at - from <= 18 && at < name.size() && name[at] == end ? at : 0;
+    };
+    if (!name.starts_with(".strata-") || !name.ends_with(".tmp")) return 0;
+    const std::size_t dash = digits(8, '-');
+    if (dash == 0 || digits(dash + 1, '.') != name.size() - 4) return 0;
+    return std::strtol(name.c_str() + 8, nullptr, 10);
+}
+
 // Removes temporaries of this naming whose process is gone (killed with
-// SIGKILL between writing and renaming); another live process's are left.
+// SIGKILL between writing and renaming): regular files of this user named
+// exactly as temporaryName names them. Another live process's are left.
 void removeStaleTemporaries(const fs::path& folder) {
     std::error_code ec;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name.rfind(".strata-", 0) != 0 || !name.ends_with(".tmp")) continue;
-        const long pid = std::strtol(name.c_str() + 8, nullptr, 10);
-        if (pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+        const long pid = temporaryOwner(it->path().filename().string());
+        struct stat status {};
+        if (pid <= 0 || ::lstat(it->path().c_str(), &status) != 0 || !S_ISREG(status.st_mode) ||
+            status.st_uid != ::getuid())
+            continue;
+        if (pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
             fs::remove(it->path(), ec);
             ec.clear();
         }
@@ -289,22 +306,24 @@ void StagedFile::discard() noexcept {
     slot_ = -1;
 }
 
+void StagedFile::nameTemporary() {
+    if (fd_ < 0 || !named_.empty()) return;
+    named_ = temporaryName(folder_);
+    slot_ = claimSlot(named_);
+    const std::string self = "/proc/self/fd/" + std::to_string(fd_);
+    if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, named_.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+        const std::string why = std::strerror(errno);
+        releaseSlot(slot_);
+        slot_ = -1;
+        named_.clear();
+        discard();
+        throw Error(SourceLocation{target_, 0, 0}, "cannot write (" + why + ")");
+    }
+}
+
 void StagedFile::commit() {
     if (fd_ < 0) return;
-    if (named_.empty()) {
-        // Give the unnamed file a temporary name, then rename it into place.
-        named_ = temporaryName(folder_);
-        slot_ = claimSlot(named_);
-        const std::string self = "/proc/self/fd/" + std::to_string(fd_);
-        if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, named_.c_str(), AT_SYMLINK_FOLLOW) != 0) {
-            const std::string why = std::strerror(errno);
-            releaseSlot(slot_);
-            slot_ = -1;
-            named_.clear();
-            discard();
-            throw Error(SourceLocation{target_, 0, 0}, "cannot write (" + why + ")");
-        }
-    }
+    nameTemporary();  // an unnamed file gets a temporary name, then is renamed into place
     const int closed = ::close(fd_);
     fd_ = -1;
     if (closed != 0 || std::rename(named_.c_str(), target_.c_str()) != 0) {
@@ -315,6 +334,74 @@ void StagedFile::commit() {
     named_.clear();
     releaseSlot(slot_);
     slot_ = -1;
+}
+
+namespace {
+
+// An old file kept under a temporary name while the files of a commitAll
+// replace their targets; `kept` empty where there is none or it could not
+// be kept.
+struct KeptFile {
+    bool existed = false;
+    std::string kept;
+    int slot = -1;
+};
+
+// `target`'s present file under a temporary name beside it (a second hard
+// link), or none where there is no file or it cannot be linked.
+KeptFile keepOldFile(const std::string& target, const std::string& folder) {
+    KeptFile old;
+    struct stat status {};
+    old.existed = ::lstat(target.c_str(), &status) == 0;
+    if (!old.existed || !S_ISREG(status.st_mode)) return old;
+    old.kept = temporaryName(folder);
+    old.slot = claimSlot(old.kept);
+    if (::link(target.c_str(), old.kept.c_str()) != 0) {
+        releaseSlot(old.slot);
+        old = KeptFile{true, {}, -1};
+    }
+    return old;
+}
+
+}  // namespace
+
+void commitAll(std::span<StagedFile> files) {
+    if (files.size() == 1) {  // a rename is all or nothing by itself
+        files[0].commit();
+        return;
+    }
+    // Every file named first: a failure here has replaced nothing.
+    for (StagedFile& file : files) file.nameTemporary();
+    std::vector<bool> pending(files.size());
+    std::vector<KeptFile> old(files.size());
+    for (std::size_t k = 0; k < files.size(); ++k) {
+        pending[k] = files[k].fd_ >= 0;
+        if (pending[k]) old[k] = keepOldFile(files[k].target_, files[k].folder_);
+    }
+    const auto dropKept = [&] {
+        for (KeptFile& kept : old) {
+            if (!kept.kept.empty()) ::unlink(kept.kept.c_str());
+            releaseSlot(kept.slot);
+        }
+    };
+    std::size_t done = 0;
+    try {
+        for (; done < files.size(); ++done) files[done].commit();
+    } catch (const Error&) {
+        // Put back what the files before the failing one replaced: the old
+        // file, or none. (Where an old file was not kept, or cannot be put
+        // back, the new one stays rather than neither.)
+        for (std::size_t k = 0; k < done; ++k) {
+            if (!pending[k]) continue;
+            if (!old[k].existed)
+                ::unlink(files[k].target_.c_str());
+            else if (!old[k].kept.empty() && ::rename(old[k].kept.c_str(), files[k].target_.c_str()) == 0)
+                old[k].kept.clear();
+        }
+        dropKept();
+        throw;
+    }
+    dropKept();
 }
 
 void removeTemporariesOnSignals() {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -250,10 +251,55 @@ TEST_F(ImageWriterTest, TemporariesOfKilledProcessesAreRemoved) {
     std::ofstream(path(stale)) << "x";
     std::ofstream(path(live)) << "x";
     std::ofstream(path(".strata-notes.tmp")) << "x";
+    // A user's files that only look like it, named after the same dead
+    // process, and a folder so named: not strata's, left alone.
+    const std::string dead = ".strata-" + std::to_string(pidMax + 1);
+    const std::vector<std::string> users{dead + "-draft.tmp", dead + "-0.tmp.tmp", dead + "--1.tmp", dead + "-0-1.tmp"};
+    for (const std::string& name : users) std::ofstream(path(name)) << "mine";
+    fs::create_directory(path(dead + "-1.tmp"));
     io::writePng(path("a.png"), 1, 1, std::vector<std::uint8_t>(4, 1));
     std::vector<std::string> names = filesInDir();
     std::sort(names.begin(), names.end());
-    std::vector<std::string> expected{".strata-notes.tmp", live, "a.png"};
+    std::vector<std::string> expected{".strata-notes.tmp", live, "a.png", dead + "-1.tmp"};
+    expected.insert(expected.end(), users.begin(), users.end());
     std::sort(expected.begin(), expected.end());
     EXPECT_EQ(names, expected);
+}
+
+TEST_F(ImageWriterTest, CommitAllWritesEveryFileOrPutsBackWhatItReplaced) {
+    const std::vector<std::uint8_t> rgba(4, 50);
+    std::ofstream(path("a.png")) << "old a";
+    {
+        std::vector<io::StagedFile> staged;
+        staged.push_back(io::stagePng(path("a.png"), 1, 1, rgba));
+        staged.push_back(io::stagePng(path("b.png"), 1, 1, rgba));
+        staged.push_back(io::stagePng(path("c.png"), 1, 1, rgba));
+        // The last target turns into a folder after staging: its rename fails
+        // once the first two are in place.
+        fs::create_directory(path("c.png"));
+        std::ofstream(path("c.png/inside")) << "x";
+        try {
+            io::commitAll(staged);
+            ADD_FAILURE() << "renamed a file onto a folder";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(path("c.png") + ": cannot write (", 0), 0u) << e.what();
+        }
+    }
+    // a.png is the old file again, b.png (new) is gone, nothing else is left.
+    std::ifstream a(path("a.png"));
+    const std::string aText((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(aText, "old a");
+    std::vector<std::string> names = filesInDir();
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"a.png", "c.png"}));
+
+    // Without the folder in the way, all three are written.
+    fs::remove_all(path("c.png"));
+    std::vector<io::StagedFile> staged;
+    for (const char* name : {"a.png", "b.png", "c.png"}) staged.push_back(io::stagePng(path(name), 1, 1, rgba));
+    io::commitAll(staged);
+    for (const char* name : {"a.png", "b.png", "c.png"}) EXPECT_EQ(readBack(path(name), OIIO::TypeDesc::UINT8).bytes, rgba);
+    names = filesInDir();
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"a.png", "b.png", "c.png"}));
 }

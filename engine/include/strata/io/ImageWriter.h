@@ -7,13 +7,13 @@
 // write checked (a full disk is an error, not a truncated file), into an
 // unnamed file in the target's folder (O_TMPFILE; where the file system has
 // none, a hidden ".strata-PID-N.tmp"), which commit() names and renames into
-// place. Stage every output first, then commit them all, so a failure on the
-// last output leaves none of the others behind:
+// place. Stage every output first, then commit them all together, so a
+// failure on the last output leaves none of the others behind:
 //
 //   std::vector<io::StagedFile> staged;
 //   staged.push_back(io::stagePng("out.png", w, h, rgba));
 //   staged.push_back(io::stageDepthExr("z.exr", w, h, depth));  // may throw: out.png's file goes
-//   for (auto& s : staged) s.commit();
+//   io::commitAll(staged);                                       // both, or neither
 
 #include <cstdint>
 #include <span>
@@ -48,6 +48,8 @@ public:
     const std::string& target() const noexcept { return target_; }
 
 private:
+    friend void commitAll(std::span<StagedFile> files);
+    void nameTemporary();
     void discard() noexcept;
     std::string target_;
     std::string folder_;
@@ -55,6 +57,14 @@ private:
     int fd_ = -1;
     int slot_ = -1;      // its place in the list a signal handler removes
 };
+
+// Commits every file, all or none. Each is given its temporary name first
+// and each file it replaces is kept under one too; if a rename then fails,
+// the targets already replaced get their old files back (or are removed
+// where there was none), and the failing file's error is thrown. Where the
+// file system cannot keep an old file under a second name (no hard links),
+// a rollback leaves the new file there: the old one is gone.
+void commitAll(std::span<StagedFile> files);
 
 // For programs: SIGINT, SIGTERM, SIGHUP and SIGQUIT remove any named
 // temporary of a write in progress, then end the process as the signal
