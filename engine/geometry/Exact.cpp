@@ -18,6 +18,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -41,8 +42,8 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && PMP::volume(s) == 0; }
 
 // a OP b. Corefinement first (fast); where it fails on a degenerate
-// configuration (CGAL's checks are on: a failed one throws) or cannot build
-// the result, Nef polyhedra, which take every configuration but a solid
+// configuration (CGAL's preconditions are on: a failed one throws) or cannot
+// build a closed result, Nef polyhedra, which take every configuration but a solid
 // that encloses nothing, taken as empty there.
 Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
     // Apart: nothing to compute. The boxes of the points' interval
@@ -72,7 +73,9 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
             PMP::duplicate_non_manifold_vertices(out);
             ok = CGAL::is_valid_polygon_mesh(out);
         }
-        if (ok) return out;
+        // CGAL's inner assertions are off (CMakeLists.txt): a result that is
+        // not a closed mesh is taken as a failure, and Nef polyhedra do it.
+        if (ok && CGAL::is_closed(out)) return out;
     } catch (const std::exception&) {
         // Fall through to the slower, robust way.
     }
