@@ -17,8 +17,11 @@ Error::Error(const SourceLocation& where, const std::string& message)
     : std::runtime_error(where.str() + ": " + message) {}
 
 void rethrowAt(const SourceLocation& where, const Error& e) {
-    const std::string message = e.what();
+    std::string message = e.what();
     if (where.file.empty() || message.rfind(where.str() + ":", 0) == 0) throw e;
+    // An error raised where no position was known takes this one instead.
+    const std::string nowhere = SourceLocation{}.str() + ": ";
+    if (message.rfind(nowhere, 0) == 0) throw Error(where, message.substr(nowhere.size()));
     // Already named by a node inside this one (a line of the same file):
     // shapes nested a thousand deep would otherwise put a thousand
     // positions in front of the message.

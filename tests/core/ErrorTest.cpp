@@ -27,6 +27,9 @@ TEST(Error, RethrowNamesAPositionOnce) {
     // An error with no position in the file is named by the node.
     EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error("hull: too many points")), "a.csg:3:1: hull: too many points");
     EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"m.stl", 0, 0}, "not closed")), "a.csg:3:1: m.stl: not closed");
+    // One raised where no position was known (a helper given an empty
+    // location) takes the node's in place of "<input>".
+    EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{}, "not closed")), "a.csg:3:1: not closed");
     // One a node inside it named already keeps its own position only.
     EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"a.csg", 9, 4}, "bad")), "a.csg:9:4: bad");
     EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"a.csg", 3, 1}, "bad")), "a.csg:3:1: bad");
