@@ -28,7 +28,7 @@ struct Syntax {
     int minWords, maxWords;  // -1: any number (the rest of the line)
 };
 
-constexpr std::array<Syntax, 34> kSyntax{{
+constexpr std::array<Syntax, 35> kSyntax{{
     {"open", CommandKind::Open, 1, 1},
     {"size", CommandKind::Size, 2, 2},
     {"layers", CommandKind::Layers, 1, 1},
@@ -59,6 +59,7 @@ constexpr std::array<Syntax, 34> kSyntax{{
     {"copy", CommandKind::Copy, 2, 2},
     {"remove", CommandKind::Remove, 1, 1},
     {"wait-reload", CommandKind::WaitReload, 0, 0},
+    {"wait-loading", CommandKind::WaitLoading, 0, 0},
     {"print", CommandKind::Print, 1, 1},
     {"key", CommandKind::Key, 1, 1},
     {"sleep", CommandKind::Sleep, 1, 1},

@@ -42,6 +42,7 @@ enum class CommandKind {
     Copy,             // copy SRC DST        (replace DST as an editor saves: temporary file, rename)
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
+    WaitLoading,      // wait-loading        (until a load is under way)
     Print,            // print camera|console|error|load|recent|stats|title|tree
     Key,              // key [ctrl+]NAME     (a key pressed in the window: a letter, a digit, escape, f5 or f12)
     Sleep,            // sleep MS

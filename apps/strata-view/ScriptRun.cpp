@@ -71,6 +71,16 @@ bool Viewer::runCommand(const Command& c) {
             if (Clock::now() - *waitingSince_ > kReloadTimeout) throw Error("no reload within 30 s");
             glfwWaitEventsTimeout(0.02);
             return false;
+        case CommandKind::WaitLoading:
+            // Done once a load is under way (the watcher polls between frames).
+            if (loader_.busy()) {
+                waitingSince_.reset();
+                return true;
+            }
+            if (!waitingSince_) waitingSince_ = Clock::now();
+            if (Clock::now() - *waitingSince_ > kReloadTimeout) throw Error("no load started within 30 s");
+            glfwWaitEventsTimeout(0.02);
+            return false;
         case CommandKind::Size:
             fixedSize_ = {static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1])};
             sizeWindowToFixedView();

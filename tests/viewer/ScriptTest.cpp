@@ -73,7 +73,7 @@ TEST(Script, MistakesNameLineColumnAndWord) {
     EXPECT_EQ(errorOf("size 320 240\n  jump 3\n"),
               "s.txt:2:3: unknown command 'jump' (valid: open, size, layers, camera, projection, fov, orbit, pan, "
               "middle-drag, zoom-drag, zoom, preset, view-all, double-click, toggle, highlight, colorscheme, light, debug, panel, show, screenshot, "
-              "screenshot-window, export, export-exact, export-sampled, save-csg, copy, remove, wait-reload, print, key, sleep, quit)");
+              "screenshot-window, export, export-exact, export-sampled, save-csg, copy, remove, wait-reload, wait-loading, print, key, sleep, quit)");
     EXPECT_EQ(errorOf("layers many\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got 'many'");
     EXPECT_EQ(errorOf("layers 0\n"), "s.txt:1:8: layers: expected 'auto' or a whole number from 1 to 1024, got '0'");
     EXPECT_EQ(errorOf("size 320\n"), "s.txt:1:1: size: expected 2 arguments, got 1");

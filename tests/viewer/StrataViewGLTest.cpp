@@ -461,7 +461,7 @@ TEST_F(StrataView, EscCancelsALoadButNeverQuitsAndCtrlQQuits) {
     const std::string a = dir.write("a.csg", kScene);
     dir.write("slow.csg", "hull() {\n\tdifference() {\n\t\tsphere($fn = 200, $fa = 12, $fs = 2, r = 10);\n"
                           "\t\tcube(size = [10, 10, 10], center = false);\n\t}\n}\n");
-    const ProcessResult r = view(a, "size 64 64\ncopy slow.csg a.csg\nsleep 400\nkey escape\nwait-reload\nprint console\n"
+    const ProcessResult r = view(a, "size 64 64\ncopy slow.csg a.csg\nwait-loading\nkey escape\nwait-reload\nprint console\n"
                                     "key escape\nprint title\nkey ctrl+q\nscreenshot after-quit.png\n");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find(a + ": loading cancelled\n"), std::string::npos) << r.out;
