@@ -31,7 +31,7 @@ enum class CommandKind {
     Highlight,        // highlight NODE      (toggle '#')
     ColorScheme,      // colorscheme NAME...
     Debug,            // debug shaded|depth|normal|peel
-    Panel,            // panel on|off|open|WIDTH
+    Panel,            // panel on|off|open|export|WIDTH
     Show,             // show axes|scale|edges|outline on|off
     Light,            // light strata|openscad
     Screenshot,       // screenshot PATH     (the 3D view as strata-render writes it)
@@ -43,7 +43,7 @@ enum class CommandKind {
     Remove,           // remove PATH         (delete a file)
     WaitReload,       // wait-reload         (until a reload started after the previous command has finished)
     WaitLoading,      // wait-loading        (until a load is under way)
-    Print,            // print camera|console|error|load|recent|stats|title|tree
+    Print,            // print camera|console|error|load|panel|recent|stats|title|tree
     Key,              // key [ctrl+]NAME     (a key pressed in the window: a letter, a digit, escape, f5 or f12)
     Sleep,            // sleep MS
     Quit,             // quit

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "strata/core/Error.h"
@@ -17,8 +18,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// wait-reload gives up after this long: a test must fail, not hang.
+// wait-reload and wait-loading give up after this long: a test must fail, not hang.
 constexpr auto kReloadTimeout = std::chrono::seconds(30);
+
+// One poll of a wait not yet done: counted from its first poll, an error
+// once it has taken kReloadTimeout, else a short wait for the next frame.
+void keepWaiting(std::optional<Clock::time_point>& since, const char* timeoutMessage) {
+    if (!since) since = Clock::now();
+    if (Clock::now() - *since > kReloadTimeout) throw Error(timeoutMessage);
+    glfwWaitEventsTimeout(0.02);
+}
 // screenshot-window: frames drawn before the capture, for ImGui's layout to settle.
 constexpr int kWindowShotFrames = 3;
 
@@ -68,8 +77,7 @@ bool Viewer::runCommand(const Command& c) {
                 waitingSince_.reset();
                 return true;
             }
-            if (Clock::now() - *waitingSince_ > kReloadTimeout) throw Error("no reload within 30 s");
-            glfwWaitEventsTimeout(0.02);
+            keepWaiting(waitingSince_, "no reload within 30 s");
             return false;
         case CommandKind::WaitLoading:
             // Done once a load is under way (the watcher polls between frames).
@@ -77,9 +85,7 @@ bool Viewer::runCommand(const Command& c) {
                 waitingSince_.reset();
                 return true;
             }
-            if (!waitingSince_) waitingSince_ = Clock::now();
-            if (Clock::now() - *waitingSince_ > kReloadTimeout) throw Error("no load started within 30 s");
-            glfwWaitEventsTimeout(0.02);
+            keepWaiting(waitingSince_, "no load started within 30 s");
             return false;
         case CommandKind::Size:
             fixedSize_ = {static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1])};

@@ -65,9 +65,9 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && CGAL::is_closed(s) && PMP::volume(s) == 0; }
 
 // a OP b. Corefinement first (fast); where it fails on a degenerate
-// configuration (CGAL's preconditions are on: a failed one throws) or cannot
-// build a closed result, Nef polyhedra, which take every configuration but a solid
-// that encloses nothing, taken as empty there.
+// configuration (CGAL's checks are on: a failed one throws) or cannot build
+// a closed result, Nef polyhedra, which take every configuration but a
+// solid that encloses nothing, taken as empty there.
 Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
     // Apart: nothing to compute. The boxes of the points' interval
     // approximations hold the exact points, so boxes that do not even touch
@@ -96,8 +96,8 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
             PMP::duplicate_non_manifold_vertices(out);
             ok = CGAL::is_valid_polygon_mesh(out);
         }
-        // CGAL's inner assertions are off (CMakeLists.txt): a result that is
-        // not a closed mesh is taken as a failure, and Nef polyhedra do it.
+        // A result that is not a closed mesh is a failure too: Nef
+        // polyhedra do that boolean again.
         if (ok && CGAL::is_closed(out)) return out;
     } catch (const std::exception&) {
         // Fall through to the slower, robust way.
