@@ -156,7 +156,7 @@ touching, unions of shared faces, gear teeth on a ring, an intersection
 keeping a shared face, A | A, A & A and A - A, a cube's face through a
 sphere's equator), each as written, turned by odd angles, and turned and
 scaled by 1e-3 and by 1e3. Both paths take surfaces within the coincidence
-tolerance along a ray as one place (`render::coincidenceTolerance`: 2^-16 of
+tolerance along a ray as one place (`render::coincidenceTolerance`: 2^-20 of
 the largest magnitude the view's float depths carry). That the reference is
 right on them, not only equal to strata, is `CoincidentExactTest`
 (strata_tests): the reference's image of each model of `tests/data/coincident`

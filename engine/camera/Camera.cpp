@@ -98,7 +98,7 @@ double coincidenceTolerance(const Camera& camera, const geometry::Bounds& box) {
             scale = std::max({scale, largest(corner), std::abs(camera.viewDepth(corner))});
         }
     }
-    constexpr double kFraction = 1.0 / 65536.0;
+    constexpr double kFraction = 1.0 / 1048576.0;
     return std::max(scale * kFraction, std::numeric_limits<double>::min());
 }
 

@@ -64,10 +64,11 @@ void GroupPeel::begin(const ViewSetup& view, const PixelRect& tile, int groups) 
     }
 
     view_ = view;
-    setSurfaceView(draw_, view);
+    tileOrigin_ = {tile.x, tile.y};
+    setSurfaceView(draw_, view, tileOrigin_);
     for (gpu::Program* ties : {&ties_, unionTies_ ? &*unionTies_ : nullptr}) {
         if (ties == nullptr) continue;
-        setSurfaceView(*ties, view);
+        setSurfaceView(*ties, view, tileOrigin_);
         ties->setUniform(shader::kPeelTieTolerance, static_cast<float>(view.coincidence * 0.25));
     }
     // Tagged depths from half the near plane's on map into [0, 1) in order
@@ -86,7 +87,7 @@ void GroupPeel::peel(const SceneBuffers& scene, const std::vector<int>& members,
                      const gpu::Texture& layers, int layer, int idsLayer, bool ties, bool unite) {
     if (unite && !unionTies_) {
         unionTies_ = tiesProgram(true);
-        setSurfaceView(*unionTies_, view_);
+        setSurfaceView(*unionTies_, view_, tileOrigin_);
         unionTies_->setUniform(shader::kPeelTieTolerance, static_cast<float>(view_.coincidence * 0.25));
         unionResolve_ = gpu::Program::fromFiles("peel union resolve", {"common/fullscreen.vert", "csg/group.frag"},
                                                 {{"UNION", ""}});

@@ -120,6 +120,7 @@ private:
     gpu::Buffer commands_;  // the members' multi-draw (SceneBuffers::memberCommands)
     GLsizei drawCount_ = 0;
     ViewSetup view_;  // begin()'s, for the union programs compiled later
+    glm::ivec2 tileOrigin_{0, 0};  // begin()'s tile: the frame pixel at gl_FragCoord (0, 0)
     void drawMembers() const;
     gpu::Framebuffer target_;   // scratch + depth-stencil
     gpu::Framebuffer layerTarget_;  // a layer of the layers + depth-stencil (for its stencil)

@@ -183,10 +183,10 @@ bool PeelPass::run(const SceneBuffers& scene, const ViewSetup& view, const Pixel
 }
 
 void PeelPass::beginPasses(const SceneBuffers& scene, const ViewSetup& view, const PixelRect& tile) {
-    setSurfaceView(first_, view);
-    setSurfaceView(next_, view);
-    setSurfaceView(collect_, view);
-    if (batched_) setSurfaceView(batch_, view);
+    setSurfaceView(first_, view, {tile.x, tile.y});
+    setSurfaceView(next_, view, {tile.x, tile.y});
+    setSurfaceView(collect_, view, {tile.x, tile.y});
+    if (batched_) setSurfaceView(batch_, view, {tile.x, tile.y});
     glViewport(-tile.x, -tile.y, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_BLEND);

@@ -372,18 +372,24 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
 
     // Reversed depth (surface.vert, REVERSED_DEPTH): near / depth in
     // perspective, a float's relative precision at every depth. The tie
-    // pass's pull: a quarter of the tolerance at the near plane, where a
+    // shader compares the fragments' plane depths (surface-depth.glsl),
+    // which one plane gives alike to every leaf, within a quarter of the
+    // tolerance. The depth test before it compares interpolated window
+    // depths, which part one plane's copies by up to 2^-20 of the scene's
+    // scale (as measured before plane depths), so the pull that lets every
+    // copy through reaches 16 times that far, at the near plane, where a
     // depth step moves the window depth most, twice over.
     const double nearPlane = view.nearPlane, farPlane = view.farPlane;
     const double reach = 0.25 * view.coincidence;
+    const double pull = 16.0 * reach;
     glm::vec3 depthTerms, pulled;
     if (view.orthographic) {
         const double span = farPlane - nearPlane;
         depthTerms = glm::vec3(static_cast<float>(farPlane / span), static_cast<float>(-1.0 / span), 0.0f);
-        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * reach / span));
+        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * pull / span));
     } else {
         depthTerms = glm::vec3(static_cast<float>(nearPlane), 0.0f, 0.0f);
-        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * reach / nearPlane));
+        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * pull / nearPlane));
     }
     gpu::Program& nearest = program(false, output, view);
     nearest.setUniform(shader::kSurfaceReversedDepth, depthTerms);

@@ -801,7 +801,15 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     if (!hasScene) throw Error("renderer: render() before setScene()");
     if (settings.layers < 0) throw Error("renderer: layers must be 0 (auto) or positive");
     const ColorScheme& scheme = colorScheme(settings.colorScheme);
-    const ViewSetup view = makeView(camera, scene.bounds());
+    ViewSetup view = makeView(camera, scene.bounds());
+    // The result peel (sampleResult) runs its rays along the model's axes,
+    // on grids that put rays exactly along a solid's silhouette edges,
+    // where the rasterizer's depths of the front and back faces that meet
+    // there (interpolated from vertices snapped to its sub-pixel grid) part
+    // by up to 2^-17 of the scene's scale: a chord that exact arithmetic
+    // gives no length. Its cells are far coarser than that, so it takes
+    // sixteen times the tolerance of an image.
+    if (roundSink != nullptr) view.coincidence *= 16.0;
     if (view.width > maxTextureSize || view.height > maxTextureSize) {
         throw Error("renderer: image size " + std::to_string(view.width) + "x" + std::to_string(view.height) +
                     " exceeds the GPU's largest texture, " + std::to_string(maxTextureSize));

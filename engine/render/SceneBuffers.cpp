@@ -10,6 +10,7 @@
 #endif
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
 #include "Convexity.h"
@@ -19,10 +20,82 @@
 
 namespace strata::render {
 
-void setSurfaceView(gpu::Program& program, const ViewSetup& view) {
+void setSurfaceView(gpu::Program& program, const ViewSetup& view, glm::ivec2 tileOrigin) {
     program.setUniform(shader::kSurfaceViewProjection, view.viewProjection);
     program.setUniform(shader::kSurfaceEye, view.eye);
     program.setUniform(shader::kSurfaceForward, view.forward);
+    // A program whose fragments need no depth (normal.frag's TRUST_MARKS)
+    // has the ray's uniforms optimized away.
+    if (program.uniformLocation("uOrigin") < 0) return;
+    // The ray through a fragment, P = O + s D with dot(D, f) = 1 and
+    // dot(O - eye, f) = 0, so that s is the view depth; O and D affine in
+    // gl_FragCoord.xy, as the inverse of the view-projection gives them on
+    // the near plane (in double, once a pass).
+    const glm::dmat4 inverse = glm::inverse(view.viewProjectionD);
+    const glm::dvec3 eye = view.eyeD, f = view.forwardD;
+    auto nearPoint = [&](double fragX, double fragY) {
+        const double x = 2.0 * (fragX + tileOrigin.x) / view.width - 1.0;
+        const double y = 2.0 * (fragY + tileOrigin.y) / view.height - 1.0;
+        const glm::dvec4 p = inverse * glm::dvec4(x, y, -1.0, 1.0);
+        return glm::dvec3(p) / p.w;
+    };
+    const glm::dvec3 p0 = nearPoint(0.0, 0.0), px = nearPoint(1.0, 0.0) - p0, py = nearPoint(0.0, 1.0) - p0;
+    glm::dvec3 origin[3], ray[3];
+    if (view.orthographic) {
+        origin[0] = p0 - glm::dot(p0 - eye, f) * f;
+        origin[1] = px - glm::dot(px, f) * f;
+        origin[2] = py - glm::dot(py, f) * f;
+        ray[0] = f;
+        ray[1] = ray[2] = glm::dvec3(0.0);
+    } else {
+        const double near = glm::dot(p0 - eye, f);
+        origin[0] = eye;
+        origin[1] = origin[2] = glm::dvec3(0.0);
+        ray[0] = (p0 - eye) / near;
+        ray[1] = px / near;
+        ray[2] = py / near;
+    }
+    for (int k = 0; k < 3; ++k) {
+        program.setUniform(shader::kSurfaceOrigin + k, glm::vec3(origin[k]));
+        program.setUniform(shader::kSurfaceRay + k, glm::vec3(ray[k]));
+    }
+}
+
+FacePlanes::FacePlanes(const geometry::Bounds& scene)
+    : unit_(std::max(scene.empty() ? 1.0 : scene.diagonal(), 1e-300) * 1e-9) {}
+
+bool FacePlanes::keyOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, Key& key, glm::vec4& plane) const {
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double length = glm::length(n);
+    if (!(length > 0.0) || !std::isfinite(length)) return false;
+    const glm::dvec3 u = n / length;
+    const double w = glm::dot(u, a);
+    key = {std::llround(u.x * 1e9), std::llround(u.y * 1e9), std::llround(u.z * 1e9), std::llround(w / unit_)};
+    plane = glm::vec4(glm::vec3(u), static_cast<float>(w));
+    return true;
+}
+
+void FacePlanes::add(int leaf, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    Key key;
+    glm::vec4 plane;
+    if (!keyOf(a, b, c, key, plane)) return;
+    const auto [at, added] = planes_.try_emplace(key, Entry{plane, leaf, false});
+    if (!added && at->second.leaf != leaf) at->second.shared = true;
+}
+
+glm::vec4 FacePlanes::of(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const {
+    Key key;
+    glm::vec4 plane;
+    if (!keyOf(a, b, c, key, plane)) return glm::vec4(0.0f);
+    const auto at = planes_.find(key);
+    if (at != planes_.end() && at->second.shared) return at->second.plane;
+    return glm::vec4(glm::vec3(plane), shader::kOwnPlane);
+}
+
+std::size_t FacePlanes::KeyHash::operator()(const Key& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (long long c : k) h = (h ^ static_cast<std::uint64_t>(c)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
 }
 
 void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& model) {
@@ -64,18 +137,26 @@ void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& mode
     }
     layoutStart_.back() = static_cast<std::uint32_t>(layoutVertices);
     planes_.assign(leaves_.size(), {});  // hashed on demand: hashPlanes
+    // Every triangle's plane, to know which planes two leaves share.
+    facePlanes_ = FacePlanes(bounds_);
+    for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
+        const geometry::Mesh& mesh = model.leafMeshes[i];
+        for (const auto& t : mesh.triangles) {
+            facePlanes_.add(static_cast<int>(i), mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+        }
+    }
     sharing_.clear();
 }
 
 void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) {
     // Each triangle ends on a vertex of its own (lastCornerLayout), which
-    // carries its face normal: the provoking vertex of a flat varying.
+    // carries its face plane: the provoking vertex of a flat varying.
     const std::size_t layoutVertices = layoutStart_.back();
     const std::size_t indexCount = leaves_.empty() ? 0 : leaves_.back().firstIndex + leaves_.back().indexCount;
     std::vector<float> positions;        // by 3, the layouts' vertices
-    std::vector<float> normals;          // by 3, per layout vertex; a triangle's on its last corner
+    std::vector<float> planes;           // by 4, per layout vertex; a triangle's on its last corner
     std::vector<std::uint32_t> indices;  // #F by 3, absolute, in the layout
-    // Leaf i's vertices, normals and triangles onto the arrays, which start
+    // Leaf i's vertices, planes and triangles onto the arrays, which start
     // at layout vertex `base`.
     auto append = [&](std::size_t i, std::size_t base) {
         const geometry::Mesh& mesh = model.leafMeshes[i];
@@ -85,19 +166,14 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
             const glm::dvec3& p = mesh.positions[v];
             for (double c : {p.x, p.y, p.z}) positions.push_back(static_cast<float>(c));
         }
-        const std::size_t first = 3 * (firstVertex - base);  // this leaf's first normal in the arrays
-        normals.resize(positions.size(), 0.0f);
+        const std::size_t first = 4 * (firstVertex - base);  // this leaf's first plane in the arrays
+        planes.resize(positions.size() / 3 * 4, 0.0f);
         for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
             const auto& t = mesh.triangles[f];
             for (std::uint32_t v : layout.triangles[f]) indices.push_back(firstVertex + v);
-            const glm::dvec3& a = mesh.positions[t[0]];
-            glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
-            const double length = glm::length(n);
-            n = length > 0.0 ? n / length : glm::dvec3(0.0);
-            const std::size_t last = first + 3 * layout.triangles[f][2];
-            normals[last] = static_cast<float>(n.x);
-            normals[last + 1] = static_cast<float>(n.y);
-            normals[last + 2] = static_cast<float>(n.z);
+            const glm::vec4 plane = facePlanes_.of(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+            const std::size_t last = first + 4 * layout.triangles[f][2];
+            for (int c = 0; c < 4; ++c) planes[last + static_cast<std::size_t>(c)] = plane[c];
         }
     };
     if (release != nullptr) {
@@ -106,7 +182,7 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
         // time from them: GL storage is made whole at once, so made before
         // the meshes were gone it would hold both.
         positions.reserve(3 * layoutVertices);
-        normals.reserve(3 * layoutVertices);
+        planes.reserve(4 * layoutVertices);
         indices.reserve(indexCount);
         for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
             append(i, 0);
@@ -120,24 +196,24 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
 #endif
         positions_ = gpu::Buffer::fromSpan("scene positions", std::span<const float>(positions));
         positions = std::vector<float>();  // (= {} would keep the storage)
-        faceNormals_ = gpu::Buffer::fromSpan("scene face normals", std::span<const float>(normals));
-        normals = std::vector<float>();  // (= {} would keep the storage)
+        facePlaneBuffer_ = gpu::Buffer::fromSpan("scene face planes", std::span<const float>(planes));
+        planes = std::vector<float>();  // (= {} would keep the storage)
         indices_ = gpu::Buffer::fromSpan("scene indices", std::span<const std::uint32_t>(indices));
         indices = std::vector<std::uint32_t>();  // (= {} would keep the storage)
     } else {
         // A slice of leaves at a time: the arrays never stand whole beside the buffers.
         positions_ = gpu::Buffer("scene positions", layoutVertices * 3 * sizeof(float));
-        faceNormals_ = gpu::Buffer("scene face normals", layoutVertices * 3 * sizeof(float));
+        facePlaneBuffer_ = gpu::Buffer("scene face planes", layoutVertices * 4 * sizeof(float));
         indices_ = gpu::Buffer("scene indices", indexCount * sizeof(std::uint32_t));
         std::size_t vertexOffset = 0, indexOffset = 0;  // where the slice goes, in vertices and indices
         auto flush = [&] {
             positions_.uploadSpan(std::span<const float>(positions), vertexOffset * 3 * sizeof(float));
-            faceNormals_.uploadSpan(std::span<const float>(normals), vertexOffset * 3 * sizeof(float));
+            facePlaneBuffer_.uploadSpan(std::span<const float>(planes), vertexOffset * 4 * sizeof(float));
             indices_.uploadSpan(std::span<const std::uint32_t>(indices), indexOffset * sizeof(std::uint32_t));
             vertexOffset += positions.size() / 3;
             indexOffset += indices.size();
             positions.clear();
-            normals.clear();
+            planes.clear();
             indices.clear();
         };
         constexpr std::size_t kSliceVertices = 1 << 20;
@@ -148,15 +224,8 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
         flush();
     }
     vertexArray_ = gpu::VertexArray("scene");
-    vertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
-    vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    setSurfaceAttributes(vertexArray_);
     vertexArray_.setElementBuffer(indices_);
-    flatVertexArray_ = gpu::VertexArray("scene with face normals");
-    flatVertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
-    flatVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
-    flatVertexArray_.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
-    flatVertexArray_.setAttribute(1, 1, 3, GL_FLOAT, 0);
-    flatVertexArray_.setElementBuffer(indices_);
     // Numbers for a group's members and for every leaf (floats: exact below 2^24).
     const std::size_t numbered = std::max(kMostMembers, leaves_.size());
     if (!memberNumbers_.id() || memberNumbers_.size() < numbered * sizeof(float)) {
@@ -165,21 +234,25 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
         memberNumbers_ = gpu::Buffer::fromSpan("scene member numbers", std::span<const float>(numbers), 0);
     }
     memberVertexArray_ = gpu::VertexArray("scene with member numbers");
-    memberVertexArray_.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
-    memberVertexArray_.setAttribute(0, 0, 3, GL_FLOAT, 0);
-    memberVertexArray_.setVertexBuffer(1, memberNumbers_, 0, sizeof(float));
-    memberVertexArray_.setBindingDivisor(1, 1);
-    memberVertexArray_.setAttribute(2, 1, 1, GL_FLOAT, 0);
+    setSurfaceAttributes(memberVertexArray_);
+    memberVertexArray_.setVertexBuffer(2, memberNumbers_, 0, sizeof(float));
+    memberVertexArray_.setBindingDivisor(2, 1);
+    memberVertexArray_.setAttribute(2, 2, 1, GL_FLOAT, 0);
     memberVertexArray_.setElementBuffer(indices_);
     leafVertexArray_ = leafVertexArrayOver(indices_);
+    facePlanes_ = FacePlanes();
+}
+
+void SceneBuffers::setSurfaceAttributes(gpu::VertexArray& array) const {
+    array.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
+    array.setAttribute(0, 0, 3, GL_FLOAT, 0);
+    array.setVertexBuffer(1, facePlaneBuffer_, 0, 4 * sizeof(float));
+    array.setAttribute(1, 1, 4, GL_FLOAT, 0);
 }
 
 gpu::VertexArray SceneBuffers::leafVertexArrayOver(const gpu::Buffer& indices) const {
-    gpu::VertexArray array("scene with face normals and leaf numbers");
-    array.setVertexBuffer(0, positions_, 0, 3 * sizeof(float));
-    array.setAttribute(0, 0, 3, GL_FLOAT, 0);
-    array.setVertexBuffer(1, faceNormals_, 0, 3 * sizeof(float));
-    array.setAttribute(1, 1, 3, GL_FLOAT, 0);
+    gpu::VertexArray array("scene with face planes and leaf numbers");
+    setSurfaceAttributes(array);
     array.setVertexBuffer(2, memberNumbers_, 0, sizeof(float));
     array.setBindingDivisor(2, 1);
     array.setAttribute(2, 2, 1, GL_FLOAT, 0);
@@ -282,7 +355,7 @@ std::span<const glm::vec3> SceneBuffers::leafVertices(int leaf) const {
 }
 
 std::size_t SceneBuffers::bytes() const {
-    return positions_.size() + indices_.size() + faceNormals_.size();
+    return positions_.size() + indices_.size() + facePlaneBuffer_.size();
 }
 
 }  // namespace strata::render

@@ -6,15 +6,18 @@
 //   geometry::lastCornerLayout: each ends on a vertex of its own, copied
 //   where needed. Corners keep the mesh's order, and copies their position,
 //   so a triangle is set up and rasterized exactly as the mesh has it.
-// - flatVertexArray(): the same, and attribute 1, the face normal of the
-//   triangle that ends on the vertex: a flat varying takes it from there
-//   (the provoking vertex), so the normal and translucent passes need no
-//   lookup by gl_PrimitiveID.
-// - memberVertexArray(): positions, and per instance its number (attribute
+//   Attribute 1: the face plane of the triangle that ends on the vertex
+//   (FacePlanes: its outward unit normal n and n . P for its points), where
+//   a flat varying takes it (the provoking vertex): the passes need no
+//   lookup by gl_PrimitiveID for the face normal or the depth along a
+//   fragment's ray (surface.vert).
+// - flatVertexArray(): the same (a name kept for the passes that read the
+//   normal).
+// - memberVertexArray(): positions, planes, and per instance its number (attribute
 //   2, a float): drawn by a multi-draw whose draw m has base instance m, as
 //   memberCommands makes it, each draw's vertices carry m (surface.vert's
 //   GROUP_MEMBERS), so a group's members go in one call.
-// - leafVertexArray(): positions, face normals, and per instance its number
+// - leafVertexArray(): positions, face planes, and per instance its number
 //   (attribute 2) as memberVertexArray() has it: drawn by a multi-draw whose
 //   draw of leaf i has base instance i (leafCommands), each fragment knows
 //   its tree leaf (the plain path, PlainPass.h).
@@ -23,10 +26,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <array>
 #include <map>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -42,6 +48,45 @@ namespace strata::render {
 // glMultiDrawElementsIndirect's record.
 struct DrawElementsIndirectCommand {
     GLuint count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
+
+// The face planes of the scene's triangles, for the depth of a fragment
+// along its ray (surface.vert). Triangles whose planes agree in double to a
+// billionth (of a unit normal, and of the scene's size for the offset) are
+// in one plane; where triangles of two leaves or more are (a face shared by
+// two leaves, a subtrahend flush with a face), each gets the same float
+// plane, bit for bit, so every one of them gives one depth at a pixel,
+// where interpolating each triangle's vertex depths would round each its
+// own way. A plane of one leaf alone gets the offset shader::kOwnPlane
+// (interface.glsl): its fragments take
+// the interpolated depth, which stays continuous across the leaf's own
+// edges (a plane depth at a silhouette seen aslant would part a front face
+// from the back face it meets there by more than rounding).
+class FacePlanes {
+public:
+    FacePlanes() = default;
+    explicit FacePlanes(const geometry::Bounds& scene);
+    // Notes the plane of leaf `leaf`'s triangle a b c (counter-clockwise from outside).
+    void add(int leaf, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+    // The triangle's (n, n . a): the plane shared by every triangle added in
+    // it, or its own normal with the offset kOwnPlane where one leaf alone has that plane;
+    // zero for a degenerate triangle.
+    glm::vec4 of(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const;
+    std::size_t count() const { return planes_.size(); }
+
+private:
+    using Key = std::array<long long, 4>;
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const;
+    };
+    struct Entry {
+        glm::vec4 plane;
+        int leaf;     // the first leaf seen with it
+        bool shared;  // another leaf has it too
+    };
+    bool keyOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, Key& key, glm::vec4& plane) const;
+    double unit_ = 1e-9;
+    std::unordered_map<Key, Entry, KeyHash> planes_;
 };
 
 struct LeafRange {
@@ -69,7 +114,7 @@ public:
     void drawLeaf(int leaf) const;
 
     const gpu::VertexArray& vertexArray() const { return vertexArray_; }
-    const gpu::VertexArray& flatVertexArray() const { return flatVertexArray_; }
+    const gpu::VertexArray& flatVertexArray() const { return vertexArray_; }
     const gpu::VertexArray& memberVertexArray() const { return memberVertexArray_; }
     // The most draws one multi-draw over memberVertexArray() can number.
     static constexpr std::size_t kMostMembers = 65536;
@@ -113,9 +158,10 @@ public:
 private:
     gpu::Buffer positions_;
     gpu::Buffer indices_;  // the layout's triangles
-    gpu::Buffer faceNormals_;  // attribute 1
+    gpu::Buffer facePlaneBuffer_;  // attribute 1
+    FacePlanes facePlanes_;        // from describe() to fill()
+    void setSurfaceAttributes(gpu::VertexArray& array) const;  // attributes 0 and 1
     gpu::VertexArray vertexArray_;
-    gpu::VertexArray flatVertexArray_;
     gpu::Buffer memberNumbers_;  // 0, 1, 2, ... as floats: attribute 2 of memberVertexArray_
     gpu::VertexArray memberVertexArray_;
     gpu::VertexArray leafVertexArray_;
@@ -130,7 +176,8 @@ private:
 };
 
 // Sets surface.vert's uniforms (the view) on `program`, a program whose
-// vertex stage it is.
-void setSurfaceView(gpu::Program& program, const ViewSetup& view);
+// vertex stage it is; `tileOrigin`: the frame pixel at gl_FragCoord (0, 0)
+// (a pass that draws one tile with its viewport moved by -tile).
+void setSurfaceView(gpu::Program& program, const ViewSetup& view, glm::ivec2 tileOrigin = {0, 0});
 
 }  // namespace strata::render

@@ -25,6 +25,14 @@ SHARED int kSurfaceViewProjection = 0;
 SHARED int kSurfaceEye = 1;
 SHARED int kSurfaceForward = 2;  // the unit view direction f
 SHARED int kSurfaceReversedDepth = 12;  // REVERSED_DEPTH: the clip depth's terms, above every fragment stage's
+// A fragment's ray P = O + s D (s its view depth), O and D affine in
+// gl_FragCoord.xy: the constant term at +0, the x and y terms at +1 and +2
+// (setSurfaceView). Above every fragment stage's.
+SHARED int kSurfaceOrigin = 20;
+SHARED int kSurfaceRay = 23;
+// A face plane's offset (surface.vert's attribute 1) that says: one leaf
+// alone has this plane (FacePlanes); far beyond any coordinate strata takes.
+SHARED float kOwnPlane = 1.0e37;
 
 // peel.frag (after surface.vert's).
 SHARED int kPeelPreviousLayer = 3;  // the layer the next pass reads

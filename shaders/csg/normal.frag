@@ -21,7 +21,7 @@ layout(early_fragment_tests) in;
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
-layout(location = 0) in float vViewDepth;
+#include "csg/surface-depth.glsl"
 layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit
 #ifdef LIT
 #include "csg/light.glsl"
@@ -65,7 +65,7 @@ void main() {
     int code = texelFetch(uResultLeaf, pixel, 0).r;
     if (leafOfCode(code) != uLeaf) discard;
     float result = texelFetch(uResultDepth, pixel, 0).r;
-    float t = taggedDepth(vViewDepth, gl_FrontFacing);
+    float t = taggedDepth(surfaceDepth(), gl_FrontFacing);
     if (isExit(t) != isExit(result)) discard;
     // The same vertex stage as the peel pass; its viewport is the frame's
     // where the peel pass's was one tile's. A few ulps of slack cover the

@@ -16,7 +16,7 @@
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
-layout(location = 0) in float vViewDepth;
+#include "csg/surface-depth.glsl"
 #ifdef COLLECT
 // Collecting (PeelPass::peelThroughLists): each fragment appends its tagged depth to
 // its pixel's list; resolve.frag turns the lists into layers. A pixel whose
@@ -70,7 +70,7 @@ layout(location = kPeelPreviousLayer) uniform int uPreviousLayer;
 #endif
 
 void main() {
-    float t = taggedDepth(vViewDepth, gl_FrontFacing);
+    float t = taggedDepth(surfaceDepth(), gl_FrontFacing);
 #ifdef COLLECT
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     uint slot = imageAtomicAdd(uFragmentCounts, pixel, 1u);

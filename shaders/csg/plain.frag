@@ -37,7 +37,7 @@
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
-layout(location = 0) in float vViewDepth;
+#include "csg/surface-depth.glsl"
 layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit
 layout(location = 2) flat in float vMember;     // the tree leaf
 
@@ -74,7 +74,7 @@ layout(location = kPlainTieTolerance) uniform float uTieTolerance;
 #endif
 
 void main() {
-    float t = taggedDepth(vViewDepth, gl_FrontFacing);
+    float t = taggedDepth(surfaceDepth(), gl_FrontFacing);
 #ifdef TIE
     float nearest = texelFetch(uNearest, ivec2(gl_FragCoord.xy), 0).r;
     if (untagged(t) > untagged(nearest) + uTieTolerance) discard;

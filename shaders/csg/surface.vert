@@ -2,12 +2,19 @@
 // translucent). The peel and normal passes must compute bit-identical depths
 // for one fragment, so both use this file and the depth is invariant.
 //
-// Inputs: world-space positions (float, location 0); with FACE_NORMAL (the
-// normal and translucent passes) also the face normal of the triangle that
-// ends on the vertex (location 1, SceneBuffers.h), handed on flat: GL takes
-// a flat varying from a triangle's last vertex, and every triangle ends on a
-// vertex of its own, so each fragment gets its own triangle's normal with no
-// lookup by gl_PrimitiveID.
+// Inputs: world-space positions (float, location 0) and the face plane of
+// the triangle that ends on the vertex (location 1, SceneBuffers.h: its unit
+// normal n and offset n . P). GL takes a flat varying from a triangle's last
+// vertex, and every triangle ends on a vertex of its own, so each fragment
+// gets its own triangle's plane with no lookup by gl_PrimitiveID. With
+// FACE_NORMAL (the normal, translucent and plain passes) n is handed on.
+//
+// A fragment's depth (surface-depth.glsl): the view depth s where its ray
+// P = O + s D (kSurfaceOrigin, kSurfaceRay: affine in gl_FragCoord.xy) meets
+// the plane, s = (w - n.O) / (n.D). The terms that do not depend on the
+// pixel are worked out here, from the plane alone, so two triangles in one
+// plane (bit-identical planes: FacePlanes) give one depth at a pixel, where
+// interpolating each triangle's vertex depths rounds each its own way.
 // Uniforms: the view-projection matrix, the eye and the unit view direction f.
 //
 // GROUP_MEMBERS (GroupPeel's passes: one multi-draw over a group's members,
@@ -39,10 +46,15 @@ layout(std430, binding = kBufferDrawLayers) readonly buffer DrawLayers {
 #endif
 
 layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec4 aFacePlane;
 #ifdef FACE_NORMAL
-layout(location = 1) in vec3 aFaceNormal;
 layout(location = 1) flat out vec3 vFaceNormal;
 #endif
+// s = (x + X y + Y z) / (x' + X y' + Y z') at gl_FragCoord (X, Y); w' = 0:
+// a plane of one leaf alone (FacePlanes: offset kOwnPlane), whose
+// fragments take the interpolated depth.
+layout(location = 3) flat out vec3 vDepthNumerator;
+layout(location = 4) flat out vec4 vDepthDenominator;
 #ifdef GROUP_MEMBERS
 layout(location = 2) in float aMember;
 layout(location = 2) flat out float vMember;
@@ -54,6 +66,8 @@ layout(location = kSurfaceForward) uniform vec3 uForward;
 #ifdef REVERSED_DEPTH
 layout(location = kSurfaceReversedDepth) uniform vec3 uReversedDepth;
 #endif
+layout(location = kSurfaceOrigin) uniform vec3 uOrigin[3];
+layout(location = kSurfaceRay) uniform vec3 uRay[3];
 
 // Linear view depth dot(P - eye, f): an affine function of P, so perspective-
 // correct interpolation gives its exact value at every fragment.
@@ -61,9 +75,13 @@ layout(location = 0) invariant out float vViewDepth;
 
 void main() {
     vViewDepth = dot(aPosition - uEye, uForward);
+    vec3 n = aFacePlane.xyz;
 #ifdef FACE_NORMAL
-    vFaceNormal = aFaceNormal;
+    vFaceNormal = n;
 #endif
+    bool onSharedPlane = aFacePlane.w < kOwnPlane;
+    vDepthNumerator = onSharedPlane ? vec3(aFacePlane.w - dot(n, uOrigin[0]), -dot(n, uOrigin[1]), -dot(n, uOrigin[2])) : vec3(0.0);
+    vDepthDenominator = vec4(dot(n, uRay[0]), dot(n, uRay[1]), dot(n, uRay[2]), onSharedPlane ? 1.0 : 0.0);
 #ifdef GROUP_MEMBERS
     vMember = aMember;
 #endif

@@ -50,12 +50,15 @@ struct Camera {
 
 // Surfaces along one view ray whose view depths differ by no more than this
 // count as one place, the coincidence tolerance (docs/algorithm.md,
-// "Coincident surfaces"): 2^-16 of the largest magnitude that the GPU's float
+// "Coincident surfaces"): 2^-20 of the largest magnitude that the GPU's float
 // depths and positions carry in this view (the eye's coordinates, the box's
 // corners and their view depths), so it scales with the scene and the
-// camera, and stays 2^7 times above the rounding of a float (2^-23) that
-// puts rotated copies of one plane apart. The GPU evaluator and the CPU
-// reference take the same value for one frame. Positive, also for an empty box.
+// camera. Faces in one plane get one depth on the GPU whatever their leaf
+// (their fragments meet one float plane: render::FacePlanes), so the
+// tolerance only has to hold the rounding of a float (2^-23, a few times
+// over) between surfaces that exact arithmetic puts at one depth. The GPU
+// evaluator and the CPU reference take the same value for one frame.
+// Positive, also for an empty box.
 double coincidenceTolerance(const Camera& camera, const geometry::Bounds& box);
 
 // OpenSCAD's --camera: 6 numbers (eye, center) or 7 (gimbal: translate, rotate,
