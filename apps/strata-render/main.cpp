@@ -11,6 +11,7 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <memory>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -158,11 +159,14 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
     stats.dimensions = tree.isFlat() ? 2 : 3;
 
     t = Clock::now();
-    apps::StderrProgress stderrProgress("strata-render");
-    Progress* progress = options.quiet ? nullptr : &stderrProgress;
+    // Progress lines on stderr for a phase of long work (none with --quiet).
+    auto phaseProgress = [&options](const char* phase) {
+        return options.quiet ? nullptr : std::make_unique<apps::StderrProgress>("strata-render", phase);
+    };
     geometry::Model model;
     {
-        const ProgressScope scope(progress);
+        const std::unique_ptr<apps::StderrProgress> progress = phaseProgress("building the model");
+        const ProgressScope scope(progress.get());
         model = geometry::buildModel(tree);
     }
     stats.geometryMs = msSince(t);
@@ -173,7 +177,8 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
     std::vector<io::StagedFile> staged;
     if (!options.exportPath.empty()) {
         t = Clock::now();
-        const ProgressScope scope(progress);
+        const std::unique_ptr<apps::StderrProgress> progress = phaseProgress("exporting");
+        const ProgressScope scope(progress.get());
         const glm::vec4 faceColor = render::colorScheme(options.colorScheme).faceFront;
         if (!options.exportSampled) {
             staged.push_back(apps::stageExactExport(tree, model, options.exportPath, faceColor).file);

@@ -1,5 +1,6 @@
 #include "CapTriangulation.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -7,6 +8,7 @@
 #include <GL/glu.h>
 #include <glm/vec3.hpp>
 
+#include "BoxGroups.h"
 #include "strata/core/Error.h"
 
 namespace strata::geometry::detail {
@@ -62,10 +64,28 @@ CapTriangles triangulateCap(const Outlines& shape) {
     std::size_t total = 0;
     for (const Outline& o : shape.outlines) total += o.points.size();
     if (total == 0) return result;
+    // Every outline's points first, in order (GLU reads them through stable
+    // pointers; points it adds where outlines cross come after them all).
     result.points.reserve(total);
     Collector collector;
     collector.out = &result;
     collector.vertices.reserve(total);
+    std::vector<std::size_t> firstPoint;
+    std::vector<FlatBox<double>> boxes;
+    firstPoint.reserve(shape.outlines.size());
+    boxes.reserve(shape.outlines.size());
+    for (const Outline& o : shape.outlines) {
+        firstPoint.push_back(result.points.size());
+        FlatBox<double> b{1.0, 1.0, -1.0, -1.0};
+        for (const glm::dvec2& p : o.points) {
+            result.points.push_back(p);
+            collector.vertices.emplace_back(p.x, p.y, 0.0);
+            b = b.x0 > b.x1 ? FlatBox<double>{p.x, p.y, p.x, p.y}
+                            : FlatBox<double>{std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x),
+                                              std::max(b.y1, p.y)};
+        }
+        boxes.push_back(b);
+    }
 
     std::unique_ptr<GLUtesselator, TessDeleter> tess(gluNewTess());
     if (!tess) throw Error("the cap tessellator could not be created");
@@ -79,18 +99,23 @@ CapTriangles triangulateCap(const Outlines& shape) {
     gluTessProperty(tess.get(), GLU_TESS_WINDING_RULE, GLU_TESS_WINDING_ODD);
     gluTessNormal(tess.get(), 0.0, 0.0, 1.0);
 
-    gluTessBeginPolygon(tess.get(), &collector);
-    for (const Outline& o : shape.outlines) {
-        gluTessBeginContour(tess.get());
-        for (const glm::dvec2& p : o.points) {
-            const auto index = static_cast<uint32_t>(result.points.size());
-            result.points.push_back(p);
-            collector.vertices.emplace_back(p.x, p.y, 0.0);
-            gluTessVertex(tess.get(), &collector.vertices.back().x, reinterpret_cast<void*>(static_cast<std::uintptr_t>(index)));
+    // One polygon per group of outlines whose boxes meet (BoxGroups.h):
+    // outlines of different groups neither cross nor nest, so under the odd
+    // rule each group covers what it covers alone, and GLU's sweep stays
+    // as short as one group (a line of text: one glyph at a time).
+    for (const std::vector<std::size_t>& group : meetingBoxGroups(boxes)) {
+        gluTessBeginPolygon(tess.get(), &collector);
+        for (std::size_t k : group) {
+            gluTessBeginContour(tess.get());
+            const std::size_t first = firstPoint[k];
+            for (std::size_t v = first; v < first + shape.outlines[k].points.size(); ++v) {
+                gluTessVertex(tess.get(), &collector.vertices[v].x, reinterpret_cast<void*>(static_cast<std::uintptr_t>(v)));
+            }
+            gluTessEndContour(tess.get());
         }
-        gluTessEndContour(tess.get());
+        gluTessEndPolygon(tess.get());
+        if (collector.failed) break;
     }
-    gluTessEndPolygon(tess.get());
     if (collector.failed) {
         throw Error(std::string("the cap of an extrusion could not be triangulated: ") +
                     reinterpret_cast<const char*>(gluErrorString(collector.error)));

@@ -9,6 +9,7 @@
 #include "CapTriangulation.h"
 #include "DegreeTrig.h"
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 #include "strata/geometry/Primitives.h"
 
 namespace strata::geometry {
@@ -102,6 +103,7 @@ int diagonalSlices(double deltaSquared, double height, const scene::Fragments& f
 // through `place`) to the mesh; facing up unless `down`.
 template <typename Place>
 void addCap(Mesh& mesh, const Outlines& shapeAtRing, uint32_t ringBase, bool down, Place place) {
+    reportProgress("extrusion: triangulating its caps", 0, 0);
     const detail::CapTriangles cap = detail::triangulateCap(shapeAtRing);
     const std::size_t own = pointCount(shapeAtRing);
     std::vector<uint32_t> index(cap.points.size());

@@ -14,6 +14,7 @@
 #include "DegreeTrig.h"
 #include "FlatClipper.h"
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 #include "strata/geometry/FlatImport.h"
 #include "strata/geometry/Primitives.h"
 #include "strata/geometry/Projection.h"
@@ -223,6 +224,8 @@ Outlines flatPrimitive(const scene::FlatPrimitive& primitive) {
             else if constexpr (std::is_same_v<T, scene::Text>) {
                 // The glyphs are unioned as OpenSCAD's TextNode does: each cleaned, then one union.
                 std::vector<Outlines> glyphs = textGlyphs(p);
+                const std::string step = "text: uniting " + std::to_string(glyphs.size()) + " glyphs";
+                reportProgress(step.c_str(), 0, 0);
                 std::vector<const Outlines*> operands;
                 for (const Outlines& g : glyphs) operands.push_back(&g);
                 return detail::apply(operands, detail::FlatBoolean::Union);

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <polyclipping/clipper.hpp>
 
+#include "BoxGroups.h"
 #include "strata/core/Error.h"
 
 namespace strata::geometry::detail {
@@ -164,6 +166,44 @@ Outlines shadow(const std::vector<std::vector<std::array<glm::dvec2, 3>>>& child
 
 Outlines sanitize(const Outlines& shape) { return fromTree(sanitizeTree(toPaths(shape))); }
 
+namespace {
+
+// A union of many operands whose boxes mostly do not meet, as the glyphs of
+// a line of text, group by group (BoxGroups.h): groups whose boxes do not
+// meet cannot touch, nor lie in a hole of one another, so their unions
+// stand side by side as they are.
+Outlines groupedUnion(const std::vector<ClipperLib::Paths>& operands) {
+    std::vector<FlatBox<ClipperLib::cInt>> boxes;
+    boxes.reserve(operands.size());
+    for (const ClipperLib::Paths& paths : operands) {
+        FlatBox<ClipperLib::cInt> b{std::numeric_limits<ClipperLib::cInt>::max(),
+                                    std::numeric_limits<ClipperLib::cInt>::max(),
+                                    std::numeric_limits<ClipperLib::cInt>::min(),
+                                    std::numeric_limits<ClipperLib::cInt>::min()};
+        for (const ClipperLib::Path& path : paths) {
+            for (const ClipperLib::IntPoint& p : path) {
+                b = {std::min(b.x0, p.X), std::min(b.y0, p.Y), std::max(b.x1, p.X), std::max(b.y1, p.Y)};
+            }
+        }
+        boxes.push_back(b);
+    }
+    Outlines result;
+    result.sanitized = true;
+    for (const std::vector<std::size_t>& group : meetingBoxGroups(boxes)) {
+        ClipperLib::Clipper clipper;
+        for (std::size_t k = 0; k < group.size(); ++k) {
+            clipper.AddPaths(operands[group[k]], k == 0 ? ClipperLib::ptSubject : ClipperLib::ptClip, true);
+        }
+        ClipperLib::PolyTree tree;
+        clipper.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        Outlines part = fromTree(tree);
+        for (Outline& o : part.outlines) result.outlines.push_back(std::move(o));
+    }
+    return result;
+}
+
+}  // namespace
+
 Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op) {
     std::vector<ClipperLib::Paths> operands;
     operands.reserve(children.size());
@@ -184,6 +224,8 @@ Outlines apply(const std::vector<const Outlines*>& children, FlatBoolean op) {
         }
         return fromTree(result);
     }
+    // Few operands gain nothing from grouping (one pass over their boxes).
+    if (op == FlatBoolean::Union && operands.size() >= 16) return groupedUnion(operands);
     bool first = true;
     for (const ClipperLib::Paths& paths : operands) {
         clipper.AddPaths(paths, first ? ClipperLib::ptSubject : ClipperLib::ptClip, true);

@@ -55,6 +55,7 @@
 #include "DegreeTrig.h"
 #include "FlatImportDetail.h"
 #include "strata/core/Error.h"
+#include "strata/core/Progress.h"
 
 namespace strata::geometry::detail {
 namespace {
@@ -612,6 +613,8 @@ private:
     void offsetPath(const Shape& s, PathList& out, const PathPoints& path) {
         const double width = strokeWidth(s);
         if (!std::isfinite(width) || width > 1e12) throw Error("import: an SVG stroke-width is not usable");
+        const std::string step = "import: stroking an SVG path of " + std::to_string(path.size()) + " points";
+        reportProgress(step.c_str(), 0, 0);
         ClipperLib::Path line;
         for (const Point& v : path) line.emplace_back(strokeGrid(v[0]), strokeGrid(v[1]));
         ClipperLib::Paths result;

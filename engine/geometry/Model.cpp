@@ -189,6 +189,7 @@ Model buildModel(const scene::Tree& tree) {
     for (std::size_t i = 0; i < tree.leaves.size(); ++i) {
         const scene::Leaf& leaf = tree.leaves[i];
         Mesh& mesh = model.leafMeshes[i];
+        reportProgress("checking leaves", i, tree.leaves.size());
         checkLeaf(leaf, mesh, forgiven);
         if (inCsg[i] && leaf.display != scene::Display::Background) model.bounds.extend(boundsOf(mesh));
     }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -9,6 +10,7 @@
 #include "GeometryTestUtil.h"
 #include "strata/core/Error.h"
 #include "strata/geometry/MeshCheck.h"
+#include "strata/scene/CsgParser.h"
 
 using namespace strata;
 using namespace strata::geometry;
@@ -193,4 +195,32 @@ TEST(BuildModel, NonFiniteTransformThrows) {
     scene::Tree tree;
     tree.root = tree.addLeaf(leaf(scene::Sphere{1.0, {}}, t, 6));
     EXPECT_EQ(errorOf(tree), "scene.csg:6:5: sphere has a non-finite coordinate after its transform");
+}
+
+// A 2D union of many pieces (20 squares in a row, some apart, some
+// overlapping their neighbour, one holding a square hole with a smaller
+// square inside it) is united and its caps triangulated group by group of
+// pieces whose boxes meet (BoxGroups.h): the extrusion must be one closed
+// solid of the area a closed form gives, as if done in one sweep.
+TEST(BuildModel, ManyFlatPiecesAreUnitedAndCappedGroupByGroup) {
+    std::string csg = "linear_extrude(height = 2) { union() {";
+    double area = 0.0;
+    for (int i = 0; i < 20; ++i) {
+        // Squares of side 1 at x = 1.5 i, but squares 6-8 step only 0.5 from 5 and overlap.
+        const double x = i < 6 ? 1.5 * i : i <= 8 ? 7.5 + 0.5 * (i - 5) : 9.0 + 1.5 * (i - 8);
+        csg += "multmatrix([[1,0,0," + std::to_string(x) + "],[0,1,0,0],[0,0,1,0],[0,0,0,1]]) square(size = [1, 1]);";
+    }
+    area += 5.0 + 2.5 + 11.0;  // five apart, four overlapping as one 1 x 2.5 strip, eleven apart
+    // A frame of side 4 with a hole of side 2, a square of side 1 in the hole.
+    csg += "multmatrix([[1,0,0,0],[0,1,0,5],[0,0,1,0],[0,0,0,1]]) difference() { square(size = [4, 4]);"
+           " multmatrix([[1,0,0,1],[0,1,0,1],[0,0,1,0],[0,0,0,1]]) square(size = [2, 2]); }";
+    csg += "multmatrix([[1,0,0,1.5],[0,1,0,6.5],[0,0,1,0],[0,0,0,1]]) square(size = [1, 1]);";
+    area += 16.0 - 4.0 + 1.0;
+    csg += "} }\n";
+    std::istringstream in(csg);
+    const scene::Tree tree = scene::parseCsg(in, "pieces.csg", ".");
+    const Model model = buildModel(tree);
+    ASSERT_EQ(model.leafMeshes.size(), 1u);
+    EXPECT_TRUE(checkMesh(model.leafMeshes[0]).ok()) << checkMesh(model.leafMeshes[0]).describe();
+    EXPECT_NEAR(signedVolume(model.leafMeshes[0]), 2.0 * area, 1e-9);
 }
