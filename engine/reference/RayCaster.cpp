@@ -467,7 +467,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
     image.cut.assign(pixels, 0);
 
     const glm::dvec3 forward = camera.forward();
-    const double coincidence = coincidenceTolerance(camera, impl_->bounds);
+    const double coincidence = options.coincidence ? coincidenceTolerance(camera, impl_->bounds) : 0.0;
     std::atomic<int> nextRow{0};
     int rowsDone = 0;
     std::mutex progressMutex;

@@ -27,12 +27,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "Compare.h"
 #include "DiffImages.h"
+#include "Orbit.h"
 #include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
 #include "strata/reference/RayCaster.h"
@@ -74,13 +74,8 @@ std::vector<View> views(const geometry::Bounds& bounds) {
     base.width = 160;
     base.height = 120;
     const render::Camera standard = render::defaultCamera(bounds, base);
-    const double distance = glm::length(standard.eye - standard.center);
     auto orbit = [&](double azimuth, double elevation, render::Projection projection) {
-        const double az = azimuth * std::numbers::pi / 180.0, el = elevation * std::numbers::pi / 180.0;
-        render::Camera c = standard;
-        c.eye = c.center + distance * glm::dvec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-        c.projection = projection;
-        return c;
+        return accuracy::orbit(standard, azimuth, elevation, projection);
     };
     return {{"default", standard},
             {"p_odd", orbit(23.7, 31.3, render::Projection::Perspective)},

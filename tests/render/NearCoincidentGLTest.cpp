@@ -17,13 +17,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <memory>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "Compare.h"
+#include "Orbit.h"
 #include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
@@ -44,41 +43,11 @@ std::vector<render::Camera> views(const geometry::Bounds& bounds) {
     base.width = 320;
     base.height = 240;
     const render::Camera standard = render::defaultCamera(bounds, base);
-    const double distance = glm::length(standard.eye - standard.center);
     auto orbit = [&](double azimuth, double elevation, render::Projection projection) {
-        const double az = azimuth * std::numbers::pi / 180.0, el = elevation * std::numbers::pi / 180.0;
-        render::Camera c = standard;
-        c.eye = c.center + distance * glm::dvec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-        c.projection = projection;
-        return c;
+        return accuracy::orbit(standard, azimuth, elevation, projection);
     };
     return {standard, orbit(-151.3, 27.4, render::Projection::Perspective),
             orbit(203.9, -33.1, render::Projection::Orthographic)};
-}
-
-// The exact mesh's image, its crossings taken at their exact distances (no
-// tolerance): leaf 0 wherever it is hit.
-reference::ReferenceImage exactImage(const reference::ReferenceScene& mesh, const render::Camera& camera) {
-    reference::ReferenceImage image;
-    image.width = camera.width;
-    image.height = camera.height;
-    const auto pixels = static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height);
-    image.depth.assign(pixels, std::numeric_limits<float>::infinity());
-    image.normal.assign(pixels, glm::vec3(0.0f));
-    image.leaf.assign(pixels, -1);
-    image.cut.assign(pixels, 0);
-    for (int j = 0; j < camera.height; ++j) {
-        for (int i = 0; i < camera.width; ++i) {
-            const render::Ray ray = camera.ray(i, j);
-            const reference::RayHit hit = mesh.trace(ray, 0.0, 0.0);
-            if (!hit.hit()) continue;
-            const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(camera.width) + i;
-            image.depth[k] = static_cast<float>(camera.viewDepth(ray.origin + hit.t * ray.direction));
-            image.normal[k] = glm::vec3(hit.normal);
-            image.leaf[k] = 0;
-        }
-    }
-    return image;
 }
 
 // Every hit as leaf 0: the exact mesh is one leaf, so which leaf shows is not compared.
@@ -105,13 +74,14 @@ TEST_P(NearCoincidentGL, GpuMatchesOpenScadsExactResult) {
     const geometry::Model model = geometry::buildModel(tree);
     const scene::Tree exactTree = scene::meshFileTree(kDir + name + ".off");
     const geometry::Model exactModel = geometry::buildModel(exactTree);
-    const reference::ReferenceScene exactScene(exactTree, exactModel);
+    reference::ReferenceOptions exactOptions;
+    exactOptions.coincidence = false;  // every crossing of the thin walls counts
     render::Renderer renderer;
     renderer.setScene(tree, model);
     const accuracy::CompareOptions options = accuracy::optionsForScene(exactModel.bounds.diagonal());
     for (const render::Camera& camera : views(exactModel.bounds)) {
         const render::Frame frame = renderer.render(camera, {});
-        const reference::ReferenceImage exact = exactImage(exactScene, camera);
+        const reference::ReferenceImage exact = reference::renderReference(exactTree, exactModel, camera, exactOptions);
         const std::vector<std::int32_t> frameLeaf = oneLeaf(frame.leaf), exactLeaf = oneLeaf(exact.leaf);
         const accuracy::AovView gpu{frame.width, frame.height, frame.depth, frame.normal, frameLeaf, {}};
         const accuracy::AovView ref{exact.width, exact.height, exact.depth, exact.normal, exactLeaf, {}};

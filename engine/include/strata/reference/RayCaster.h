@@ -58,6 +58,10 @@ struct ReferenceOptions {
     // Rays start at this view depth instead of at the contract's ray origin
     // (depth 0), as a GPU near plane would cut them. Must be >= 0.
     double nearDepth = 0.0;
+    // Crossings within the camera's coincidence tolerance count as one place
+    // (docs/algorithm.md), as on the GPU; false: only equal ones, every wall
+    // however thin kept (an exact mesh's image to hold others against).
+    bool coincidence = true;
     // Called after each finished row with (rows done, rows), never from two
     // threads at once. May be empty.
     std::function<void(int done, int total)> progress;
