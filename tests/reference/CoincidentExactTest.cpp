@@ -32,7 +32,7 @@
 
 #include "Compare.h"
 #include "DiffImages.h"
-#include "Orbit.h"
+#include "OrbitCamera.h"
 #include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
 #include "strata/reference/RayCaster.h"

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "Compare.h"
-#include "Orbit.h"
+#include "OrbitCamera.h"
 #include "strata/camera/Camera.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
