@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <utility>
 
+#include <unistd.h>
+
 namespace strata::apps {
 
 namespace {
@@ -14,10 +16,13 @@ constexpr auto kFirstReminder = std::chrono::seconds(2);
 constexpr auto kLongestReminder = std::chrono::seconds(30);
 }  // namespace
 
-StderrProgress::StderrProgress(std::string program, std::string phase)
-    : program_(std::move(program)), what_(std::move(phase)), reminder_(kFirstReminder), reminders_([this] { remind(); }) {}
+StderrProgress::StderrProgress(std::string program, std::string phase, bool reminders)
+    : program_(std::move(program)), what_(std::move(phase)), reminder_(kFirstReminder) {
+    if (reminders) reminders_ = std::thread([this] { remind(); });
+}
 
 StderrProgress::~StderrProgress() {
+    if (!reminders_.joinable()) return;
     {
         std::lock_guard lock(mutex_);
         stop_ = true;
@@ -25,6 +30,8 @@ StderrProgress::~StderrProgress() {
     wake_.notify_all();
     reminders_.join();
 }
+
+bool StderrProgress::stderrIsATerminal() { return isatty(STDERR_FILENO) == 1; }
 
 void StderrProgress::say(Clock::time_point now) {
     last_ = now;

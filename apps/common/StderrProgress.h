@@ -9,8 +9,10 @@
 // after twice as long each time (at most 30 s), so a long run never goes
 // quiet:
 //   strata-render: text: uniting 10000 glyphs (6.0 s)
-// One object per phase of work: the reminders run from its construction to
-// its destruction.
+// Reminders are for a person watching: they come where stderr is a terminal
+// (a script that reads stderr gets the lines steps report, as before). One
+// object per phase of work: the reminders run from its construction to its
+// destruction.
 
 #include <chrono>
 #include <condition_variable>
@@ -25,8 +27,10 @@ namespace strata::apps {
 
 class StderrProgress : public Progress {
 public:
-    // `phase`: what the work is, said until a step is reported ("building the model").
-    StderrProgress(std::string program, std::string phase);
+    // `phase`: what the work is, said until a step is reported ("building
+    // the model"); `reminders`: whether to say a long step again.
+    StderrProgress(std::string program, std::string phase, bool reminders = stderrIsATerminal());
+    static bool stderrIsATerminal();
     ~StderrProgress() override;
     StderrProgress(const StderrProgress&) = delete;
     StderrProgress& operator=(const StderrProgress&) = delete;

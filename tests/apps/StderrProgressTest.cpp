@@ -24,7 +24,7 @@ int lines(const std::string& s) {
 TEST(StderrProgress, ShortWorkSaysNothing) {
     testing::internal::CaptureStderr();
     {
-        StderrProgress progress("prog", "building the model");
+        StderrProgress progress("prog", "building the model", true);
         progress.update("meshing leaves", 0, 3);
         progress.update("meshing leaves", 1, 3);
     }
@@ -34,7 +34,7 @@ TEST(StderrProgress, ShortWorkSaysNothing) {
 TEST(StderrProgress, OneLongStepIsSaidAgainAfterTwoSeconds) {
     testing::internal::CaptureStderr();
     {
-        StderrProgress progress("prog", "building the model");
+        StderrProgress progress("prog", "building the model", true);
         progress.update("text: uniting 9 glyphs", 0, 0);
         // The first reminder comes at 2 s, the next 4 s after it.
         std::this_thread::sleep_for(std::chrono::milliseconds(3200));
@@ -44,10 +44,19 @@ TEST(StderrProgress, OneLongStepIsSaidAgainAfterTwoSeconds) {
     EXPECT_EQ(said.rfind("prog: text: uniting 9 glyphs (2.", 0), 0u) << said;
 }
 
+TEST(StderrProgress, NoRemindersUnlessAskedFor) {
+    testing::internal::CaptureStderr();
+    {
+        StderrProgress progress("prog", "exporting", false);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2300));
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(StderrProgress, BeforeAnyStepThePhaseIsSaid) {
     testing::internal::CaptureStderr();
     {
-        StderrProgress progress("prog", "exporting");
+        StderrProgress progress("prog", "exporting", true);
         std::this_thread::sleep_for(std::chrono::milliseconds(2600));
     }
     const std::string said = testing::internal::GetCapturedStderr();
