@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <optional>
 #include <unordered_map>
 #include <array>
 #include <utility>
@@ -45,6 +46,54 @@ std::vector<uint32_t> canonicalVertices(const std::vector<glm::dvec3>& positions
 uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
 
 bool hasRepeatedVertex(const std::array<uint32_t, 3>& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+
+// The triangles that traverse a directed edge, for dropDegenerateTriangles,
+// which edits a few triangles of a large list: the edges of all of them
+// sorted once (a map of a vector per edge cost seconds on a mesh of
+// millions), and those of triangles edited since in a small map. An entry
+// is only a hint: a triangle counts if it is alive and has the edge now.
+class EdgeIndex {
+public:
+    EdgeIndex(const std::vector<std::array<uint32_t, 3>>& tris, const std::vector<bool>& dead) : tris_(tris), dead_(dead) {
+        sorted_.reserve(3 * tris.size());
+        for (std::size_t t = 0; t < tris.size(); ++t) {
+            if (dead[t]) continue;
+            for (int k = 0; k < 3; ++k) sorted_.emplace_back(edgeKey(tris[t][k], tris[t][(k + 1) % 3]), t);
+        }
+        std::sort(sorted_.begin(), sorted_.end());
+    }
+    // Triangle t as it is now (new, or edited in place).
+    void add(std::size_t t) {
+        for (int k = 0; k < 3; ++k) added_[edgeKey(tris_[t][k], tris_[t][(k + 1) % 3])].push_back(t);
+    }
+    // The live triangles that traverse a -> b.
+    std::vector<std::size_t> traversing(uint32_t a, uint32_t b) const {
+        const uint64_t key = edgeKey(a, b);
+        std::vector<std::size_t> out;
+        auto consider = [&](std::size_t t) {
+            if (t >= tris_.size() || dead_[t] || !traverses(tris_[t], a, b)) return;
+            if (std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
+        };
+        auto it = std::lower_bound(sorted_.begin(), sorted_.end(), std::make_pair(key, std::size_t(0)));
+        for (; it != sorted_.end() && it->first == key; ++it) consider(it->second);
+        if (const auto extra = added_.find(key); extra != added_.end()) {
+            for (std::size_t t : extra->second) consider(t);
+        }
+        return out;
+    }
+
+private:
+    static bool traverses(const std::array<uint32_t, 3>& t, uint32_t a, uint32_t b) {
+        for (int k = 0; k < 3; ++k) {
+            if (t[k] == a && t[(k + 1) % 3] == b) return true;
+        }
+        return false;
+    }
+    const std::vector<std::array<uint32_t, 3>>& tris_;
+    const std::vector<bool>& dead_;
+    std::vector<std::pair<uint64_t, std::size_t>> sorted_;
+    std::unordered_map<uint64_t, std::vector<std::size_t>> added_;
+};
 
 // Scales v by a power of two (exactly) so its largest component is in [0.5, 1):
 // the zero-area test below then does not underflow for tiny triangles.
@@ -151,25 +200,14 @@ void mergeCoincidentVertices(Mesh& mesh) {
 }
 
 // Long, and kept in one piece: one pass over a triangle list that it edits
-// in place (slivers split across their long edge, the edge map kept up to
-// date, then triangles and vertices compacted); the pieces share the map.
+// in place (slivers split across their long edge, the edge index told of
+// each edit, then triangles and vertices compacted); the pieces share it.
 void dropDegenerateTriangles(Mesh& mesh) {
     mergeCoincidentVertices(mesh);
     auto& tris = mesh.triangles;
     std::vector<bool> dead(tris.size(), false);
     for (std::size_t i = 0; i < tris.size(); ++i) dead[i] = hasRepeatedVertex(tris[i]);
 
-    // Directed edge -> triangles traversing it, kept up to date as slivers are removed.
-    std::unordered_map<uint64_t, std::vector<std::size_t>> byEdge;
-    auto link = [&](std::size_t t) {
-        for (int k = 0; k < 3; ++k) byEdge[edgeKey(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
-    };
-    auto unlink = [&](std::size_t t) {
-        for (int k = 0; k < 3; ++k) {
-            auto& list = byEdge[edgeKey(tris[t][k], tris[t][(k + 1) % 3])];
-            list.erase(std::remove(list.begin(), list.end(), t), list.end());
-        }
-    };
     std::deque<std::size_t> slivers;
     auto isSliver = [&](std::size_t t) {
         const auto& v = tris[t];
@@ -182,10 +220,9 @@ void dropDegenerateTriangles(Mesh& mesh) {
             anySliver = true;
         }
     }
-    if (anySliver) {
-        for (std::size_t t = 0; t < tris.size(); ++t)
-            if (!dead[t]) link(t);
-    }
+    // Directed edge -> triangles traversing it, as slivers are split.
+    std::optional<EdgeIndex> byEdge;
+    if (anySliver) byEdge.emplace(tris, dead);
     // Each split removes one sliver and adds two triangles; bound the work in
     // case a pathological input keeps producing slivers.
     std::size_t budget = 4 * tris.size() + 16;
@@ -207,16 +244,14 @@ void dropDegenerateTriangles(Mesh& mesh) {
             if (l > best) best = l, middle = k;
         }
         const uint32_t m = v[middle], y = v[(middle + 1) % 3], x = v[(middle + 2) % 3];
-        unlink(s);
         dead[s] = true;
-        auto it = byEdge.find(edgeKey(x, y));
-        if (it == byEdge.end() || it->second.size() != 1) continue;  // no single neighbour: just drop it
-        const std::size_t n = it->second.front();
+        const std::vector<std::size_t> across = byEdge->traversing(x, y);
+        if (across.size() != 1) continue;  // no single neighbour: just drop it
+        const std::size_t n = across.front();
         auto nv = tris[n];
         int k = 0;
         while (!(nv[k] == x && nv[(k + 1) % 3] == y)) ++k;
         const uint32_t z = nv[(k + 2) % 3];
-        unlink(n);
         tris[n] = {x, m, z};
         tris.push_back({m, y, z});
         dead.push_back(false);
@@ -225,7 +260,7 @@ void dropDegenerateTriangles(Mesh& mesh) {
                 dead[t] = true;
                 continue;
             }
-            link(t);
+            byEdge->add(t);
             if (isSliver(t)) slivers.push_back(t);
         }
     }
