@@ -58,10 +58,9 @@ struct DrawElementsIndirectCommand {
 // plane, bit for bit, so every one of them gives one depth at a pixel,
 // where interpolating each triangle's vertex depths would round each its
 // own way. A plane of one leaf alone gets the offset shader::kOwnPlane
-// (interface.glsl): its fragments take
-// the interpolated depth, which stays continuous across the leaf's own
-// edges (a plane depth at a silhouette seen aslant would part a front face
-// from the back face it meets there by more than rounding).
+// (interface.glsl): its fragments take the interpolated depth, which the
+// leaf's triangles take from the vertices they share, so it stays
+// continuous across the leaf's own edges.
 class FacePlanes {
 public:
     FacePlanes() = default;
