@@ -52,6 +52,10 @@ Mesh minkowskiSum(const scene::MinkowskiSum& sum) {
         for (const Mesh* m : operands.back()) key.mix(*m);
     }
     if (operands.empty()) return Mesh{};
+    // The sum of one solid is that solid, as OpenSCAD's applyMinkowski
+    // returns a lone child untouched: not cut into convex parts and united
+    // again (minutes for a turned extrusion that CGAL's corefinement balks at).
+    if (operands.size() == 1 && operands[0].size() == 1) return *operands[0][0];
     if (std::optional<Mesh> known = detail::cachedResult(key.value())) return std::move(*known);
 
     std::vector<std::vector<Part>> parts(operands.size());
