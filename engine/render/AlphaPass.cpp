@@ -58,7 +58,7 @@ void AlphaPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
             rear->setUniform(shader::kAlphaCodes, glm::ivec2(own, own));
             rear->setUniform(shader::kAlphaColor, a.color);
             rear->use();
-            scene.flatVertexArray().bind();
+            scene.vertexArray().bind();
             glEnable(GL_CULL_FACE);
             glCullFace(GL_FRONT);
             glEnable(GL_DEPTH_TEST);

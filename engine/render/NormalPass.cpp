@@ -89,7 +89,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    scene.flatVertexArray().bind();
+    scene.vertexArray().bind();
     for (std::size_t k = 0; k < tree.operandLeaf.size(); ++k) {
         const PixelRect r = rects[k].intersection(tile);
         if (r.empty()) continue;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #ifdef __GLIBC__
@@ -92,10 +93,17 @@ glm::vec4 FacePlanes::of(const glm::dvec3& a, const glm::dvec3& b, const glm::dv
     return glm::vec4(glm::vec3(plane), shader::kOwnPlane);
 }
 
-std::size_t FacePlanes::KeyHash::operator()(const Key& k) const {
+std::uint64_t FacePlanes::hashKey(const Key& k) {
     std::uint64_t h = 1469598103934665603ull;
     for (long long c : k) h = (h ^ static_cast<std::uint64_t>(c)) * 1099511628211ull;
-    return static_cast<std::size_t>(h);
+    return h;
+}
+
+std::optional<std::uint64_t> FacePlanes::hashOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const {
+    Key key;
+    glm::vec4 plane;
+    if (!keyOf(a, b, c, key, plane)) return std::nullopt;
+    return hashKey(key);
 }
 
 void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& model) {
@@ -311,24 +319,18 @@ void SceneBuffers::drawLeaf(int leaf) const {
 }
 
 void SceneBuffers::hashPlanes(const geometry::Model& model, const std::vector<int>& leaves) {
-    // Unit normal and offset rounded to a billionth (of 1, and of the scene's size).
-    const double unit = std::max(bounds_.empty() ? 1.0 : bounds_.diagonal(), 1e-300) * 1e-9;
+    // Planes as FacePlanes tells them apart, each hashed to one number.
+    const FacePlanes planes(bounds_);
     for (int leaf : leaves) {
         const auto i = static_cast<std::size_t>(leaf);
         std::vector<std::uint64_t>& keys = planes_[i];
         if (!leaves_[i].convex || !keys.empty()) continue;
         const geometry::Mesh& mesh = model.leafMeshes[i];
         for (const auto& t : mesh.triangles) {
-            const glm::dvec3& a = mesh.positions[t[0]];
-            const glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
-            const double length = glm::length(n);
-            if (!(length > 0.0)) continue;
-            const glm::dvec3 u = n / length;
-            std::uint64_t key = 1469598103934665603ull;
-            for (double c : {u.x * 1e9, u.y * 1e9, u.z * 1e9, glm::dot(u, a) / unit}) {
-                key = (key ^ static_cast<std::uint64_t>(std::llround(c))) * 1099511628211ull;
+            if (const std::optional<std::uint64_t> key =
+                    planes.hashOf(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]])) {
+                keys.push_back(*key);
             }
-            keys.push_back(key);
         }
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());

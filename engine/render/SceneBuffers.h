@@ -1,6 +1,6 @@
 #pragma once
 // The scene on the GPU: every leaf's world-space triangles in one vertex
-// buffer, with per-leaf ranges, and four vertex arrays over it, shared by
+// buffer, with per-leaf ranges, and three vertex arrays over it, shared by
 // every pass that draws leaves; one index buffer serves them all:
 // - vertexArray(): positions (attribute 0), the triangles in
 //   geometry::lastCornerLayout: each ends on a vertex of its own, copied
@@ -11,8 +11,6 @@
 //   a flat varying takes it (the provoking vertex): the passes need no
 //   lookup by gl_PrimitiveID for the face normal or the depth along a
 //   fragment's ray (surface.vert).
-// - flatVertexArray(): the same (a name kept for the passes that read the
-//   normal).
 // - memberVertexArray(): positions, planes, and per instance its number (attribute
 //   2, a float): drawn by a multi-draw whose draw m has base instance m, as
 //   memberCommands makes it, each draw's vertices carry m (surface.vert's
@@ -28,6 +26,7 @@
 #include <cstdint>
 #include <array>
 #include <map>
+#include <optional>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -71,12 +70,15 @@ public:
     // it, or its own normal with the offset kOwnPlane where one leaf alone has that plane;
     // zero for a degenerate triangle.
     glm::vec4 of(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const;
-    std::size_t count() const { return planes_.size(); }
+    // The plane of the triangle a b c as one number, equal for triangles in
+    // one plane (and, rarely, for others: a hash); none for a degenerate one.
+    std::optional<std::uint64_t> hashOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const;
 
 private:
     using Key = std::array<long long, 4>;
+    static std::uint64_t hashKey(const Key& k);
     struct KeyHash {
-        std::size_t operator()(const Key& k) const;
+        std::size_t operator()(const Key& k) const { return static_cast<std::size_t>(hashKey(k)); }
     };
     struct Entry {
         glm::vec4 plane;
@@ -113,7 +115,6 @@ public:
     void drawLeaf(int leaf) const;
 
     const gpu::VertexArray& vertexArray() const { return vertexArray_; }
-    const gpu::VertexArray& flatVertexArray() const { return vertexArray_; }
     const gpu::VertexArray& memberVertexArray() const { return memberVertexArray_; }
     // The most draws one multi-draw over memberVertexArray() can number.
     static constexpr std::size_t kMostMembers = 65536;

@@ -25,7 +25,7 @@ void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, cons
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keep the image opaque
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    scene.flatVertexArray().bind();
+    scene.vertexArray().bind();
     for (const TranslucentLeaf& t : leaves) {
         program_.setUniform(shader::kTranslucentColor, t.color);
         scene.drawLeaf(t.leaf);
