@@ -103,6 +103,24 @@ void intersectCallback(const RTCIntersectFunctionNArguments* args) {
     }
 }
 
+// A leaf whose only crossings are an exit and then an entry: the ray passes
+// a hair outside one of its silhouette edges, where rounding put the two
+// faces' crossings in reverse order. It has no crossing there, as the GPU
+// evaluator reads such a pair (evaluate.frag, grazesOutside). `hits` are
+// ordered by leaf, then along the ray.
+void dropGrazes(std::vector<RawHit>& hits) {
+    std::size_t kept = 0;
+    for (std::size_t first = 0; first < hits.size();) {
+        std::size_t last = first;
+        while (last < hits.size() && hits[last].leaf == hits[first].leaf) ++last;
+        const bool graze = last - first == 2 && !hits[first].entering && hits[first + 1].entering &&
+                           hits[first].t < hits[first + 1].t;
+        for (; !graze && first < last; ++first) hits[kept++] = hits[first];
+        first = last;
+    }
+    hits.resize(kept);
+}
+
 void occludedCallback(const RTCOccludedFunctionNArguments*) {}  // rtcOccluded is not used
 
 void recordEmbreeError(void* userPtr, RTCError, const char* message) {
@@ -219,6 +237,7 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
                                return a.leaf == b.leaf && a.triangle == b.triangle && a.t == b.t;
                            }),
                hits.end());
+    dropGrazes(hits);
 
     // Coincident crossings (docs/algorithm.md, "Coincident surfaces"): in
     // order along the ray, crossings no more than `coincidence` apart belong

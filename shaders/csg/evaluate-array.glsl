@@ -61,6 +61,15 @@ bool surfaceCountIsOdd(uvec4 literal) {
     return odd;
 }
 
+// Whether the literal's operand's only surfaces here are an exit and then
+// an entry in its first layer (evaluate.frag, grazesOutside): it has none.
+bool grazesOnly(uvec4 literal) {
+    int first = int(literal.x);
+    vec2 layer = texelFetch(uLayers, ivec3(pixel, first), 0).rg;
+    if (!grazesOutside(layer)) return false;
+    return int(literal.y & kLayerCountMask) == 1 || texelFetch(uLayers, ivec3(pixel, first + 1), 0).r <= -kClearedDepth;
+}
+
 uint trueChildren[MAX_LIVE];  // per inner node
 
 // Live operands: slot s holds an operand that still has surfaces ahead.
@@ -162,6 +171,7 @@ void startWalk(uvec4 block) {
         // 22.3, though every value was right: keep the loop stepping by one.)
         uint run = literal.y >> kRunShift;
         if (run == 0u) continue;
+        if (grazesOnly(literal)) continue;
         int cursor = 0;
         float d = nextSurface(literal, cursor);
         if (d == kInfinity) continue;

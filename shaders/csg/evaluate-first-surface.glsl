@@ -18,7 +18,8 @@ void main() {
     vec2 layer = texelFetch(uLayers, ivec3(pixel, vRecord.x), 0).rg;
     float first = -layer.r;
     bool two = layer.g > first;
-    if (first >= kClearedDepth || (two && untagged(layer.g) <= untagged(first) + uCoincidence)) discard;
+    if (first >= kClearedDepth || grazesOutside(layer) || (two && untagged(layer.g) <= untagged(first) + uCoincidence))
+        discard;
     // Two surfaces: the ray starts outside and enters here; one: it starts
     // inside and leaves (evaluate.frag, "inside at the start"). A surface
     // whose facing says otherwise (rounding on a sliver triangle) is the

@@ -49,7 +49,7 @@ struct Steps {
 Steps stepsOf(uint layer) {
     vec2 texel = texelFetch(uLayers, ivec3(pixel, int(layer)), 0).rg;
     float near = -texel.r;
-    bool hit = near < kClearedDepth;
+    bool hit = near < kClearedDepth && !grazesOutside(texel);  // evaluate.frag
     bool two = hit && texel.g > near;
     Steps s;
     s.firstTagged = hit ? near : kInfinity;

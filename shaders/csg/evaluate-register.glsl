@@ -99,6 +99,26 @@ void forEachFaceSurface() {
 #endif
 }
 
+// Grazes (evaluate.frag, grazesOutside): the operands with surfaces in
+// more than one slot here, and the slots of the others that hold an exit and
+// then an entry, emptied.
+void noteSlots(vec4 nearSide, uvec4 bits, inout uint seen, inout uint several) {
+    for (int c = 0; c < 4; ++c) {
+        if (nearSide[c] == kInfinity) continue;
+        several |= seen & bits[c];
+        seen |= bits[c];
+    }
+}
+
+void dropGrazes(inout vec4 nearSide, inout vec4 farSide, uvec4 bits, uint several) {
+    for (int c = 0; c < 4; ++c) {
+        if ((several & bits[c]) == 0u && farSide[c] != kInfinity && isExit(nearSide[c]) && !isExit(farSide[c])) {
+            nearSide[c] = kInfinity;
+            farSide[c] = kInfinity;
+        }
+    }
+}
+
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     block = vRecord;
@@ -127,6 +147,24 @@ void main() {
     LOAD_SLOT(nearC, farC, vLayerC, 2, 10) LOAD_SLOT(nearC, farC, vLayerC, 3, 11)
     LOAD_SLOT(nearD, farD, vLayerD, 0, 12) LOAD_SLOT(nearD, farD, vLayerD, 1, 13)
     LOAD_SLOT(nearD, farD, vLayerD, 2, 14) LOAD_SLOT(nearD, farD, vLayerD, 3, 15)
+#endif
+
+    uint seen = 0u, several = 0u;
+    noteSlots(nearA, bitA, seen, several);
+#if MAX_LIVE > 4
+    noteSlots(nearB, bitB, seen, several);
+#endif
+#if MAX_LIVE > 8
+    noteSlots(nearC, bitC, seen, several);
+    noteSlots(nearD, bitD, seen, several);
+#endif
+    dropGrazes(nearA, farA, bitA, several);
+#if MAX_LIVE > 4
+    dropGrazes(nearB, farB, bitB, several);
+#endif
+#if MAX_LIVE > 8
+    dropGrazes(nearC, farC, bitC, several);
+    dropGrazes(nearD, farD, bitD, several);
 #endif
 
     // An operand is inside from the start when an odd number of its

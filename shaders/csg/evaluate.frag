@@ -102,6 +102,22 @@ int surfaceLeaf(int leaf, bool exit) {
 // a hair before its entry, and the operand would then read as inside all
 // along: a pinhole through the surface in front of it.
 //
+// A ray that passes a hair outside an operand's silhouette edge: the
+// rasterizer snaps vertices to its subpixel grid, so it may give the pixel
+// to both faces of the edge, and their planes, extended past the edge, meet
+// the ray in reverse order: the back face (an exit) before the front face
+// (an entry), as far apart as the back face is steep there. Exact arithmetic
+// sees neither. Taken as they come, the two would leave the operand inside
+// over a sliver that is not there, shown as the back face flipped: a speck
+// where the edge lies on another solid's face. So an operand whose only
+// surfaces at a pixel are one layer's exit and then entry has none there. A
+// closed solid never gives that order to an exact ray that starts outside
+// it; the reference drops such a pair too.
+bool grazesOutside(vec2 layer) {
+    float near = -layer.r;
+    return near < kClearedDepth && layer.g > near && isExit(near) && !isExit(layer.g);
+}
+
 // Coincident surfaces (docs/algorithm.md): surfaces of any operands that
 // follow each other along the ray with untagged depths no more than
 // uCoincidence apart are one place, a cluster (a chain: each surface within

@@ -8,6 +8,13 @@
 // close-up camera on the GPU, 284 in the reference. The rule now shows a surface whose operand decides the
 // result (evaluate.frag, "the surface shown"), on the GPU and in the CPU
 // reference alike.
+//
+// On the bundled gear, from OpenSCAD's default view at 400 x 300, a ray
+// passed a hair outside a tooth's inner end, where its top and its back
+// face meet on the disc's top. The rasterizer gave the pixel to both, and
+// their planes, extended past the edge, met the ray exit first: read as a
+// sliver of tooth, the pixel showed the back face flipped. Such a pair is
+// no surface now (evaluate.frag, "grazesOutside").
 
 #include <gtest/gtest.h>
 
@@ -19,6 +26,7 @@
 #include <glm/geometric.hpp>
 
 #include "strata/camera/Camera.h"
+#include "strata/camera/ViewBounds.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/reference/RayCaster.h"
@@ -30,6 +38,7 @@ using namespace strata;
 namespace {
 
 const std::string kBevel = STRATA_TEST_DIR "/data/speckle/bevel_gear_pair.csg";
+const std::string kGear = STRATA_TEST_DIR "/../examples/gear.csg";
 
 bool alike(const glm::vec3& a, const glm::vec3& b) {
     const glm::vec3 d = glm::abs(a - b);
@@ -56,14 +65,15 @@ int lonePixels(const std::vector<glm::vec3>& normal, int w, int h) {
 
 struct View {
     std::string name;
-    std::vector<double> camera;  // --camera's numbers
+    std::vector<double> camera;  // --camera's numbers; none: OpenSCAD's default view
 };
 
-render::Camera cameraFor(const View& view) {
+render::Camera cameraFor(const View& view, const scene::Tree& tree, const geometry::Model& model) {
     render::Camera base;
     base.width = 400;
     base.height = 300;
-    return render::cameraFromArguments(view.camera, base);
+    return view.camera.empty() ? render::defaultCamera(render::viewBounds(tree, model), base)
+                               : render::cameraFromArguments(view.camera, base);
 }
 
 }  // namespace
@@ -81,9 +91,9 @@ protected:
         render::Renderer renderer;
         renderer.setScene(tree, model);
         for (const View& view : views) {
-            const render::Camera camera = cameraFor(view);
+            const render::Camera camera = cameraFor(view, tree, model);
             const render::Frame frame = renderer.render(camera, {});
-            EXPECT_GT(frame.stats.coveredPixels, std::size_t(camera.width * camera.height) / 4) << view.name;
+            EXPECT_GT(frame.stats.coveredPixels, std::size_t(camera.width * camera.height) / 8) << view.name;
             EXPECT_EQ(lonePixels(frame.normal, frame.width, frame.height), 0) << path << ", " << view.name << ": GPU";
             if (!reference) continue;
             const reference::ReferenceImage image = reference::renderReference(tree, model, camera);
@@ -99,4 +109,8 @@ std::unique_ptr<gpu::Context> LonePixelsGL::context_;
 
 TEST_F(LonePixelsGL, NoneOnTheFlatFacesOfMcadsBevelGearPair) {
     expectNoLonePixels(kBevel, {{"the cut face close up", {0, 0, 0, 55, 0, 25, 250}}}, true);
+}
+
+TEST_F(LonePixelsGL, NoneOnTheBundledGearFromTheDefaultView) {
+    expectNoLonePixels(kGear, {{"the default view", {}}}, true);
 }
