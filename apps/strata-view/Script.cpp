@@ -193,7 +193,8 @@ void checkArguments(Command& c, std::string_view name) {
         // outermost node written on line N; resolved against the open tree.
         if (c.words[0].starts_with("line:")) {
             double v = 0;
-            if (!readWhole(c.words[0].substr(5), v) || v < 1) throw fail("expected line:N with N >= 1", 0);
+            if (!readWhole(c.words[0].substr(5), v) || v < 1 || v > 1e9)
+                throw fail("expected line:N with N from 1 to 1000000000", 0);
         } else {
             whole(0, 0, 1e9, "a node number or line:N");
         }

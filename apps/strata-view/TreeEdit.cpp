@@ -1,7 +1,9 @@
 #include "TreeEdit.h"
 
+#include <charconv>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -68,13 +70,22 @@ std::vector<TreeRow> treeRows(const scene::Tree& tree) {
 }
 
 int findNode(const scene::Tree& tree, const std::string& spec) {
+    // Scripts check NODE's form and range before they run (Script.cpp);
+    // anything else that slips through is "no node", never an exception of
+    // the standard library's.
+    auto number = [](std::string_view digits) {
+        long long value = -1;
+        const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (error != std::errc() || end != digits.data() + digits.size() || digits.empty()) return -1LL;
+        return value;
+    };
     if (spec.starts_with("line:")) {
-        const int line = std::stoi(spec.substr(5));
+        const long long line = number(std::string_view(spec).substr(5));
         for (const TreeRow& row : treeRows(tree))
             if (tree.nodes[static_cast<std::size_t>(row.node)].where.line == line) return row.node;
-        throw Error("no node of the tree is written on line " + std::to_string(line));
+        throw Error("no node of the tree is written on line " + spec.substr(5));
     }
-    const long long node = std::stoll(spec);
+    const long long node = number(spec);
     if (tree.nodes.empty()) throw Error("no node " + spec + " (the tree is empty)");
     if (node < 0 || node >= static_cast<long long>(tree.nodes.size()))
         throw Error("no node " + spec + " (the tree has nodes 0 to " + std::to_string(tree.nodes.size() - 1) + ")");

@@ -91,7 +91,8 @@ TEST(Script, MistakesNameLineColumnAndWord) {
               "s.txt:1:16: export-sampled: expected a .stl, .off, .obj or .3mf file name, got 'a.svg'");
     EXPECT_EQ(errorOf("save-csg a.scad\n"), "s.txt:1:10: save-csg: expected a .csg file name, got 'a.scad'");
     EXPECT_EQ(errorOf("open \"a.csg\n"), "s.txt:1:6: unterminated quoted word");
-    EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N >= 1");
+    EXPECT_EQ(errorOf("toggle line:x\n"), "s.txt:1:8: toggle: expected line:N with N from 1 to 1000000000");
+    EXPECT_EQ(errorOf("toggle line:99999999999\n"), "s.txt:1:8: toggle: expected line:N with N from 1 to 1000000000");
     EXPECT_EQ(errorOf("light sun\n"), "s.txt:1:7: light: expected one of strata, openscad, got 'sun'");
     EXPECT_EQ(errorOf("show outline maybe\n"), "s.txt:1:14: show: expected on or off, got 'maybe'");
     EXPECT_EQ(errorOf("debug xray\n"),

@@ -75,4 +75,7 @@ TEST(TreeEdit, RowsAreDepthFirstAndNodesAreFoundByNumberOrLine) {
     EXPECT_EQ(view::findNode(e.tree, std::to_string(e.b)), e.b);
     EXPECT_THROW(view::findNode(e.tree, "line:99"), Error);
     EXPECT_THROW(view::findNode(e.tree, "99"), Error);
+    EXPECT_THROW(view::findNode(e.tree, "line:99999999999"), Error);
+    EXPECT_THROW(view::findNode(e.tree, "99999999999999999999"), Error);
+    EXPECT_THROW(view::findNode(e.tree, "x"), Error);
 }
