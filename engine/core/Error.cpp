@@ -4,8 +4,25 @@
 
 namespace strata {
 
+std::string printable(std::string_view text) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte != 0x7f) {
+            out += c;
+            continue;
+        }
+        out += "\\x";
+        out += kHex[byte >> 4];
+        out += kHex[byte & 15];
+    }
+    return out;
+}
+
 std::string SourceLocation::str() const {
-    std::string s = file.empty() ? std::string("<input>") : file;
+    std::string s = file.empty() ? std::string("<input>") : printable(file);
     if (line > 0) {
         s += ':' + std::to_string(line);
         if (column > 0) s += ':' + std::to_string(column);
@@ -14,7 +31,7 @@ std::string SourceLocation::str() const {
 }
 
 Error::Error(const SourceLocation& where, const std::string& message)
-    : std::runtime_error(where.str() + ": " + message) {}
+    : std::runtime_error(where.str() + ": " + printable(message)) {}
 
 void rethrowAt(const SourceLocation& where, const Error& e) {
     std::string message = e.what();

@@ -36,3 +36,16 @@ TEST(Error, RethrowNamesAPositionOnce) {
     // A file of another name that starts the same is another file.
     EXPECT_EQ(rethrown({"a.csg", 3, 1}, Error(SourceLocation{"a.csg.bak", 2, 2}, "bad")), "a.csg:3:1: a.csg.bak:2:2: bad");
 }
+
+TEST(Error, ControlBytesAreWrittenAsEscapes) {
+    EXPECT_EQ(strata::printable("a\x1b]0;title\x07z"), "a\\x1b]0;title\\x07z");
+    EXPECT_EQ(strata::printable("line\nnext\x7f"), "line\\x0anext\\x7f");
+    // UTF-8 and backslashes pass as they are, so escaping twice changes nothing.
+    EXPECT_EQ(strata::printable("caf\xc3\xa9 \\x1b"), "caf\xc3\xa9 \\x1b");
+    EXPECT_EQ(strata::printable(strata::printable("\x1b")), "\\x1b");
+    // A file name in a location, and a message quoting one, stay one line
+    // with no byte a terminal would act on.
+    const Error e(SourceLocation{"a\x1b[31m.csg", 2, 3}, "import cannot read 'b\nc.stl'");
+    EXPECT_STREQ(e.what(), "a\\x1b[31m.csg:2:3: import cannot read 'b\\x0ac.stl'");
+    EXPECT_STREQ(Error("x\ty").what(), "x\\x09y");
+}

@@ -8,6 +8,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace strata {
 
@@ -17,13 +18,22 @@ struct SourceLocation {
     int line = 0;
     int column = 0;
 
-    // "file:line:col", "file:line" or "file", depending on what is known.
+    // "file:line:col", "file:line" or "file", depending on what is known;
+    // the file name printable().
     std::string str() const;
 };
 
+// `text` with each control byte (below 0x20, and 0x7f) written as \xNN, so
+// that a file name or a file's bytes quoted in a message can neither break
+// its line nor send a terminal an escape sequence. Other bytes, UTF-8
+// included, pass as they are; text without control bytes is returned as it
+// is (escaping twice changes nothing).
+std::string printable(std::string_view text);
+
+// Its message is printable(): one line, whatever file names it quotes.
 class Error : public std::runtime_error {
 public:
-    explicit Error(const std::string& message) : std::runtime_error(message) {}
+    explicit Error(const std::string& message) : std::runtime_error(printable(message)) {}
     // "where: message"
     Error(const SourceLocation& where, const std::string& message);
 };
