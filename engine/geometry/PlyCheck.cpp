@@ -57,6 +57,8 @@ struct Property {
     Type type;           // a list's item type
     bool list = false;
     Type countType;      // a list's length type
+    std::string typeWord;       // as the header writes it (a list's: the length type)
+    std::size_t line = 0;       // of the header
 };
 
 struct Element {
@@ -155,6 +157,8 @@ Header Checker::header(const std::string& head) const {
         } else if (keyword == "property") {
             if (h.elements.empty()) fail(line, "a property before any element");
             Property p;
+            p.line = line;
+            if (words.size() >= 2) p.typeWord = words[1] == "list" && words.size() >= 3 ? words[2] : words[1];
             if (words.size() >= 2 && words[1] == "list") {
                 if (words.size() != 5) fail(line, "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
                 p.list = true;
@@ -199,6 +203,22 @@ Header Checker::header(const std::string& head) const {
         fail(face->line, "the face element has no list property vertex_indices");
     }
     if (face < vertex) fail(face->line, "the face element comes before the vertex element");
+    // OpenMesh's binary reader takes coordinates only as floats (it prints a
+    // line per value and reads 0 otherwise) and a face's corner count only
+    // as an uchar or an int (others end the read).
+    if (h.format != Format::Ascii) {
+        for (const Property& p : vertex->properties) {
+            if (!p.list && (p.name == "x" || p.name == "y" || p.name == "z") && p.type.integer) {
+                fail(p.line, "binary coordinates of type " + shownWord(p.typeWord) + " are not read (float or double are)");
+            }
+        }
+        for (const Property& p : face->properties) {
+            const bool uchar = p.countType.size == 1 && !p.countType.isSigned, int32 = p.countType.size == 4 && p.countType.isSigned;
+            if (p.list && (p.name == "vertex_indices" || p.name == "vertex_index") && !uchar && !int32) {
+                fail(p.line, "a binary face's corner count of type " + shownWord(p.typeWord) + " is not read (uchar or int is)");
+            }
+        }
+    }
     return h;
 }
 

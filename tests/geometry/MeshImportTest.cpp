@@ -394,6 +394,14 @@ TEST(ImportMesh, HostilePlyFilesAreRefusedWithOneLine) {
         {plyHeader("binary_little_endian", "element vertex 4\nproperty double x\nproperty double y\nproperty double z\n" +
                                                 faceList + "end_header\n") + std::string(64, '\0'),
          ":3: cannot read mesh: header declares 4 'vertex' elements, more than the file can hold"},
+        // Binary types OpenMesh's reader does not take (it printed a line per
+        // coordinate and read zeros, or stopped at the first face).
+        {plyHeader("binary_little_endian", "element vertex 4\nproperty short x\nproperty short y\nproperty short z\n" +
+                                                faceList + "end_header\n") + std::string(64, '\0'),
+         ":4: cannot read mesh: binary coordinates of type 'short' are not read (float or double are)"},
+        {plyHeader("binary_big_endian", vertexXyz + "element face 4\nproperty list ushort int vertex_indices\nend_header\n") +
+             std::string(80, '\0'),
+         ":8: cannot read mesh: a binary face's corner count of type 'ushort' is not read (uchar or int is)"},
         {ascii + vertexXyz + "element face 5\nproperty list uchar int vertex_indices\nend_header\n" + kTetrahedronBody,
          ": cannot read mesh: the file ends before the 5 'face' elements its header declares"},
         // What a mesh needs.
