@@ -212,6 +212,11 @@ bool decodePngRows(png_structp png, png_infop info, PngDecode* d) {
     png_set_crc_action(png, PNG_CRC_DEFAULT, PNG_CRC_ERROR_QUIT);
     png_set_user_limits(png, 1u << 24, 1u << 24);
     png_set_chunk_malloc_max(png, 8u << 20);
+    // Text, colour profiles and the other ancillary chunks are skipped
+    // unread: a heightmap needs none, and libpng would otherwise allocate
+    // what a chunk's length claims (a 44-byte file claiming 2 GiB of text:
+    // the chunk limit above is only a warning to a reader).
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, nullptr, -1);
     png_read_info(png, info);
     d->width = png_get_image_width(png, info);
     d->height = png_get_image_height(png, info);
@@ -227,7 +232,8 @@ bool decodePngRows(png_structp png, png_infop info, PngDecode* d) {
     if ((colorType & PNG_COLOR_MASK_COLOR) == 0 && bitDepth < 8) png_set_expand_gray_1_2_4_to_8(png);
     if (bitDepth == 16) png_set_strip_16(png);  // keeps the high byte, as lodepng does
     if ((colorType & PNG_COLOR_MASK_COLOR) == 0) png_set_gray_to_rgb(png);
-    if (colorType & PNG_COLOR_MASK_ALPHA) png_set_strip_alpha(png);
+    // A palette or grey image with a tRNS chunk expands to an alpha channel too.
+    if ((colorType & PNG_COLOR_MASK_ALPHA) || png_get_valid(png, info, PNG_INFO_tRNS)) png_set_strip_alpha(png);
     png_set_interlace_handling(png);
     png_read_update_info(png, info);
     if (png_get_rowbytes(png, info) != std::size_t(d->width) * 3) png_error(png, "unexpected pixel format");

@@ -12,6 +12,7 @@ struct ProcessResult {
     int exitCode = -1;   // the exit status, or 128 + signal number when killed
     std::string out;     // stdout
     std::string err;     // stderr
+    long peakKiB = -1;   // its peak resident memory (wait4's ru_maxrss)
 };
 
 // Runs `argv[0]` with `argv`, adding `env` (NAME, value) to the environment.

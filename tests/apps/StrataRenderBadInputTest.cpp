@@ -132,6 +132,65 @@ TEST(StrataRender, UnknownSceneTypeNamesTheFile) {
     expectFailure(dir, {scene}, scene + ": unknown scene type '.xyz'");
 }
 
+TEST(StrataRender, ControlBytesInFileNamesReachNoTerminal) {
+    TempDir dir;
+    // A scene, and an import() inside one, named with an escape sequence
+    // that would colour a terminal red and set its title.
+    const std::string scene = dir.write("red\x1b[31m\x1b]0;x\x07.csg", "group() {\n\tcube(size = [1, 1, 1];\n}\n");
+    expectFailure(dir, {scene}, (dir / "red\\x1b[31m\\x1b]0;x\\x07.csg") + ":2:");
+    const std::string importer = dir.write("imports.csg", "import(file = \"gone\x1b[2J.stl\");\n");
+    expectFailure(dir, {importer}, importer + ":1:15: import file not found: ");
+    const ProcessResult r = runProcess({kExe, importer, "-o", dir / "out.png"});
+    EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("gone\\x1b[2J.stl"), std::string::npos) << r.err;
+}
+
+// 44 bytes: a 2 x 2 grey PNG whose next chunk, text or compressed text,
+// claims 2 GiB. libpng took the claim as a size to allocate and fill (its
+// chunk limit is only a warning to a reader): 2 GB resident before the file
+// was found short. Skipped unread, it is simply short.
+TEST(StrataRender, APngChunkClaimingGigabytesIsNotAllocated) {
+    TempDir dir;
+    const std::string header("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\0\x02\0\0\0\x02\x08\0\0\0\0\x57\xdd\x52\xf8\x7f\xff\xff\xff", 37);
+    for (const char* kind : {"tEXt", "zTXt"}) {
+        const std::string png = dir.write(std::string(kind) + ".png", header + kind + "abc");
+        ASSERT_EQ(std::filesystem::file_size(png), 44u);
+        const std::string scene = dir.write(std::string(kind) + ".csg", "surface(file = \"" + png + "\");\n");
+        const std::string stl = dir / "out.stl";
+        const ProcessResult r = runProcess({kExe, scene, "--export", stl});
+        EXPECT_EQ(r.exitCode, 1) << kind << ": " << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << kind << ": " << r.err;
+        EXPECT_NE(r.err.find("surface: cannot read '" + png + "': not a valid PNG image (truncated file)"), std::string::npos)
+            << kind << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(stl));
+        EXPECT_GT(r.peakKiB, 0) << kind;
+        EXPECT_LT(r.peakKiB, 512 * 1024) << kind;
+    }
+}
+
+// A mistake inside a drawing or a font name: the node's position once, then
+// what is wrong (the drawing's own line where its parser gives one).
+TEST(StrataRender, DrawingAndTextErrorsNameOnePosition) {
+    TempDir dir;
+    dir.write("arc.dxf", "0\nSECTION\n2\nENTITIES\n0\nARC\n10\n0\n20\n0\n40\n1\n50\n0\n51\n1e9\n0\nENDSEC\n0\nEOF\n");
+    dir.write("tags.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M 0 0 L 1 1 Z\"/>\n<g></svg>\n");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"cube(1);\nlinear_extrude(height = 1) import(file = \"arc.dxf\");\n",
+         ":2:28: import: an ARC in the DXF file sweeps 2777777.777778 turns; at most one is drawn\n"},
+        {"linear_extrude(height = 1) import(file = \"tags.svg\");\n",
+         ":1:28: import: cannot parse '" + (dir / "tags.svg") + "': Opening and ending tag mismatch: g line 2 and svg (line 2)\n"},
+        {"linear_extrude(height = 1) text(text = \"a\", font = \"Foo:weight=abc\");\n",
+         ":1:28: text(): fontconfig cannot parse the font name 'Foo:weight=abc'\n"},
+    };
+    int n = 0;
+    for (const auto& [text, message] : cases) {
+        const std::string scene = dir.write("case" + std::to_string(n++) + ".csg", text);
+        const ProcessResult r = runProcess({kExe, scene, "--export", dir / "out.stl"});
+        EXPECT_EQ(r.exitCode, 1) << scene;
+        EXPECT_EQ(r.err, scene + message);
+    }
+}
+
 TEST(StrataRender, MissingOrUnreadableSceneNamesTheFile) {
     TempDir dir;
     expectFailure(dir, {dir / "missing.csg"}, (dir / "missing.csg") + ": ");

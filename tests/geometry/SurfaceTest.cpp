@@ -218,6 +218,16 @@ TEST(SurfacePng, TwoBitPaletteInverted) {
     expectMatchesOpenScad(tessellate(surface("palette.png", false, true)), "palette_invert.off");
 }
 
+TEST(SurfacePng, EightBitPaletteInverted) {
+    expectMatchesOpenScad(tessellate(surface("palette8.png", false, true)), "palette8_invert.off");
+}
+
+// A transparency chunk expands a palette to colour and alpha, which must not
+// change the heights; text, gamma and time chunks are not read at all.
+TEST(SurfacePng, TransparencyAndAncillaryChunksChangeNothing) {
+    expectMatchesOpenScad(tessellate(surface("palette8_chunks.png", false, true)), "palette8_invert.off");
+}
+
 TEST(SurfacePng, FourBitGreyInterlaced) {
     expectMatchesOpenScad(tessellate(surface("grey4_interlaced.png")), "grey4_interlaced.off");
 }

@@ -20,8 +20,8 @@ def pack_row(samples, depth):
         out.append(acc << (8 - bits))
     return bytes(out)
 
-def png(path, width, height, color_type, depth, pixel, palette=None, interlace=False):
-    """pixel(x, y) -> tuple of samples for one pixel."""
+def png(path, width, height, color_type, depth, pixel, palette=None, interlace=False, extra=()):
+    """pixel(x, y) -> tuple of samples for one pixel; extra: (kind, data) chunks after PLTE."""
     def raw(xs, ys):
         data = b''
         for y in ys:
@@ -43,6 +43,8 @@ def png(path, width, height, color_type, depth, pixel, palette=None, interlace=F
     out += chunk(b'IHDR', struct.pack('>IIBBBBB', width, height, depth, color_type, 0, 0, 1 if interlace else 0))
     if palette:
         out += chunk(b'PLTE', b''.join(bytes(c) for c in palette))
+    for kind, body in extra:
+        out += chunk(kind, body)
     out += chunk(b'IDAT', zlib.compress(data, 9))
     out += chunk(b'IEND', b'')
     open(path, 'wb').write(out)
@@ -63,3 +65,12 @@ png('palette.png', 4, 3, 3, 2, lambda x, y: (idx[y][x],), palette=pal)
 # 4-bit grey, interlaced (Adam7), with a grey+alpha twin: 6 x 5.
 png('grey4_interlaced.png', 6, 5, 0, 4, lambda x, y: ((x * 3 + y * 5) % 16,), interlace=True)
 png('grey_alpha.png', 6, 5, 4, 8, lambda x, y: ((x * 40 + y * 17) % 256, (x * 91) % 256))
+# 8-bit palette, 5 x 3, and its twin with a transparency (tRNS) and
+# ancillary chunks a heightmap does not use (gamma, text, a time): the twin
+# must give the same heights (OpenSCAD 2021.01 gives both the same mesh).
+pal8 = [(10, 20, 30), (200, 100, 50), (0, 255, 128), (255, 255, 255), (90, 0, 180)]
+idx8 = [[0, 1, 2, 3, 4], [4, 3, 2, 1, 0], [2, 2, 4, 0, 1]]
+png('palette8.png', 5, 3, 3, 8, lambda x, y: (idx8[y][x],), palette=pal8)
+png('palette8_chunks.png', 5, 3, 3, 8, lambda x, y: (idx8[y][x],), palette=pal8,
+    extra=[(b'tRNS', bytes([0, 128, 255, 40])), (b'gAMA', struct.pack('>I', 45455)),
+           (b'tEXt', b'Comment\0a heightmap'), (b'tIME', struct.pack('>HBBBBB', 2026, 11, 29, 12, 0, 0))])

@@ -1,0 +1,1 @@
+surface("palette8.png", invert = true);
