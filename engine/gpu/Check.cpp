@@ -1,5 +1,6 @@
 #include "strata/gpu/Check.h"
 
+#include <new>
 #include <string>
 
 #include "DebugOutput.h"
@@ -34,6 +35,9 @@ void checkErrors(std::source_location where) {
         if (first == GL_NO_ERROR) first = e;
     }
     if (message.empty() && first == GL_NO_ERROR) return;
+    // The driver could not allocate: the programs' out-of-memory line, as for
+    // any other allocation, not a GL error of strata's.
+    if (first == GL_OUT_OF_MEMORY) throw std::bad_alloc();
     if (first != GL_NO_ERROR) message = enumName(first) + (message.empty() ? "" : ": " + message);
     fail(message, where);
 }

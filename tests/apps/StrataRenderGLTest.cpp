@@ -357,6 +357,28 @@ TEST(StrataRenderGL, AnImageTooLargeForMemoryIsOneLine) {
 #endif
 }
 
+// An address-space limit too small for the GL driver: llvmpipe printed its
+// own warnings and no context at 300 MB, hung at 430 MB and aborted in LLVM
+// at 450 MB. Each is now the out-of-memory line (gpu::Context reserves the
+// driver's room before asking for it). `timeout` keeps a hang from stalling
+// the suite.
+TEST(StrataRenderGL, AnAddressSpaceLimitTooSmallForTheDriverIsOneLine) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit allows";
+#else
+    TempDir dir;
+    const std::string scene = dir.write("cube.csg", "cube(size = 1);\n");
+    for (const char* limit : {"300000", "430000", "450000"}) {
+        const ProcessResult r = runProcess({"/bin/sh", "-c", std::string("ulimit -v ") + limit +
+                                                                 " && exec timeout 120 \"$0\" \"$1\" -o \"$2\"",
+                                            kExe, scene, dir / "cube.png"});
+        EXPECT_EQ(r.exitCode, 1) << limit << ": " << r.err;
+        EXPECT_EQ(r.err, scene + ": out of memory (the scene needs more memory than the process may use)\n") << limit;
+        EXPECT_EQ(dir.files(), std::vector<std::string>{"cube.csg"}) << limit;
+    }
+#endif
+}
+
 // A translucent color() against OpenSCAD 2021.01's own preview of the same
 // scene (tests/data/openscad-alpha/README.md): OpenSCAD lights surfaces
 // otherwise, so only what does not depend on the light is compared. The

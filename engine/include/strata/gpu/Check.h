@@ -16,7 +16,8 @@
 namespace strata::gpu {
 
 // Throws strata::Error if GL reported an error since the last check (either
-// through the debug callback or glGetError()). Clears GL's error flags.
+// through the debug callback or glGetError()), std::bad_alloc for
+// GL_OUT_OF_MEMORY. Clears GL's error flags.
 void checkErrors(std::source_location where = std::source_location::current());
 
 // Throws strata::Error("<where>: <message>").

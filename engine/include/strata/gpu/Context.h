@@ -36,7 +36,8 @@ class Context {
 public:
     // Throws strata::Error("EGL: no OpenGL 4.5 core context available (<why>)")
     // when EGL or a 4.5 core context (with `compatibility`: "2.1
-    // compatibility") is missing.
+    // compatibility") is missing, and std::bad_alloc where an address-space
+    // limit (ulimit -v) leaves the driver less than 256 MiB.
     explicit Context(const ContextOptions& options = {});
     ~Context();
     Context(const Context&) = delete;
