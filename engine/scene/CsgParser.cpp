@@ -1479,12 +1479,22 @@ int Parser::finishGather(const Open& open) {
             return -1;
         }
     }
+    // A part of child c goes into combinations / (its child's parts) sums:
+    // copied into all but the last, moved into that one, so that sums inside
+    // one another (each a hull leaf holding the sum inside it) cost their
+    // leaves once, not once for every sum around them.
+    std::unordered_map<int, std::size_t> usesLeft;
+    for (const auto& child : children)
+        for (int l : child) usesLeft[l] += combinations / child.size();
+    auto take = [&](int l) {
+        return --usesLeft[l] == 0 ? std::move(tree_.leaves[static_cast<std::size_t>(l)]) : leafCopy(l);
+    };
     std::vector<int> sums;
     std::vector<std::size_t> choice(children.size(), 0);
     for (std::size_t k = 0; k < combinations; ++k) {
         Hull h;
-        h.parts.push_back(leafCopy(children[0][choice[0]]));
-        for (std::size_t c = 1; c < children.size(); ++c) h.summands.push_back(leafCopy(children[c][choice[c]]));
+        h.parts.push_back(take(children[0][choice[0]]));
+        for (std::size_t c = 1; c < children.size(); ++c) h.summands.push_back(take(children[c][choice[c]]));
         sums.push_back(hullLeaf(std::move(h)));
         for (std::size_t c = 0; c < children.size() && ++choice[c] == children[c].size(); ++c) choice[c] = 0;
     }

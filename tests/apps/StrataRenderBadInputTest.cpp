@@ -399,6 +399,23 @@ TEST(StrataRender, DeeplyNestedShapesAreOneLine) {
     expectFailure(dir, {hull, "--export", dir / "hull.stl"}, hull + ":1001:1" + budget);
 }
 
+// Just inside the budget: each hull or sum holds the one inside it, and
+// copying that into every level cost memory quadratic in the depth (999
+// nested minkowski()s: 234 MB; 10,000 nested hull()s grew past 7.7 GB).
+// Each level's leaves are now moved into it.
+TEST(StrataRender, NestedHullsAndSumsCostTheirLeavesOnce) {
+    TempDir dir;
+    const std::string sums = dir.write("sums.csg", nested(999, "minkowski() {", kCube, "}"));
+    const std::string hulls = dir.write("hulls.csg", nested(999, "hull() { difference() {", kCube, "} }"));
+    for (const std::string& scene : {sums, hulls}) {
+        const ProcessResult r = runProcess({kExe, scene, "--export", dir / "out.stl"});
+        EXPECT_EQ(r.exitCode, 0) << scene << ": " << r.err;
+#if !defined(__SANITIZE_ADDRESS__)
+        EXPECT_LT(r.peakKiB, 120 * 1024) << scene;
+#endif
+    }
+}
+
 TEST(StrataRender, AMistakeDeepInsideNestedShapesNamesOnePosition) {
     // The innermost node that knows where it is names the mistake; the
     // 999 shapes around it (the extrusion is the thousandth) add nothing to
