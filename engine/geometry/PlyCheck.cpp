@@ -95,6 +95,10 @@ private:
         return "header declares " + std::to_string(count) + " " + shownWord(e.name) +
                " elements, more than the file can hold";
     }
+    static std::string notANumber(std::string_view word, bool integer) {
+        return std::string(integer ? "a value that is not a whole number: " : "a value that is not a number: ") +
+               shownWord(word);
+    }
     std::string endsEarly(const Element& e) const {
         return "the file ends before the " + std::to_string(e.count) + " " + shownWord(e.name) +
                " elements its header declares";
@@ -240,6 +244,25 @@ void Checker::counts(const Header& h) const {
     }
 }
 
+// Whether a word of a text body is one number of a property's type, whole:
+// OpenMesh's reader takes numbers with >>, which stops inside a word such as
+// '0+0' and reads the rest as the next value, so that the file it reads is
+// no longer the one checked (a list length further on could then be any
+// number at all). A sign is allowed, as >> allows it.
+bool isNumberWord(std::string_view word, bool integer) {
+    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
+    if (word.empty() || word.front() == '+') return false;
+    const char* end = word.data() + word.size();
+    if (integer) {
+        long long value = 0;
+        const auto [ptr, ec] = std::from_chars(word.data(), end, value);
+        return ec == std::errc() && ptr == end;
+    }
+    double value = 0;
+    const auto [ptr, ec] = std::from_chars(word.data(), end, value);
+    return ec == std::errc() && ptr == end;
+}
+
 // Walks the text after the header word by word: every element is there, and
 // every list length is a whole number its values can follow.
 void Checker::asciiBody(const Header& h, const std::string& text) const {
@@ -261,7 +284,10 @@ void Checker::asciiBody(const Header& h, const std::string& text) const {
             for (const Property& p : e.properties) {
                 const std::string_view word = next();
                 if (word.empty()) fail(0, endsEarly(e));
-                if (!p.list) continue;
+                if (!p.list) {
+                    if (!isNumberWord(word, p.type.integer)) fail(line, notANumber(word, p.type.integer));
+                    continue;
+                }
                 unsigned long long length = 0;
                 const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), length);
                 if (ec == std::errc::result_out_of_range) fail(line, "a list of " + shownWord(word) + " values, more than the file holds");
@@ -273,7 +299,9 @@ void Checker::asciiBody(const Header& h, const std::string& text) const {
                     fail(line, "a list of " + std::to_string(length) + " values, more than the file holds");
                 }
                 for (unsigned long long k = 0; k < length; ++k) {
-                    if (next().empty()) fail(0, endsEarly(e));
+                    const std::string_view value = next();
+                    if (value.empty()) fail(0, endsEarly(e));
+                    if (!isNumberWord(value, p.type.integer)) fail(line, notANumber(value, p.type.integer));
                 }
             }
         }

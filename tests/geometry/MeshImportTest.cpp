@@ -419,6 +419,14 @@ TEST(ImportMesh, HostilePlyFilesAreRefusedWithOneLine) {
          ":14: cannot read mesh: a list of 2000000000 values, more than the file holds"},
         {ascii + kTetrahedronElements + "end_header\n0 0 0\n2 0 0\n0 2 0\n0 0 2\n3.5 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
          ":14: cannot read mesh: a list length that is not a whole number: '3.5'"},
+        // Words OpenMesh's >> would split: '0+0' is read as 0 and +0, and
+        // every value after it shifts by one (the fuzzer's case: a list
+        // length of 120 digits further on, and 2 GB of vertex handles).
+        {ascii + kTetrahedronElements + "end_header\n0 0 0\n2 0 0\n0 2 0\n0+0 2\n3 0 2 1\n3 0 1 3\n3 00 0 0\n" +
+             std::string(120, '2') + "03 2\n",
+         ":13: cannot read mesh: a value that is not a number: '0+0'"},
+        {ascii + kTetrahedronElements + "end_header\n0 0 0\n2 0 0\n0 2 0\n0 0 2\n3 0 2 1\n3 0 1.5 3\n3 0 3 2\n3 1 2 3\n",
+         ":15: cannot read mesh: a value that is not a whole number: '1.5'"},
         {binaryShort, ": cannot read mesh: a list of 3 values in element 'face', more than the file holds"},
         {binaryNoFace, ": cannot read mesh: the file ends before the 4 'face' elements its header declares"},
         {binaryLongList, ": cannot read mesh: a list of 255 values in element 'face', more than the file holds"},
