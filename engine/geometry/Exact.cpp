@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <mutex>
@@ -293,6 +294,34 @@ std::size_t booleansUnder(const scene::Tree& tree, int node) {
     return count;
 }
 
+// Whether the union's children lie in boxes (of their leaves' meshes) that
+// are apart by more than rounding: no two can touch, so their union is the
+// children side by side. Boxes closer than 2^-30 of the scene's size count as
+// meeting: a leaf's exact points may lie a rounding away from its mesh's.
+bool partsApart(const scene::Tree& tree, const scene::Node& n, const std::vector<Mesh>& leafMeshes) {
+    if (n.children.size() < 2) return false;
+    std::vector<Bounds> boxes;
+    Bounds all;
+    for (int child : n.children) {
+        Bounds box;
+        for (int l : tree.leavesUnder(child)) box.extend(boundsOf(leafMeshes[static_cast<std::size_t>(l)]));
+        if (box.empty()) return false;  // nothing there to place: leave it to the evaluation
+        all.extend(box);
+        boxes.push_back(box);
+    }
+    const double reach = std::ldexp(all.diagonal(), -30);
+    std::sort(boxes.begin(), boxes.end(), [](const Bounds& a, const Bounds& b) { return a.min.x < b.min.x; });
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        for (std::size_t j = i + 1; j < boxes.size() && boxes[j].min.x <= boxes[i].max.x + reach; ++j) {
+            bool meet = true;
+            for (int k = 0; k < 3; ++k)
+                meet = meet && boxes[j].min[k] <= boxes[i].max[k] + reach && boxes[i].min[k] <= boxes[j].max[k] + reach;
+            if (meet) return false;
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 namespace detail {
@@ -326,6 +355,20 @@ Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& lea
         Mesh mesh = leafMeshes[static_cast<std::size_t>(n.leaf)];
         canonicalOrder(mesh);
         return mesh;
+    }
+    // A union of parts whose boxes are apart (a plate of separate parts): the
+    // union is the parts side by side, each evaluated, and kept, alone.
+    if (const scene::Node& n = tree.nodes[static_cast<std::size_t>(single)];
+        n.kind == scene::NodeKind::Union && partsApart(tree, n, leafMeshes)) {
+        Mesh all;
+        for (int child : n.children) {
+            const Mesh part = exactResult(tree, child, leafMeshes);
+            const auto base = static_cast<uint32_t>(all.positions.size());
+            all.positions.insert(all.positions.end(), part.positions.begin(), part.positions.end());
+            for (const auto& t : part.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        }
+        canonicalOrder(all);
+        return all;
     }
     const std::uint64_t key = contentKey(tree, node, leafMeshes);
     if (std::optional<Mesh> known = cache().find(key)) return std::move(*known);

@@ -10,6 +10,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -147,6 +148,34 @@ TEST(StrataRenderExport, ALoneObjectIsWrittenAsItsOwnMesh) {
     bool centre = false;
     for (const auto v : ours.vertices()) centre = centre || ours.point(v) == Kernel::Point_3(6, 7, 13);
     EXPECT_TRUE(centre) << "the top's centre, moved by the translation";
+    expectClean(out);
+}
+
+// A plate of separate parts: a union whose children's boxes are apart is
+// each child's exact result side by side, without a union of them all. Four
+// cubes of 20 each holed through by a 48-sided cylinder of radius 5.
+TEST(StrataRenderExport, APlateOfSeparatePartsIsEachPartSideBySide) {
+    TempDir dir;
+    std::string text = "union() {\n";
+    for (int i = 0; i < 4; ++i) {
+        text += "multmatrix([[1, 0, 0, " + std::to_string(30 * i) + "], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+                "difference() {\ncube(size = [20, 20, 20], center = false);\n"
+                "multmatrix([[1, 0, 0, 10], [0, 1, 0, 10], [0, 0, 1, -1], [0, 0, 0, 1]]) {\n"
+                "cylinder($fn = 48, $fa = 12, $fs = 2, h = 22, r1 = 5, r2 = 5, center = false);\n}\n}\n}\n";
+    }
+    const std::string scene = dir.write("plate.csg", text + "}\n");
+    const std::string out = dir / "plate.off";
+    const ProcessResult r = runProcess({kExe, scene, "--export", out});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Solid ours = read(out);
+    EXPECT_TRUE(CGAL::is_closed(ours));
+    EXPECT_TRUE(PMP::is_outward_oriented(ours));
+    EXPECT_FALSE(PMP::does_self_intersect(ours));
+    Solid parts = ours;
+    const auto component = parts.add_property_map<Solid::Face_index, std::size_t>("f:component").first;
+    EXPECT_EQ(PMP::connected_components(parts, component), 4u);
+    const double hole = 0.5 * 48 * 25 * std::sin(2 * M_PI / 48);  // the 48-gon's area
+    EXPECT_NEAR(PMP::volume(ours), 4 * (8000 - 20 * hole), 1e-3);
     expectClean(out);
 }
 
