@@ -46,15 +46,16 @@ private:
     std::size_t errorSize_ = 0;
 };
 
+[[noreturn]] void tooManyHullPoints(std::size_t count) {
+    throw Error("hull: too many points (" + std::to_string(count) + ", at most " + std::to_string(kMaxHullPoints) + ")");
+}
+
 }  // namespace
 
 Mesh convexHull(const std::vector<glm::dvec3>& points) {
     Mesh mesh;
     if (points.size() < 4) return mesh;
-    if (points.size() > kMaxHullPoints) {
-        throw Error("hull: too many points (" + std::to_string(points.size()) + ", at most " +
-                    std::to_string(kMaxHullPoints) + ")");
-    }
+    if (points.size() > kMaxHullPoints) tooManyHullPoints(points.size());
     std::vector<coordT> coords;
     coords.reserve(points.size() * 3);
     for (const glm::dvec3& p : points) coords.insert(coords.end(), {p.x, p.y, p.z});
@@ -101,6 +102,9 @@ Mesh tessellate(const scene::Hull& hull) {
     std::vector<glm::dvec3> points;
     for (const scene::Leaf& part : hull.parts) {
         const Mesh m = leafMesh(part);
+        // Refused as soon as the parts made so far pass the budget, before
+        // the rest are made.
+        if (m.positions.size() > kMaxHullPoints - points.size()) tooManyHullPoints(points.size() + m.positions.size());
         points.insert(points.end(), m.positions.begin(), m.positions.end());
     }
     for (const scene::Leaf& summand : hull.summands) {
