@@ -343,32 +343,25 @@ void keepResult(std::uint64_t key, const Mesh& mesh) { cache().add(key, mesh); }
 
 std::size_t exactCacheHits() { return cache().hits(); }
 
-Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
-    // One leaf under nodes of one child each: no boolean to evaluate, and
-    // its checked mesh is the result, as OpenSCAD writes a lone object's
-    // polygons without CGAL. (Through a Nef polyhedron, only to join
-    // coplanar triangles, a sphere of 256 fragments took 5 s.)
-    int single = node;
-    while (tree.nodes[static_cast<std::size_t>(single)].children.size() == 1)
-        single = tree.nodes[static_cast<std::size_t>(single)].children.front();
-    if (const scene::Node& n = tree.nodes[static_cast<std::size_t>(single)]; n.kind == scene::NodeKind::Leaf) {
+namespace {
+
+// The node under a chain of nodes of one child each.
+int belowSingleChildren(const scene::Tree& tree, int node) {
+    while (tree.nodes[static_cast<std::size_t>(node)].children.size() == 1)
+        node = tree.nodes[static_cast<std::size_t>(node)].children.front();
+    return node;
+}
+
+// The subtree's result through CGAL, kept by its content; a lone leaf (no
+// boolean to evaluate) is its own checked mesh, as OpenSCAD writes a lone
+// object's polygons without CGAL. (Through a Nef polyhedron, only to join
+// coplanar triangles, a sphere of 256 fragments took 5 s.)
+Mesh evaluatedResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
+    if (const scene::Node& n = tree.nodes[static_cast<std::size_t>(belowSingleChildren(tree, node))];
+        n.kind == scene::NodeKind::Leaf) {
         Mesh mesh = leafMeshes[static_cast<std::size_t>(n.leaf)];
         canonicalOrder(mesh);
         return mesh;
-    }
-    // A union of parts whose boxes are apart (a plate of separate parts): the
-    // union is the parts side by side, each evaluated, and kept, alone.
-    if (const scene::Node& n = tree.nodes[static_cast<std::size_t>(single)];
-        n.kind == scene::NodeKind::Union && partsApart(tree, n, leafMeshes)) {
-        Mesh all;
-        for (int child : n.children) {
-            const Mesh part = exactResult(tree, child, leafMeshes);
-            const auto base = static_cast<uint32_t>(all.positions.size());
-            all.positions.insert(all.positions.end(), part.positions.begin(), part.positions.end());
-            for (const auto& t : part.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-        }
-        canonicalOrder(all);
-        return all;
     }
     const std::uint64_t key = contentKey(tree, node, leafMeshes);
     if (std::optional<Mesh> known = cache().find(key)) return std::move(*known);
@@ -377,6 +370,27 @@ Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& lea
     Mesh result = toMesh(solid);
     cache().add(key, result);
     return result;
+}
+
+}  // namespace
+
+Mesh exactResult(const scene::Tree& tree, int node, const std::vector<Mesh>& leafMeshes) {
+    // A union of parts whose boxes are apart (a plate of separate parts): the
+    // union is the parts side by side, each evaluated, and kept, alone. One
+    // level only: a file's nesting never becomes recursion here.
+    if (const scene::Node& n = tree.nodes[static_cast<std::size_t>(belowSingleChildren(tree, node))];
+        n.kind == scene::NodeKind::Union && partsApart(tree, n, leafMeshes)) {
+        Mesh all;
+        for (int child : n.children) {
+            const Mesh part = evaluatedResult(tree, child, leafMeshes);
+            const auto base = static_cast<uint32_t>(all.positions.size());
+            all.positions.insert(all.positions.end(), part.positions.begin(), part.positions.end());
+            for (const auto& t : part.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        }
+        canonicalOrder(all);
+        return all;
+    }
+    return evaluatedResult(tree, node, leafMeshes);
 }
 
 Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
