@@ -51,6 +51,7 @@
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
 #include "strata/io/Json.h"
+#include "strata/render/Limits.h"
 #include "strata/render/Renderer.h"
 
 namespace {
@@ -80,10 +81,11 @@ Size parseSize(const std::string& text) {
         const std::string rest = text.substr(x + 1);
         const int h = std::stoi(rest, &used);
         if (used != rest.size()) throw std::invalid_argument("height");
-        if (w < 1 || h < 1 || w > 16384 || h > 16384) throw std::invalid_argument("range");
+        if (w < 1 || h < 1 || w > render::kMaxImageSide || h > render::kMaxImageSide) throw std::invalid_argument("range");
         return {w, h};
     } catch (const std::exception&) {
-        throw Error("--size: expected WxH with 1 <= W, H <= 16384, got '" + text + "'");
+        throw Error("--size: expected WxH with 1 <= W, H <= " + std::to_string(render::kMaxImageSide) + ", got '" + text +
+                    "'");
     }
 }
 

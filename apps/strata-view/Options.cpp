@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <string>
+#include <string_view>
 
 #include "CommandLine.h"
 #include "Script.h"
@@ -39,11 +41,13 @@ ParsedOptions parseOptions(int argc, char** argv) {
             if (comma == std::string::npos || !parseWhole(std::string_view(imgsize).substr(0, comma), o.width) ||
                 !parseWhole(std::string_view(imgsize).substr(comma + 1), o.height) || o.width <= 0 ||
                 o.height <= 0 || o.width > render::kMaxImageSide || o.height > render::kMaxImageSide)
-                throw apps::UsageError{"--imgsize: expected W,H (two whole numbers from 1 to 16384), got '" + imgsize + "'"};
+                throw apps::UsageError{"--imgsize: expected W,H (two whole numbers from 1 to " +
+                                       std::to_string(render::kMaxImageSide) + "), got '" + imgsize + "'"};
         }
         if (app.count("--layers") && layers != "auto") {
             if (!parseWhole(layers, o.layers) || o.layers < 1 || o.layers > render::kMaxLayers)
-                throw apps::UsageError{"--layers: expected 'auto' or a whole number from 1 to 1024, got '" + layers + "'"};
+                throw apps::UsageError{"--layers: expected 'auto' or a whole number from 1 to " +
+                                       std::to_string(render::kMaxLayers) + ", got '" + layers + "'"};
         }
         if (app.count("--colorscheme")) o.colorScheme = apps::checkedColorScheme(o.colorScheme);
         o.lighting = apps::checkedLighting(look);
