@@ -162,10 +162,10 @@ Header Checker::header(const std::string& head) const {
             if (h.elements.empty()) fail(line, "a property before any element");
             Property p;
             p.line = line;
-            if (words.size() >= 2) p.typeWord = words[1] == "list" && words.size() >= 3 ? words[2] : words[1];
             if (words.size() >= 2 && words[1] == "list") {
                 if (words.size() != 5) fail(line, "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
                 p.list = true;
+                p.typeWord = words[2];
                 p.countType = typeNamed(words[2]);
                 if (!p.countType.integer) fail(line, "a list's length type must be an integer type, not " + shownWord(words[2]));
                 p.type = typeNamed(words[3]);
@@ -175,6 +175,7 @@ Header Checker::header(const std::string& head) const {
                 if (words.size() != 3) fail(line, "expected 'property TYPE NAME'");
                 p.type = typeNamed(words[1]);
                 if (p.type.size == 0) fail(line, "unknown property type " + shownWord(words[1]));
+                p.typeWord = words[1];
                 p.name = words[2];
             }
             h.elements.back().properties.push_back(std::move(p));
@@ -250,8 +251,7 @@ void Checker::counts(const Header& h) const {
 // no longer the one checked (a list length further on could then be any
 // number at all). A sign is allowed, as >> allows it.
 bool isNumberWord(std::string_view word, bool integer) {
-    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
-    if (word.empty() || word.front() == '+') return false;
+    if (!word.empty() && word.front() == '+') word.remove_prefix(1);  // from_chars takes '-' only
     const char* end = word.data() + word.size();
     if (integer) {
         long long value = 0;

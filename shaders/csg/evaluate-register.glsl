@@ -112,7 +112,7 @@ void noteSlots(vec4 nearSide, uvec4 bits, inout uint seen, inout uint several) {
 
 void dropGrazes(inout vec4 nearSide, inout vec4 farSide, uvec4 bits, uint several) {
     for (int c = 0; c < 4; ++c) {
-        if ((several & bits[c]) == 0u && farSide[c] != kInfinity && isExit(nearSide[c]) && !isExit(farSide[c])) {
+        if ((several & bits[c]) == 0u && exitThenEntry(nearSide[c], farSide[c])) {
             nearSide[c] = kInfinity;
             farSide[c] = kInfinity;
         }

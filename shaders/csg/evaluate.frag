@@ -113,9 +113,16 @@ int surfaceLeaf(int leaf, bool exit) {
 // surfaces at a pixel are one layer's exit and then entry has none there. A
 // closed solid never gives that order to an exact ray that starts outside
 // it; the reference drops such a pair too.
+//
+// exitThenEntry takes a layer's two tagged surfaces as the forms hold them
+// (`far` +inf or equal to `near` where the layer caught one surface);
+// grazesOutside a layer as peeled.
+bool exitThenEntry(float near, float far) {
+    return far != kInfinity && far > near && isExit(near) && !isExit(far);
+}
+
 bool grazesOutside(vec2 layer) {
-    float near = -layer.r;
-    return near < kClearedDepth && layer.g > near && isExit(near) && !isExit(layer.g);
+    return -layer.r < kClearedDepth && exitThenEntry(-layer.r, layer.g);
 }
 
 // Coincident surfaces (docs/algorithm.md): surfaces of any operands that
