@@ -16,6 +16,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Interval_nt.h>
 #include <CGAL/assertions.h>
 
 namespace strata::geometry::detail {
@@ -44,6 +45,7 @@ constexpr bool skippedCgalCheck(std::string_view expression) { return expression
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 
+#include "CoplanarFaces.h"
 #include "ExactCache.h"
 #include "NefPolyhedra.h"
 #include "strata/core/Error.h"
@@ -58,12 +60,33 @@ using Solid = detail::ExactSolid;
 using detail::Boolean;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
+// Whether the closed solid's signed volume is zero. Summed first over the
+// points' intervals, which decides every solid of some size at once; only
+// where that sum's interval holds zero is the volume summed exactly (which
+// on a result of 50,000 triangles takes seconds).
+bool zeroVolume(const Solid& s) {
+    using Interval = CGAL::Interval_nt<true>;
+    Interval sixTimes = 0;
+    for (const auto f : s.faces()) {
+        std::array<std::array<Interval, 3>, 3> corner;
+        std::size_t i = 0;
+        for (const auto v : CGAL::vertices_around_face(s.halfedge(f), s)) {
+            const Kernel::Point_3& p = s.point(v);
+            corner[i++] = {CGAL::to_interval(p.x()), CGAL::to_interval(p.y()), CGAL::to_interval(p.z())};
+        }
+        const auto& [a, b, c] = corner;
+        sixTimes += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    if (!sixTimes.do_overlap(Interval(0))) return false;
+    return PMP::volume(s) == 0;
+}
+
 // A closed mesh that encloses nothing (faces back to back, as a polyhedron
 // whose points coincide makes) is the empty solid: the booleans are
 // regularized, and CGAL's Nef overlay is not defined on such a mesh.
 // (An open mesh encloses no volume CGAL can measure: it is left to the Nef
 // conversion, which refuses it with one line.)
-bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && CGAL::is_closed(s) && PMP::volume(s) == 0; }
+bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && CGAL::is_closed(s) && zeroVolume(s); }
 
 // a OP b. Corefinement first (fast); where it fails on a degenerate
 // configuration (CGAL's checks are on: a failed one throws) or cannot build
@@ -352,6 +375,18 @@ int belowSingleChildren(const scene::Tree& tree, int node) {
     return node;
 }
 
+// The solid with its runs of coplanar triangles joined into faces, and the
+// points no face needs gone; through a Nef polyhedron where that fails (a
+// result that touches itself at a point inside one of its faces).
+Solid joined(const Solid& solid, const SourceLocation& where) {
+    if (solid.number_of_faces() == 0 || zeroVolume(solid)) return Solid{};
+    try {
+        return detail::joinedCoplanarFaces(solid);
+    } catch (const std::exception&) {
+        return detail::simplified(solid, where);
+    }
+}
+
 // The subtree's result through CGAL, kept by its content; a lone leaf (no
 // boolean to evaluate) is its own checked mesh, as OpenSCAD writes a lone
 // object's polygons without CGAL. (Through a Nef polyhedron, only to join
@@ -366,7 +401,7 @@ Mesh evaluatedResult(const scene::Tree& tree, int node, const std::vector<Mesh>&
     const std::uint64_t key = contentKey(tree, node, leafMeshes);
     if (std::optional<Mesh> known = cache().find(key)) return std::move(*known);
     Steps steps{0, booleansUnder(tree, node)};
-    Solid solid = detail::simplified(evaluate(tree, node, leafMeshes, steps), tree.nodes[static_cast<std::size_t>(node)].where);
+    Solid solid = joined(evaluate(tree, node, leafMeshes, steps), tree.nodes[static_cast<std::size_t>(node)].where);
     Mesh result = toMesh(solid);
     cache().add(key, result);
     return result;

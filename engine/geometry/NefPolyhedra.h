@@ -2,7 +2,8 @@
 // What strata does with CGAL's Nef polyhedra (the exact representation
 // OpenSCAD 2021.01 evaluates with): a closed solid split into convex parts,
 // for Minkowski sums; and a boolean of two solids where corefinement, the
-// faster way, fails on a degenerate configuration. Kept in one file, as Nef
+// faster way, fails on a degenerate configuration; a result's coplanar
+// triangles joined where the faster way refuses. Kept in one file, as Nef
 // polyhedra are heavy to compile.
 
 #include <vector>
@@ -41,13 +42,15 @@ ExactSolid toExactSolid(const Mesh& mesh, const SourceLocation& where, const cha
 ExactSolid toExactSolid(const std::vector<CGAL::Epeck::Point_3>& points, const Mesh& mesh, const SourceLocation& where,
                         const char* who);
 
-// a OP b through Nef polyhedra, triangulated. Throws strata::Error naming
-// `where` when CGAL cannot take a solid.
 // The same solid with each run of coplanar triangles joined into one face
 // and retriangulated, and the points no edge needs gone, through a Nef
-// polyhedron: the fewest faces, as OpenSCAD's results have.
+// polyhedron: what joinedCoplanarFaces (CoplanarFaces.h) does far faster,
+// for the solids it refuses. Throws strata::Error naming `where` when CGAL
+// cannot take the solid.
 ExactSolid simplified(const ExactSolid& solid, const SourceLocation& where);
 
+// a OP b through Nef polyhedra, triangulated. Throws strata::Error naming
+// `where` when CGAL cannot take a solid.
 ExactSolid nefBoolean(const ExactSolid& a, const ExactSolid& b, Boolean op, const SourceLocation& where);
 
 }  // namespace strata::geometry::detail

@@ -5,8 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string>
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "GeometryTestUtil.h"
 #include "strata/geometry/Exact.h"
@@ -123,4 +128,45 @@ TEST(ExactResult, OverlappingSubtrahendsAreTakenAwayOnce) {
                                           balls + "}\n}\n"));
     EXPECT_NEAR(geometry::test::signedVolume(cut.result) + geometry::test::signedVolume(both.result), 64.0, 1e-9);
     EXPECT_TRUE(geometry::checkMesh(cut.result).ok()) << geometry::checkMesh(cut.result).describe();
+}
+
+namespace {
+
+// A step: [0, 1] x [0, 1] x [0, 1] beside [1, 2] x [0, 1] x [0, 2]. Its
+// union is a prism over an L of six corners: two caps of four triangles,
+// six sides of two, twelve points; the corners the two boxes shared on the
+// straight bottom edges are on no face's outline.
+const std::string kStep = "union() {\ncube(size = [1, 1, 1], center = false);\n"
+                          "multmatrix([[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) "
+                          "cube(size = [1, 1, 2], center = false);\n}\n";
+
+std::size_t pointsUsed(const Mesh& m) {
+    std::vector<bool> used(m.positions.size(), false);
+    for (const auto& t : m.triangles)
+        for (uint32_t v : t) used[v] = true;
+    return static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+}
+
+}  // namespace
+
+TEST(ExactResult, FlatFacesComeOutWithTheTrianglesTheirOutlinesNeed) {
+    const Evaluated step = evaluate(parse(kStep));
+    EXPECT_NEAR(geometry::test::signedVolume(step.result), 3.0, 1e-12);
+    EXPECT_EQ(step.result.triangles.size(), 20u);
+    EXPECT_EQ(pointsUsed(step.result), 12u);
+    EXPECT_TRUE(geometry::checkMesh(step.result).ok()) << geometry::checkMesh(step.result).describe();
+
+    // A 10 x 10 x 2 plate less a 16-sided prism through it: the top and the
+    // bottom are squares with a hole, 16 + 4 triangles each (a polygon of V
+    // corners and h holes takes V + 2h - 2); four sides and the hole's 16
+    // walls take two each: 80 triangles on 40 points.
+    const int n = 16;
+    const Evaluated plate = evaluate(parse("difference() {\ncube(size = [10, 10, 2], center = false);\n"
+                                           "multmatrix([[1, 0, 0, 5], [0, 1, 0, 5], [0, 0, 1, -1], [0, 0, 0, 1]]) "
+                                           "cylinder($fn = 16, h = 4, r1 = 2, r2 = 2, center = false);\n}\n"));
+    const double hole = 0.5 * n * 4.0 * std::sin(2.0 * 3.14159265358979323846 / n);
+    EXPECT_NEAR(geometry::test::signedVolume(plate.result), 2.0 * (100.0 - hole), 1e-9);
+    EXPECT_EQ(plate.result.triangles.size(), static_cast<std::size_t>(4 * n + 16));
+    EXPECT_EQ(pointsUsed(plate.result), static_cast<std::size_t>(2 * n + 8));
+    EXPECT_TRUE(geometry::checkMesh(plate.result).ok()) << geometry::checkMesh(plate.result).describe();
 }

@@ -1,0 +1,206 @@
+#include "CoplanarFaces.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_Delaunay_triangulation_face_base_2.h>
+#include <CGAL/Projection_traits_xy_3.h>
+#include <CGAL/Projection_traits_xz_3.h>
+#include <CGAL/Projection_traits_yz_3.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+namespace strata::geometry::detail {
+namespace {
+
+using Kernel = CGAL::Epeck;
+using Point = Kernel::Point_3;
+using Vertex = ExactSolid::Vertex_index;
+using Face = ExactSolid::Face_index;
+using Halfedge = ExactSolid::Halfedge_index;
+using Triangle = std::array<Vertex, 3>;
+
+// Union-find over faces, by index.
+std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t i) {
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+// Whether the two faces of the edge of `h` lie in one plane and face one
+// way: the far corners of the two triangles on opposite sides of the edge.
+bool flatEdge(const ExactSolid& s, Halfedge h) {
+    const Halfedge o = s.opposite(h);
+    const Point& p = s.point(s.source(h));
+    const Point& q = s.point(s.target(h));
+    const Point& r = s.point(s.target(s.next(h)));
+    const Point& t = s.point(s.target(s.next(o)));
+    // A triangle without area has no plane to share: its edges are creases,
+    // and the triangle stays as it is.
+    if (CGAL::collinear(p, q, r) || CGAL::collinear(q, p, t)) return false;
+    return CGAL::coplanar(p, q, r, t) && CGAL::coplanar_orientation(p, q, r, t) == CGAL::NEGATIVE;
+}
+
+// One region's outline as constraints, triangulated in the plane of its
+// faces seen along the axis `Traits` drops; triangles inside the outline
+// (an odd number of outline crossings from outside) are appended to `out`
+// in the orientation of `sample`, one of the region's faces.
+template <class Traits>
+void triangulateRegion(const ExactSolid& s, const std::vector<std::pair<Vertex, Vertex>>& outline, Face sample,
+                       std::vector<Triangle>& out) {
+    using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<Vertex, Traits>;
+    using FaceBase = CGAL::Triangulation_face_base_with_info_2<int, Traits,
+                                                               CGAL::Constrained_Delaunay_triangulation_face_base_2<Traits>>;
+    using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+    using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+    Cdt cdt;
+    auto insert = [&](Vertex v) {
+        const typename Cdt::Vertex_handle h = cdt.insert(s.point(v));
+        // Two points of the mesh at one position (parts of the result that
+        // touch at a corner) cannot both be corners of one triangulation.
+        if (h->info() != Vertex() && h->info() != v) throw std::runtime_error("two outline points at one position");
+        h->info() = v;
+        return h;
+    };
+    for (const auto& [a, b] : outline) cdt.insert_constraint(insert(a), insert(b));
+
+    // Nesting: 0 outside, one more across each outline edge.
+    for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+    std::deque<std::pair<typename Cdt::Face_handle, int>> todo{{cdt.infinite_face(), 0}};
+    while (!todo.empty()) {
+        auto [f, level] = todo.front();
+        todo.pop_front();
+        if (f->info() != -1) continue;
+        f->info() = level;
+        for (int i = 0; i < 3; ++i) {
+            const typename Cdt::Face_handle n = f->neighbor(i);
+            if (n->info() != -1) continue;
+            if (cdt.is_constrained(typename Cdt::Edge(f, i))) todo.emplace_back(n, level + 1);
+            else todo.emplace_front(n, level);
+        }
+    }
+
+    // The triangulation's faces turn counter-clockwise as Traits sees them.
+    const Halfedge h = s.halfedge(sample);
+    const bool counterClockwise =
+        Traits().orientation_2_object()(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h)))) ==
+        CGAL::COUNTERCLOCKWISE;
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+        if (f->info() % 2 == 0) continue;
+        const Vertex a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+        out.push_back(counterClockwise ? Triangle{a, b, c} : Triangle{a, c, b});
+    }
+}
+
+}  // namespace
+
+ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
+    if (s.has_garbage()) throw std::runtime_error("the solid has removed elements");
+    for (Halfedge h : s.halfedges())
+        if (s.is_border(h)) throw std::runtime_error("the solid is not closed");
+
+    // Regions: faces joined across flat edges.
+    std::vector<char> flat(s.num_edges(), 0);
+    std::vector<std::size_t> parent(s.num_faces());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    for (auto e : s.edges()) {
+        const Halfedge h = s.halfedge(e);
+        if (!flatEdge(s, h)) continue;
+        flat[e.idx()] = 1;
+        const std::size_t a = findRoot(parent, s.face(h).idx()), b = findRoot(parent, s.face(s.opposite(h)).idx());
+        if (a != b) parent[a] = b;
+    }
+    auto isFlat = [&](Halfedge h) { return flat[s.edge(h).idx()] != 0; };
+
+    // Points to keep: those on three or more creases, or on two that turn.
+    std::vector<char> keep(s.num_vertices(), 0);
+    for (Vertex v : s.vertices()) {
+        std::vector<Vertex> ends;
+        for (Halfedge h : CGAL::halfedges_around_target(v, s))
+            if (!isFlat(h)) ends.push_back(s.source(h));
+        keep[v.idx()] = ends.size() > 2 ||
+                        (ends.size() == 2 && !CGAL::collinear_are_strictly_ordered_along_line(
+                                                 s.point(ends[0]), s.point(v), s.point(ends[1])));
+        if (ends.size() == 1) throw std::runtime_error("a point with one crease");
+    }
+
+    // A triangle without area keeps its corners: it stays as it is.
+    for (Face f : s.faces()) {
+        const Halfedge h = s.halfedge(f);
+        if (CGAL::collinear(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h)))))
+            for (Vertex v : CGAL::vertices_around_face(h, s)) keep[v.idx()] = 1;
+    }
+
+    // Each region's faces, and whether it changes.
+    std::vector<std::vector<Face>> regions(s.num_faces());
+    for (Face f : s.faces()) regions[findRoot(parent, f.idx())].push_back(f);
+
+    std::vector<Triangle> triangles;
+    triangles.reserve(s.num_faces());
+    std::vector<std::pair<Vertex, Vertex>> outline;
+    for (const std::vector<Face>& region : regions) {
+        if (region.empty()) continue;
+        bool changes = region.size() > 1;
+        for (Vertex v : CGAL::vertices_around_face(s.halfedge(region.front()), s)) changes = changes || !keep[v.idx()];
+        if (!changes) {
+            const Halfedge h = s.halfedge(region.front());
+            triangles.push_back({s.source(h), s.target(h), s.target(s.next(h))});
+            continue;
+        }
+        // The outline: each crease edge of the region from a kept point,
+        // followed along the creases through dropped points to the next.
+        outline.clear();
+        for (Face f : region) {
+            for (Halfedge h : CGAL::halfedges_around_face(s.halfedge(f), s)) {
+                if (isFlat(h) || !keep[s.source(h).idx()]) continue;
+                Halfedge end = h;
+                for (std::size_t steps = 0; !keep[s.target(end).idx()]; ++steps) {
+                    if (steps > s.num_halfedges()) throw std::runtime_error("an outline that does not close");
+                    Halfedge next = s.next(end);
+                    while (isFlat(next)) next = s.next(s.opposite(next));
+                    end = next;
+                }
+                outline.emplace_back(s.source(h), s.target(end));
+            }
+        }
+        if (outline.size() < 3) throw std::runtime_error("a region without an outline");
+        // Seen along the axis its plane's normal is longest on (never zero).
+        const Halfedge h = s.halfedge(region.front());
+        const Kernel::Vector_3 n = CGAL::normal(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h))));
+        const std::array<double, 3> size{std::abs(CGAL::to_double(n.x())), std::abs(CGAL::to_double(n.y())),
+                                         std::abs(CGAL::to_double(n.z()))};
+        const auto axis = std::max_element(size.begin(), size.end()) - size.begin();
+        const std::size_t before = triangles.size();
+        if (axis == 0 && CGAL::sign(n.x()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_yz_3<Kernel>>(s, outline, region.front(), triangles);
+        else if (axis == 1 && CGAL::sign(n.y()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xz_3<Kernel>>(s, outline, region.front(), triangles);
+        else if (CGAL::sign(n.z()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xy_3<Kernel>>(s, outline, region.front(), triangles);
+        else throw std::runtime_error("a region without a plane");
+        if (triangles.size() == before) throw std::runtime_error("a region that triangulates to nothing");
+    }
+
+    ExactSolid out;
+    std::vector<Vertex> moved(s.num_vertices());
+    for (Vertex v : s.vertices())
+        if (keep[v.idx()]) moved[v.idx()] = out.add_vertex(s.point(v));
+    for (const Triangle& t : triangles) {
+        for (Vertex v : t)
+            if (!keep[v.idx()]) throw std::runtime_error("a triangle on a dropped point");
+        if (out.add_face(moved[t[0].idx()], moved[t[1].idx()], moved[t[2].idx()]) == ExactSolid::null_face())
+            throw std::runtime_error("triangles that do not join into a surface");
+    }
+    for (Halfedge h : out.halfedges())
+        if (out.is_border(h)) throw std::runtime_error("the joined solid is not closed");
+    return out;
+}
+
+}  // namespace strata::geometry::detail

@@ -1,0 +1,25 @@
+#pragma once
+// The last step of an exact evaluation: corefinement cuts faces into many
+// triangles, and a result's flat faces come out as runs of coplanar
+// triangles with points that only the cutting needed. Here each such run
+// becomes one polygon again, triangulated afresh in exact arithmetic, and
+// the points no face needs are dropped: the fewest triangles for the
+// solid's faces, as OpenSCAD's Nef polyhedra give, without building one.
+
+#include "NefPolyhedra.h"
+
+namespace strata::geometry::detail {
+
+// The same closed solid, point for point where points stay, with:
+// - each edge-connected run of coplanar triangles that face one way (a
+//   region) joined into one polygon, holes and all, and triangulated again
+//   by a constrained Delaunay triangulation of its outline;
+// - each point dropped that lies inside a region, or on a straight crease
+//   between two regions with no other crease through it.
+// Regions of one triangle with no point dropped are kept as they are.
+// Throws std::runtime_error where the input is not a closed mesh whose
+// faces enclose a volume (an outline that crosses itself, a triangle
+// without area); callers fall back to Nef polyhedra there.
+ExactSolid joinedCoplanarFaces(const ExactSolid& solid);
+
+}  // namespace strata::geometry::detail
