@@ -39,6 +39,7 @@ constexpr bool skippedCgalCheck(std::string_view expression) { return expression
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #pragma pop_macro("CGAL_assertion")
 #include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -146,50 +147,142 @@ bool remakeable(const scene::Primitive& p) {
 
 // The leaf's multmatrix() chain, outermost first, when its product in
 // doubles (as the parser multiplied it) is the leaf's transform bit for bit.
-std::optional<std::vector<glm::dmat4>> checkedChain(const scene::Leaf& leaf) {
-    std::vector<glm::dmat4> chain;
-    for (const scene::TransformStep* s = leaf.steps.get(); s != nullptr; s = s->previous.get()) chain.push_back(s->matrix);
+std::optional<std::vector<const scene::TransformStep*>> checkedChain(const scene::Leaf& leaf) {
+    std::vector<const scene::TransformStep*> chain;
+    for (const scene::TransformStep* s = leaf.steps.get(); s != nullptr; s = s->previous.get()) chain.push_back(s);
     std::reverse(chain.begin(), chain.end());
     glm::dmat4 product(1.0);
-    for (const glm::dmat4& m : chain) product = product * m;
+    for (const scene::TransformStep* s : chain) product = product * s->matrix;
     if (product != leaf.transform) return std::nullopt;
     return chain;
 }
 
-// A leaf's solid with exact points. The checked world-space mesh is the
-// leaf's object-space mesh moved by its transform, rounded to doubles at
-// every point; leaves under one rotation, flush before it, are then a
+using ET = Kernel::FT::ET;
+
+// The sign of a step's 3x3 determinant, exactly.
+int determinantSign(const glm::dmat4& m) {
+    auto at = [&](int col, int row) { return ET(m[col][row]); };
+    const ET det = at(0, 0) * (at(1, 1) * at(2, 2) - at(2, 1) * at(1, 2)) -
+                   at(1, 0) * (at(0, 1) * at(2, 2) - at(2, 1) * at(0, 2)) +
+                   at(2, 0) * (at(0, 1) * at(1, 2) - at(1, 1) * at(0, 2));
+    return CGAL::sign(det);
+}
+
+// `q` moved by `m` (the bottom row ignored), exactly.
+std::array<ET, 3> moved(const glm::dmat4& m, const std::array<ET, 3>& q) {
+    std::array<ET, 3> next;
+    for (int i = 0; i < 3; ++i)
+        next[static_cast<std::size_t>(i)] = ET(m[0][i]) * q[0] + ET(m[1][i]) * q[1] + ET(m[2][i]) * q[2] + ET(m[3][i]);
+    return next;
+}
+
+// Whether the leaf's solid can be made from its object-space mesh and its
+// chain: the checked world-space mesh is exactly the object mesh moved by
+// the transform (nothing was cleaned away), and the transform is exactly
+// the product of its chain.
+std::optional<std::vector<const scene::TransformStep*>> exactChain(const scene::Leaf& leaf, const Mesh& world) {
+    if (!leaf.steps || !remakeable(leaf.primitive)) return std::nullopt;
+    std::optional<std::vector<const scene::TransformStep*>> chain = checkedChain(leaf);
+    if (!chain) return std::nullopt;
+    const Mesh moved = transformed(objectMesh(leaf.primitive), leaf.transform);
+    if (moved.positions != world.positions || moved.triangles != world.triangles) return std::nullopt;
+    return chain;
+}
+
+// The outer steps of a transform chain that a subtree is evaluated under:
+// its results are made in the frame inside them and moved out through them
+// once. Steps of the chain from `parent` (exclusive) to `step` (inclusive).
+struct Frame {
+    const scene::TransformStep* step = nullptr;  // the innermost step factored out; null: none
+    std::size_t depth = 0;                       // how many steps, from the outermost
+};
+
+// A leaf's solid with exact points, in the frame `frame` (the outermost
+// `frame.depth` steps of its chain left out). The checked world-space mesh
+// is the leaf's object-space mesh moved by its transform, rounded to doubles
+// at every point; leaves under one rotation, flush before it, are then a
 // rounding apart after it, and the exact result keeps those slivers. So
-// where the world mesh is exactly the object mesh moved by the transform
-// (nothing was cleaned away), and the transform is exactly the product of
-// its chain, each object-space point is moved by the chain's matrices one
-// by one in exact arithmetic instead, as OpenSCAD transforms results:
-// faces flush in a frame stay flush. Elsewhere the world mesh as it is.
-Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const SourceLocation& where) {
+// where the leaf has an exact chain, each object-space point is moved by the
+// chain's matrices one by one in exact arithmetic instead, as OpenSCAD
+// transforms results: faces flush in a frame stay flush. Elsewhere (only in
+// the world frame) the world mesh as it is.
+Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const SourceLocation& where, Frame frame) {
     const scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(leafIndex)];
-    if (!leaf.steps || !remakeable(leaf.primitive)) return toSolid(world, where);
-    const std::optional<std::vector<glm::dmat4>> chain = checkedChain(leaf);
+    const std::optional<std::vector<const scene::TransformStep*>> chain = exactChain(leaf, world);
     if (!chain) return toSolid(world, where);
-    const Mesh object = objectMesh(leaf.primitive);
-    const Mesh moved = transformed(object, leaf.transform);
-    if (moved.positions != world.positions || moved.triangles != world.triangles) return toSolid(world, where);
-    using FT = Kernel::FT;
-    using ET = FT::ET;
+    Mesh object = objectMesh(leaf.primitive);
+    int sign = 1;
+    for (std::size_t i = frame.depth; i < chain->size(); ++i) sign *= determinantSign((*chain)[i]->matrix);
+    if (sign < 0)
+        for (auto& t : object.triangles) std::swap(t[1], t[2]);
     std::vector<Kernel::Point_3> points;
     points.reserve(object.positions.size());
     for (const glm::dvec3& p : object.positions) {
         std::array<ET, 3> q{ET(p.x), ET(p.y), ET(p.z)};
-        for (auto m = chain->rbegin(); m != chain->rend(); ++m) {
-            std::array<ET, 3> next;
-            for (int i = 0; i < 3; ++i) {
-                next[static_cast<std::size_t>(i)] = ET((*m)[0][i]) * q[0] + ET((*m)[1][i]) * q[1] + ET((*m)[2][i]) * q[2] +
-                                                   ET((*m)[3][i]);
-            }
-            q = std::move(next);
-        }
-        points.emplace_back(FT(q[0]), FT(q[1]), FT(q[2]));
+        for (std::size_t i = chain->size(); i-- > frame.depth;) q = moved((*chain)[i]->matrix, q);
+        points.emplace_back(Kernel::FT(q[0]), Kernel::FT(q[1]), Kernel::FT(q[2]));
     }
-    return detail::toExactSolid(points, world, where, "an exact evaluation");
+    return detail::toExactSolid(points, object, where, "an exact evaluation");
+}
+
+// The frame each node under `root` is evaluated in: the longest chain of
+// steps all its leaves share, stopping before a step that flattens space
+// (a flat solid has no frame to be moved out of). A leaf without an exact
+// chain gives every node above it the world frame.
+std::unordered_map<int, Frame> frames(const scene::Tree& tree, int root, const std::vector<Mesh>& leafMeshes) {
+    auto meet = [](Frame a, Frame b) {
+        if (a.step == nullptr || b.step == nullptr) return Frame{};
+        for (; a.depth > b.depth; --a.depth) a.step = a.step->previous.get();
+        for (; b.depth > a.depth; --b.depth) b.step = b.step->previous.get();
+        for (; a.step != b.step; --a.depth) {
+            a.step = a.step->previous.get();
+            b.step = b.step->previous.get();
+        }
+        return a.step == nullptr ? Frame{} : a;
+    };
+    std::unordered_map<int, Frame> out;
+    // Children before parents: a node is finished when it is met the second time.
+    std::vector<std::pair<int, bool>> todo{{root, false}};
+    while (!todo.empty()) {
+        const auto [index, childrenDone] = todo.back();
+        todo.pop_back();
+        const scene::Node& n = tree.nodes[static_cast<std::size_t>(index)];
+        if (n.kind == scene::NodeKind::Leaf) {
+            Frame f;
+            if (const auto chain = exactChain(tree.leaves[static_cast<std::size_t>(n.leaf)],
+                                              leafMeshes[static_cast<std::size_t>(n.leaf)])) {
+                while (f.depth < chain->size() && determinantSign((*chain)[f.depth]->matrix) != 0) f.step = (*chain)[f.depth++];
+            }
+            out[index] = f;
+        } else if (!childrenDone) {
+            todo.emplace_back(index, true);
+            for (int child : n.children) todo.emplace_back(child, false);
+        } else {
+            Frame f = n.children.empty() ? Frame{} : out.at(n.children.front());
+            for (int child : n.children) f = meet(f, out.at(child));
+            out[index] = f;
+        }
+    }
+    return out;
+}
+
+// The solid, made in the frame `inner`, moved out to the frame `outer`
+// around it: each point through the steps between, in exact arithmetic.
+void moveOut(Solid& solid, Frame inner, Frame outer) {
+    std::vector<const glm::dmat4*> steps;  // innermost first
+    int sign = 1;
+    for (const scene::TransformStep* s = inner.step; steps.size() < inner.depth - outer.depth; s = s->previous.get()) {
+        steps.push_back(&s->matrix);
+        sign *= determinantSign(s->matrix);
+    }
+    if (steps.empty()) return;
+    for (const auto v : solid.vertices()) {
+        const Kernel::Point_3& p = solid.point(v);
+        std::array<ET, 3> q{p.x().exact(), p.y().exact(), p.z().exact()};
+        for (const glm::dmat4* m : steps) q = moved(*m, q);
+        solid.point(v) = Kernel::Point_3(Kernel::FT(q[0]), Kernel::FT(q[1]), Kernel::FT(q[2]));
+    }
+    if (sign < 0) PMP::reverse_face_orientations(solid);
 }
 
 // Vertices in lexicographic order, each triangle turned to start at its
@@ -462,18 +555,20 @@ Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafM
         std::size_t next = 0;  // the child to evaluate next
         Solid result;
         std::string what;
+        Frame frame, outer;  // the frame the node's result is made in, and its parent's
     };
+    const std::unordered_map<int, Frame> frameOf = frames(tree, node, leafMeshes);
     std::vector<Pending> stack;
     std::optional<Solid> done;  // the result of the node just finished
-    auto enter = [&](int index) {
+    auto enter = [&](int index, Frame outer) {
         const scene::Node& n = tree.nodes[static_cast<std::size_t>(index)];
         if (n.kind == scene::NodeKind::Leaf) {
-            done = leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where);
+            done = leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where, outer);
             return;
         }
-        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind)});
+        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind), frameOf.at(index), outer});
     };
-    enter(node);
+    enter(node, Frame{});
     while (!stack.empty()) {
         Pending& top = stack.back();
         const scene::Node& n = *top.node;
@@ -491,9 +586,10 @@ Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafM
             done.reset();
         }
         if (top.next < n.children.size()) {
-            enter(n.children[top.next++]);
+            enter(n.children[top.next++], top.frame);
             continue;
         }
+        moveOut(top.result, top.frame, top.outer);
         done = std::move(top.result);
         stack.pop_back();
     }

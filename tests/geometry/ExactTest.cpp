@@ -170,3 +170,41 @@ TEST(ExactResult, FlatFacesComeOutWithTheTrianglesTheirOutlinesNeed) {
     EXPECT_EQ(pointsUsed(plate.result), static_cast<std::size_t>(2 * n + 8));
     EXPECT_TRUE(geometry::checkMesh(plate.result).ok()) << geometry::checkMesh(plate.result).describe();
 }
+
+TEST(ExactResult, ASubassemblyTurnedOrMirroredIsTheSameSolidMoved) {
+    // The step under a turn about an oblique axis, then under a mirror and a
+    // shift: the booleans are done before the steps and the result moved out
+    // through them; faces flush before stay flush, and a mirror keeps the
+    // surface facing out.
+    const std::string turn = "multmatrix([[0.816497, 0.408248, 0.408248, 0], [0, 0.707107, -0.707107, 0], "
+                             "[-0.57735, 0.57735, 0.57735, 0], [0, 0, 0, 1]])";
+    const std::string mirror = "multmatrix([[-1, 0, 0, 3], [0, 1, 0, 0.1], [0, 0, 1, 0], [0, 0, 0, 1]])";
+    // The turn's rows are unit length to 1e-6: the volume scales by its determinant.
+    const glm::dmat3 m(0.816497, 0, -0.57735, 0.408248, 0.707107, 0.57735, 0.408248, -0.707107, 0.57735);
+    const double scale = glm::determinant(m);
+    for (const std::string& text : {turn + " {\n" + kStep + "}\n", mirror + " {\n" + turn + " {\n" + kStep + "}\n}\n",
+                                    turn + " {\ndifference() {\n" + mirror + " {\n" + kStep + "}\n" + mirror +
+                                        " cube(size = [1, 1, 1], center = false);\n}\n}\n"}) {
+        SCOPED_TRACE(text);
+        const Evaluated e = evaluate(parse(text));
+        const bool cut = text.find("difference") != std::string::npos;
+        EXPECT_NEAR(geometry::test::signedVolume(e.result), (cut ? 2.0 : 3.0) * scale, 1e-9);
+        EXPECT_TRUE(geometry::checkMesh(e.result).ok()) << geometry::checkMesh(e.result).describe();
+        if (!cut) {
+            // Where the leaves' own meshes are, moved one by one.
+            geometry::Bounds leaves, result = geometry::boundsOf(e.result);
+            for (const Mesh& leaf : geometry::buildModel(parse(text)).leafMeshes) leaves.extend(geometry::boundsOf(leaf));
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_NEAR(result.min[k], leaves.min[k], 1e-12);
+                EXPECT_NEAR(result.max[k], leaves.max[k], 1e-12);
+            }
+            EXPECT_EQ(e.result.triangles.size(), 20u);
+            EXPECT_EQ(pointsUsed(e.result), 12u);
+        }
+    }
+    // A step that flattens space is no frame to move a result out of: the
+    // flattened step encloses nothing.
+    const Evaluated flat = evaluate(parse("multmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 0], [0, 0, 0, 1]]) {\n" +
+                                          turn + " {\n" + kStep + "}\n}\n"));
+    EXPECT_TRUE(flat.result.triangles.empty());
+}
