@@ -150,11 +150,17 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
     std::vector<std::pair<Vertex, Vertex>> outline;
     for (const std::vector<Face>& region : regions) {
         if (region.empty()) continue;
-        bool changes = region.size() > 1;
-        for (Vertex v : CGAL::vertices_around_face(s.halfedge(region.front()), s)) changes = changes || !keep[v.idx()];
+        // Triangles on the region's own outline points alone already are as
+        // few as any triangulation of it gives (V + 2h - 2 for V points and
+        // h holes): such a region stays as it is.
+        bool changes = false;
+        for (Face f : region)
+            for (Vertex v : CGAL::vertices_around_face(s.halfedge(f), s)) changes = changes || !keep[v.idx()];
         if (!changes) {
-            const Halfedge h = s.halfedge(region.front());
-            triangles.push_back({s.source(h), s.target(h), s.target(s.next(h))});
+            for (Face f : region) {
+                const Halfedge h = s.halfedge(f);
+                triangles.push_back({s.source(h), s.target(h), s.target(s.next(h))});
+            }
             continue;
         }
         // The outline: each crease edge of the region from a kept point,

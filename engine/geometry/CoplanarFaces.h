@@ -16,7 +16,8 @@ namespace strata::geometry::detail {
 //   by a constrained Delaunay triangulation of its outline;
 // - each point dropped that lies inside a region, or on a straight crease
 //   between two regions with no other crease through it.
-// Regions of one triangle with no point dropped are kept as they are.
+// A region with no point dropped keeps its triangles: any triangulation of
+// a polygon on its own corners has as many.
 // Throws std::runtime_error where the input is not a closed mesh whose
 // faces enclose a volume (an outline that crosses itself, a triangle
 // without area); callers fall back to Nef polyhedra there.
