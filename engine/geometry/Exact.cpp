@@ -563,6 +563,39 @@ Mesh exactUnion(std::vector<Mesh> solids, const SourceLocation& where) {
 
 namespace {
 
+// A union's or a difference's operands after the first, gathered into
+// groups whose members' boxes are apart: a group's solids side by side are
+// their union, so each group takes part in one boolean (a block less 256
+// balls: a few dozen corefinements of the block, not 256). The boxes hold
+// the interval approximations of the exact points, so solids in boxes
+// that do not touch do not touch either.
+struct ApartGroups {
+    struct Group {
+        Solid solid;
+        std::vector<CGAL::Bbox_3> boxes;
+    };
+    std::vector<Group> groups;
+    std::size_t empty = 0;  // operands that enclose nothing, left out
+
+    void add(Solid s) {
+        // A solid that encloses nothing adds nothing, and would make its
+        // group's mesh one that corefinement cannot take.
+        if (s.number_of_faces() == 0 || zeroVolume(s)) {
+            ++empty;
+            return;
+        }
+        const CGAL::Bbox_3 box = PMP::bbox(s);
+        for (Group& g : groups) {
+            if (std::none_of(g.boxes.begin(), g.boxes.end(), [&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(b, box); })) {
+                CGAL::copy_face_graph(s, g.solid);
+                g.boxes.push_back(box);
+                return;
+            }
+        }
+        groups.push_back(Group{std::move(s), {box}});
+    }
+};
+
 // The subtree's result, exact throughout: points are rounded to doubles only
 // once, at the end (toMesh). Walks the subtree with an explicit stack of the
 // operations under way, so a chain of any depth costs no C++ stack.
@@ -573,6 +606,7 @@ Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafM
         Solid result;
         std::string what;
         Frame frame, outer;  // the frame the node's result is made in, and its parent's
+        ApartGroups operands;  // a union's or difference's children after the first
     };
     const std::unordered_map<int, Frame> frameOf = frames(tree, node, leafMeshes);
     std::vector<Pending> stack;
@@ -583,7 +617,7 @@ Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafM
             done = leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where, outer);
             return;
         }
-        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind), frameOf.at(index), outer});
+        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind), frameOf.at(index), outer, {}});
     };
     enter(node, Frame{});
     while (!stack.empty()) {
@@ -593,18 +627,24 @@ Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafM
             // The result of child top.next - 1.
             if (top.next == 1) {
                 top.result = std::move(*done);
-            } else {
-                const Boolean op = n.kind == scene::NodeKind::Difference     ? Boolean::Difference
-                                   : n.kind == scene::NodeKind::Intersection ? Boolean::Intersection
-                                                                             : Boolean::Union;
+            } else if (n.kind == scene::NodeKind::Intersection) {
                 reportProgress(top.what.c_str(), steps.done++, steps.total);
-                top.result = combine(std::move(top.result), std::move(*done), op, n.where);
+                top.result = combine(std::move(top.result), std::move(*done), Boolean::Intersection, n.where);
+            } else {
+                top.operands.add(std::move(*done));
             }
             done.reset();
         }
         if (top.next < n.children.size()) {
             enter(n.children[top.next++], top.frame);
             continue;
+        }
+        const Boolean op = n.kind == scene::NodeKind::Difference ? Boolean::Difference : Boolean::Union;
+        steps.done += top.operands.empty;
+        for (ApartGroups::Group& group : top.operands.groups) {
+            reportProgress(top.what.c_str(), steps.done, steps.total);
+            steps.done += group.boxes.size();
+            top.result = combine(std::move(top.result), std::move(group.solid), op, n.where);
         }
         moveOut(top.result, top.frame, top.outer);
         done = std::move(top.result);

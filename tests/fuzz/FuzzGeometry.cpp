@@ -4,7 +4,8 @@
 // sanitizers) (solids, 2D shapes and their
 // booleans, offsets, linear and rotate extrusions, hulls, Minkowski sums,
 // projections, resizes, transforms), which is parsed and built into meshes
-// as strata-render builds a scene (geometry::buildModel).
+// as strata-render builds a scene (geometry::buildModel), and of a solid
+// tree its exact result, as the exact export evaluates it.
 //
 // Any input must either give closed meshes with finite points or throw
 // strata::Error; anything else (another exception, a crash, a leak, a
@@ -21,6 +22,7 @@
 #include <string>
 
 #include "strata/core/Error.h"
+#include "strata/geometry/Exact.h"
 #include "strata/geometry/MeshCheck.h"
 #include "strata/geometry/Model.h"
 #include "strata/scene/CsgParser.h"
@@ -174,6 +176,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) broken("a non-finite point", csg);
             }
             if (!mesh.triangles.empty() && !geometry::checkMesh(mesh).ok()) broken("a leaf mesh that is not closed", csg);
+        }
+        // The whole solid's exact result, as --export evaluates it: closed
+        // too (its booleans in the frames their leaves share, its coplanar
+        // triangles joined).
+        if (tree.root >= 0 && !tree.isFlat()) {
+            const geometry::Mesh result = geometry::exactResult(tree, tree.root, model.leafMeshes);
+            if (!result.triangles.empty() && !geometry::checkMesh(result).ok()) broken("an exact result that is not closed", csg);
         }
     } catch (const Error&) {
         // A refusal in one line is the contract's answer.

@@ -98,6 +98,14 @@ TEST(ExactResult, AClosedMeshThatEnclosesNothingIsEmpty) {
     EXPECT_NEAR(geometry::test::signedVolume(united.result), 8.0, 1e-12);
     const Evaluated less = evaluate(parse("difference() {\n" + box + flat + "}\n"));
     EXPECT_NEAR(geometry::test::signedVolume(less.result), 8.0, 1e-12);
+    // Among other operands, gathered with them into groups that take part
+    // in one boolean each, it still adds and takes away nothing.
+    const std::string ball = ballAt(1, 1, 1, 0.5), away = ballAt(5, 5, 5, 0.5);
+    const Evaluated among = evaluate(parse("difference() {\n" + box + flat + ball + away + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(among.result), 8.0 - among.leafVolumes[2], 1e-12);
+    const Evaluated added = evaluate(parse("union() {\n" + box + flat + away + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(added.result), 8.0 + added.leafVolumes[2], 1e-12);
+    EXPECT_TRUE(geometry::checkMesh(among.result).ok()) << geometry::checkMesh(among.result).describe();
 }
 
 TEST(ExactResult, SolidsApartUniteWithTheirVolumesSummed) {
@@ -117,6 +125,30 @@ TEST(ExactResult, SolidsApartHaveNoIntersectionAndTakeNothingAway) {
     const Evaluated outside = evaluate(parse("difference() {\n" + ballAt(0, 0, 0, 1) + ballAt(5, 0, 0, 1) +
                                              ballAt(0, 5, 0, 1) + "}\n"));
     EXPECT_NEAR(geometry::test::signedVolume(outside.result), outside.leafVolumes[0], 1e-9);
+}
+
+TEST(ExactResult, ManyOperandsInBoxesApartAndMeetingGiveTheClosedForm) {
+    // A 12 x 12 x 3 block less a 5 x 5 grid of balls on its top face, every
+    // ball's box touching its neighbours' (so they cannot all be taken out
+    // in one group), plus a 5 x 5 grid of cubes standing on the block: each
+    // ball takes away its lower half, each cube adds its own volume.
+    std::string balls, cubes;
+    for (int i = 0; i < 5; ++i) {
+        for (int j = 0; j < 5; ++j) {
+            balls += ballAt(2 + 2 * i, 2 + 2 * j, 3, 1);
+            cubes += "multmatrix([[1, 0, 0, " + std::to_string(1.6 + 2 * i) + "], [0, 1, 0, " + std::to_string(1.6 + 2 * j) +
+                     "], [0, 0, 1, 3], [0, 0, 0, 1]]) cube(size = [0.8, 0.8, 0.5], center = false);\n";
+        }
+    }
+    const std::string block = "cube(size = [12, 12, 3], center = false);\n";
+    const Evaluated cut = evaluate(parse("difference() {\n" + block + balls + "}\n"));
+    double halves = 0;
+    for (std::size_t i = 1; i < cut.leafVolumes.size(); ++i) halves += cut.leafVolumes[i] / 2;
+    EXPECT_NEAR(geometry::test::signedVolume(cut.result), 432.0 - halves, 1e-9);
+    EXPECT_TRUE(geometry::checkMesh(cut.result).ok()) << geometry::checkMesh(cut.result).describe();
+    const Evaluated built = evaluate(parse("union() {\n" + block + cubes + "}\n"));
+    EXPECT_NEAR(geometry::test::signedVolume(built.result), 432.0 + 25 * 0.32, 1e-9);
+    EXPECT_TRUE(geometry::checkMesh(built.result).ok()) << geometry::checkMesh(built.result).describe();
 }
 
 TEST(ExactResult, OverlappingSubtrahendsAreTakenAwayOnce) {

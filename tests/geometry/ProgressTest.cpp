@@ -41,10 +41,11 @@ private:
     bool stop_ = false;
 };
 
-// A hull of a difference: the difference is evaluated exactly (two booleans).
+// A hull of a difference: the difference is evaluated exactly (two
+// booleans: the balls overlap, so they cannot be taken away together).
 scene::Tree exactScene(double size) {
     std::istringstream in("hull() { difference() { cube(size = " + std::to_string(size) +
-                          "); sphere(r = 1); multmatrix([[1, 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) "
+                          "); sphere(r = 1); multmatrix([[1, 0, 0, 1.5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) "
                           "sphere(r = 1); } }\n");
     return scene::parseCsg(in, "progress.csg", ".");
 }
