@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <vector>
 
 #include "strata/core/Timing.h"
@@ -70,6 +72,30 @@ void checkMeshFits(const contour::Dexels& dexels, int resolution, const SourceLo
     }
 }
 
+// Refuses, in one line, an image whose grid is too coarse for a wall or a
+// gap of the solid: the contour would lose it and still be closed.
+void checkNothingBelowGrid(const contour::Dexels& dexels, int resolution, const SourceLocation& scene) {
+    const std::optional<contour::FeatureBelowGrid> lost = contour::featureBelowGrid(dexels);
+    if (!lost) return;
+    // A grid whose cell is two thirds of the thinnest feature sees it on every ray.
+    const double needed = std::ceil(1.5 * resolution * dexels.grid.spacing / lost->thickness);
+    char text[400];
+    const int n = std::snprintf(text, sizeof text,
+                                "export: a %s %.3g %s near (%.4g, %.4g, %.4g) is thinner than a cell (%.3g at %d cells) "
+                                "and would be %s; ",
+                                lost->wall ? "wall" : "gap", lost->thickness, lost->wall ? "thick" : "wide", lost->where.x,
+                                lost->where.y, lost->where.z, dexels.grid.spacing, resolution,
+                                lost->wall ? "lost" : "filled");
+    if (needed <= remesh::kMostResolution)
+        std::snprintf(text + n, sizeof text - static_cast<std::size_t>(n),
+                      "give --export-resolution %.0f or more, or export the exact result (without --export-sampled)", needed);
+    else
+        std::snprintf(text + n, sizeof text - static_cast<std::size_t>(n),
+                      "no resolution up to %d sees it: export the exact result (without --export-sampled)",
+                      remesh::kMostResolution);
+    throw Error(scene, text);
+}
+
 }  // namespace
 
 ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
@@ -85,6 +111,7 @@ ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& mod
         const contour::Dexels dexels = sample(tree, model, grid, settings);
         out.sampleMs = msSince(t);
         checkMeshFits(dexels, settings.resolution, SourceLocation{tree.source, 0, 0});
+        checkNothingBelowGrid(dexels, settings.resolution, SourceLocation{tree.source, 0, 0});
         t = Clock::now();
         result = contour::contour(dexels);
         out.contourMs = msSince(t);

@@ -1,6 +1,10 @@
 #pragma once
 // Contouring of a tri-dexel image (Dexels.h) into a closed triangle mesh.
 
+#include <optional>
+
+#include <glm/vec3.hpp>
+
 #include "strata/contour/Dexels.h"
 #include "strata/geometry/Mesh.h"
 
@@ -12,5 +16,23 @@ namespace strata::contour {
 // Reports progress (core/Progress.h) per slab of cells. Throws strata::Error
 // on an inconsistent image (a ray that ends inside, crossings out of order).
 geometry::Mesh contour(const Dexels& dexels);
+
+// A part of the solid, or a gap in it, that lies between two grid points
+// along a ray: no grid point sees it, so the contour loses it (a wall
+// vanishes, a slot closes) while the mesh stays closed.
+struct FeatureBelowGrid {
+    bool wall = true;          // solid between two crossings; else a gap
+    double thickness = 0.0;    // along the ray, the thinnest such feature the image holds
+    glm::dvec3 where{0.0};     // the middle of one lost feature, world space
+};
+
+// The thinnest feature the grid loses, if any. Counted only where the two
+// crossings face each other, their normals within 20 degrees of opposite
+// (a slab, not the tip of a wedge, whose sharp edge the contour rebuilds),
+// and both face along the ray within 60 degrees (their normals' component
+// along it above one half; not the sliver a ray clips off a curved surface
+// where it grazes it). Every slab thinner than a cell is crossed that way
+// along at least one of the three axes.
+std::optional<FeatureBelowGrid> featureBelowGrid(const Dexels& dexels);
 
 }  // namespace strata::contour
