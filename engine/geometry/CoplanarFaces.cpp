@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -36,10 +38,19 @@ std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t i) {
     return i;
 }
 
+using Sources = ExactSolid::Property_map<Face, std::uint64_t>;
+
+std::atomic<std::uint64_t> nextSource{1};
+
 // Whether the two faces of the edge of `h` lie in one plane and face one
-// way: the far corners of the two triangles on opposite sides of the edge.
-bool flatEdge(const ExactSolid& s, Halfedge h) {
+// way: pieces of one leaf triangle do; else the far corners of the two
+// triangles lie on opposite sides of the edge in one plane.
+bool flatEdge(const ExactSolid& s, Halfedge h, const std::optional<Sources>& sources) {
     const Halfedge o = s.opposite(h);
+    if (sources) {
+        const std::uint64_t a = (*sources)[s.face(h)];
+        if (a != 0 && a == (*sources)[s.face(o)]) return true;
+    }
     const Point& p = s.point(s.source(h));
     const Point& q = s.point(s.target(h));
     const Point& r = s.point(s.target(s.next(h)));
@@ -104,10 +115,19 @@ void triangulateRegion(const ExactSolid& s, const std::vector<std::pair<Vertex, 
 
 }  // namespace
 
+void giveFacesSources(ExactSolid& solid) {
+    Sources sources = solid.add_property_map<Face, std::uint64_t>(kFaceSource, 0).first;
+    std::uint64_t id = nextSource.fetch_add(solid.num_faces());
+    for (Face f : solid.faces()) sources[f] = id++;
+}
+
 ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
     if (s.has_garbage()) throw std::runtime_error("the solid has removed elements");
     for (Halfedge h : s.halfedges())
         if (s.is_border(h)) throw std::runtime_error("the solid is not closed");
+
+    std::optional<Sources> sources;
+    if (auto [map, found] = s.property_map<Face, std::uint64_t>(kFaceSource); found) sources = map;
 
     // Regions: faces joined across flat edges.
     std::vector<char> flat(s.num_edges(), 0);
@@ -115,7 +135,7 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
     for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
     for (auto e : s.edges()) {
         const Halfedge h = s.halfedge(e);
-        if (!flatEdge(s, h)) continue;
+        if (!flatEdge(s, h, sources)) continue;
         flat[e.idx()] = 1;
         const std::size_t a = findRoot(parent, s.face(h).idx()), b = findRoot(parent, s.face(s.opposite(h)).idx());
         if (a != b) parent[a] = b;
@@ -147,6 +167,8 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
 
     std::vector<Triangle> triangles;
     triangles.reserve(s.num_faces());
+    std::vector<std::uint64_t> triangleSources;  // each triangle's, where the solid has them
+    auto source = [&](Face f) { return sources ? (*sources)[f] : std::uint64_t(0); };
     std::vector<std::pair<Vertex, Vertex>> outline;
     for (const std::vector<Face>& region : regions) {
         if (region.empty()) continue;
@@ -160,6 +182,7 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
             for (Face f : region) {
                 const Halfedge h = s.halfedge(f);
                 triangles.push_back({s.source(h), s.target(h), s.target(s.next(h))});
+                triangleSources.push_back(source(f));
             }
             continue;
         }
@@ -192,17 +215,21 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
         else if (CGAL::sign(n.z()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xy_3<Kernel>>(s, outline, region.front(), triangles);
         else throw std::runtime_error("a region without a plane");
         if (triangles.size() == before) throw std::runtime_error("a region that triangulates to nothing");
+        triangleSources.resize(triangles.size(), source(region.front()));
     }
 
     ExactSolid out;
     std::vector<Vertex> moved(s.num_vertices());
     for (Vertex v : s.vertices())
         if (keep[v.idx()]) moved[v.idx()] = out.add_vertex(s.point(v));
-    for (const Triangle& t : triangles) {
+    Sources outSources = out.add_property_map<Face, std::uint64_t>(kFaceSource, 0).first;
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Triangle& t = triangles[i];
         for (Vertex v : t)
             if (!keep[v.idx()]) throw std::runtime_error("a triangle on a dropped point");
-        if (out.add_face(moved[t[0].idx()], moved[t[1].idx()], moved[t[2].idx()]) == ExactSolid::null_face())
-            throw std::runtime_error("triangles that do not join into a surface");
+        const Face f = out.add_face(moved[t[0].idx()], moved[t[1].idx()], moved[t[2].idx()]);
+        if (f == ExactSolid::null_face()) throw std::runtime_error("triangles that do not join into a surface");
+        outSources[f] = triangleSources[i];
     }
     for (Halfedge h : out.halfedges())
         if (out.is_border(h)) throw std::runtime_error("the joined solid is not closed");

@@ -10,6 +10,16 @@
 
 namespace strata::geometry::detail {
 
+// A face property of the exact evaluation's solids: the leaf triangle each
+// face lies on (0: not known). Corefinement keeps it through the faces it
+// splits and copies, so two faces with one known source lie in one plane
+// and face one way without an exact test; the join below reads it and
+// gives its output faces their region's.
+inline constexpr const char* kFaceSource = "f:strata_source";
+
+// Each face of `solid` a source of its own, none shared with any other solid.
+void giveFacesSources(ExactSolid& solid);
+
 // The same closed solid, point for point where points stay, with:
 // - each edge-connected run of coplanar triangles that face one way (a
 //   region) joined into one polygon, holes and all, and triangulated again

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <iterator>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -89,6 +90,32 @@ bool zeroVolume(const Solid& s) {
 // conversion, which refuses it with one line.)
 bool enclosesNothing(const Solid& s) { return s.number_of_faces() > 0 && CGAL::is_closed(s) && zeroVolume(s); }
 
+// Carries each face's source (CoplanarFaces.h) through corefinement: the
+// pieces of a split face and the faces copied into the result keep it, so
+// that the join knows them coplanar without an exact test.
+struct SourceKeeper : PMP::Corefinement::Default_visitor<Solid> {
+    std::uint64_t splitting = 0;
+    static std::uint64_t of(const Solid& tm, Solid::Face_index f) {
+        const auto [map, found] = tm.property_map<Solid::Face_index, std::uint64_t>(detail::kFaceSource);
+        return found ? map[f] : 0;
+    }
+    static void set(Solid& tm, Solid::Face_index f, std::uint64_t source) {
+        tm.add_property_map<Solid::Face_index, std::uint64_t>(detail::kFaceSource, 0).first[f] = source;
+    }
+    void before_subface_creations(Solid::Face_index f, Solid& tm) { splitting = of(tm, f); }
+    void after_subface_created(Solid::Face_index f, Solid& tm) { set(tm, f, splitting); }
+    void after_face_copy(Solid::Face_index from, const Solid& source, Solid::Face_index to, Solid& target) {
+        set(target, to, of(source, from));
+    }
+};
+
+// `from`'s faces added to `to`, each with its source.
+void appendSolid(const Solid& from, Solid& to) {
+    std::vector<std::pair<Solid::Face_index, Solid::Face_index>> copied;
+    CGAL::copy_face_graph(from, to, CGAL::parameters::face_to_face_output_iterator(std::back_inserter(copied)));
+    for (const auto& [source, target] : copied) SourceKeeper::set(to, target, SourceKeeper::of(from, source));
+}
+
 // A boolean's result whose triangles outnumber its operands' by a fifth
 // was cut into pieces along coplanar faces (bars of a Menger sponge
 // flush with each other); joined before the next boolean, which then
@@ -118,7 +145,7 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
         if (op == Boolean::Intersection) return Solid{};
         if (op == Boolean::Difference) return a;
         if (a.number_of_faces() == 0) return b;
-        CGAL::copy_face_graph(b, a);  // two closed solids apart: one mesh of both
+        appendSolid(b, a);  // two closed solids apart: one mesh of both
         return a;
     }
     const Solid a0 = a, b0 = b;  // corefinement rewrites its operands
@@ -126,9 +153,10 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
     Solid out;
     try {
         bool ok = false;
-        if (op == Boolean::Difference) ok = PMP::corefine_and_compute_difference(a, b, out);
-        else if (op == Boolean::Intersection) ok = PMP::corefine_and_compute_intersection(a, b, out);
-        else ok = PMP::corefine_and_compute_union(a, b, out);
+        const auto keep = CGAL::parameters::visitor(SourceKeeper{});
+        if (op == Boolean::Difference) ok = PMP::corefine_and_compute_difference(a, b, out, keep);
+        else if (op == Boolean::Intersection) ok = PMP::corefine_and_compute_intersection(a, b, out, keep);
+        else ok = PMP::corefine_and_compute_union(a, b, out, keep);
         // Where the result touches itself at a corner (a tetrahedron less a
         // cube that holds its apex leaves parts meeting at single points),
         // CGAL reports success with a vertex shared by two parts, which a
@@ -152,7 +180,9 @@ Solid combine(Solid a, Solid b, Boolean op, const SourceLocation& where) {
 }
 
 Solid toSolid(const Mesh& mesh, const SourceLocation& where) {
-    return detail::toExactSolid(mesh, where, "an exact evaluation");
+    Solid s = detail::toExactSolid(mesh, where, "an exact evaluation");
+    detail::giveFacesSources(s);
+    return s;
 }
 
 // Primitives whose object-space mesh is cheap to make again.
@@ -239,7 +269,9 @@ Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const
         for (std::size_t i = chain->size(); i-- > frame.depth;) q = moved((*chain)[i]->matrix, q);
         points.emplace_back(Kernel::FT(q[0]), Kernel::FT(q[1]), Kernel::FT(q[2]));
     }
-    return detail::toExactSolid(points, object, where, "an exact evaluation");
+    Solid s = detail::toExactSolid(points, object, where, "an exact evaluation");
+    detail::giveFacesSources(s);
+    return s;
 }
 
 // The frame each node under `root` is evaluated in: the longest chain of
@@ -587,7 +619,7 @@ struct ApartGroups {
         const CGAL::Bbox_3 box = PMP::bbox(s);
         for (Group& g : groups) {
             if (std::none_of(g.boxes.begin(), g.boxes.end(), [&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(b, box); })) {
-                CGAL::copy_face_graph(s, g.solid);
+                appendSolid(s, g.solid);
                 g.boxes.push_back(box);
                 return;
             }
