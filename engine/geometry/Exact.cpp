@@ -192,10 +192,13 @@ bool remakeable(const scene::Primitive& p) {
            std::holds_alternative<scene::LinearExtrude>(p) || std::holds_alternative<scene::RotateExtrude>(p);
 }
 
-// The leaf's multmatrix() chain, outermost first, when its product in
-// doubles (as the parser multiplied it) is the leaf's transform bit for bit.
-std::optional<std::vector<const scene::TransformStep*>> checkedChain(const scene::Leaf& leaf) {
-    std::vector<const scene::TransformStep*> chain;
+// A leaf's multmatrix() steps, outermost first.
+using Chain = std::vector<const scene::TransformStep*>;
+
+// The leaf's multmatrix() chain, when its product in doubles (as the parser
+// multiplied it) is the leaf's transform bit for bit.
+std::optional<Chain> checkedChain(const scene::Leaf& leaf) {
+    Chain chain;
     for (const scene::TransformStep* s = leaf.steps.get(); s != nullptr; s = s->previous.get()) chain.push_back(s);
     std::reverse(chain.begin(), chain.end());
     glm::dmat4 product(1.0);
@@ -227,9 +230,9 @@ std::array<ET, 3> moved(const glm::dmat4& m, const std::array<ET, 3>& q) {
 // chain: the checked world-space mesh is exactly the object mesh moved by
 // the transform (nothing was cleaned away), and the transform is exactly
 // the product of its chain.
-std::optional<std::vector<const scene::TransformStep*>> exactChain(const scene::Leaf& leaf, const Mesh& world) {
+std::optional<Chain> exactChain(const scene::Leaf& leaf, const Mesh& world) {
     if (!leaf.steps || !remakeable(leaf.primitive)) return std::nullopt;
-    std::optional<std::vector<const scene::TransformStep*>> chain = checkedChain(leaf);
+    std::optional<Chain> chain = checkedChain(leaf);
     if (!chain) return std::nullopt;
     const Mesh moved = transformed(objectMesh(leaf.primitive), leaf.transform);
     if (moved.positions != world.positions || moved.triangles != world.triangles) return std::nullopt;
@@ -244,18 +247,18 @@ struct Frame {
     std::size_t depth = 0;                       // how many steps, from the outermost
 };
 
-// A leaf's solid with exact points, in the frame `frame` (the outermost
-// `frame.depth` steps of its chain left out). The checked world-space mesh
-// is the leaf's object-space mesh moved by its transform, rounded to doubles
-// at every point; leaves under one rotation, flush before it, are then a
-// rounding apart after it, and the exact result keeps those slivers. So
+// A leaf's solid with exact points (`chain`: its exactChain), in the frame
+// `frame` (the outermost `frame.depth` steps of its chain left out). The
+// checked world-space mesh is the leaf's object-space mesh moved by its
+// transform, rounded to doubles at every point; leaves under one rotation,
+// flush before it, are then a rounding apart after it, and the exact
+// result keeps those slivers. So
 // where the leaf has an exact chain, each object-space point is moved by the
 // chain's matrices one by one in exact arithmetic instead, as OpenSCAD
 // transforms results: faces flush in a frame stay flush. Elsewhere (only in
 // the world frame) the world mesh as it is.
-Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const SourceLocation& where, Frame frame) {
-    const scene::Leaf& leaf = tree.leaves[static_cast<std::size_t>(leafIndex)];
-    const std::optional<std::vector<const scene::TransformStep*>> chain = exactChain(leaf, world);
+Solid leafSolid(const scene::Leaf& leaf, const std::optional<Chain>& chain, const Mesh& world, const SourceLocation& where,
+                Frame frame) {
     if (!chain) return toSolid(world, where);
     Mesh object = objectMesh(leaf.primitive);
     int sign = 1;
@@ -274,11 +277,17 @@ Solid leafSolid(const scene::Tree& tree, int leafIndex, const Mesh& world, const
     return s;
 }
 
-// The frame each node under `root` is evaluated in: the longest chain of
-// steps all its leaves share, stopping before a step that flattens space
-// (a flat solid has no frame to be moved out of). A leaf without an exact
-// chain gives every node above it the world frame.
-std::unordered_map<int, Frame> frames(const scene::Tree& tree, int root, const std::vector<Mesh>& leafMeshes) {
+// How the subtree under a root is evaluated: each leaf's exact chain, found
+// once, and the frame of each node, the longest chain of steps all its
+// leaves share, stopping before a step that flattens space (a flat solid
+// has no frame to be moved out of). A leaf without an exact chain gives
+// every node above it the world frame.
+struct Frames {
+    std::unordered_map<int, std::optional<Chain>> chainOfLeaf;  // by leaf index
+    std::unordered_map<int, Frame> ofNode;                      // by node index
+};
+
+Frames frames(const scene::Tree& tree, int root, const std::vector<Mesh>& leafMeshes) {
     auto meet = [](Frame a, Frame b) {
         if (a.step == nullptr || b.step == nullptr) return Frame{};
         for (; a.depth > b.depth; --a.depth) a.step = a.step->previous.get();
@@ -289,7 +298,7 @@ std::unordered_map<int, Frame> frames(const scene::Tree& tree, int root, const s
         }
         return a.step == nullptr ? Frame{} : a;
     };
-    std::unordered_map<int, Frame> out;
+    Frames out;
     // Children before parents: a node is finished when it is met the second time.
     std::vector<std::pair<int, bool>> todo{{root, false}};
     while (!todo.empty()) {
@@ -297,19 +306,25 @@ std::unordered_map<int, Frame> frames(const scene::Tree& tree, int root, const s
         todo.pop_back();
         const scene::Node& n = tree.nodes[static_cast<std::size_t>(index)];
         if (n.kind == scene::NodeKind::Leaf) {
+            auto found = out.chainOfLeaf.find(n.leaf);
+            if (found == out.chainOfLeaf.end()) {
+                found = out.chainOfLeaf
+                            .emplace(n.leaf, exactChain(tree.leaves[static_cast<std::size_t>(n.leaf)],
+                                                        leafMeshes[static_cast<std::size_t>(n.leaf)]))
+                            .first;
+            }
             Frame f;
-            if (const auto chain = exactChain(tree.leaves[static_cast<std::size_t>(n.leaf)],
-                                              leafMeshes[static_cast<std::size_t>(n.leaf)])) {
+            if (const std::optional<Chain>& chain = found->second) {
                 while (f.depth < chain->size() && determinantSign((*chain)[f.depth]->matrix) != 0) f.step = (*chain)[f.depth++];
             }
-            out[index] = f;
+            out.ofNode[index] = f;
         } else if (!childrenDone) {
             todo.emplace_back(index, true);
             for (int child : n.children) todo.emplace_back(child, false);
         } else {
-            Frame f = n.children.empty() ? Frame{} : out.at(n.children.front());
-            for (int child : n.children) f = meet(f, out.at(child));
-            out[index] = f;
+            Frame f = n.children.empty() ? Frame{} : out.ofNode.at(n.children.front());
+            for (int child : n.children) f = meet(f, out.ofNode.at(child));
+            out.ofNode[index] = f;
         }
     }
     return out;
@@ -640,16 +655,17 @@ Solid evaluate(const scene::Tree& tree, int node, const std::vector<Mesh>& leafM
         Frame frame, outer;  // the frame the node's result is made in, and its parent's
         ApartGroups operands;  // a union's or difference's children after the first
     };
-    const std::unordered_map<int, Frame> frameOf = frames(tree, node, leafMeshes);
+    const Frames plan = frames(tree, node, leafMeshes);
     std::vector<Pending> stack;
     std::optional<Solid> done;  // the result of the node just finished
     auto enter = [&](int index, Frame outer) {
         const scene::Node& n = tree.nodes[static_cast<std::size_t>(index)];
         if (n.kind == scene::NodeKind::Leaf) {
-            done = leafSolid(tree, n.leaf, leafMeshes[static_cast<std::size_t>(n.leaf)], n.where, outer);
+            done = leafSolid(tree.leaves[static_cast<std::size_t>(n.leaf)], plan.chainOfLeaf.at(n.leaf),
+                             leafMeshes[static_cast<std::size_t>(n.leaf)], n.where, outer);
             return;
         }
-        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind), frameOf.at(index), outer, {}});
+        stack.push_back(Pending{&n, 0, Solid{}, std::string("exact ") + scene::kindName(n.kind), plan.ofNode.at(index), outer, {}});
     };
     enter(node, Frame{});
     while (!stack.empty()) {
