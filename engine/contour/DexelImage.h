@@ -25,9 +25,8 @@ public:
     bool empty() const { return empty_; }
     const DexelGrid& grid() const { return dexels_.grid; }
 
-    // World coordinate of grid index `index` along `axis`. Every comparison of
-    // a crossing with a grid vertex goes through this one expression.
-    double coordinate(int axis, int index) const { return dexels_.grid.origin[axis] + dexels_.grid.spacing * index; }
+    // World coordinate of grid index `index` along `axis` (gridCoordinate).
+    double coordinate(int axis, int index) const { return gridCoordinate(dexels_.grid, axis, index); }
 
     // Whether each grid vertex of plane z = k is inside: inside[i + j * count.x].
     // Call with k = 0, 1, 2, ... in order (the z rays keep a cursor each).

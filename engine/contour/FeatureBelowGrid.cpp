@@ -38,15 +38,17 @@ std::optional<FeatureBelowGrid> featureBelowGrid(const Dexels& dexels) {
                 if (glm::dot(low.normal, high.normal) >= kFacingDot) continue;
                 thinnest = std::min(thinnest, thickness);
                 if (lost) continue;
-                // The grid points on the ray at or below each end, as the
-                // signs count them: the same one for both, none between.
-                if (std::floor((low.at - grid.origin[a]) / grid.spacing) !=
-                    std::floor((high.at - grid.origin[a]) / grid.spacing))
-                    continue;
+                // The signs count a crossing at or below a grid point as
+                // before it: the span is seen where a grid point lies in
+                // [low, high). The first grid point at or above low:
+                int first = static_cast<int>(std::ceil((low.at - grid.origin[a]) / grid.spacing));
+                while (gridCoordinate(grid, a, first - 1) >= low.at) --first;
+                while (gridCoordinate(grid, a, first) < low.at) ++first;
+                if (gridCoordinate(grid, a, first) < high.at) continue;
                 glm::dvec3 middle;
                 middle[a] = 0.5 * (low.at + high.at);
-                middle[u] = grid.origin[u] + grid.spacing * static_cast<double>(r % static_cast<std::size_t>(grid.count[u]));
-                middle[v] = grid.origin[v] + grid.spacing * static_cast<double>(r / static_cast<std::size_t>(grid.count[u]));
+                middle[u] = gridCoordinate(grid, u, static_cast<int>(r % static_cast<std::size_t>(grid.count[u])));
+                middle[v] = gridCoordinate(grid, v, static_cast<int>(r / static_cast<std::size_t>(grid.count[u])));
                 lost = FeatureBelowGrid{low.entering, 0.0, middle};
             }
         }

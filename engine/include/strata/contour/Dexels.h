@@ -30,6 +30,13 @@ struct DexelGrid {
     glm::ivec3 count{0};     // grid vertices along x, y, z (cells: count - 1)
 };
 
+// World coordinate of grid index `index` along `axis`. Every comparison of
+// a crossing with a grid vertex goes through this one expression: a
+// crossing at or below it counts as before the vertex.
+inline double gridCoordinate(const DexelGrid& grid, int axis, int index) {
+    return grid.origin[axis] + grid.spacing * index;
+}
+
 // One axis's rays, packed: ray r's crossings are
 // crossings[first[r]] .. crossings[first[r + 1] - 1].
 struct DexelRays {
