@@ -18,15 +18,14 @@
 #include <vector>
 
 #include "Options.h"
-#include "ExactExport.h"
 #include "HugePages.h"
-#include "ImageExport.h"
 #include "SceneLoad.h"
 #include "StderrProgress.h"
 #include "Worker.h"
 #include "strata/core/Timing.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
+#include "strata/export/Export.h"
 #include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
@@ -179,18 +178,15 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
         t = Clock::now();
         const std::unique_ptr<apps::StderrProgress> progress = phaseProgress("exporting");
         const ProgressScope scope(progress.get());
-        const glm::vec4 faceColor = render::colorScheme(options.colorScheme).faceFront;
-        if (!options.exportSampled) {
-            staged.push_back(apps::stageExactExport(tree, model, options.exportPath, faceColor).file);
-        } else {
-            apps::ImageExportSettings settings;
-            settings.resolution = options.exportResolution;
-            settings.reference = options.reference;
-            apps::ImageExport exported = apps::stageImageExport(tree, model, options.exportPath, faceColor, settings);
-            stats.exportSampleMs = exported.sampleMs;
-            stats.exportContourMs = exported.contourMs;
-            staged.push_back(std::move(exported.file));
-        }
+        exporting::ExportSettings settings;
+        settings.sampled = options.exportSampled;
+        settings.resolution = options.exportResolution;
+        settings.reference = options.reference;
+        settings.faceColor = render::colorScheme(options.colorScheme).faceFront;
+        exporting::StagedExport exported = exporting::stageExport(tree, model, options.exportPath, settings);
+        stats.exportSampleMs = exported.sampleMs;
+        stats.exportContourMs = exported.contourMs;
+        staged.push_back(std::move(exported.file));
         stats.exportMs = msSince(t);
     }
     // With --export alone nothing is rendered (and, for the exact export,

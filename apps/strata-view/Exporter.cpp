@@ -3,9 +3,8 @@
 #include <chrono>
 #include <utility>
 
-#include "ExactExport.h"
-#include "ImageExport.h"
 #include "Worker.h"
+#include "strata/export/Export.h"
 
 namespace strata::view {
 
@@ -22,16 +21,12 @@ bool Exporter::start(const LoadedScene& scene, const std::string& path, const gl
         ExportResult result;
         result.path = path;
         const WorkOutcome outcome = runReporting(*progress, path, "export cancelled", [&] {
-            if (exact) {
-                apps::ExactExport exported = apps::stageExactExport(scene.tree, scene.model, path, faceColor);
-                exported.file.commit();
-                result.triangles = exported.triangles;
-                return;
-            }
-            apps::ImageExportSettings settings;
+            exporting::ExportSettings settings;
+            settings.sampled = !exact;
             settings.resolution = resolution;
-            settings.reference = true;
-            apps::ImageExport exported = apps::stageImageExport(scene.tree, scene.model, path, faceColor, settings);
+            settings.reference = true;  // the viewer's GL context is the window's, on another thread
+            settings.faceColor = faceColor;
+            exporting::StagedExport exported = exporting::stageExport(scene.tree, scene.model, path, settings);
             exported.file.commit();
             result.triangles = exported.triangles;
         });

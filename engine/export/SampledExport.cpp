@@ -1,6 +1,4 @@
-#include "ImageExport.h"
-
-#include "ExactExport.h"
+#include "ExportParts.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -20,14 +18,14 @@
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 
-namespace strata::apps {
+namespace strata::exporting {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
 contour::Dexels sample(const scene::Tree& tree, const geometry::Model& model, const contour::DexelGrid& grid,
-                       const ImageExportSettings& settings) {
+                       const ExportSettings& settings) {
     if (settings.reference) return remesh::sampleWithReference(reference::ReferenceScene(tree, model), grid);
     gpu::Context context;  // made first, destroyed last
     render::Renderer renderer;
@@ -98,11 +96,11 @@ void checkNothingBelowGrid(const contour::Dexels& dexels, int resolution, const 
 
 }  // namespace
 
-ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
-                             const glm::vec4& faceColor, const ImageExportSettings& settings) {
+StagedExport stageSampledMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+                              const ExportSettings& settings) {
     requireSolidModel(tree);
     const geometry::Bounds box = render::viewBounds(tree, model);
-    ImageExport out;
+    StagedExport out;
     geometry::Mesh result;  // stays empty where there is nothing to sample
     double reach = 0.0;
     if (tree.root >= 0 && !box.empty()) {
@@ -117,9 +115,9 @@ ImageExport stageImageExport(const scene::Tree& tree, const geometry::Model& mod
         out.contourMs = msSince(t);
         reach = grid.spacing;
     }
-    out.file = stageResultMesh(tree, model, path, result, faceColor, reach);
+    out.file = stageResultMesh(tree, model, path, result, settings.faceColor, reach);
     out.triangles = result.triangles.size();
     return out;
 }
 
-}  // namespace strata::apps
+}  // namespace strata::exporting

@@ -1,36 +1,16 @@
-#include "ExactExport.h"
+#include "ExportParts.h"
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "strata/core/Error.h"
 #include "strata/geometry/Exact.h"
 #include "strata/geometry/Flat.h"
 #include "strata/geometry/MeshCheck.h"
-#include "strata/geometry/SurfaceColors.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/io/FlatWriter.h"
-#include "strata/io/MeshWriter.h"
 
-namespace strata::apps {
-
-void requireSolidModel(const scene::Tree& tree) {
-    if (tree.isFlat()) {
-        throw Error(SourceLocation{tree.source, 0, 0},
-                    "a 2D model has no solid to export (export it as " + io::extensionList(io::ExportKind::Drawing) + ")");
-    }
-}
-
-io::StagedFile stageResultMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
-                               const geometry::Mesh& result, const glm::vec4& faceColor, double reach) {
-    if (result.triangles.empty())
-        throw Error(SourceLocation{tree.source, 0, 0}, "the CSG result is empty: nothing to export");
-    std::vector<glm::vec4> colors;
-    if (const io::ExportFormat* format = io::exportFormatOf(path); format != nullptr && format->colors)
-        colors = geometry::surfaceColors(result, tree, model, faceColor, reach);
-    return io::stageMesh(path, result, colors);
-}
+namespace strata::exporting {
 
 // The exact result as every file holds it: points rounded to single
 // precision, what STL and 3MF keep (OFF and OBJ get the same points, so
@@ -59,9 +39,8 @@ io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path)
     return io::stageFlat(path, outlines);
 }
 
-ExactExport stageExactExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
-                             const glm::vec4& faceColor) {
-    if (io::isFlatPath(path)) return ExactExport{stageFlatExport(tree, path), 0};
+StagedExport stageExactMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+                            const glm::vec4& faceColor) {
     requireSolidModel(tree);
     geometry::Mesh result;
     if (tree.root >= 0) result = geometry::exactResult(tree, tree.root, model.leafMeshes);
@@ -71,7 +50,7 @@ ExactExport stageExactExport(const scene::Tree& tree, const geometry::Model& mod
     double largest = 0.0;
     for (const glm::dvec3& p : result.positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     const double reach = std::ldexp(largest, -21);
-    return ExactExport{stageResultMesh(tree, model, path, result, faceColor, reach), result.triangles.size()};
+    return StagedExport{stageResultMesh(tree, model, path, result, faceColor, reach), result.triangles.size()};
 }
 
-}  // namespace strata::apps
+}  // namespace strata::exporting
