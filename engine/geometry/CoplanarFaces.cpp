@@ -113,6 +113,108 @@ void triangulateRegion(const ExactSolid& s, const std::vector<std::pair<Vertex, 
     }
 }
 
+// The solid's faces in regions joined across flat edges (flatEdge): each
+// edge's flatness, and each face's region as a union-find parent list.
+struct Regions {
+    std::vector<char> flat;           // by edge index
+    std::vector<std::size_t> parent;  // by face index (findRoot)
+    bool isFlat(const ExactSolid& s, Halfedge h) const { return flat[s.edge(h).idx()] != 0; }
+};
+
+Regions flatRegions(const ExactSolid& s, const std::optional<Sources>& sources) {
+    Regions r{std::vector<char>(s.num_edges(), 0), std::vector<std::size_t>(s.num_faces())};
+    for (std::size_t i = 0; i < r.parent.size(); ++i) r.parent[i] = i;
+    for (auto e : s.edges()) {
+        const Halfedge h = s.halfedge(e);
+        if (!flatEdge(s, h, sources)) continue;
+        r.flat[e.idx()] = 1;
+        const std::size_t a = findRoot(r.parent, s.face(h).idx()), b = findRoot(r.parent, s.face(s.opposite(h)).idx());
+        if (a != b) r.parent[a] = b;
+    }
+    return r;
+}
+
+// Points to keep: those on three or more creases, or on two that turn, and
+// the corners of a triangle without area, which stays as it is.
+std::vector<char> pointsToKeep(const ExactSolid& s, const Regions& regions) {
+    std::vector<char> keep(s.num_vertices(), 0);
+    for (Vertex v : s.vertices()) {
+        std::vector<Vertex> ends;
+        for (Halfedge h : CGAL::halfedges_around_target(v, s))
+            if (!regions.isFlat(s, h)) ends.push_back(s.source(h));
+        keep[v.idx()] = ends.size() > 2 ||
+                        (ends.size() == 2 && !CGAL::collinear_are_strictly_ordered_along_line(
+                                                 s.point(ends[0]), s.point(v), s.point(ends[1])));
+        if (ends.size() == 1) throw std::runtime_error("a point with one crease");
+    }
+    for (Face f : s.faces()) {
+        const Halfedge h = s.halfedge(f);
+        if (CGAL::collinear(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h)))))
+            for (Vertex v : CGAL::vertices_around_face(h, s)) keep[v.idx()] = 1;
+    }
+    return keep;
+}
+
+// The region's outline: each crease edge of the region from a kept point,
+// followed along the creases through dropped points to the next.
+void regionOutline(const ExactSolid& s, const std::vector<Face>& region, const Regions& regions,
+                   const std::vector<char>& keep, std::vector<std::pair<Vertex, Vertex>>& outline) {
+    outline.clear();
+    for (Face f : region) {
+        for (Halfedge h : CGAL::halfedges_around_face(s.halfedge(f), s)) {
+            if (regions.isFlat(s, h) || !keep[s.source(h).idx()]) continue;
+            Halfedge end = h;
+            for (std::size_t steps = 0; !keep[s.target(end).idx()]; ++steps) {
+                if (steps > s.num_halfedges()) throw std::runtime_error("an outline that does not close");
+                Halfedge next = s.next(end);
+                while (regions.isFlat(s, next)) next = s.next(s.opposite(next));
+                end = next;
+            }
+            outline.emplace_back(s.source(h), s.target(end));
+        }
+    }
+    if (outline.size() < 3) throw std::runtime_error("a region without an outline");
+}
+
+// The outline of the region `sample` lies in, triangulated as seen along the
+// axis its plane's normal is longest on (never zero), appended to `out`.
+void triangulateOutline(const ExactSolid& s, const std::vector<std::pair<Vertex, Vertex>>& outline, Face sample,
+                        std::vector<Triangle>& out) {
+    const Halfedge h = s.halfedge(sample);
+    const Kernel::Vector_3 n = CGAL::normal(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h))));
+    const std::array<double, 3> size{std::abs(CGAL::to_double(n.x())), std::abs(CGAL::to_double(n.y())),
+                                     std::abs(CGAL::to_double(n.z()))};
+    const auto axis = std::max_element(size.begin(), size.end()) - size.begin();
+    const std::size_t before = out.size();
+    if (axis == 0 && CGAL::sign(n.x()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_yz_3<Kernel>>(s, outline, sample, out);
+    else if (axis == 1 && CGAL::sign(n.y()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xz_3<Kernel>>(s, outline, sample, out);
+    else if (CGAL::sign(n.z()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xy_3<Kernel>>(s, outline, sample, out);
+    else throw std::runtime_error("a region without a plane");
+    if (out.size() == before) throw std::runtime_error("a region that triangulates to nothing");
+}
+
+// The closed solid of `triangles` over the kept points of `s`, each face
+// given its triangle's source.
+ExactSolid solidOfTriangles(const ExactSolid& s, const std::vector<char>& keep, const std::vector<Triangle>& triangles,
+                            const std::vector<std::uint64_t>& triangleSources) {
+    ExactSolid out;
+    std::vector<Vertex> moved(s.num_vertices());
+    for (Vertex v : s.vertices())
+        if (keep[v.idx()]) moved[v.idx()] = out.add_vertex(s.point(v));
+    Sources outSources = out.add_property_map<Face, std::uint64_t>(kFaceSource, 0).first;
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Triangle& t = triangles[i];
+        for (Vertex v : t)
+            if (!keep[v.idx()]) throw std::runtime_error("a triangle on a dropped point");
+        const Face f = out.add_face(moved[t[0].idx()], moved[t[1].idx()], moved[t[2].idx()]);
+        if (f == ExactSolid::null_face()) throw std::runtime_error("triangles that do not join into a surface");
+        outSources[f] = triangleSources[i];
+    }
+    for (Halfedge h : out.halfedges())
+        if (out.is_border(h)) throw std::runtime_error("the joined solid is not closed");
+    return out;
+}
+
 }  // namespace
 
 void giveFacesSources(ExactSolid& solid) {
@@ -128,42 +230,11 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
 
     std::optional<Sources> sources;
     if (auto [map, found] = s.property_map<Face, std::uint64_t>(kFaceSource); found) sources = map;
-
-    // Regions: faces joined across flat edges.
-    std::vector<char> flat(s.num_edges(), 0);
-    std::vector<std::size_t> parent(s.num_faces());
-    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
-    for (auto e : s.edges()) {
-        const Halfedge h = s.halfedge(e);
-        if (!flatEdge(s, h, sources)) continue;
-        flat[e.idx()] = 1;
-        const std::size_t a = findRoot(parent, s.face(h).idx()), b = findRoot(parent, s.face(s.opposite(h)).idx());
-        if (a != b) parent[a] = b;
-    }
-    auto isFlat = [&](Halfedge h) { return flat[s.edge(h).idx()] != 0; };
-
-    // Points to keep: those on three or more creases, or on two that turn.
-    std::vector<char> keep(s.num_vertices(), 0);
-    for (Vertex v : s.vertices()) {
-        std::vector<Vertex> ends;
-        for (Halfedge h : CGAL::halfedges_around_target(v, s))
-            if (!isFlat(h)) ends.push_back(s.source(h));
-        keep[v.idx()] = ends.size() > 2 ||
-                        (ends.size() == 2 && !CGAL::collinear_are_strictly_ordered_along_line(
-                                                 s.point(ends[0]), s.point(v), s.point(ends[1])));
-        if (ends.size() == 1) throw std::runtime_error("a point with one crease");
-    }
-
-    // A triangle without area keeps its corners: it stays as it is.
-    for (Face f : s.faces()) {
-        const Halfedge h = s.halfedge(f);
-        if (CGAL::collinear(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h)))))
-            for (Vertex v : CGAL::vertices_around_face(h, s)) keep[v.idx()] = 1;
-    }
-
+    Regions parts = flatRegions(s, sources);
+    const std::vector<char> keep = pointsToKeep(s, parts);
     // Each region's faces, and whether it changes.
     std::vector<std::vector<Face>> regions(s.num_faces());
-    for (Face f : s.faces()) regions[findRoot(parent, f.idx())].push_back(f);
+    for (Face f : s.faces()) regions[findRoot(parts.parent, f.idx())].push_back(f);
 
     std::vector<Triangle> triangles;
     triangles.reserve(s.num_faces());
@@ -186,54 +257,11 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
             }
             continue;
         }
-        // The outline: each crease edge of the region from a kept point,
-        // followed along the creases through dropped points to the next.
-        outline.clear();
-        for (Face f : region) {
-            for (Halfedge h : CGAL::halfedges_around_face(s.halfedge(f), s)) {
-                if (isFlat(h) || !keep[s.source(h).idx()]) continue;
-                Halfedge end = h;
-                for (std::size_t steps = 0; !keep[s.target(end).idx()]; ++steps) {
-                    if (steps > s.num_halfedges()) throw std::runtime_error("an outline that does not close");
-                    Halfedge next = s.next(end);
-                    while (isFlat(next)) next = s.next(s.opposite(next));
-                    end = next;
-                }
-                outline.emplace_back(s.source(h), s.target(end));
-            }
-        }
-        if (outline.size() < 3) throw std::runtime_error("a region without an outline");
-        // Seen along the axis its plane's normal is longest on (never zero).
-        const Halfedge h = s.halfedge(region.front());
-        const Kernel::Vector_3 n = CGAL::normal(s.point(s.source(h)), s.point(s.target(h)), s.point(s.target(s.next(h))));
-        const std::array<double, 3> size{std::abs(CGAL::to_double(n.x())), std::abs(CGAL::to_double(n.y())),
-                                         std::abs(CGAL::to_double(n.z()))};
-        const auto axis = std::max_element(size.begin(), size.end()) - size.begin();
-        const std::size_t before = triangles.size();
-        if (axis == 0 && CGAL::sign(n.x()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_yz_3<Kernel>>(s, outline, region.front(), triangles);
-        else if (axis == 1 && CGAL::sign(n.y()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xz_3<Kernel>>(s, outline, region.front(), triangles);
-        else if (CGAL::sign(n.z()) != CGAL::ZERO) triangulateRegion<CGAL::Projection_traits_xy_3<Kernel>>(s, outline, region.front(), triangles);
-        else throw std::runtime_error("a region without a plane");
-        if (triangles.size() == before) throw std::runtime_error("a region that triangulates to nothing");
+        regionOutline(s, region, parts, keep, outline);
+        triangulateOutline(s, outline, region.front(), triangles);
         triangleSources.resize(triangles.size(), source(region.front()));
     }
-
-    ExactSolid out;
-    std::vector<Vertex> moved(s.num_vertices());
-    for (Vertex v : s.vertices())
-        if (keep[v.idx()]) moved[v.idx()] = out.add_vertex(s.point(v));
-    Sources outSources = out.add_property_map<Face, std::uint64_t>(kFaceSource, 0).first;
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        const Triangle& t = triangles[i];
-        for (Vertex v : t)
-            if (!keep[v.idx()]) throw std::runtime_error("a triangle on a dropped point");
-        const Face f = out.add_face(moved[t[0].idx()], moved[t[1].idx()], moved[t[2].idx()]);
-        if (f == ExactSolid::null_face()) throw std::runtime_error("triangles that do not join into a surface");
-        outSources[f] = triangleSources[i];
-    }
-    for (Halfedge h : out.halfedges())
-        if (out.is_border(h)) throw std::runtime_error("the joined solid is not closed");
-    return out;
+    return solidOfTriangles(s, keep, triangles, triangleSources);
 }
 
 }  // namespace strata::geometry::detail

@@ -295,6 +295,8 @@ private:
         while (start > stop) stop += turn;
     }
 
+    // The entity that ends here becomes segments (or changes the section or
+    // block), then the next one, `data`, starts.
     void endEntity(std::string_view data) {
         const double scale = this->scale();
         if (mode_ == "SECTION") {
@@ -303,93 +305,123 @@ private:
         } else if (mode_ == "LINE") {
             addLine(xverts_.at(0), yverts_.at(0), xverts_.at(1), yverts_.at(1));
         } else if (mode_ == "LWPOLYLINE") {
-            const int numverts = static_cast<int>(std::max(xverts_.size(), yverts_.size()));
-            for (int i = 1; i < numverts; ++i) {
-                addLine(xverts_.at(std::size_t(i - 1)), yverts_.at(std::size_t(i - 1)),
-                        xverts_.at(std::size_t(i % numverts)), yverts_.at(std::size_t(i % numverts)));
-            }
-            if (dimtype_ & 0x01) {
-                addLine(xverts_.at(static_cast<std::size_t>(numverts - 1)),
-                        yverts_.at(static_cast<std::size_t>(numverts - 1)), xverts_.at(0), yverts_.at(0));
-            }
+            addPolyline();
         } else if (mode_ == "CIRCLE") {
-            const int n = fragments(radius_);
-            const double cx = xverts_.at(0), cy = yverts_.at(0);
-            checkCount(n);
-            for (int i = 0; i < n; ++i) {
-                const double a1 = (360.0 * i) / n;
-                const double a2 = (360.0 * (i + 1)) / n;
-                addLine(cosDegrees(a1) * radius_ + cx, sinDegrees(a1) * radius_ + cy, cosDegrees(a2) * radius_ + cx,
-                        sinDegrees(a2) * radius_ + cy);
-            }
+            addCircle();
         } else if (mode_ == "ARC") {
-            const double cx = xverts_.at(0), cy = yverts_.at(0);
-            int n = fragments(radius_);
-            unwrap(arcStart_, arcStop_, 360.0);
-            const double arcAngle = arcStop_ - arcStart_;
-            checkSweep(arcAngle / 360.0, "an ARC");
-            n = toIntX86(std::ceil(n * arcAngle / 360));
-            checkCount(n);
-            for (int i = 0; i < n; ++i) {
-                const double a1 = arcStart_ + arcAngle * i / n;
-                const double a2 = arcStart_ + arcAngle * (i + 1) / n;
-                addLine(cosDegrees(a1) * radius_ + cx, sinDegrees(a1) * radius_ + cy, cosDegrees(a2) * radius_ + cx,
-                        sinDegrees(a2) * radius_ + cy);
-            }
+            addArc();
         } else if (mode_ == "ELLIPSE") {
-            unwrap(ellipseStart_, ellipseStop_, 2 * kPi);
-            const double cx = xverts_.at(0), cy = yverts_.at(0);
-            const double ex = xverts_.at(1), ey = yverts_.at(1);
-            const double rMajor = std::sqrt(ex * ex + ey * ey);
-            double rotAngle;
-            {
-                double cosval = ex / rMajor;
-                if (cosval > 1.0) cosval = 1.0;
-                if (cosval < -1.0) cosval = -1.0;
-                rotAngle = std::acos(cosval);
-                if (ey < 0.0) rotAngle = 2 * kPi - rotAngle;
-            }
-            // The axis ratio is in the radius (scaled like one), as in 2021.01.
-            const double rMinor = rMajor * radius_;
-            const double sweep = ellipseStop_ - ellipseStart_;
-            checkSweep(sweep / (2 * kPi), "an ELLIPSE");
-            int n = fragments(rMajor);
-            n = toIntX86(std::ceil(n * sweep / (2 * kPi)));
-            checkCount(n);
-            double p1x = 0.0, p1y = 0.0;
-            for (int i = 0; i <= n; ++i) {
-                const double a = (ellipseStart_ + sweep * i / n);
-                const double p2x = std::cos(a) * rMajor, p2y = std::sin(a) * rMinor;
-                double rx = std::cos(rotAngle) * p2x - std::sin(rotAngle) * p2y;
-                double ry = std::sin(rotAngle) * p2x + std::cos(rotAngle) * p2y;
-                rx += cx;
-                ry += cy;
-                if (i > 0) addLine(p1x, p1y, rx, ry);
-                p1x = rx;
-                p1y = ry;
-            }
+            addEllipse();
         } else if (mode_ == "INSERT") {
-            // Scales in ellipseStart_/ellipseStop_ (41/42), rotation in arcStart_ (50).
-            const std::size_t n = blocks_[iddata_].size();
-            for (std::size_t i = 0; i < n; ++i) {
-                const double a = arcStart_;
-                const Segment s = blocks_[iddata_][i];
-                const double lx1 = points_[std::size_t(s.idx[0])][0] * ellipseStart_;
-                const double ly1 = points_[std::size_t(s.idx[0])][1] * ellipseStop_;
-                const double lx2 = points_[std::size_t(s.idx[1])][0] * ellipseStart_;
-                const double ly2 = points_[std::size_t(s.idx[1])][1] * ellipseStop_;
-                const double px1 = (cosDegrees(a) * lx1 - sinDegrees(a) * ly1) * scale + xverts_.at(0);
-                const double py1 = (sinDegrees(a) * lx1 + cosDegrees(a) * ly1) * scale + yverts_.at(0);
-                const double px2 = (cosDegrees(a) * lx2 - sinDegrees(a) * ly2) * scale + xverts_.at(0);
-                const double py2 = (sinDegrees(a) * lx2 + cosDegrees(a) * ly2) * scale + yverts_.at(0);
-                addLine(px1, py1, px2, py2);
-            }
+            addInsert(scale);
         } else if (mode_ == "BLOCK") {
             currentBlock_ = iddata_;
         } else if (mode_ == "ENDBLK") {
             currentBlock_.clear();
         }
         // (DIMENSION entities only matter to dxf_dim(); the rest 2021.01 warns about.)
+        startEntity(data);
+    }
+
+    // LWPOLYLINE: a segment between each vertex and the next, closed when flag 1 is set.
+    void addPolyline() {
+        const int numverts = static_cast<int>(std::max(xverts_.size(), yverts_.size()));
+        for (int i = 1; i < numverts; ++i) {
+            addLine(xverts_.at(std::size_t(i - 1)), yverts_.at(std::size_t(i - 1)),
+                    xverts_.at(std::size_t(i % numverts)), yverts_.at(std::size_t(i % numverts)));
+        }
+        if (dimtype_ & 0x01) {
+            addLine(xverts_.at(static_cast<std::size_t>(numverts - 1)),
+                    yverts_.at(static_cast<std::size_t>(numverts - 1)), xverts_.at(0), yverts_.at(0));
+        }
+    }
+
+    // CIRCLE: the radius's fragments, all the way round.
+    void addCircle() {
+        const int n = fragments(radius_);
+        const double cx = xverts_.at(0), cy = yverts_.at(0);
+        checkCount(n);
+        for (int i = 0; i < n; ++i) {
+            const double a1 = (360.0 * i) / n;
+            const double a2 = (360.0 * (i + 1)) / n;
+            addLine(cosDegrees(a1) * radius_ + cx, sinDegrees(a1) * radius_ + cy, cosDegrees(a2) * radius_ + cx,
+                    sinDegrees(a2) * radius_ + cy);
+        }
+    }
+
+    // ARC: the share of the radius's fragments its sweep covers, from 50 to 51 degrees.
+    void addArc() {
+        const double cx = xverts_.at(0), cy = yverts_.at(0);
+        int n = fragments(radius_);
+        unwrap(arcStart_, arcStop_, 360.0);
+        const double arcAngle = arcStop_ - arcStart_;
+        checkSweep(arcAngle / 360.0, "an ARC");
+        n = toIntX86(std::ceil(n * arcAngle / 360));
+        checkCount(n);
+        for (int i = 0; i < n; ++i) {
+            const double a1 = arcStart_ + arcAngle * i / n;
+            const double a2 = arcStart_ + arcAngle * (i + 1) / n;
+            addLine(cosDegrees(a1) * radius_ + cx, sinDegrees(a1) * radius_ + cy, cosDegrees(a2) * radius_ + cx,
+                    sinDegrees(a2) * radius_ + cy);
+        }
+    }
+
+    // ELLIPSE: centre, major-axis vector and axis ratio, from 41 to 42 radians.
+    void addEllipse() {
+        unwrap(ellipseStart_, ellipseStop_, 2 * kPi);
+        const double cx = xverts_.at(0), cy = yverts_.at(0);
+        const double ex = xverts_.at(1), ey = yverts_.at(1);
+        const double rMajor = std::sqrt(ex * ex + ey * ey);
+        double rotAngle;
+        {
+            double cosval = ex / rMajor;
+            if (cosval > 1.0) cosval = 1.0;
+            if (cosval < -1.0) cosval = -1.0;
+            rotAngle = std::acos(cosval);
+            if (ey < 0.0) rotAngle = 2 * kPi - rotAngle;
+        }
+        // The axis ratio is in the radius (scaled like one), as in 2021.01.
+        const double rMinor = rMajor * radius_;
+        const double sweep = ellipseStop_ - ellipseStart_;
+        checkSweep(sweep / (2 * kPi), "an ELLIPSE");
+        int n = fragments(rMajor);
+        n = toIntX86(std::ceil(n * sweep / (2 * kPi)));
+        checkCount(n);
+        double p1x = 0.0, p1y = 0.0;
+        for (int i = 0; i <= n; ++i) {
+            const double a = (ellipseStart_ + sweep * i / n);
+            const double p2x = std::cos(a) * rMajor, p2y = std::sin(a) * rMinor;
+            double rx = std::cos(rotAngle) * p2x - std::sin(rotAngle) * p2y;
+            double ry = std::sin(rotAngle) * p2x + std::cos(rotAngle) * p2y;
+            rx += cx;
+            ry += cy;
+            if (i > 0) addLine(p1x, p1y, rx, ry);
+            p1x = rx;
+            p1y = ry;
+        }
+    }
+
+    // INSERT: the named block's segments, scaled, rotated, scaled again and moved to the insertion point.
+    void addInsert(double scale) {
+        // Scales in ellipseStart_/ellipseStop_ (41/42), rotation in arcStart_ (50).
+        const std::size_t n = blocks_[iddata_].size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const double a = arcStart_;
+            const Segment s = blocks_[iddata_][i];
+            const double lx1 = points_[std::size_t(s.idx[0])][0] * ellipseStart_;
+            const double ly1 = points_[std::size_t(s.idx[0])][1] * ellipseStop_;
+            const double lx2 = points_[std::size_t(s.idx[1])][0] * ellipseStart_;
+            const double ly2 = points_[std::size_t(s.idx[1])][1] * ellipseStop_;
+            const double px1 = (cosDegrees(a) * lx1 - sinDegrees(a) * ly1) * scale + xverts_.at(0);
+            const double py1 = (sinDegrees(a) * lx1 + cosDegrees(a) * ly1) * scale + yverts_.at(0);
+            const double px2 = (cosDegrees(a) * lx2 - sinDegrees(a) * ly2) * scale + xverts_.at(0);
+            const double py2 = (sinDegrees(a) * lx2 + cosDegrees(a) * ly2) * scale + yverts_.at(0);
+            addLine(px1, py1, px2, py2);
+        }
+    }
+
+    // Clears the entity's state for the next one, `data`; an INSERT's scales start at 1.
+    void startEntity(std::string_view data) {
         mode_ = data;
         layer_.clear();
         iddata_.clear();

@@ -118,75 +118,74 @@ std::size_t skipDigits(const char*& first, const char* last) {
     return static_cast<std::size_t>(first - save);
 }
 
-// Long, and kept whole: it walks Boost.Spirit's real parser step by step
-// (sign, integer digits, fraction, exponent, nan and inf), the parser
-// OpenSCAD's SVG reader uses, so that every number reads to the same double;
-// split, its running state would have to travel between the pieces.
-bool spiritReal(const char*& first, const char* last, double& attr) {
-    if (first == last) return false;
-    const char* save = first;
+// What Boost.Spirit's real parser has read so far of one number, handed from
+// each step of spiritReal to the next.
+struct SpiritNumber {
     bool neg = false;
-    if (*first == '-' || *first == '+') {
-        neg = *first == '-';
-        ++first;
-    }
     std::uint64_t acc = 0;
-    // parse_n: at most 17 digits, leading zeros included.
     bool gotNumber = false;
-    {
-        const char* it = first;
-        std::size_t leadingZeros = 0, count = 0;
-        while (it != last && *it == '0' && leadingZeros < 17) ++it, ++leadingZeros;
-        std::uint64_t val = 0;
-        while (count + leadingZeros < 17 && it != last && isDigit(*it)) {
-            val = val * 10 + static_cast<std::uint64_t>(*it - '0');
-            ++it, ++count;
-        }
-        if (count + leadingZeros >= 1) {
-            acc = val;
-            first = it;
-            gotNumber = true;
-        }
-    }
     long long excess = 0;
-    if (!gotNumber) {
-        const char* it = first;
-        if (it != last && (*it == 'n' || *it == 'N')) {
-            if (literal(it, last, "nan")) {
-                bool ok = true;
-                if (it != last && *it == '(') {
-                    const char* i = it;
-                    while (++i != last && *i != ')') {
-                    }
-                    if (i == last)
-                        ok = false;
-                    else
-                        it = i + 1;
+    int fracDigits = 0;
+    bool eHit = false;
+    const char* ePos = nullptr;
+};
+
+// parse_n: at most 17 digits, leading zeros included.
+bool spiritInteger(const char*& first, const char* last, std::uint64_t& acc) {
+    const char* it = first;
+    std::size_t leadingZeros = 0, count = 0;
+    while (it != last && *it == '0' && leadingZeros < 17) ++it, ++leadingZeros;
+    std::uint64_t val = 0;
+    while (count + leadingZeros < 17 && it != last && isDigit(*it)) {
+        val = val * 10 + static_cast<std::uint64_t>(*it - '0');
+        ++it, ++count;
+    }
+    if (count + leadingZeros >= 1) {
+        acc = val;
+        first = it;
+        return true;
+    }
+    return false;
+}
+
+// Where no digits came: "nan", "nan(...)", "inf" or "infinity", any case; false when none of them.
+bool spiritNanInf(const char*& first, const char* last, bool neg, double& attr) {
+    const char* it = first;
+    if (it != last && (*it == 'n' || *it == 'N')) {
+        if (literal(it, last, "nan")) {
+            bool ok = true;
+            if (it != last && *it == '(') {
+                const char* i = it;
+                while (++i != last && *i != ')') {
                 }
-                if (ok) {
-                    first = it;
-                    attr = neg ? -std::numeric_limits<double>::quiet_NaN() : std::numeric_limits<double>::quiet_NaN();
-                    return true;
-                }
+                if (i == last)
+                    ok = false;
+                else
+                    it = i + 1;
             }
-        } else if (it != last && (*it == 'i' || *it == 'I')) {
-            if (literal(it, last, "inf")) {
-                literal(it, last, "inity");
+            if (ok) {
                 first = it;
-                attr = neg ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+                attr = neg ? -std::numeric_limits<double>::quiet_NaN() : std::numeric_limits<double>::quiet_NaN();
                 return true;
             }
         }
-    } else {
-        excess = static_cast<long long>(skipDigits(first, last));
+    } else if (it != last && (*it == 'i' || *it == 'I')) {
+        if (literal(it, last, "inf")) {
+            literal(it, last, "inity");
+            first = it;
+            attr = neg ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+            return true;
+        }
     }
+    return false;
+}
 
-    bool eHit = false;
-    const char* ePos = first;
-    int fracDigits = 0;
+// The '.' and fraction digits, if any, then whether an 'e' follows; false,
+// with first back at save, when neither integer nor fraction digits came.
+bool spiritFraction(const char*& first, const char* last, const char* save, SpiritNumber& num) {
     if (first != last && *first == '.') {
         ++first;
-        if (excess != 0) {
+        if (num.excess != 0) {
             skipDigits(first, last);
         } else {
             // parse_frac_n: accumulate while the 64-bit accumulator does not overflow.
@@ -196,64 +195,94 @@ bool spiritReal(const char*& first, const char* last, double& attr) {
             while (it != last && isDigit(*it)) {
                 const std::uint64_t digit = static_cast<std::uint64_t>(*it - '0');
                 const std::uint64_t max = std::numeric_limits<std::uint64_t>::max();
-                if (acc > max / 10 || acc * 10 > max - digit) {
+                if (num.acc > max / 10 || num.acc * 10 > max - digit) {
                     overflow = true;
                     break;
                 }
-                acc = acc * 10 + digit;
+                num.acc = num.acc * 10 + digit;
                 ++it, ++count;
             }
             if (overflow || count >= 1) {
                 first = it;
-                fracDigits = static_cast<int>(count);
+                num.fracDigits = static_cast<int>(count);
                 skipDigits(first, last);
-            } else if (!gotNumber) {
+            } else if (!num.gotNumber) {
                 first = save;
                 return false;
             }
         }
-        ePos = first;
-        if (first != last && (*first == 'e' || *first == 'E')) ++first, eHit = true;
+        num.ePos = first;
+        if (first != last && (*first == 'e' || *first == 'E')) ++first, num.eHit = true;
     } else {
-        if (!gotNumber) {
+        if (!num.gotNumber) {
             first = save;
             return false;
         }
-        ePos = first;
-        if (first != last && (*first == 'e' || *first == 'E')) ++first, eHit = true;
+        num.ePos = first;
+        if (first != last && (*first == 'e' || *first == 'E')) ++first, num.eHit = true;
+    }
+    return true;
+}
+
+// After an 'e': the exponent and the number scaled by it into n, or, when
+// the exponent is unusable, the 'e' left unread; false when out of range.
+bool spiritExponent(const char*& first, const char* last, const SpiritNumber& num, double& n) {
+    // parse_exp_n: a signed int, at least one digit, no overflow.
+    const char* it = first;
+    bool expNeg = false;
+    if (it != last && (*it == '-' || *it == '+')) expNeg = *it++ == '-';
+    long long exp = 0;
+    std::size_t digits = 0;
+    bool overflow = false;
+    while (it != last && isDigit(*it)) {
+        // Past int's range the digits are only counted: the value is
+        // refused anyway, and more of them would overflow `exp` itself.
+        if (!overflow) exp = exp * 10 + (*it - '0');
+        if (exp > 2147483648LL) overflow = true;
+        ++it, ++digits;
+    }
+    if (digits > 0 && !overflow && (expNeg || exp <= 2147483647LL)) {
+        first = it;
+        if (!spiritScale((expNeg ? -exp : exp) + num.excess - num.fracDigits, n, num.acc)) return false;
+    } else {
+        first = num.ePos;
+        spiritScale(-num.fracDigits, n, num.acc);
+    }
+    return true;
+}
+
+// Boost.Spirit's real parser step by step (sign, integer digits, fraction,
+// exponent, nan and inf), the parser OpenSCAD's SVG reader uses, so that
+// every number reads to the same double; the steps above share its running
+// state in a SpiritNumber.
+bool spiritReal(const char*& first, const char* last, double& attr) {
+    if (first == last) return false;
+    const char* save = first;
+    SpiritNumber num;
+    if (*first == '-' || *first == '+') {
+        num.neg = *first == '-';
+        ++first;
+    }
+    num.gotNumber = spiritInteger(first, last, num.acc);
+    if (!num.gotNumber) {
+        if (spiritNanInf(first, last, num.neg, attr)) return true;
+    } else {
+        num.excess = static_cast<long long>(skipDigits(first, last));
     }
 
+    if (!spiritFraction(first, last, save, num)) return false;
+
     double n = 0;
-    if (eHit) {
-        // parse_exp_n: a signed int, at least one digit, no overflow.
-        const char* it = first;
-        bool expNeg = false;
-        if (it != last && (*it == '-' || *it == '+')) expNeg = *it++ == '-';
-        long long exp = 0;
-        std::size_t digits = 0;
-        bool overflow = false;
-        while (it != last && isDigit(*it)) {
-            // Past int's range the digits are only counted: the value is
-            // refused anyway, and more of them would overflow `exp` itself.
-            if (!overflow) exp = exp * 10 + (*it - '0');
-            if (exp > 2147483648LL) overflow = true;
-            ++it, ++digits;
-        }
-        if (digits > 0 && !overflow && (expNeg || exp <= 2147483647LL)) {
-            first = it;
-            if (!spiritScale((expNeg ? -exp : exp) + excess - fracDigits, n, acc)) return false;
-        } else {
-            first = ePos;
-            spiritScale(-fracDigits, n, acc);
-        }
-    } else if (fracDigits) {
-        spiritScale(-fracDigits, n, acc);
-    } else if (excess) {
-        if (!spiritScale(excess, n, acc)) return false;
+    if (num.eHit) {
+        if (!spiritExponent(first, last, num, n)) return false;
+    } else if (num.fracDigits) {
+        spiritScale(-num.fracDigits, n, num.acc);
+    } else if (num.excess) {
+        if (!spiritScale(num.excess, n, num.acc)) return false;
     } else {
-        n = static_cast<double>(acc);
+        n = static_cast<double>(num.acc);
     }
-    attr = neg ? -n : n;
+    attr = num.neg ? -n : n;
     return true;
 }
 
@@ -781,6 +810,18 @@ private:
         return result;
     }
 
+    // The state of libsvg's path-data parser between tokens: the pen, the
+    // command being read and its arguments so far, and a '-' or a number
+    // ending in 'e' waiting for the next token.
+    struct PathPen {
+        double x = 0, y = 0, xx = 0, yy = 0, rx = 0, ry = 0, cx1 = 0, cy1 = 0, cx2 = 0, cy2 = 0, angle = 0;
+        bool large = false, sweep = false, lastCubic = false, lastQuadratic = false;
+        char cmd = ' ';
+        int point = 0;
+        bool negate = false, closed = false;
+        std::string exp;
+    };
+
     void pathData(Shape& s, const std::string& data) {
         const std::string commands = "-zmlcqahvstZMLCQAHVST";
         std::vector<std::string> tokens;
@@ -789,231 +830,271 @@ private:
         }
 
         PathList& list = s.paths;
-        double x = 0, y = 0, xx = 0, yy = 0, rx = 0, ry = 0, cx1 = 0, cy1 = 0, cx2 = 0, cy2 = 0, angle = 0;
-        bool large = false, sweep = false, lastCubic = false, lastQuadratic = false;
-        char cmd = ' ';
-        int point = 0;
-        bool negate = false, closed = false;
-        std::string exp;
+        PathPen pen;
         list.emplace_back();
         for (const std::string& v : tokens) {
             double p = 0;
-            if (v.length() == 1 && commands.find(v) != std::string::npos) {
-                if (v[0] == '-') {
-                    negate = true;
-                    continue;
-                }
-                point = -1;
-                cmd = v[0];
-            } else {
-                if (v.back() == 'e') {
-                    exp = negate ? std::string("-") + v : v;
-                    negate = false;
-                    continue;
-                }
-                if (exp.empty()) {
-                    p = parseDouble(v);
-                    p = negate ? -p : p;
-                } else {
-                    p = parseDouble(exp + (negate ? "-" : "") + v);
-                    exp = "";
-                }
-                negate = false;
-            }
-
-            switch (cmd) {
-                case 'a':
-                case 'A':
-                    switch (point) {
-                        case 0: rx = std::fabs(p); break;
-                        case 1: ry = std::fabs(p); break;
-                        case 2: angle = p; break;
-                        case 3: large = p > 0.5; break;
-                        case 4: sweep = p > 0.5; break;
-                        case 5: xx = cmd == 'a' ? x + p : p; break;
-                        case 6:
-                            yy = cmd == 'a' ? y + p : p;
-                            arcTo(list.back(), x, y, rx, ry, xx, yy, angle, large, sweep);
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = lastQuadratic = false;
-                            break;
-                    }
-                    break;
-                case 'l':
-                case 'L':
-                    switch (point) {
-                        case 0: xx = cmd == 'l' ? x + p : p; break;
-                        case 1:
-                            yy = cmd == 'l' ? y + p : p;
-                            push(list.back(), {xx, yy, 0});
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = lastQuadratic = false;
-                            break;
-                    }
-                    break;
-                case 'c':
-                case 'C':
-                    switch (point) {
-                        case 0: cx1 = p; break;
-                        case 1: cy1 = p; break;
-                        case 2: cx2 = p; break;
-                        case 3: cy2 = p; break;
-                        case 4: xx = cmd == 'c' ? x + p : p; break;
-                        case 5:
-                            yy = cmd == 'c' ? y + p : p;
-                            cx1 = cmd == 'c' ? x + cx1 : cx1;
-                            cy1 = cmd == 'c' ? y + cy1 : cy1;
-                            cx2 = cmd == 'c' ? x + cx2 : cx2;
-                            cy2 = cmd == 'c' ? y + cy2 : cy2;
-                            curveTo(list.back(), x, y, cx1, cy1, cx2, cy2, xx, yy);
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = true;
-                            lastQuadratic = false;
-                            break;
-                    }
-                    break;
-                case 's':
-                case 'S':
-                    switch (point) {
-                        case 0:
-                            if (lastCubic) {
-                                // current + (current - old control point)
-                                cx1 = x + (x - cx2);
-                                cy1 = y + (y - cy2);
-                            } else {
-                                cx1 = x;
-                                cy1 = y;
-                            }
-                            cx2 = p;
-                            break;
-                        case 1: cy2 = p; break;
-                        case 2: xx = cmd == 's' ? x + p : p; break;
-                        case 3:
-                            yy = cmd == 's' ? y + p : p;
-                            cx2 = cmd == 's' ? x + cx2 : cx2;
-                            cy2 = cmd == 's' ? y + cy2 : cy2;
-                            curveTo(list.back(), x, y, cx1, cy1, cx2, cy2, xx, yy);
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = true;
-                            lastQuadratic = false;
-                            break;
-                    }
-                    break;
-                case 'q':
-                case 'Q':
-                    switch (point) {
-                        case 0: cx1 = p; break;
-                        case 1: cy1 = p; break;
-                        case 2: xx = cmd == 'q' ? x + p : p; break;
-                        case 3:
-                            yy = cmd == 'q' ? y + p : p;
-                            cx1 = cmd == 'q' ? x + cx1 : cx1;
-                            cy1 = cmd == 'q' ? y + cy1 : cy1;
-                            curveTo(list.back(), x, y, cx1, cy1, xx, yy);
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = false;
-                            lastQuadratic = true;
-                            break;
-                    }
-                    break;
-                case 't':
-                case 'T':
-                    switch (point) {
-                        case 0:
-                            if (lastQuadratic) {
-                                cx1 = x + (x - cx1);
-                                cy1 = y + (y - cy1);
-                            } else {
-                                cx1 = x;
-                                cy1 = y;
-                            }
-                            xx = cmd == 't' ? x + p : p;
-                            break;
-                        case 1:
-                            yy = cmd == 't' ? y + p : p;
-                            curveTo(list.back(), x, y, cx1, cy1, xx, yy);
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = false;
-                            lastQuadratic = true;
-                            break;
-                    }
-                    break;
-                case 'm':
-                case 'M':
-                    switch (point) {
-                        case 0: xx = cmd == 'm' ? x + p : p; break;
-                        case 1: {
-                            yy = cmd == 'm' ? y + p : p;
-                            cmd = cmd == 'm' ? 'l' : 'L';
-                            if (!list.back().empty()) {
-                                if (isOpenPath(list.back())) {
-                                    const PathPoints open = list.back();
-                                    list.pop_back();
-                                    offsetPath(s, list, open);
-                                }
-                                list.emplace_back();
-                            }
-                            push(list.back(), {xx, yy, 0});
-                            x = xx;
-                            y = yy;
-                            point = -1;
-                            lastCubic = lastQuadratic = false;
-                            break;
-                        }
-                    }
-                    break;
-                case 'v':
-                case 'V':
-                    if (point == 0) {
-                        y = cmd == 'v' ? y + p : p;
-                        push(list.back(), {x, y, 0});
-                        point = -1;
-                        lastCubic = lastQuadratic = false;
-                    }
-                    break;
-                case 'h':
-                case 'H':
-                    if (point == 0) {
-                        x = cmd == 'h' ? x + p : p;
-                        push(list.back(), {x, y, 0});
-                        point = -1;
-                        lastCubic = lastQuadratic = false;
-                    }
-                    break;
-                case 'z':
-                case 'Z':
-                    if (!list.back().empty()) {
-                        const Point first = list.back()[0];
-                        push(list.back(), first);
-                        x = first[0];
-                        y = first[1];
-                    }
-                    list.emplace_back();
-                    closed = true;
-                    lastCubic = lastQuadratic = false;
-                    break;
-            }
-            point++;
+            if (!pathToken(pen, commands, v, p)) continue;
+            pathStep(s, pen, p);
         }
 
         while (!list.empty() && list.back().empty()) list.pop_back();
-        if (!closed && !list.empty() && isOpenPath(list.back())) {
+        if (!pen.closed && !list.empty() && isOpenPath(list.back())) {
             const PathPoints open = list.back();
             list.pop_back();
             offsetPath(s, list, open);
         }
+    }
+
+    // A token: a command starts its arguments, a number becomes the next one
+    // in p; false for a '-' or a number ending in 'e', kept for the next token.
+    static bool pathToken(PathPen& pen, const std::string& commands, const std::string& v, double& p) {
+        if (v.length() == 1 && commands.find(v) != std::string::npos) {
+            if (v[0] == '-') {
+                pen.negate = true;
+                return false;
+            }
+            pen.point = -1;
+            pen.cmd = v[0];
+        } else {
+            if (v.back() == 'e') {
+                pen.exp = pen.negate ? std::string("-") + v : v;
+                pen.negate = false;
+                return false;
+            }
+            if (pen.exp.empty()) {
+                p = parseDouble(v);
+                p = pen.negate ? -p : p;
+            } else {
+                p = parseDouble(pen.exp + (pen.negate ? "-" : "") + v);
+                pen.exp = "";
+            }
+            pen.negate = false;
+        }
+        return true;
+    }
+
+    // Hands the argument p (0 for the command itself) to the current command.
+    void pathStep(Shape& s, PathPen& pen, double p) {
+        PathList& list = s.paths;
+        switch (pen.cmd) {
+            case 'a':
+            case 'A': pathArc(list, pen, p); break;
+            case 'l':
+            case 'L': pathLine(list, pen, p); break;
+            case 'c':
+            case 'C': pathCubic(list, pen, p); break;
+            case 's':
+            case 'S': pathSmoothCubic(list, pen, p); break;
+            case 'q':
+            case 'Q': pathQuadratic(list, pen, p); break;
+            case 't':
+            case 'T': pathSmoothQuadratic(list, pen, p); break;
+            case 'm':
+            case 'M': pathMove(s, pen, p); break;
+            case 'v':
+            case 'V': pathVertical(list, pen, p); break;
+            case 'h':
+            case 'H': pathHorizontal(list, pen, p); break;
+            case 'z':
+            case 'Z': pathClose(list, pen); break;
+        }
+        pen.point++;
+    }
+
+    // a/A: radii, rotation, large-arc and sweep flags, then the end point.
+    void pathArc(PathList& list, PathPen& pen, double p) {
+        switch (pen.point) {
+            case 0: pen.rx = std::fabs(p); break;
+            case 1: pen.ry = std::fabs(p); break;
+            case 2: pen.angle = p; break;
+            case 3: pen.large = p > 0.5; break;
+            case 4: pen.sweep = p > 0.5; break;
+            case 5: pen.xx = pen.cmd == 'a' ? pen.x + p : p; break;
+            case 6:
+                pen.yy = pen.cmd == 'a' ? pen.y + p : p;
+                arcTo(list.back(), pen.x, pen.y, pen.rx, pen.ry, pen.xx, pen.yy, pen.angle, pen.large, pen.sweep);
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = pen.lastQuadratic = false;
+                break;
+        }
+    }
+
+    // l/L: a straight line to the end point.
+    void pathLine(PathList& list, PathPen& pen, double p) {
+        switch (pen.point) {
+            case 0: pen.xx = pen.cmd == 'l' ? pen.x + p : p; break;
+            case 1:
+                pen.yy = pen.cmd == 'l' ? pen.y + p : p;
+                push(list.back(), {pen.xx, pen.yy, 0});
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = pen.lastQuadratic = false;
+                break;
+        }
+    }
+
+    // c/C: a cubic Bezier curve, two control points then the end point.
+    void pathCubic(PathList& list, PathPen& pen, double p) {
+        switch (pen.point) {
+            case 0: pen.cx1 = p; break;
+            case 1: pen.cy1 = p; break;
+            case 2: pen.cx2 = p; break;
+            case 3: pen.cy2 = p; break;
+            case 4: pen.xx = pen.cmd == 'c' ? pen.x + p : p; break;
+            case 5:
+                pen.yy = pen.cmd == 'c' ? pen.y + p : p;
+                pen.cx1 = pen.cmd == 'c' ? pen.x + pen.cx1 : pen.cx1;
+                pen.cy1 = pen.cmd == 'c' ? pen.y + pen.cy1 : pen.cy1;
+                pen.cx2 = pen.cmd == 'c' ? pen.x + pen.cx2 : pen.cx2;
+                pen.cy2 = pen.cmd == 'c' ? pen.y + pen.cy2 : pen.cy2;
+                curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.cx2, pen.cy2, pen.xx, pen.yy);
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = true;
+                pen.lastQuadratic = false;
+                break;
+        }
+    }
+
+    // s/S: a cubic Bezier curve whose first control point mirrors the last one.
+    void pathSmoothCubic(PathList& list, PathPen& pen, double p) {
+        switch (pen.point) {
+            case 0:
+                if (pen.lastCubic) {
+                    // current + (current - old control point)
+                    pen.cx1 = pen.x + (pen.x - pen.cx2);
+                    pen.cy1 = pen.y + (pen.y - pen.cy2);
+                } else {
+                    pen.cx1 = pen.x;
+                    pen.cy1 = pen.y;
+                }
+                pen.cx2 = p;
+                break;
+            case 1: pen.cy2 = p; break;
+            case 2: pen.xx = pen.cmd == 's' ? pen.x + p : p; break;
+            case 3:
+                pen.yy = pen.cmd == 's' ? pen.y + p : p;
+                pen.cx2 = pen.cmd == 's' ? pen.x + pen.cx2 : pen.cx2;
+                pen.cy2 = pen.cmd == 's' ? pen.y + pen.cy2 : pen.cy2;
+                curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.cx2, pen.cy2, pen.xx, pen.yy);
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = true;
+                pen.lastQuadratic = false;
+                break;
+        }
+    }
+
+    // q/Q: a quadratic Bezier curve, a control point then the end point.
+    void pathQuadratic(PathList& list, PathPen& pen, double p) {
+        switch (pen.point) {
+            case 0: pen.cx1 = p; break;
+            case 1: pen.cy1 = p; break;
+            case 2: pen.xx = pen.cmd == 'q' ? pen.x + p : p; break;
+            case 3:
+                pen.yy = pen.cmd == 'q' ? pen.y + p : p;
+                pen.cx1 = pen.cmd == 'q' ? pen.x + pen.cx1 : pen.cx1;
+                pen.cy1 = pen.cmd == 'q' ? pen.y + pen.cy1 : pen.cy1;
+                curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.xx, pen.yy);
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = false;
+                pen.lastQuadratic = true;
+                break;
+        }
+    }
+
+    // t/T: a quadratic Bezier curve whose control point mirrors the last one.
+    void pathSmoothQuadratic(PathList& list, PathPen& pen, double p) {
+        switch (pen.point) {
+            case 0:
+                if (pen.lastQuadratic) {
+                    pen.cx1 = pen.x + (pen.x - pen.cx1);
+                    pen.cy1 = pen.y + (pen.y - pen.cy1);
+                } else {
+                    pen.cx1 = pen.x;
+                    pen.cy1 = pen.y;
+                }
+                pen.xx = pen.cmd == 't' ? pen.x + p : p;
+                break;
+            case 1:
+                pen.yy = pen.cmd == 't' ? pen.y + p : p;
+                curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.xx, pen.yy);
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = false;
+                pen.lastQuadratic = true;
+                break;
+        }
+    }
+
+    // m/M: starts a new subpath (stroking the previous one if open); later
+    // pairs are lines, as the command turns into l/L.
+    void pathMove(Shape& s, PathPen& pen, double p) {
+        PathList& list = s.paths;
+        switch (pen.point) {
+            case 0: pen.xx = pen.cmd == 'm' ? pen.x + p : p; break;
+            case 1: {
+                pen.yy = pen.cmd == 'm' ? pen.y + p : p;
+                pen.cmd = pen.cmd == 'm' ? 'l' : 'L';
+                if (!list.back().empty()) {
+                    if (isOpenPath(list.back())) {
+                        const PathPoints open = list.back();
+                        list.pop_back();
+                        offsetPath(s, list, open);
+                    }
+                    list.emplace_back();
+                }
+                push(list.back(), {pen.xx, pen.yy, 0});
+                pen.x = pen.xx;
+                pen.y = pen.yy;
+                pen.point = -1;
+                pen.lastCubic = pen.lastQuadratic = false;
+                break;
+            }
+        }
+    }
+
+    // v/V: a vertical line.
+    void pathVertical(PathList& list, PathPen& pen, double p) {
+        if (pen.point == 0) {
+            pen.y = pen.cmd == 'v' ? pen.y + p : p;
+            push(list.back(), {pen.x, pen.y, 0});
+            pen.point = -1;
+            pen.lastCubic = pen.lastQuadratic = false;
+        }
+    }
+
+    // h/H: a horizontal line.
+    void pathHorizontal(PathList& list, PathPen& pen, double p) {
+        if (pen.point == 0) {
+            pen.x = pen.cmd == 'h' ? pen.x + p : p;
+            push(list.back(), {pen.x, pen.y, 0});
+            pen.point = -1;
+            pen.lastCubic = pen.lastQuadratic = false;
+        }
+    }
+
+    // z/Z (on the command and on every number after it): closes the subpath
+    // back to its first point and starts another; the argument count runs on.
+    void pathClose(PathList& list, PathPen& pen) {
+        if (!list.back().empty()) {
+            const Point first = list.back()[0];
+            push(list.back(), first);
+            pen.x = first[0];
+            pen.y = first[1];
+        }
+        list.emplace_back();
+        pen.closed = true;
+        pen.lastCubic = pen.lastQuadratic = false;
     }
 
     // collect_transform_matrices: this shape's transform attribute, its

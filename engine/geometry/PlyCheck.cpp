@@ -91,6 +91,11 @@ public:
     void binaryBody(const Header& h) const;
 
 private:
+    void formatLine(const std::vector<std::string>& words, std::size_t line, bool& formatSeen, Header& h) const;
+    void elementLine(const std::vector<std::string>& words, std::size_t line, Header& h) const;
+    void propertyLine(const std::vector<std::string>& words, std::size_t line, Header& h) const;
+    void requiredElements(const Header& h) const;
+
     std::string tooMany(unsigned long long count, const Element& e) const {
         return "header declares " + std::to_string(count) + " " + shownWord(e.name) +
                " elements, more than the file can hold";
@@ -108,6 +113,60 @@ private:
     std::uintmax_t size_;
 };
 
+// A format line: the body's encoding, and the version 1.0.
+void Checker::formatLine(const std::vector<std::string>& words, std::size_t line, bool& formatSeen, Header& h) const {
+    if (formatSeen) fail(line, "a second format line");
+    if (words.size() != 3) fail(line, "expected 'format ascii 1.0' (or binary_little_endian, binary_big_endian)");
+    if (words[1] == "ascii") h.format = Format::Ascii;
+    else if (words[1] == "binary_little_endian") h.format = Format::LittleEndian;
+    else if (words[1] == "binary_big_endian") h.format = Format::BigEndian;
+    else fail(line, "unknown format " + shownWord(words[1]) + " (expected ascii, binary_little_endian or binary_big_endian)");
+    if (words[2] != "1.0" && words[2] != "1") fail(line, "unknown format version " + shownWord(words[2]) + " (expected 1.0)");
+    formatSeen = true;
+}
+
+// An element line: a new element with its name and count.
+void Checker::elementLine(const std::vector<std::string>& words, std::size_t line, Header& h) const {
+    if (words.size() != 3) fail(line, "expected 'element NAME COUNT'");
+    Element e;
+    e.name = words[1];
+    e.line = line;
+    const std::string& count = words[2];
+    const auto [ptr, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
+    if (ec == std::errc::result_out_of_range) {
+        fail(line, "header declares " + shownWord(count) + " " + shownWord(e.name) + " elements, more than the file can hold");
+    }
+    if (ec != std::errc() || ptr != count.data() + count.size()) {
+        fail(line, "the count of element " + shownWord(e.name) + " is not a whole number: " + shownWord(count));
+    }
+    h.elements.push_back(std::move(e));
+}
+
+// A property line: a scalar or list property of the last element.
+void Checker::propertyLine(const std::vector<std::string>& words, std::size_t line, Header& h) const {
+    if (h.elements.empty()) fail(line, "a property before any element");
+    Property p;
+    p.line = line;
+    if (words.size() >= 2 && words[1] == "list") {
+        if (words.size() != 5) fail(line, "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
+        p.list = true;
+        p.typeWord = words[2];
+        p.countType = typeNamed(words[2]);
+        if (!p.countType.integer) fail(line, "a list's length type must be an integer type, not " + shownWord(words[2]));
+        p.type = typeNamed(words[3]);
+        if (p.type.size == 0) fail(line, "unknown property type " + shownWord(words[3]));
+        p.name = words[4];
+    } else {
+        if (words.size() != 3) fail(line, "expected 'property TYPE NAME'");
+        p.type = typeNamed(words[1]);
+        if (p.type.size == 0) fail(line, "unknown property type " + shownWord(words[1]));
+        p.typeWord = words[1];
+        p.name = words[2];
+    }
+    h.elements.back().properties.push_back(std::move(p));
+}
+
+// The header's lines one by one, up to end_header, then the elements a mesh needs.
 Header Checker::header(const std::string& head) const {
     if (head.rfind("ply\n", 0) != 0 && head.rfind("ply\r\n", 0) != 0) fail(0, "not a PLY file (its first line is not 'ply')");
     Header h;
@@ -128,14 +187,7 @@ Header Checker::header(const std::string& head) const {
         if (line == 1 || words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
         const std::string& keyword = words[0];
         if (keyword == "format") {
-            if (formatSeen) fail(line, "a second format line");
-            if (words.size() != 3) fail(line, "expected 'format ascii 1.0' (or binary_little_endian, binary_big_endian)");
-            if (words[1] == "ascii") h.format = Format::Ascii;
-            else if (words[1] == "binary_little_endian") h.format = Format::LittleEndian;
-            else if (words[1] == "binary_big_endian") h.format = Format::BigEndian;
-            else fail(line, "unknown format " + shownWord(words[1]) + " (expected ascii, binary_little_endian or binary_big_endian)");
-            if (words[2] != "1.0" && words[2] != "1") fail(line, "unknown format version " + shownWord(words[2]) + " (expected 1.0)");
-            formatSeen = true;
+            formatLine(words, line, formatSeen, h);
             continue;
         }
         if (!formatSeen) fail(line, "expected the format line, got " + shownWord(keyword));
@@ -145,40 +197,9 @@ Header Checker::header(const std::string& head) const {
             break;
         }
         if (keyword == "element") {
-            if (words.size() != 3) fail(line, "expected 'element NAME COUNT'");
-            Element e;
-            e.name = words[1];
-            e.line = line;
-            const std::string& count = words[2];
-            const auto [ptr, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
-            if (ec == std::errc::result_out_of_range) {
-                fail(line, "header declares " + shownWord(count) + " " + shownWord(e.name) + " elements, more than the file can hold");
-            }
-            if (ec != std::errc() || ptr != count.data() + count.size()) {
-                fail(line, "the count of element " + shownWord(e.name) + " is not a whole number: " + shownWord(count));
-            }
-            h.elements.push_back(std::move(e));
+            elementLine(words, line, h);
         } else if (keyword == "property") {
-            if (h.elements.empty()) fail(line, "a property before any element");
-            Property p;
-            p.line = line;
-            if (words.size() >= 2 && words[1] == "list") {
-                if (words.size() != 5) fail(line, "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
-                p.list = true;
-                p.typeWord = words[2];
-                p.countType = typeNamed(words[2]);
-                if (!p.countType.integer) fail(line, "a list's length type must be an integer type, not " + shownWord(words[2]));
-                p.type = typeNamed(words[3]);
-                if (p.type.size == 0) fail(line, "unknown property type " + shownWord(words[3]));
-                p.name = words[4];
-            } else {
-                if (words.size() != 3) fail(line, "expected 'property TYPE NAME'");
-                p.type = typeNamed(words[1]);
-                if (p.type.size == 0) fail(line, "unknown property type " + shownWord(words[1]));
-                p.typeWord = words[1];
-                p.name = words[2];
-            }
-            h.elements.back().properties.push_back(std::move(p));
+            propertyLine(words, line, h);
         } else {
             fail(line, "unknown header line starting with " + shownWord(keyword));
         }
@@ -189,7 +210,12 @@ Header Checker::header(const std::string& head) const {
     }
     h.bytes = std::min(pos, head.size());
     h.lines = line;
+    requiredElements(h);
+    return h;
+}
 
+// The vertex and face elements with the properties OpenMesh reads, in that order.
+void Checker::requiredElements(const Header& h) const {
     auto named = [&h](const char* name) {
         return std::find_if(h.elements.begin(), h.elements.end(), [name](const Element& e) { return e.name == name; });
     };
@@ -224,7 +250,6 @@ Header Checker::header(const std::string& head) const {
             }
         }
     }
-    return h;
 }
 
 // What the body must hold at least: in text, every value one character and

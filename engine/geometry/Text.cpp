@@ -500,12 +500,140 @@ struct LoadedGlyph {
 
 std::string fontName(const scene::Text& text) { return text.font.empty() ? std::string("(default)") : text.font; }
 
+// Fills the buffer with the text's code points and shapes it with the font.
+void shapeText(const scene::Text& text, const Properties& props, FT_Face face, hb_font_t* hbFont, hb_buffer_t* buffer) {
+    hb_buffer_set_direction(buffer, props.direction);
+    hb_buffer_set_script(buffer, props.script);
+    hb_buffer_set_language(buffer, hb_language_from_string(text.language.c_str(), -1));
+
+    const char* s = text.text.c_str();
+    if (isWindowsSymbolFont(face)) {
+        // Symbol fonts (Webdings): U+0000..U+00FF move to the 0xF000 page.
+        std::vector<uint32_t> codepoints;
+        if (decodeUtf8(s, codepoints)) {
+            for (uint32_t c : codepoints) {
+                std::string one;
+                appendUtf8(c < 0x0100 ? 0xf000 + c : c, one);
+                const int length = static_cast<int>(one.size());
+                hb_buffer_add_utf8(buffer, one.c_str(), length, 0, length);
+            }
+        }
+        // Invalid UTF-8: OpenSCAD warns and ignores the text.
+    } else {
+        const int length = static_cast<int>(std::strlen(s));
+        hb_buffer_add_utf8(buffer, s, length, 0, length);
+    }
+    hb_shape(hbFont, buffer, nullptr, 0);
+    if (!hb_buffer_allocation_successful(buffer)) throw Error("text(): HarfBuzz ran out of memory shaping the text");
+}
+
+// Loads the outline of every shaped glyph, with its position in the run.
+std::vector<LoadedGlyph> loadGlyphs(const scene::Text& text, FT_Face face, hb_buffer_t* buffer) {
+    unsigned int count = 0;
+    const hb_glyph_info_t* info = hb_buffer_get_glyph_infos(buffer, &count);
+    const hb_glyph_position_t* positions = hb_buffer_get_glyph_positions(buffer, &count);
+
+    std::vector<LoadedGlyph> glyphs;
+    glyphs.reserve(count);
+    for (unsigned int i = 0; i < count; ++i) {
+        const FT_UInt index = info[i].codepoint;
+        if (FT_Load_Glyph(face, index, FT_LOAD_DEFAULT) != 0) {
+            throw Error("text(): FreeType cannot load glyph " + std::to_string(index) + " of font " + fontName(text));
+        }
+        FT_Glyph glyph = nullptr;
+        if (FT_Get_Glyph(face->glyph, &glyph) != 0 || !glyph) {
+            throw Error("text(): FreeType cannot copy glyph " + std::to_string(index) + " of font " + fontName(text));
+        }
+        GlyphPtr owned(glyph);
+        if (glyph->format != FT_GLYPH_FORMAT_OUTLINE) {
+            throw Error("text(): glyph " + std::to_string(index) + " of font " + fontName(text) +
+                        " is not an outline (bitmap fonts cannot be used)");
+        }
+        glyphs.push_back({std::move(owned), positions[i]});
+    }
+    return glyphs;
+}
+
+// The extent of the text: its width, and how far it rises above and falls below the baseline.
+struct Extent {
+    double width;
+    double ascend;
+    double descend;
+};
+
+// The extent of the text for the alignment.
+Extent extentOf(const scene::Text& text, hb_buffer_t* buffer, const std::vector<LoadedGlyph>& glyphs) {
+    double width = 0, ascend = 0, descend = 0;
+    const bool horizontal = HB_DIRECTION_IS_HORIZONTAL(hb_buffer_get_direction(buffer));
+    for (const LoadedGlyph& g : glyphs) {
+        FT_BBox bbox;
+        FT_Glyph_Get_CBox(g.glyph.get(), FT_GLYPH_BBOX_GRIDFIT, &bbox);
+        if (horizontal) {
+            const double asc = std::max(0.0, bbox.yMax * kUnscale);
+            const double desc = std::max(0.0, -bbox.yMin * kUnscale);
+            width += g.xAdvance() * text.spacing;
+            ascend = std::max(ascend, asc);
+            descend = std::max(descend, desc);
+        } else {
+            const double wBox = (bbox.xMax - bbox.xMin) * kUnscale;
+            width = std::max(width, wBox);
+            ascend += g.yAdvance() * text.spacing;
+        }
+    }
+    return {width, ascend, descend};
+}
+
+// Throws where the glyphs' outlines would have more than kMaxVertices vertices.
+void checkVertexCount(const std::vector<LoadedGlyph>& glyphs, unsigned long segments) {
+    // A huge $fn makes every curve step millions of times: refuse before
+    // allocating rather than exhaust memory.
+    FT_Outline_Funcs counting{};
+    counting.move_to = countPoint;
+    counting.line_to = countPoint;
+    counting.conic_to = countConic;
+    counting.cubic_to = countCubic;
+    VertexCount vertexCount{segments};
+    for (const LoadedGlyph& g : glyphs) {
+        FT_Outline outline = reinterpret_cast<FT_OutlineGlyph>(g.glyph.get())->outline;
+        FT_Outline_Decompose(&outline, &counting, &vertexCount);
+        if (vertexCount.total > kMaxVertices) {
+            throw Error("text(): more than " + std::to_string(kMaxVertices) + " vertices (" +
+                        std::to_string(segments) + " steps per curve from $fn, $fa, $fs)");
+        }
+    }
+}
+
+// Flattens each glyph's outline, placed at (x0, y0) plus the advances so far, into `result`.
+void drawGlyphs(const scene::Text& text, const std::vector<LoadedGlyph>& glyphs, unsigned long segments, double x0,
+                double y0, std::vector<Outlines>& result) {
+    FT_Outline_Funcs funcs{};
+    funcs.move_to = moveToFunc;
+    funcs.line_to = lineToFunc;
+    funcs.conic_to = conicToFunc;
+    funcs.cubic_to = cubicToFunc;
+    funcs.shift = 0;
+    funcs.delta = 0;
+
+    Drawing drawing(segments, text.size);
+    for (const LoadedGlyph& g : glyphs) {
+        drawing.startGlyph(x0 + g.xOffset(), y0 + g.yOffset());
+        FT_Outline outline = reinterpret_cast<FT_OutlineGlyph>(g.glyph.get())->outline;
+        if (FT_Outline_Decompose(&outline, &funcs, &drawing) != 0) {
+            if (drawing.failure) std::rethrow_exception(drawing.failure);
+            throw Error("text(): FreeType cannot decompose a glyph outline of font " + fontName(text));
+        }
+        drawing.addAdvance(g.xAdvance() * text.spacing, g.yAdvance() * text.spacing);
+        Outlines shape;
+        if (drawing.finishGlyph(shape)) result.push_back(std::move(shape));
+    }
+}
+
 }  // namespace
 
-// Long, and kept in one piece: it follows OpenSCAD's text() in its order
-// (fragments for the size, the font, the code points, shaping, the extent
-// for the alignment, each glyph's outline), and its steps share the shaped
-// run and the font's metrics.
+// It follows OpenSCAD's text() in its order (fragments for the size, the
+// font, the code points, shaping, the extent for the alignment, each glyph's
+// outline); the font library's lock, the HarfBuzz font and buffer and the
+// loaded glyphs are held here to the end.
 std::vector<Outlines> textGlyphs(const scene::Text& text) {
     std::vector<Outlines> result;
     // TextModule::instantiate: a fraction of the circle's fragments for the text size.
@@ -530,111 +658,16 @@ std::vector<Outlines> textGlyphs(const scene::Text& text) {
     if (!hbFont || !buffer || !hb_buffer_allocation_successful(buffer.get())) {
         throw Error("text(): HarfBuzz cannot allocate its font or buffer");
     }
-    hb_buffer_set_direction(buffer.get(), props.direction);
-    hb_buffer_set_script(buffer.get(), props.script);
-    hb_buffer_set_language(buffer.get(), hb_language_from_string(text.language.c_str(), -1));
+    shapeText(text, props, face, hbFont.get(), buffer.get());
 
-    const char* s = text.text.c_str();
-    if (isWindowsSymbolFont(face)) {
-        // Symbol fonts (Webdings): U+0000..U+00FF move to the 0xF000 page.
-        std::vector<uint32_t> codepoints;
-        if (decodeUtf8(s, codepoints)) {
-            for (uint32_t c : codepoints) {
-                std::string one;
-                appendUtf8(c < 0x0100 ? 0xf000 + c : c, one);
-                const int length = static_cast<int>(one.size());
-                hb_buffer_add_utf8(buffer.get(), one.c_str(), length, 0, length);
-            }
-        }
-        // Invalid UTF-8: OpenSCAD warns and ignores the text.
-    } else {
-        const int length = static_cast<int>(std::strlen(s));
-        hb_buffer_add_utf8(buffer.get(), s, length, 0, length);
-    }
-    hb_shape(hbFont.get(), buffer.get(), nullptr, 0);
-    if (!hb_buffer_allocation_successful(buffer.get())) throw Error("text(): HarfBuzz ran out of memory shaping the text");
+    std::vector<LoadedGlyph> glyphs = loadGlyphs(text, face, buffer.get());
 
-    unsigned int count = 0;
-    const hb_glyph_info_t* info = hb_buffer_get_glyph_infos(buffer.get(), &count);
-    const hb_glyph_position_t* positions = hb_buffer_get_glyph_positions(buffer.get(), &count);
+    const Extent extent = extentOf(text, buffer.get(), glyphs);
+    const double x0 = xOffset(text.halign, extent.width);
+    const double y0 = yOffset(text.valign, extent.ascend, extent.descend);
 
-    std::vector<LoadedGlyph> glyphs;
-    glyphs.reserve(count);
-    for (unsigned int i = 0; i < count; ++i) {
-        const FT_UInt index = info[i].codepoint;
-        if (FT_Load_Glyph(face, index, FT_LOAD_DEFAULT) != 0) {
-            throw Error("text(): FreeType cannot load glyph " + std::to_string(index) + " of font " + fontName(text));
-        }
-        FT_Glyph glyph = nullptr;
-        if (FT_Get_Glyph(face->glyph, &glyph) != 0 || !glyph) {
-            throw Error("text(): FreeType cannot copy glyph " + std::to_string(index) + " of font " + fontName(text));
-        }
-        GlyphPtr owned(glyph);
-        if (glyph->format != FT_GLYPH_FORMAT_OUTLINE) {
-            throw Error("text(): glyph " + std::to_string(index) + " of font " + fontName(text) +
-                        " is not an outline (bitmap fonts cannot be used)");
-        }
-        glyphs.push_back({std::move(owned), positions[i]});
-    }
-
-    // The extent of the text for the alignment.
-    double width = 0, ascend = 0, descend = 0;
-    const bool horizontal = HB_DIRECTION_IS_HORIZONTAL(hb_buffer_get_direction(buffer.get()));
-    for (const LoadedGlyph& g : glyphs) {
-        FT_BBox bbox;
-        FT_Glyph_Get_CBox(g.glyph.get(), FT_GLYPH_BBOX_GRIDFIT, &bbox);
-        if (horizontal) {
-            const double asc = std::max(0.0, bbox.yMax * kUnscale);
-            const double desc = std::max(0.0, -bbox.yMin * kUnscale);
-            width += g.xAdvance() * text.spacing;
-            ascend = std::max(ascend, asc);
-            descend = std::max(descend, desc);
-        } else {
-            const double wBox = (bbox.xMax - bbox.xMin) * kUnscale;
-            width = std::max(width, wBox);
-            ascend += g.yAdvance() * text.spacing;
-        }
-    }
-    const double x0 = xOffset(text.halign, width);
-    const double y0 = yOffset(text.valign, ascend, descend);
-
-    // A huge $fn makes every curve step millions of times: refuse before
-    // allocating rather than exhaust memory.
-    FT_Outline_Funcs counting{};
-    counting.move_to = countPoint;
-    counting.line_to = countPoint;
-    counting.conic_to = countConic;
-    counting.cubic_to = countCubic;
-    VertexCount vertexCount{segments};
-    for (const LoadedGlyph& g : glyphs) {
-        FT_Outline outline = reinterpret_cast<FT_OutlineGlyph>(g.glyph.get())->outline;
-        FT_Outline_Decompose(&outline, &counting, &vertexCount);
-        if (vertexCount.total > kMaxVertices) {
-            throw Error("text(): more than " + std::to_string(kMaxVertices) + " vertices (" +
-                        std::to_string(segments) + " steps per curve from $fn, $fa, $fs)");
-        }
-    }
-
-    FT_Outline_Funcs funcs{};
-    funcs.move_to = moveToFunc;
-    funcs.line_to = lineToFunc;
-    funcs.conic_to = conicToFunc;
-    funcs.cubic_to = cubicToFunc;
-    funcs.shift = 0;
-    funcs.delta = 0;
-
-    Drawing drawing(segments, text.size);
-    for (const LoadedGlyph& g : glyphs) {
-        drawing.startGlyph(x0 + g.xOffset(), y0 + g.yOffset());
-        FT_Outline outline = reinterpret_cast<FT_OutlineGlyph>(g.glyph.get())->outline;
-        if (FT_Outline_Decompose(&outline, &funcs, &drawing) != 0) {
-            if (drawing.failure) std::rethrow_exception(drawing.failure);
-            throw Error("text(): FreeType cannot decompose a glyph outline of font " + fontName(text));
-        }
-        drawing.addAdvance(g.xAdvance() * text.spacing, g.yAdvance() * text.spacing);
-        Outlines shape;
-        if (drawing.finishGlyph(shape)) result.push_back(std::move(shape));
-    }
+    checkVertexCount(glyphs, segments);
+    drawGlyphs(text, glyphs, segments, x0, y0, result);
     return result;
 }
 

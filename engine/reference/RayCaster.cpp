@@ -142,6 +142,135 @@ struct Workspace {
     CsgProgram::Workspace evaluation;
 };
 
+// Order by leaf, then along the ray; drop repeats (a triangle referenced twice by the hierarchy).
+inline void orderHits(std::vector<RawHit>& hits) {
+    std::sort(hits.begin(), hits.end(), [](const RawHit& a, const RawHit& b) {
+        if (a.leaf != b.leaf) return a.leaf < b.leaf;
+        if (a.t != b.t) return a.t < b.t;
+        return a.triangle < b.triangle;
+    });
+    hits.erase(std::unique(hits.begin(), hits.end(),
+                           [](const RawHit& a, const RawHit& b) {
+                               return a.leaf == b.leaf && a.triangle == b.triangle && a.t == b.t;
+                           }),
+               hits.end());
+    dropGrazes(hits);
+}
+
+// Coincident crossings (docs/algorithm.md, "Coincident surfaces"): in
+// order along the ray, crossings no more than `coincidence` apart belong
+// to one group (a chain: each within the tolerance of the one before),
+// and every crossing takes its group's first t. The tree then sees one
+// place where the surfaces of several leaves were, as exact arithmetic
+// would.
+inline void placeCoincident(const std::vector<RawHit>& hits, double coincidence, std::vector<std::size_t>& order,
+                            std::vector<double>& placed) {
+    order.resize(hits.size());
+    for (std::size_t k = 0; k < hits.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return hits[a].t != hits[b].t ? hits[a].t < hits[b].t : a < b;
+    });
+    placed.resize(hits.size());
+    double anchor = -kInfinity, previous = -kInfinity;
+    for (std::size_t k : order) {
+        if (!(hits[k].t - previous <= coincidence)) anchor = hits[k].t;
+        previous = hits[k].t;
+        placed[k] = anchor;
+    }
+}
+
+// The surface shown, by the GPU evaluator's rule (evaluate.frag): the
+// group's crossings in order along the ray, the tree asked after each t;
+// the first after which the result differs from before the group marks
+// the face (crossings chained within a quarter of the tolerance) whose
+// crossing is shown. Of the face's crossings, those whose leaf decides
+// the result (set back alone, with every leaf as it is after the face,
+// it would undo the change) where some do and some do not; of those, one
+// whose facing changes its leaf as the result changes, else one facing
+// the other way (its normal flipped); the lowest leaf, then the nearest.
+struct ShownCrossing {
+    const CsgProgram& program;
+    const FirstChange& change;
+    std::vector<char>& inside;  // each leaf's membership, from just before the change's group
+    std::vector<char>& stack;   // CsgProgram::contains
+    std::vector<const RawHit*>& face;
+    const RawHit* pick = nullptr;
+    bool pickSame = false;
+
+    // Whether `hit` (facing as the result changes where `same`) is to be shown rather than the pick so far.
+    bool better(const RawHit& hit, bool same) const {
+        return !pick || (same && !pickSame) ||
+               (same == pickSame && (hit.leaf < pick->leaf || (hit.leaf == pick->leaf && hit.t < pick->t)));
+    }
+
+    // `inside`: every leaf as it is after the face.
+    void settleFace() {
+        if (face.size() < 2) return;
+        const bool now = program.contains(inside, stack);
+        std::vector<const RawHit*> deciding;
+        for (const RawHit* hit : face) {
+            inside[static_cast<std::size_t>(hit->leaf)] ^= 1;
+            if (program.contains(inside, stack) != now) deciding.push_back(hit);
+            inside[static_cast<std::size_t>(hit->leaf)] ^= 1;
+        }
+        if (deciding.empty() || deciding.size() == face.size()) return;
+        pick = nullptr;
+        for (const RawHit* hit : deciding) {
+            const bool same = hit->entering == change.resultEnters;
+            if (better(*hit, same)) {
+                pick = hit;
+                pickSame = same;
+            }
+        }
+    }
+
+    // Walks the change's group along the ray, face by face, and leaves the crossing shown in `pick`.
+    void choose(const std::vector<RawHit>& hits, const std::vector<std::size_t>& order,
+                const std::vector<double>& placed, double coincidence) {
+        const bool resultBefore = !change.resultEnters;
+        const double faceTolerance = coincidence * 0.25;
+        bool changed = false;
+        face.clear();
+        double faceEnd = -kInfinity;
+        bool settled = false;
+        for (std::size_t at = 0; at < order.size() && !settled;) {
+            if (placed[order[at]] != change.t) {
+                ++at;
+                continue;
+            }
+            std::size_t next = at;
+            for (; next < order.size() && hits[order[next]].t == hits[order[at]].t; ++next) {
+                const RawHit& hit = hits[order[next]];
+                if (placed[order[next]] != change.t) continue;
+                // Considered before it is applied: the first crossing of the
+                // next face finds every leaf as it is after this one.
+                if (hit.t - faceEnd > faceTolerance) {
+                    if (changed) {
+                        settleFace();
+                        settled = true;
+                        break;
+                    }
+                    pick = nullptr;
+                    face.clear();
+                }
+                faceEnd = hit.t;
+                face.push_back(&hit);
+                const bool same = hit.entering == change.resultEnters;
+                if (better(hit, same)) {
+                    pick = &hit;
+                    pickSame = same;
+                }
+            }
+            if (settled) break;
+            for (std::size_t k = at; k < next; ++k)
+                if (placed[order[k]] == change.t) inside[static_cast<std::size_t>(hits[order[k]].leaf)] ^= 1;
+            if (program.contains(inside, stack) != resultBefore) changed = true;
+            at = next;
+        }
+        if (!settled) settleFace();
+    }
+};
+
 }  // namespace
 
 struct ReferenceScene::Impl {
@@ -161,6 +290,12 @@ struct ReferenceScene::Impl {
     }
 
     RayHit trace(const render::Ray& ray, double tStart, double coincidence, Workspace& workspace) const;
+    bool clipToBox(const glm::dvec3& origin, const glm::dvec3& direction, double& enter) const;
+    void gatherHits(const RayFrame& frame, const glm::dvec3& origin, const glm::dvec3& direction, double enter,
+                    double tStart, Workspace& workspace) const;
+    void buildLeafLists(const glm::dvec3& origin, Workspace& workspace) const;
+    std::optional<FirstChange> evaluateAlong(Workspace& workspace) const;
+    RayHit shownHit(const RawHit& pick, bool pickSame) const;
 
     CsgProgram program;
     RTCDevice device = nullptr;
@@ -175,23 +310,14 @@ struct ReferenceScene::Impl {
     double padding = 0.0;
 };
 
-// Long, and kept in one piece: the reference's inner loop for one ray (clip
-// to the box, gather Embree's candidates, exact crossings, order, the tree
-// along the ray), written out so each step's arrays stay in the workspace.
-RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double coincidence,
-                                   Workspace& workspace) const {
-    RayHit miss;
-    miss.t = kInfinity;
-    if (!scene) return miss;
-    const RayFrame frame(ray);
-    const glm::dvec3 origin = frame.ray().origin, direction = frame.ray().direction;
-
-    // Where the ray is in the scene's box. Missing it means no crossings, and a
-    // result made of nothing but empty leaves is empty.
-    double enter = tStart, leave = kInfinity;
+// Where the ray is in the scene's box: `enter` (from tStart) moves up to where
+// it comes in; false where it misses the box.
+inline bool ReferenceScene::Impl::clipToBox(const glm::dvec3& origin, const glm::dvec3& direction,
+                                            double& enter) const {
+    double leave = kInfinity;
     for (int k = 0; k < 3; ++k) {
         if (direction[k] == 0.0) {
-            if (origin[k] < boxMin[k] || origin[k] > boxMax[k]) return miss;
+            if (origin[k] < boxMin[k] || origin[k] > boxMax[k]) return false;
             continue;
         }
         double t0 = (boxMin[k] - origin[k]) / direction[k], t1 = (boxMax[k] - origin[k]) / direction[k];
@@ -199,8 +325,13 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
         enter = std::max(enter, t0);
         leave = std::min(leave, t1);
     }
-    if (!(enter <= leave)) return miss;
+    return enter <= leave;
+}
 
+// Every exact crossing after tStart of a triangle Embree finds along the ray, in workspace.hits.
+inline void ReferenceScene::Impl::gatherHits(const RayFrame& frame, const glm::dvec3& origin,
+                                             const glm::dvec3& direction, double enter, double tStart,
+                                             Workspace& workspace) const {
     // Embree's float ray starts at the box (shortly before it), so float
     // rounding is relative to the scene's size, not to the eye's distance.
     const double shift = enter - padding;
@@ -224,42 +355,13 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
     context.tStart = tStart;
     context.hits = &workspace.hits;
     rtcIntersect1(scene, &context.embree, &rayHit);
+}
 
-    // Order by leaf, then along the ray; drop repeats (a triangle referenced twice by the hierarchy).
-    std::vector<RawHit>& hits = workspace.hits;
-    std::sort(hits.begin(), hits.end(), [](const RawHit& a, const RawHit& b) {
-        if (a.leaf != b.leaf) return a.leaf < b.leaf;
-        if (a.t != b.t) return a.t < b.t;
-        return a.triangle < b.triangle;
-    });
-    hits.erase(std::unique(hits.begin(), hits.end(),
-                           [](const RawHit& a, const RawHit& b) {
-                               return a.leaf == b.leaf && a.triangle == b.triangle && a.t == b.t;
-                           }),
-               hits.end());
-    dropGrazes(hits);
-
-    // Coincident crossings (docs/algorithm.md, "Coincident surfaces"): in
-    // order along the ray, crossings no more than `coincidence` apart belong
-    // to one group (a chain: each within the tolerance of the one before),
-    // and every crossing takes its group's first t. The tree then sees one
-    // place where the surfaces of several leaves were, as exact arithmetic
-    // would.
-    std::vector<std::size_t>& order = workspace.order;
-    order.resize(hits.size());
-    for (std::size_t k = 0; k < hits.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return hits[a].t != hits[b].t ? hits[a].t < hits[b].t : a < b;
-    });
-    std::vector<double>& placed = workspace.placed;
-    placed.resize(hits.size());
-    double anchor = -kInfinity, previous = -kInfinity;
-    for (std::size_t k : order) {
-        if (!(hits[k].t - previous <= coincidence)) anchor = hits[k].t;
-        previous = hits[k].t;
-        placed[k] = anchor;
-    }
-
+// Each hit leaf's intervals along the ray, from its crossings at their groups' t;
+// the leaves are noted in workspace.touched.
+inline void ReferenceScene::Impl::buildLeafLists(const glm::dvec3& origin, Workspace& workspace) const {
+    const std::vector<RawHit>& hits = workspace.hits;
+    const std::vector<double>& placed = workspace.placed;
     if (workspace.leafLists.size() < program.leafCount()) workspace.leafLists.resize(program.leafCount());
     const double tolerance = kMergeFraction * (size + glm::length(origin - offset));
     for (std::size_t first = 0; first < hits.size();) {
@@ -273,7 +375,11 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
         workspace.touched.push_back(leaf);
         first = last;
     }
+}
 
+// The tree's first change along the ray, with each leaf's membership just
+// before it in workspace.inside; the leaf lists are left empty for the next ray.
+inline std::optional<FirstChange> ReferenceScene::Impl::evaluateAlong(Workspace& workspace) const {
     const std::optional<FirstChange> change =
         firstChange(program.evaluate(workspace.leafLists, workspace.evaluation));
     // Each leaf's membership just before the change's group, while the lists are at hand.
@@ -288,93 +394,48 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
     }
     for (int leaf : workspace.touched) workspace.leafLists[static_cast<std::size_t>(leaf)].clear();
     workspace.touched.clear();
-    if (!change) return miss;
+    return change;
+}
 
-    // The surface shown, by the GPU evaluator's rule (evaluate.frag): the
-    // group's crossings in order along the ray, the tree asked after each t;
-    // the first after which the result differs from before the group marks
-    // the face (crossings chained within a quarter of the tolerance) whose
-    // crossing is shown. Of the face's crossings, those whose leaf decides
-    // the result (set back alone, with every leaf as it is after the face,
-    // it would undo the change) where some do and some do not; of those, one
-    // whose facing changes its leaf as the result changes, else one facing
-    // the other way (its normal flipped); the lowest leaf, then the nearest.
-    const bool resultBefore = !change->resultEnters;
-    const double faceTolerance = coincidence * 0.25;
-    const RawHit* pick = nullptr;
-    bool pickSame = false, changed = false;
-    std::vector<const RawHit*>& face = workspace.face;
-    face.clear();
-    auto better = [&](const RawHit& hit, bool same) {
-        return !pick || (same && !pickSame) ||
-               (same == pickSame && (hit.leaf < pick->leaf || (hit.leaf == pick->leaf && hit.t < pick->t)));
-    };
-    // `inside`: every leaf as it is after the face.
-    auto settleFace = [&] {
-        if (face.size() < 2) return;
-        const bool now = program.contains(inside, workspace.stack);
-        std::vector<const RawHit*> deciding;
-        for (const RawHit* hit : face) {
-            inside[static_cast<std::size_t>(hit->leaf)] ^= 1;
-            if (program.contains(inside, workspace.stack) != now) deciding.push_back(hit);
-            inside[static_cast<std::size_t>(hit->leaf)] ^= 1;
-        }
-        if (deciding.empty() || deciding.size() == face.size()) return;
-        pick = nullptr;
-        for (const RawHit* hit : deciding) {
-            const bool same = hit->entering == change->resultEnters;
-            if (better(*hit, same)) {
-                pick = hit;
-                pickSame = same;
-            }
-        }
-    };
-    double faceEnd = -kInfinity;
-    bool settled = false;
-    for (std::size_t at = 0; at < order.size() && !settled;) {
-        if (placed[order[at]] != change->t) {
-            ++at;
-            continue;
-        }
-        std::size_t next = at;
-        for (; next < order.size() && hits[order[next]].t == hits[order[at]].t; ++next) {
-            const RawHit& hit = hits[order[next]];
-            if (placed[order[next]] != change->t) continue;
-            // Considered before it is applied: the first crossing of the
-            // next face finds every leaf as it is after this one.
-            if (hit.t - faceEnd > faceTolerance) {
-                if (changed) {
-                    settleFace();
-                    settled = true;
-                    break;
-                }
-                pick = nullptr;
-                face.clear();
-            }
-            faceEnd = hit.t;
-            face.push_back(&hit);
-            const bool same = hit.entering == change->resultEnters;
-            if (better(hit, same)) {
-                pick = &hit;
-                pickSame = same;
-            }
-        }
-        if (settled) break;
-        for (std::size_t k = at; k < next; ++k)
-            if (placed[order[k]] == change->t) inside[static_cast<std::size_t>(hits[order[k]].leaf)] ^= 1;
-        if (program.contains(inside, workspace.stack) != resultBefore) changed = true;
-        at = next;
-    }
-    if (!settled) settleFace();
-    if (!pick) return miss;  // cannot happen: the change has a crossing of its group
-    const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(pick->leaf)];
+// The hit at the crossing shown: its leaf's normal, flipped where it faces the other way.
+inline RayHit ReferenceScene::Impl::shownHit(const RawHit& pick, bool pickSame) const {
+    const LeafGeometry& geometry = *byLeaf[static_cast<std::size_t>(pick.leaf)];
     RayHit result;
-    result.t = pick->t;
-    result.leaf = pick->leaf;
-    result.normal = geometry.normals[pick->triangle];
+    result.t = pick.t;
+    result.leaf = pick.leaf;
+    result.normal = geometry.normals[pick.triangle];
     result.cut = !pickSame;
     if (result.cut) result.normal = -result.normal;
     return result;
+}
+
+// The reference's inner loop for one ray: clip to the box, gather Embree's
+// candidates, exact crossings, order, the tree along the ray; each step's
+// arrays stay in the workspace.
+RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double coincidence,
+                                   Workspace& workspace) const {
+    RayHit miss;
+    miss.t = kInfinity;
+    if (!scene) return miss;
+    const RayFrame frame(ray);
+    const glm::dvec3 origin = frame.ray().origin, direction = frame.ray().direction;
+
+    // Where the ray is in the scene's box. Missing it means no crossings, and a
+    // result made of nothing but empty leaves is empty.
+    double enter = tStart;
+    if (!clipToBox(origin, direction, enter)) return miss;
+
+    gatherHits(frame, origin, direction, enter, tStart, workspace);
+    orderHits(workspace.hits);
+    placeCoincident(workspace.hits, coincidence, workspace.order, workspace.placed);
+    buildLeafLists(origin, workspace);
+    const std::optional<FirstChange> change = evaluateAlong(workspace);
+    if (!change) return miss;
+
+    ShownCrossing shown{program, *change, workspace.inside, workspace.stack, workspace.face};
+    shown.choose(workspace.hits, workspace.order, workspace.placed, coincidence);
+    if (!shown.pick) return miss;  // cannot happen: the change has a crossing of its group
+    return shownHit(*shown.pick, shown.pickSame);
 }
 
 ReferenceScene::ReferenceScene(const scene::Tree& tree, const geometry::Model& model)

@@ -349,6 +349,56 @@ void PlainPass::prepareShown(const gpu::Framebuffer& target, const ViewSetup& vi
     }
 }
 
+// Reversed depth (surface.vert, REVERSED_DEPTH): near / depth in
+// perspective, a float's relative precision at every depth. The tie
+// shader compares the fragments' plane depths (surface-depth.glsl),
+// which one plane gives alike to every leaf, within a quarter of the
+// tolerance. The depth test before it compares interpolated window
+// depths, which part one plane's copies by up to 2^-20 of the scene's
+// scale (as measured before plane depths), so the pull that lets every
+// copy through reaches 16 times that far, at the near plane, where a
+// depth step moves the window depth most, twice over.
+PlainPass::ReversedDepth PlainPass::reversedDepth(const ViewSetup& view) {
+    const double nearPlane = view.nearPlane, farPlane = view.farPlane;
+    ReversedDepth depth;
+    depth.reach = 0.25 * view.coincidence;
+    const double pull = 16.0 * depth.reach;
+    if (view.orthographic) {
+        const double span = farPlane - nearPlane;
+        depth.terms = glm::vec3(static_cast<float>(farPlane / span), static_cast<float>(-1.0 / span), 0.0f);
+        depth.pulled = depth.terms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * pull / span));
+    } else {
+        depth.terms = glm::vec3(static_cast<float>(nearPlane), 0.0f, 0.0f);
+        depth.pulled = depth.terms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * pull / nearPlane));
+    }
+    return depth;
+}
+
+// Ties: the nearest depths copied aside; the leaves that can tie, last
+// the lowest, each fragment that may tie tested before its shader runs
+// (depth clamped: the pull may take a fragment past the near plane).
+void PlainPass::drawTies(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
+                         const PixelRect& drawn, const Output& output, const ReversedDepth& depth) {
+    if (nearestCopy_.width() != view.width || nearestCopy_.height() != view.height) {
+        nearestCopy_ = gpu::Texture::create2D("plain nearest copy", GL_R32F, view.width, view.height);
+    }
+    glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, nearestCopy_.id(),
+                       GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, drawn.width, drawn.height, 1);
+    nearestCopy_.bindUnit(shader::kTexturePlainNearest);
+    gpu::Program& ties = program(true, output, view);
+    ties.setUniform(shader::kSurfaceReversedDepth, depth.pulled);
+    ties.setUniform(shader::kPlainTieTolerance, static_cast<float>(depth.reach));
+    ties.use();
+    glDepthFunc(GL_GEQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_DEPTH_CLAMP);
+    (tieAllOf_ ? scene.leafVertexArray() : tieVertexArray_).bind();
+    tieCommands_.bind(GL_DRAW_INDIRECT_BUFFER);
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, tieDraws_, 0);
+    glDisable(GL_DEPTH_CLAMP);
+    glDepthMask(GL_TRUE);
+}
+
 void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
                     const std::vector<glm::vec2>& baseColors, const Output& output) {
     const bool shown = output.shownOnly;
@@ -370,29 +420,9 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
         uploadedColors_ = baseColors;
     }
 
-    // Reversed depth (surface.vert, REVERSED_DEPTH): near / depth in
-    // perspective, a float's relative precision at every depth. The tie
-    // shader compares the fragments' plane depths (surface-depth.glsl),
-    // which one plane gives alike to every leaf, within a quarter of the
-    // tolerance. The depth test before it compares interpolated window
-    // depths, which part one plane's copies by up to 2^-20 of the scene's
-    // scale (as measured before plane depths), so the pull that lets every
-    // copy through reaches 16 times that far, at the near plane, where a
-    // depth step moves the window depth most, twice over.
-    const double nearPlane = view.nearPlane, farPlane = view.farPlane;
-    const double reach = 0.25 * view.coincidence;
-    const double pull = 16.0 * reach;
-    glm::vec3 depthTerms, pulled;
-    if (view.orthographic) {
-        const double span = farPlane - nearPlane;
-        depthTerms = glm::vec3(static_cast<float>(farPlane / span), static_cast<float>(-1.0 / span), 0.0f);
-        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * pull / span));
-    } else {
-        depthTerms = glm::vec3(static_cast<float>(nearPlane), 0.0f, 0.0f);
-        pulled = depthTerms + glm::vec3(0.0f, 0.0f, static_cast<float>(2.0 * pull / nearPlane));
-    }
+    const ReversedDepth depth = reversedDepth(view);
     gpu::Program& nearest = program(false, output, view);
-    nearest.setUniform(shader::kSurfaceReversedDepth, depthTerms);
+    nearest.setUniform(shader::kSurfaceReversedDepth, depth.terms);
 
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glViewport(0, 0, view.width, view.height);
@@ -426,29 +456,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, nearestDraws_, 0);
     glDisable(GL_STENCIL_TEST);
 
-    // Ties: the nearest depths copied aside; the leaves that can tie, last
-    // the lowest, each fragment that may tie tested before its shader runs
-    // (depth clamped: the pull may take a fragment past the near plane).
-    if (tieDraws_ > 0) {
-        if (nearestCopy_.width() != view.width || nearestCopy_.height() != view.height) {
-            nearestCopy_ = gpu::Texture::create2D("plain nearest copy", GL_R32F, view.width, view.height);
-        }
-        glCopyImageSubData(targets.resultDepth.id(), GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, nearestCopy_.id(),
-                           GL_TEXTURE_2D, 0, drawn.x, drawn.y, 0, drawn.width, drawn.height, 1);
-        nearestCopy_.bindUnit(shader::kTexturePlainNearest);
-        gpu::Program& ties = program(true, output, view);
-        ties.setUniform(shader::kSurfaceReversedDepth, pulled);
-        ties.setUniform(shader::kPlainTieTolerance, static_cast<float>(reach));
-        ties.use();
-        glDepthFunc(GL_GEQUAL);
-        glDepthMask(GL_FALSE);
-        glEnable(GL_DEPTH_CLAMP);
-        (tieAllOf_ ? scene.leafVertexArray() : tieVertexArray_).bind();
-        tieCommands_.bind(GL_DRAW_INDIRECT_BUFFER);
-        glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, tieDraws_, 0);
-        glDisable(GL_DEPTH_CLAMP);
-        glDepthMask(GL_TRUE);
-    }
+    if (tieDraws_ > 0) drawTies(targets, scene, view, drawn, output, depth);
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     glDepthFunc(GL_LESS);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);

@@ -141,6 +141,16 @@ private:
     // A shown frame's draw buffers (only what is read after) and clears.
     void prepareShown(const gpu::Framebuffer& target, const ViewSetup& view, const PixelRect& drawn,
                       const Output& output);
+    // The reversed depth's terms for the view (surface.vert), those pulled
+    // nearer for the tie pass, and the tie pass's tolerance.
+    struct ReversedDepth {
+        glm::vec3 terms{0.0f}, pulled{0.0f};
+        double reach = 0.0;
+    };
+    static ReversedDepth reversedDepth(const ViewSetup& view);
+    // The second draw of the triangles that can tie with the nearest.
+    void drawTies(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view, const PixelRect& drawn,
+                  const Output& output, const ReversedDepth& depth);
     std::vector<int> leaves_;
     gpu::Buffer nearestCommands_, tieCommands_;  // SceneBuffers::leafCommands, TieDraws::commands
     GLsizei nearestDraws_ = 0, tieDraws_ = 0;
