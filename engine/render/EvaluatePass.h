@@ -41,7 +41,7 @@
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/VertexArray.h"
-#include "strata/render/Renderer.h"
+#include "strata/render/Frame.h"
 
 namespace strata::render {
 

@@ -13,6 +13,7 @@
 
 #include "AlphaPass.h"
 #include "EvaluatePass.h"
+#include "FramePlan.h"
 #include "FrameTargets.h"
 #include "GroupPeel.h"
 #include "NormalPass.h"
@@ -265,6 +266,9 @@ struct Renderer::Impl {
     Compilation separate, grouped, unionGrouped;
     std::size_t unionOnlyOperands = 0;  // the operands groupUnionOperands may join (RenderSettings::unionGroupFrom)
     const Compilation* current = nullptr;
+    const Compilation& compilation(TreeForm form) const {
+        return form == TreeForm::Separate ? separate : form == TreeForm::Grouped ? grouped : unionGrouped;
+    }
     std::vector<TranslucentLeaf> translucentLeaves;
     std::vector<AlphaLeaf> alphaLeaves;
     std::size_t leafCount = 0;
@@ -291,6 +295,19 @@ struct Renderer::Impl {
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
+    // The frame's view; throws strata::Error before setScene, for a negative
+    // layer count, or for an image larger than the GPU's largest texture.
+    ViewSetup frameView(const Camera& camera, const RenderSettings& settings) const;
+    // Where a frame's operands lie on screen (drawFrame's, for peelAndEvaluate).
+    struct ScreenRects {
+        std::vector<PixelRect> rects;      // each operand's screen rectangle
+        std::vector<int> markLeaves;       // the leaves that hold mark slots
+        std::vector<PixelRect> markRects;  // and their screen rectangles
+        PixelRect drawn;                   // every pixel the frame draws: all of the above
+    };
+    ScreenRects screenRects(const ViewSetup& view, const csg::CompiledTree& compiled, bool plainFrame) const;
+    // The frame's plan (FramePlan.h) from what this renderer knows of its scene.
+    FramePlan planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const;
     // `rects`: each operand's screen rectangle (screenRect of its vertices).
     // `markLeaves`, `markRects`: the leaves that hold mark slots (operands,
     // and a group's members in its place) and their screen rectangles.
@@ -795,12 +812,9 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
                           " seen from outside, depth-tested with no peel or evaluator");
 }
 
-ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame,
-                                    bool aovs) {
-    const auto frameStart = Clock::now();
+ViewSetup Renderer::Impl::frameView(const Camera& camera, const RenderSettings& settings) const {
     if (!hasScene) throw Error("renderer: render() before setScene()");
     if (settings.layers < 0) throw Error("renderer: layers must be 0 (auto) or positive");
-    const ColorScheme& scheme = colorScheme(settings.colorScheme);
     ViewSetup view = makeView(camera, scene.bounds());
     // The result peel (sampleResult) runs its rays along the model's axes,
     // on grids that put rays exactly along a solid's silhouette edges,
@@ -814,6 +828,53 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         throw Error("renderer: image size " + std::to_string(view.width) + "x" + std::to_string(view.height) +
                     " exceeds the GPU's largest texture, " + std::to_string(maxTextureSize));
     }
+    return view;
+}
+
+Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const ViewSetup& view, const csg::CompiledTree& compiled,
+                                                        bool plainFrame) const {
+    // Each operand's screen rectangle: its surfaces, and so every pixel the
+    // evaluator can mark, lie inside it.
+    // Mark slots go to the operands, a group's to each of its members.
+    ScreenRects out;
+    if (plainFrame) {
+        for (int leaf : plainLeaves) out.drawn = out.drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
+    } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
+        out.rects.resize(compiled.operandLeaf.size());
+        for (std::size_t k = 0; k < out.rects.size(); ++k) {
+            // An intersection's surfaces lie where all its members' do, a
+            // union's where any member's does.
+            const std::span<const int> leaves = compiled.leavesOf(k);
+            const bool unite = compiled.isUnionGroup(k);
+            for (std::size_t i = 0; i < leaves.size(); ++i) {
+                const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
+                out.rects[k] = i == 0 ? own : unite ? out.rects[k].bounding(own) : out.rects[k].intersection(own);
+                out.markLeaves.push_back(leaves[i]);
+                out.markRects.push_back(own);
+            }
+            out.drawn = out.drawn.bounding(out.rects[k]);
+        }
+    }
+    return out;
+}
+
+FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const {
+    FrameFacts facts;
+    facts.outside = beyondNearPlane(view, scene.bounds());
+    facts.plainScene = !plainLeaves.empty();
+    facts.resultPeel = roundSink != nullptr;
+    facts.aovs = aovs;
+    facts.unionOnlyOperands = unionOnlyOperands;
+    for (const TreeForm form : {TreeForm::Separate, TreeForm::Grouped, TreeForm::UnionGrouped})
+        facts.kinds[static_cast<std::size_t>(form)] = compilation(form).tree.kind;
+    return render::planFrame(facts, settings);
+}
+
+ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame,
+                                    bool aovs) {
+    const auto frameStart = Clock::now();
+    const ViewSetup view = frameView(camera, settings);
+    const ColorScheme& scheme = colorScheme(settings.colorScheme);
 
     frame.width = view.width;
     frame.height = view.height;
@@ -823,21 +884,9 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         frame.blockForms.assign(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height),
                                 BlockForm::None);
     }
-    // A union of leaves seen from outside is drawn plainly (PlainPass.h),
-    // except where a frame asks for what only the peel has: the layers, the
-    // evaluator's forms, or the result's later surfaces.
-    const bool outside = beyondNearPlane(view, scene.bounds());
-    const bool plainFrame = settings.plainUnions && outside && !plainLeaves.empty() && roundSink == nullptr &&
-                            !settings.keepPeelLayers && !settings.keepBlockForms;
-    // Debug views show each operand's own layers: no groups there. Unions
-    // group where every ray starts outside, as the first layer does
-    // (peelAndEvaluate), and not for the result peel, which walks past it.
-    const bool unions = outside && roundSink == nullptr &&
-                        unionOnlyOperands >= static_cast<std::size_t>(std::max(settings.unionGroupFrom, 2));
-    const Compilation& chosen = !settings.groupOperands || settings.keepPeelLayers ? separate
-                                : unions                                            ? unionGrouped
-                                                                                    : grouped;
-    if (current != &chosen && !plainFrame) {
+    const FramePlan plan = planFrame(view, settings, aovs);
+    const Compilation& chosen = compilation(plan.form);
+    if (current != &chosen && !plan.plainFrame) {
         evaluate->setTree(chosen.tree, canMarkLeaves);
         current = &chosen;
     }
@@ -845,81 +894,45 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.operands = compiled.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;
-
-    // Each operand's screen rectangle: its surfaces, and so every pixel the
-    // evaluator can mark, lie inside it.
-    // Mark slots go to the operands, a group's to each of its members.
-    std::vector<PixelRect> rects, markRects;
-    std::vector<int> markLeaves;
-    PixelRect drawn;
-    if (plainFrame) {
-        for (int leaf : plainLeaves) drawn = drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
-    } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
-        rects.resize(compiled.operandLeaf.size());
-        for (std::size_t k = 0; k < rects.size(); ++k) {
-            // An intersection's surfaces lie where all its members' do, a
-            // union's where any member's does.
-            const std::span<const int> leaves = compiled.leavesOf(k);
-            const bool unite = compiled.isUnionGroup(k);
-            for (std::size_t i = 0; i < leaves.size(); ++i) {
-                const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
-                rects[k] = i == 0 ? own : unite ? rects[k].bounding(own) : rects[k].intersection(own);
-                markLeaves.push_back(leaves[i]);
-                markRects.push_back(own);
-            }
-            drawn = drawn.bounding(rects[k]);
-        }
-    }
+    const ScreenRects screen = screenRects(view, compiled, plan.plainFrame);
 
     resetDrawState();
     targets.ensure(view.width, view.height);
     // A pixel around `drawn` for the shade pass's Sobel filter.
     // The translucent and alpha passes read the result beyond the marked pixels.
-    // A plain frame only shown (nothing read back) writes what the image
-    // and the passes after it need and nothing else, and clears that itself
-    // (PlainPass::Output::shownOnly).
-    const bool shownOnly = plainFrame && !aovs;
-    const bool evaluated = !plainFrame && compiled.kind == csg::CompiledTree::Kind::Code;
-    // A frame with no outline is lit as its surfaces are drawn: no shade
-    // pass, whose outline alone needs the G-buffer around a pixel. A plain
-    // frame by the plain pass (PlainPass.h), an evaluated one by the normal
-    // pass (NormalPass.h), where its normals are not read back.
-    const bool aovNormals = aovs && settings.readNormal;
-    const bool litAsDrawn =
-        !settings.outline && (plainFrame || (evaluated && !aovNormals && roundSink == nullptr));
-    if (!shownOnly) {
+    if (!plan.shownOnly) {
         using NormalClear = FrameTargets::NormalClear;
         targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(),
-                            aovNormals                  ? NormalClear::WholeFrame
-                            : evaluated && litAsDrawn ? NormalClear::None
-                                                        : NormalClear::Drawn,
-                            drawn.grown(1));
+                            plan.aovNormals                       ? NormalClear::WholeFrame
+                            : plan.evaluated && plan.litAsDrawn ? NormalClear::None
+                                                                : NormalClear::Drawn,
+                            screen.drawn.grown(1));
     }
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
-    targets.plainFrame = plainFrame;
+    targets.plainFrame = plan.plainFrame;
     if (copiedLeaves > 0) {
         stats.notes.push_back(std::to_string(copiedLeaves) +
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
                                                  : " leaves repeat lower ones exactly and share their peeled layers"));
     }
     std::optional<Lighting> litAs;
-    if (litAsDrawn) litAs = settings.lighting;
-    stats.litAsDrawn = litAsDrawn;
-    if (plainFrame) {
+    if (plan.litAsDrawn) litAs = settings.lighting;
+    stats.litAsDrawn = plan.litAsDrawn;
+    if (plan.plainFrame) {
         PlainPass::Output output;
         output.litAs = litAs;
-        output.shownOnly = shownOnly;
+        output.shownOnly = plan.shownOnly;
         output.background = glm::vec4(glm::vec3(scheme.background), 1.0f);
         output.keepResult = !translucentLeaves.empty() || !alphaLeaves.empty();
-        drawPlain(view, drawn, ShadePass::baseColors(scene, scheme), output, frame);
-    } else if (evaluated) {
-        if (litAsDrawn) {
+        drawPlain(view, screen.drawn, ShadePass::baseColors(scene, scheme), output, frame);
+    } else if (plan.evaluated) {
+        if (plan.litAsDrawn) {
             // The normal pass lights only the pixels the result covers.
             const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
             glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, background);
         }
-        peelAndEvaluate(view, rects, markLeaves, markRects, settings, ShadePass::baseColors(scene, scheme), litAs,
-                        frame);
+        peelAndEvaluate(view, screen.rects, screen.markLeaves, screen.markRects, settings,
+                        ShadePass::baseColors(scene, scheme), litAs, frame);
     } else {
         stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");
@@ -927,7 +940,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     if (roundSink == nullptr) {
         const auto start = Clock::now();
-        shadeFrame(view, scheme, settings, drawn, litAsDrawn);
+        shadeFrame(view, scheme, settings, screen.drawn, plan.litAsDrawn);
         stats.shadeMs = millisecondsSince(start);
     }
     stats.totalMs = millisecondsSince(frameStart);

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "strata/render/Renderer.h"
+#include "strata/render/Frame.h"
 
 namespace strata::io {
 
