@@ -5,7 +5,7 @@
 #   lib/pkgconfig/strata.pc  the same for pkg-config (strata.pc.in)
 #   include/strata/          the public headers
 #   bin/                     strata-render, strata-view, strata-bench
-#   share/doc/strata/        docs/ and the licence
+#   share/doc/strata/        the README, docs/, the results log and the licence
 # The shaders are compiled into strata_gpu, so an installed program or host
 # reads nothing from the source tree.
 include(CMakePackageConfigHelpers)
@@ -18,8 +18,11 @@ install(TARGETS ${strata_room_targets} EXPORT strataTargets
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/strata DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS strata-render strata-view strata-bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# The manual as the repository lays it out, so that its links resolve: the
+# README, docs/, and the results log its figures link to.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
+install(FILES ${PROJECT_SOURCE_DIR}/results/log.md DESTINATION ${CMAKE_INSTALL_DOCDIR}/results)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 # The libraries' link lines name their dependencies' imported targets (glm::glm
 # publicly; CGAL::CGAL, embree, PkgConfig::EPOXY ... privately, which a static

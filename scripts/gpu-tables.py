@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The tables of docs/benchmarks.md's GPU results, from a gpu-bench.sh run.
+"""The GPU tables of a gpu-bench.sh run, as results/log.md keeps them.
 
     scripts/gpu-tables.py DIR
 

@@ -3,11 +3,12 @@
 
     tests/bench/coincidence/compare.py [--control] [DIR]
 
-DIR (default: this file's folder) holds strata-bench --json files named
-old-<part>-run<N>.json and new-<part>-run<N>.json: the same command run by
-the build before the coincidence rule (old) and by the build with it (new),
-interleaved: old run 1, new run 1, old run 2... (benchmarks.md, "What
-coincident surfaces cost"). Prints one Markdown row per scene, K and size:
+DIR (default: results/runs/coincidence of this repository) holds
+strata-bench --json files named old-<part>-run<N>.json and
+new-<part>-run<N>.json: the same command run by the build before the
+coincidence rule (old) and by the build with it (new), interleaved: old run
+1, new run 1, old run 2... (results/log.md, "what the coincidence rule
+costs, two builds"). Prints one Markdown row per scene, K and size:
 the median over the runs of strata ms and of evaluate ms for each build,
 and new/old as the median of the run-by-run ratios (new run N over old run
 N, seconds apart), from which the host's slower swings of load cancel out.
@@ -65,7 +66,8 @@ def paired(old, new, field):
 def main():
     args = [a for a in sys.argv[1:] if a != "--control"]
     control = "--control" in sys.argv[1:]
-    directory = args[0] if args else os.path.dirname(os.path.abspath(__file__))
+    here = os.path.dirname(os.path.abspath(__file__))
+    directory = args[0] if args else os.path.join(here, "..", "..", "..", "results", "runs", "coincidence")
     cases = load(directory)
     if not cases:
         sys.exit(f"no old-*-runN.json / new-*-runN.json files in {directory}")
