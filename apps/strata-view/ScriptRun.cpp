@@ -190,7 +190,7 @@ bool Viewer::runCommand(const Command& c) {
             if (!waitingSince_) {
                 lastExport_.reset();
                 exportExact_ = c.kind == CommandKind::Export;  // as the panel's box would be for it
-                startExport(path(0));
+                if (!startExport(path(0))) throw Error(message_);
                 waitingSince_ = Clock::now();
             }
             if (lastExport_ && !exporter_.busy()) {

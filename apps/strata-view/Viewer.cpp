@@ -14,7 +14,7 @@
 
 #include "strata/render/Limits.h"
 #include "strata/core/Error.h"
-#include "strata/io/MeshWriter.h"
+#include "strata/io/ExportFormats.h"
 #include "strata/gpu/Gl.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/render/ColorScheme.h"
@@ -568,21 +568,26 @@ std::string Viewer::defaultExportPath() const {
     return p.string();
 }
 
-void Viewer::startExport(const std::string& path) { startExport(path, exportExact_); }
+bool Viewer::startExport(const std::string& path) { return startExport(path, exportExact_); }
 
-void Viewer::startExport(const std::string& path, bool exact) {
+bool Viewer::startExport(const std::string& path, bool exact) {
     if (exporter_.busy()) {
         message_ = "an export is running";
-        return;
+        return false;
     }
-    try {
-        io::meshFormatOf(path);
-    } catch (const Error& e) {
-        message_ = e.what();
-        return;
+    // A drawing (a 2D model's outlines) is exact only; the export itself
+    // says which kind the model takes.
+    const io::ExportFormat* format = io::exportFormatOf(path);
+    if (format == nullptr || (!exact && format->kind != io::ExportKind::Mesh)) {
+        message_ = Error(SourceLocation{path, 0, 0},
+                         "cannot export to '" + std::filesystem::path(path).extension().string() + "' (expected " +
+                             (exact ? io::extensionList() : io::extensionList(io::ExportKind::Mesh)) + ")")
+                       .what();
+        return false;
     }
     exporter_.start(scene_, path, render::colorScheme(settings_.colorScheme).faceFront, exact, exportResolution_);
     message_ = "exporting " + path + "...";
+    return true;
 }
 
 void Viewer::pollExport() {

@@ -109,9 +109,10 @@ private:
     void saveCsgExport(const std::string& path);
     void saveChosenCsgExport();  // to the panel's file name, or beside the .scad; errors go to the console
     // The panel's choice of export (exact or sampled, exportExact_), or the
-    // one `exact` names.
-    void startExport(const std::string& path);
-    void startExport(const std::string& path, bool exact);
+    // one `exact` names. False, with the reason in message_, where none
+    // started (another is running, or the name has no format for it).
+    bool startExport(const std::string& path);
+    bool startExport(const std::string& path, bool exact);
     void updateTitle();
     std::string title() const;
     void drawStaleBadge();

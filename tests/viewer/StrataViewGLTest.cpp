@@ -415,6 +415,31 @@ TEST_F(StrataView, ExportWritesWhatStrataRenderExports) {
     EXPECT_TRUE(bad.err.find("nowhere/x.stl: cannot write") != std::string::npos) << bad.err;
 }
 
+TEST_F(StrataView, AFlatModelExportsTheDrawingsStrataRenderWrites) {
+    // The panel and the scripts offer SVG and DXF for a 2D model; the
+    // export writes the drawing strata-render writes, byte for byte.
+    const std::string scene = dir.write("flat.csg", "difference() {\n  square(size = [6, 4], center = false);\n"
+                                                    "  circle($fn = 24, r = 1);\n}\n");
+    const ProcessResult r = view(scene, "size 64 64\nexport view.svg\nexport view.dxf\nquit\n");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    for (const auto& [viewedName, renderedName] : {std::pair{"view.svg", "render.svg"}, std::pair{"view.dxf", "render.dxf"}}) {
+        const std::string rendered = dir / renderedName;
+        const ProcessResult cli = runProcess({kRender, scene, "--export", rendered});
+        ASSERT_EQ(cli.exitCode, 0) << cli.err;
+        const std::string viewed = bytes(dir / viewedName);
+        EXPECT_GT(viewed.size(), 100u) << viewedName;
+        EXPECT_EQ(viewed, bytes(rendered)) << viewedName;
+    }
+    // A mesh of a 2D model is the export's error, as strata-render's.
+    const ProcessResult mesh = view(scene, "size 64 64\nexport flat.stl\n");
+    EXPECT_EQ(mesh.exitCode, 1);
+    EXPECT_NE(mesh.err.find("a 2D model has no solid to export"), std::string::npos) << mesh.err;
+}
+
 TEST_F(StrataView, OpensScadThroughOpenscad) {
     if (runProcess({"/bin/sh", "-c", "command -v openscad"}).exitCode != 0) GTEST_SKIP() << "openscad not installed";
     const std::string scad = dir.write("a.scad", "difference() { cube(10, center = true); sphere(6.5, $fn = 48); }\n");
