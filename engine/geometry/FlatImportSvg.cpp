@@ -820,6 +820,15 @@ private:
         int point = 0;
         bool negate = false, closed = false;
         std::string exp;
+        // A segment drawn: the pen moves to its end, the next argument starts
+        // a new group, and the segment's kind is kept for a smooth curve after it.
+        void endSegment(bool cubic, bool quadratic) {
+            x = xx;
+            y = yy;
+            point = -1;
+            lastCubic = cubic;
+            lastQuadratic = quadratic;
+        }
     };
 
     void pathData(Shape& s, const std::string& data) {
@@ -914,10 +923,7 @@ private:
             case 6:
                 pen.yy = pen.cmd == 'a' ? pen.y + p : p;
                 arcTo(list.back(), pen.x, pen.y, pen.rx, pen.ry, pen.xx, pen.yy, pen.angle, pen.large, pen.sweep);
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = pen.lastQuadratic = false;
+                pen.endSegment(false, false);
                 break;
         }
     }
@@ -929,10 +935,7 @@ private:
             case 1:
                 pen.yy = pen.cmd == 'l' ? pen.y + p : p;
                 push(list.back(), {pen.xx, pen.yy, 0});
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = pen.lastQuadratic = false;
+                pen.endSegment(false, false);
                 break;
         }
     }
@@ -952,11 +955,7 @@ private:
                 pen.cx2 = pen.cmd == 'c' ? pen.x + pen.cx2 : pen.cx2;
                 pen.cy2 = pen.cmd == 'c' ? pen.y + pen.cy2 : pen.cy2;
                 curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.cx2, pen.cy2, pen.xx, pen.yy);
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = true;
-                pen.lastQuadratic = false;
+                pen.endSegment(true, false);
                 break;
         }
     }
@@ -982,11 +981,7 @@ private:
                 pen.cx2 = pen.cmd == 's' ? pen.x + pen.cx2 : pen.cx2;
                 pen.cy2 = pen.cmd == 's' ? pen.y + pen.cy2 : pen.cy2;
                 curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.cx2, pen.cy2, pen.xx, pen.yy);
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = true;
-                pen.lastQuadratic = false;
+                pen.endSegment(true, false);
                 break;
         }
     }
@@ -1002,11 +997,7 @@ private:
                 pen.cx1 = pen.cmd == 'q' ? pen.x + pen.cx1 : pen.cx1;
                 pen.cy1 = pen.cmd == 'q' ? pen.y + pen.cy1 : pen.cy1;
                 curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.xx, pen.yy);
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = false;
-                pen.lastQuadratic = true;
+                pen.endSegment(false, true);
                 break;
         }
     }
@@ -1027,11 +1018,7 @@ private:
             case 1:
                 pen.yy = pen.cmd == 't' ? pen.y + p : p;
                 curveTo(list.back(), pen.x, pen.y, pen.cx1, pen.cy1, pen.xx, pen.yy);
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = false;
-                pen.lastQuadratic = true;
+                pen.endSegment(false, true);
                 break;
         }
     }
@@ -1054,10 +1041,7 @@ private:
                     list.emplace_back();
                 }
                 push(list.back(), {pen.xx, pen.yy, 0});
-                pen.x = pen.xx;
-                pen.y = pen.yy;
-                pen.point = -1;
-                pen.lastCubic = pen.lastQuadratic = false;
+                pen.endSegment(false, false);
                 break;
             }
         }
