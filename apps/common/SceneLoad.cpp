@@ -11,17 +11,12 @@
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/scene/CsgParser.h"
+#include "strata/scene/ImportFormats.h"
 #include "strata/scene/ScadTrace.h"
 
 namespace strata::apps {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-bool isMeshExtension(const std::string& ext) { return ext == ".stl" || ext == ".obj" || ext == ".off" || ext == ".ply"; }
+bool isMeshExtension(const std::string& ext) { return scene::isImportExtension(ext, scene::ImportKind::Mesh); }
 
 bool isSceneExtension(const std::string& ext) { return ext == ".csg" || ext == ".scad" || isMeshExtension(ext); }
 
@@ -74,7 +69,8 @@ SceneFile readSceneFile(const std::string& path, const std::vector<std::string>&
     const std::string ext = lowerExtension(path);
     if (!isSceneExtension(ext))
         throw Error(SourceLocation{path, 0, 0},
-                    "unknown scene type '" + ext + "' (expected .csg, .scad, .stl, .obj, .off or .ply)");
+                    "unknown scene type '" + ext + "' (expected " +
+                        scene::importExtensionList(scene::ImportKind::Mesh, ".csg, .scad") + ")");
     checkReadable(path);
     SceneFile file;
     if (ext == ".csg") {

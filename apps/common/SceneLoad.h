@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "strata/core/InputFile.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::apps {
@@ -34,10 +35,9 @@ SceneFile readSceneFile(const std::string& path, const std::vector<std::string>&
 // readSceneFile's tree alone.
 scene::Tree loadSceneFile(const std::string& path, const std::vector<std::string>& defines = {});
 
-// Its parts: the extension, dot included, in lower case ("model.STL" ->
-// ".stl"); whether it names a mesh format; and a throw, naming the file,
-// unless `path` is a file that can be opened.
-std::string lowerExtension(const std::string& path);
+// Its parts, given the extension in lower case (strata::lowerExtension,
+// strata/core/InputFile.h): whether it names a mesh format; and a throw,
+// naming the file, unless `path` is a file that can be opened.
 bool isMeshExtension(const std::string& ext);
 // Whether it names a scene file: .csg, .scad or a mesh format.
 bool isSceneExtension(const std::string& ext);

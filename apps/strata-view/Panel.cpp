@@ -15,6 +15,7 @@
 #include <string>
 
 #include "SceneLoad.h"
+#include "strata/core/InputFile.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/render/ColorScheme.h"
 
@@ -442,7 +443,7 @@ void Viewer::drawOpenPanel() {
             const std::string name = it->path().filename().string();
             if (name.empty() || name.front() == '.') continue;
             const bool sub = it->is_directory(ec);
-            if (sub || apps::isSceneExtension(apps::lowerExtension(name))) listed_.push_back({name, sub});
+            if (sub || apps::isSceneExtension(lowerExtension(name))) listed_.push_back({name, sub});
         }
         std::sort(listed_.begin(), listed_.end(),
                   [](const FolderEntry& a, const FolderEntry& b) { return a.folder != b.folder ? a.folder : a.name < b.name; });

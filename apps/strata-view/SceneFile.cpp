@@ -6,6 +6,7 @@
 
 #include "SceneLoad.h"
 #include "strata/core/Error.h"
+#include "strata/core/InputFile.h"
 #include "strata/io/ImageWriter.h"
 
 namespace strata::view {
@@ -32,7 +33,7 @@ std::string defaultCsgExportPath(const std::string& scadPath) {
 void saveCsgExport(const LoadedScene& scene, const std::string& scenePath, const std::string& target) {
     if (scene.csgExport.empty())
         throw Error("cannot save a CSG export: " + scenePath + " is not a .scad, its positions are its own lines");
-    if (apps::lowerExtension(target) != ".csg")
+    if (lowerExtension(target) != ".csg")
         throw Error("cannot save the CSG export to '" + target + "': expected a .csg file name");
     // The .csg name keeps it off the .scad; a name that leads to the .scad
     // all the same (a link) is refused too.

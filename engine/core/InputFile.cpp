@@ -44,4 +44,10 @@ std::string readInputFile(const std::string& path, const char* what, unsigned ma
     return bytes;
 }
 
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+    return ext;
+}
+
 }  // namespace strata

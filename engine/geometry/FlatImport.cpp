@@ -6,6 +6,7 @@
 
 #include "FlatImportDetail.h"
 #include "strata/core/Error.h"
+#include "strata/scene/ImportFormats.h"
 
 // import() of a 2D file, dispatched on the file name's extension (compared in
 // lower case) as OpenSCAD 2021.01's ImportModule does: .dxf (FlatImportDxf.cpp)
@@ -26,11 +27,11 @@ std::string quotedPath(std::string_view path) {
 }  // namespace detail
 
 Outlines importFlat(const scene::FlatImport& import) {
-    std::string ext = std::filesystem::path(import.path).extension().string();
-    for (char& c : ext) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
-    if (ext != ".dxf" && ext != ".svg") {
-        throw Error("import: " + detail::quotedPath(import.path) + " is not a 2D file (.dxf or .svg)");
+    if (!scene::isImportPath(import.path, scene::ImportKind::Drawing)) {
+        throw Error("import: " + detail::quotedPath(import.path) + " is not a 2D file (" +
+                    scene::importExtensionList(scene::ImportKind::Drawing) + ")");
     }
+    const std::string ext = lowerExtension(import.path);
     const std::string text = readInputFile(import.path, "import");
     return ext == ".dxf" ? detail::importDxf(import, text) : detail::importSvg(import, text);
 }

@@ -24,6 +24,7 @@
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/geometry/MeshCheck.h"
+#include "strata/scene/ImportFormats.h"
 
 namespace strata::geometry {
 namespace {
@@ -72,12 +73,6 @@ private:
     std::lock_guard<std::mutex> lock_;
     std::vector<bool> wasEnabled_;
 };
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 // Whether an OFF file is Geomview's binary OFF: the keyword, then BINARY.
 bool binaryOff(const std::string& head) {
@@ -346,8 +341,8 @@ std::string readAll(const std::string& path) {
 Mesh importMesh(const std::string& path) {
     auto fail = [&path](const std::string& why) { return Error(path + ": cannot read mesh: " + why); };
     const std::string ext = lowerExtension(path);
-    if (ext != ".stl" && ext != ".off" && ext != ".obj" && ext != ".ply") {
-        throw fail("unsupported format '" + ext + "' (expected .stl, .off, .obj or .ply)");
+    if (!scene::isImportPath(path, scene::ImportKind::Mesh)) {
+        throw fail("unsupported format '" + ext + "' (expected " + scene::importExtensionList(scene::ImportKind::Mesh) + ")");
     }
     std::error_code ec;
     if (const std::string why = unreadableReason(path); !why.empty()) throw fail(why);

@@ -23,12 +23,6 @@ std::string number(double x) {
     return std::string(text, r.ptr);
 }
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
 std::string svg(const geometry::Outlines& shape) {
     glm::dvec2 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
     for (const geometry::Outline& o : shape.outlines) {
@@ -96,7 +90,10 @@ bool isFlatPath(const std::string& path) {
     return format != nullptr && format->kind == ExportKind::Drawing;
 }
 
-FlatFormat flatFormatOf(const std::string& path) { return lowerExtension(path) == ".svg" ? FlatFormat::Svg : FlatFormat::Dxf; }
+FlatFormat flatFormatOf(const std::string& path) {
+    const ExportFormat* format = exportFormatOf(path);
+    return format != nullptr && format->extension == ".svg" ? FlatFormat::Svg : FlatFormat::Dxf;
+}
 
 std::vector<unsigned char> flatBytes(const geometry::Outlines& outlines, FlatFormat format) {
     const std::string text = format == FlatFormat::Svg ? svg(outlines) : dxf(outlines);

@@ -16,6 +16,7 @@
 
 #include "CsgLexer.h"
 #include "strata/core/InputFile.h"
+#include "strata/scene/ImportFormats.h"
 #include "CsgValue.h"
 
 namespace strata::scene {
@@ -82,11 +83,7 @@ bool isFlatShapeName(const std::string& name) {
 bool isSolidName(const std::string& name) {
     return name == "cube" || name == "sphere" || name == "cylinder" || name == "polyhedron" || name == "surface";
 }
-bool isFlatImportPath(const std::string& file) {
-    std::string ext = std::filesystem::path(file).extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext == ".dxf" || ext == ".svg";
-}
+bool isFlatImportPath(const std::string& file) { return isImportPath(file, ImportKind::Drawing); }
 
 class Parser {
 public:
@@ -874,10 +871,8 @@ std::optional<Import> Parser::import(const std::vector<CsgArgument>& args, const
         warnOnce("empty-import", where, "import has an empty file name; left out");
         return std::nullopt;
     }
-    std::filesystem::path path(file->value.string);
-    std::string ext = path.extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    if (ext != ".stl" && ext != ".off" && ext != ".obj" && ext != ".ply") {
+    if (!isImportPath(file->value.string, ImportKind::Mesh)) {
+        const std::string ext = lowerExtension(file->value.string);
         unsupported("import" + (ext.empty() ? std::string() : "(" + ext + ")"), where);
         return std::nullopt;
     }

@@ -18,4 +18,8 @@ std::string unreadableReason(const std::string& path);
 // unreadableReason names a reason, or the file is larger than `maxMiB`.
 std::string readInputFile(const std::string& path, const char* what, unsigned maxMiB = 256);
 
+// The extension of `path`'s file name with its dot, in ASCII lower case
+// (".stl" for "Part.STL"); "" where the name has none.
+std::string lowerExtension(const std::string& path);
+
 }  // namespace strata
