@@ -18,6 +18,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/core/Timing.h"
 #include "strata/gpu/Context.h"
 
 namespace strata::bench {
@@ -369,7 +370,7 @@ public:
         }
         glDepthFunc(GL_LESS);
         glFinish();
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        return msSince(start);
     }
 
     std::vector<std::uint8_t> coverage() override {

@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "ViewMatrices.h"
+#include "strata/core/Timing.h"
 #include "strata/gpu/Check.h"
 
 namespace strata::bench {
@@ -63,7 +64,7 @@ double PlainDraw::drawFrame(const render::Camera& camera) {
     vertexArray_.bind();
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_));
     glFinish();
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double ms = msSince(start);
     glDisable(GL_DEPTH_TEST);
     gpu::checkErrors();
     return ms;

@@ -5,6 +5,7 @@
 
 #include "Worker.h"
 #include "strata/core/Error.h"
+#include "strata/core/Timing.h"
 
 namespace strata::view {
 
@@ -39,7 +40,7 @@ WorkOutcome runReporting(LoadProgress& progress, const std::string& path, const 
         // Not ours (std::bad_alloc, a library's exception): still one line.
         outcome.error = path + ": " + e.what();
     }
-    outcome.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    outcome.milliseconds = msSince(start);
     return outcome;
 }
 

@@ -11,6 +11,7 @@
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
 #include "strata/geometry/Primitives.h"
+#include "VertexBudget.h"
 
 namespace strata::geometry {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 constexpr double kGridFine = 0.00000095367431640625;  // 2^-20, OpenSCAD's GRID_FINE
 constexpr double kPi = 3.14159265358979323846;        // M_PI
 constexpr double kDegToRad = kPi / 180.0;              // M_DEG2RAD
-constexpr std::size_t kMaxVertices = std::size_t(1) << 24;
+using detail::kMaxVertices;
 
 std::size_t pointCount(const Outlines& shape) {
     std::size_t n = 0;

@@ -8,6 +8,7 @@
 
 #include "DegreeTrig.h"
 #include "PolygonTriangulation.h"
+#include "VertexBudget.h"
 
 // Tessellation follows OpenSCAD 2021.01, src/primitives.cc
 // (PrimitiveNode::createGeometry) and src/calc.cc (get_fragments_from_r); the
@@ -20,7 +21,7 @@ namespace {
 
 constexpr double kGridFine = 0.00000095367431640625;  // 2^-20, OpenSCAD's GRID_FINE
 constexpr double kMinimumFaFs = 0.01;                  // OpenSCAD clamps $fa and $fs to this
-constexpr std::size_t kMaxVertices = std::size_t(1) << 24;
+using detail::kMaxVertices;
 constexpr double kPi = 3.14159265358979323846;         // M_PI
 
 // Builds a mesh from polygons listed counter-clockwise seen from outside.

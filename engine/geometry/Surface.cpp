@@ -16,6 +16,7 @@
 
 #include "LexicalCast.h"
 #include "strata/core/Error.h"
+#include "VertexBudget.h"
 
 // surface() as OpenSCAD 2021.01 builds it (src/surface.cc, SurfaceNode):
 //
@@ -43,7 +44,7 @@
 namespace strata::geometry {
 namespace {
 
-constexpr std::size_t kMaxVertices = std::size_t(1) << 24;           // as the primitives
+using detail::kMaxVertices;
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
     throw Error("surface: cannot read '" + path + "': " + why);

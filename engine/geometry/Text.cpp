@@ -25,6 +25,7 @@
 
 #include "strata/core/Error.h"
 #include "strata/geometry/Primitives.h"
+#include "VertexBudget.h"
 
 // text() follows OpenSCAD 2021.01 step for step: src/text.cc (the segment
 // count), src/FreetypeRenderer.cc (shaping, metrics, alignment),
@@ -42,9 +43,7 @@ constexpr double kUnscale = 1.0 / 1.024e5;
 
 const char* const kDefaultFont = "Liberation Sans:style=Regular";  // FontCache::DEFAULT_FONT
 constexpr std::size_t kMaxCachedFaces = 8;
-// More vertices than this in one text() throws rather than exhausting memory
-// (a huge $fn makes every curve step millions of times).
-constexpr std::size_t kMaxVertices = std::size_t(1) << 24;
+using detail::kMaxVertices;
 
 bool isDirectory(const std::string& path) {
     struct stat st {};

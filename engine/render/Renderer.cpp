@@ -25,6 +25,7 @@
 #include "TranslucentPass.h"
 #include "ViewSetup.h"
 #include "strata/core/Error.h"
+#include "strata/core/Timing.h"
 #include "strata/csg/CompiledTree.h"
 #include "strata/csg/ConvexGroups.h"
 #include "strata/csg/IdenticalLeaves.h"
@@ -36,10 +37,6 @@ namespace strata::render {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 std::string mebibytes(std::size_t bytes) {
     char text[32];
@@ -591,7 +588,7 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
         const auto start = Clock::now();
         const bool fits = peel->run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
         glFinish();
-        stats.peelMs += millisecondsSince(start);
+        stats.peelMs += msSince(start);
         stats.textureBytes = std::max(stats.textureBytes, peel->textureBytes());
         stats.textureAllocations += peel->allocations();
         stats.peelPasses += peel->passes();
@@ -635,12 +632,12 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
                  in.settings.keepBlockForms ? &forms : nullptr);
     if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
     const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
-    stats.evaluateMs += millisecondsSince(start);
+    stats.evaluateMs += msSince(start);
     start = Clock::now();
     normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects,
                  in.litAs);
     glFinish();
-    stats.normalMs += millisecondsSince(start);
+    stats.normalMs += msSince(start);
 }
 
 void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& tile,
@@ -660,12 +657,12 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
         evaluate->runResultRound(targets, peel->layers(), tile, layers, in.rects, in.hulls, groups, peel->groupIds(), resultStart,
                                 round > 0, in.view.coincidence, stats);
         const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
-        stats.evaluateMs += millisecondsSince(start);
+        stats.evaluateMs += msSince(start);
         start = Clock::now();
         normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves,
                      in.markRects, std::nullopt);  // the normals are read back
         glFinish();
-        stats.normalMs += millisecondsSince(start);
+        stats.normalMs += msSince(start);
 
         start = Clock::now();
         targets.resultLeaf.downloadRegion(tile.x, tile.y, 0, tile.width, tile.height, 1, GL_RED_INTEGER, GL_INT,
@@ -678,7 +675,7 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
         }
         stats.unresolvedPixels += out.unresolved;
         if (found == 0) {
-            stats.readbackMs += millisecondsSince(start);
+            stats.readbackMs += msSince(start);
             return;
         }
         stats.coveredPixels += found;
@@ -698,7 +695,7 @@ void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& til
         }
         out.depth = depth;
         out.normal = outward;
-        stats.readbackMs += millisecondsSince(start);
+        stats.readbackMs += msSince(start);
         (*roundSink)(out);
     }
 }
@@ -801,7 +798,7 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
     }
     plain->run(targets, scene, view, drawn, baseColors, output);
     glFinish();
-    stats.plainMs = millisecondsSince(start);
+    stats.plainMs = msSince(start);
     stats.plain = true;
     stats.tiedLeaves = plain->tiedLeaves();
     stats.tiedTriangles = plain->tiedTriangles();
@@ -941,9 +938,9 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     if (roundSink == nullptr) {
         const auto start = Clock::now();
         shadeFrame(view, scheme, settings, screen.drawn, plan.litAsDrawn);
-        stats.shadeMs = millisecondsSince(start);
+        stats.shadeMs = msSince(start);
     }
-    stats.totalMs = millisecondsSince(frameStart);
+    stats.totalMs = msSince(frameStart);
     return view;
 }
 
@@ -952,7 +949,7 @@ Frame Renderer::render(const Camera& camera, const RenderSettings& settings) {
     impl_->drawFrame(camera, settings, frame, true);
     const auto start = Clock::now();
     impl_->readBack(frame, settings);
-    frame.stats.readbackMs = millisecondsSince(start);
+    frame.stats.readbackMs = msSince(start);
     frame.stats.totalMs += frame.stats.readbackMs;
     return frame;
 }
@@ -1023,14 +1020,14 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     frame.height = h;
     const auto start = Clock::now();
     impl.shadeFrame(view, scheme, settings, std::nullopt);
-    frame.stats.shadeMs = millisecondsSince(start);
+    frame.stats.shadeMs = msSince(start);
     impl.readColor(frame);
     frame.depth.assign(result.depth.begin(), result.depth.end());
     frame.normal.assign(result.normal.begin(), result.normal.end());
     frame.leaf.assign(result.leaf.begin(), result.leaf.end());
     for (std::int32_t leaf : frame.leaf) frame.stats.coveredPixels += leaf >= 0 ? 1 : 0;
     gpu::checkErrors();
-    frame.stats.totalMs = millisecondsSince(frameStart);
+    frame.stats.totalMs = msSince(frameStart);
     return frame;
 }
 
@@ -1044,7 +1041,7 @@ FrameStats Renderer::renderInto(unsigned framebuffer, int x, int y, const Camera
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     glFinish();
     gpu::checkErrors();
-    frame.stats.readbackMs = millisecondsSince(start);
+    frame.stats.readbackMs = msSince(start);
     frame.stats.totalMs += frame.stats.readbackMs;
     return frame.stats;
 }
