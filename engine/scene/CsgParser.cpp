@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "CsgLexer.h"
+#include "CsgModules.h"
 #include "strata/core/InputFile.h"
 #include "strata/scene/ImportFormats.h"
 #include "CsgValue.h"
@@ -24,18 +25,6 @@ namespace strata::scene {
 namespace {
 
 constexpr int kMaxVectorNesting = 64;
-
-// OpenSCAD modules strata knows but does not render yet: their subtree is left
-// out with one warning per name.
-const std::unordered_set<std::string>& unsupportedNames() {
-    static const std::unordered_set<std::string> names = {
-        "roof", "fill", "import_dxf",
-        "import_stl", "import_off", "dxf_linear_extrude", "dxf_rotate_extrude", "child",
-        "children", "parent_module", "intersection_for", "for", "let", "each", "echo", "assert",
-        "textmetrics", "fontmetrics", "virtual", "wrap",
-    };
-    return names;
-}
 
 // Everything a statement passes to its children.
 struct Context {
@@ -76,13 +65,6 @@ struct PendingFlat {
     FlatTree tree;
 };
 
-// Module names and what they are.
-bool isFlatShapeName(const std::string& name) {
-    return name == "square" || name == "circle" || name == "polygon" || name == "text";
-}
-bool isSolidName(const std::string& name) {
-    return name == "cube" || name == "sphere" || name == "cylinder" || name == "polyhedron" || name == "surface";
-}
 bool isFlatImportPath(const std::string& file) { return isImportPath(file, ImportKind::Drawing); }
 
 class Parser {
@@ -99,6 +81,7 @@ private:
     // One statement: its head, then what its name makes of it.
     struct Statement {
         std::string name;
+        Module module = Module::Unknown;  // what the name is (CsgModules.h)
         std::vector<CsgArgument> args;
         SourceLocation where;  // the name's position
         bool background = false, highlight = false, root = false, disabled = false;  // % # ! *
@@ -127,8 +110,7 @@ private:
     double signedNumber();
 
     // Flat (2D) statements
-    int flatStatement(const std::string& name, const std::vector<CsgArgument>& args, Open& open, bool dropped,
-                      const SourceLocation& where);
+    int flatStatement(const Statement& st, Open& open, bool dropped);
     int finishFlat();
     Leaf leafAt(const Context& ctx, const SourceLocation& where) const;
     int mergeFlatChildren(int node, std::optional<FlatOp> op = std::nullopt, const glm::dmat4& placement = glm::dmat4(1.0),
@@ -144,8 +126,8 @@ private:
     bool flatChildren(int node) const;
     int dimensionOf(int node) const;
     int keepOneDimension(int node);
-    bool isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const;
-    FlatPrimitive flatShape(const std::string& name, const std::vector<CsgArgument>& args, const SourceLocation& where);
+    bool isFlatShape(Module module, const std::vector<CsgArgument>& args) const;
+    FlatPrimitive flatShape(Module module, const std::vector<CsgArgument>& args, const SourceLocation& where);
     Square square(const std::vector<CsgArgument>& args);
     Circle circle(const std::vector<CsgArgument>& args, const SourceLocation& where);
     Polygon polygon(const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -161,8 +143,7 @@ private:
                   int position) const;
 
     // Nodes
-    int makeLeaf(const std::string& name, const std::vector<CsgArgument>& args, const Context& ctx,
-                 const SourceLocation& where);
+    int makeLeaf(Module module, const std::vector<CsgArgument>& args, const Context& ctx, const SourceLocation& where);
     Cube cube(const std::vector<CsgArgument>& args, const SourceLocation& where);
     Sphere sphere(const std::vector<CsgArgument>& args, const SourceLocation& where);
     Cylinder cylinder(const std::vector<CsgArgument>& args, const SourceLocation& where);
@@ -268,17 +249,18 @@ void Parser::statement() {
     const Open& parent = stack_.back();
     st.dropped = parent.node < 0 || st.disabled;
     Open open = openFor(st, parent);
-    if (st.name == "projection") return openProjection(st, std::move(open), parent);
+    if (st.module == Module::Projection) return openProjection(st, std::move(open), parent);
     if (parent.flat) {
         const int parentFlatNode = parent.flatNode;
-        const int index = flatStatement(st.name, st.args, open, parentFlatNode < 0 || st.disabled || st.background, st.where);
+        const int index = flatStatement(st, open, parentFlatNode < 0 || st.disabled || st.background);
         if (index >= 0) pending().tree.nodes[static_cast<std::size_t>(parentFlatNode)].children.push_back(index);
         return enterBlock(st, std::move(open));
     }
-    if (st.name == "linear_extrude" || st.name == "rotate_extrude" || st.name == "offset" || isFlatShape(st.name, st.args)) {
+    if (st.module == Module::LinearExtrude || st.module == Module::RotateExtrude || st.module == Module::Offset ||
+        isFlatShape(st.module, st.args)) {
         return openFlatLeaf(st, std::move(open));
     }
-    if (isSolidName(st.name) || st.name == "import") return leafStatement(st, std::move(open), parent);
+    if (isSolidModule(st.module) || st.module == Module::Import) return leafStatement(st, std::move(open), parent);
     operationStatement(st, std::move(open));
 }
 
@@ -301,6 +283,7 @@ Parser::Statement Parser::statementHead() {
         lex_.fail("expected a module name");
     }
     st.name = lex_.text();
+    st.module = moduleNamed(st.name);
     // Modifiers are written at column 0 before the tabs; the node is where its name is.
     st.where = lex_.where();
     lex_.next();
@@ -375,14 +358,14 @@ void Parser::openProjection(const Statement& st, Open open, const Open& parent) 
 void Parser::openFlatLeaf(const Statement& st, Open open) {
     if (!st.dropped) {
         Leaf leaf = leafAt(open.context, st.where);
-        if (st.name == "linear_extrude") leaf.primitive = linearExtrude(st.args, st.where);
-        else if (st.name == "rotate_extrude") leaf.primitive = rotateExtrude(st.args, st.where);
+        if (st.module == Module::LinearExtrude) leaf.primitive = linearExtrude(st.args, st.where);
+        else if (st.module == Module::RotateExtrude) leaf.primitive = rotateExtrude(st.args, st.where);
         else leaf.primitive = FlatSlab{};
         pending_.push_back(PendingFlat{std::move(leaf), FlatTree{}});
         open.ownsFlat = true;
         open.shape = true;
         if (std::holds_alternative<FlatSlab>(pending().leaf.primitive)) {
-            pending().tree.root = flatStatement(st.name, st.args, open, false, st.where);
+            pending().tree.root = flatStatement(st, open, false);
         } else {
             open.flat = true;
             FlatNode root;
@@ -395,7 +378,7 @@ void Parser::openFlatLeaf(const Statement& st, Open open) {
 
 // A solid (cube, sphere, cylinder, polyhedron, import, surface): a leaf.
 void Parser::leafStatement(const Statement& st, Open open, const Open& parent) {
-    const int leafNode = st.dropped ? -1 : makeLeaf(st.name, st.args, open.context, st.where);
+    const int leafNode = st.dropped ? -1 : makeLeaf(st.module, st.args, open.context, st.where);
     if (leafNode >= 0) {
         if (open.isRoot) rootNode_ = leafNode;
         else if (open.isBackgroundRoot) tree_.background.push_back(leafNode);
@@ -414,57 +397,62 @@ void Parser::leafStatement(const Statement& st, Open open, const Open& parent) {
 // whose children become other leaves when it closes (hull, minkowski,
 // resize), or one strata leaves out with a warning.
 void Parser::operationStatement(const Statement& st, Open open) {
-    const std::string& name = st.name;
     NodeKind kind = NodeKind::Union;
     bool known = true;
-    if (name == "group" || name == "union" || name == "render" || name == "assign") {
-        open.collapsible = true;
-    } else if (name == "intersection") {
-        kind = NodeKind::Intersection;
-    } else if (name == "difference") {
-        kind = NodeKind::Difference;
-    } else if (name == "hull" || name == "minkowski") {
-        // Collects the children; closing turns them into hull leaves. The
-        // children are placed relative to the node and its transform places
-        // the result, as OpenSCAD transforms the result: a Minkowski sum of
-        // children placed in the world would have their translations added.
-        open.gather = name == "hull" ? Open::Gather::Hull : Open::Gather::Minkowski;
-        open.placement = open.context.transform;
-        open.resizesBefore = tree_.resizes.size();
-        open.context.frame = open.context.frame * open.context.transform;
-        open.context.transform = glm::dmat4(1.0);
-        open.context.steps = nullptr;
-    } else if (name == "resize") {
-        // Its leaves are placed relative to it, and scaled when the model is built.
-        open.gather = Open::Gather::Resize;
-        if (!st.dropped) {
-            open.resize = resizeArguments(st.args);
-            open.resize.outer = open.context.transform;
-            open.resize.where = st.where;
+    switch (st.module) {
+        case Module::Group:
+        case Module::Union:
+        case Module::Render:
+        case Module::Assign: open.collapsible = true; break;
+        case Module::Intersection: kind = NodeKind::Intersection; break;
+        case Module::Difference: kind = NodeKind::Difference; break;
+        case Module::Hull:
+        case Module::Minkowski:
+            // Collects the children; closing turns them into hull leaves. The
+            // children are placed relative to the node and its transform places
+            // the result, as OpenSCAD transforms the result: a Minkowski sum of
+            // children placed in the world would have their translations added.
+            open.gather = st.module == Module::Hull ? Open::Gather::Hull : Open::Gather::Minkowski;
+            open.placement = open.context.transform;
+            open.resizesBefore = tree_.resizes.size();
             open.context.frame = open.context.frame * open.context.transform;
             open.context.transform = glm::dmat4(1.0);
             open.context.steps = nullptr;
-        }
-    } else if (name == "multmatrix") {
-        if (!st.dropped) {
-            const glm::dmat4 m = multmatrix(st.args, st.where);
-            open.context.transform = open.context.transform * m;
-            open.context.steps = std::make_shared<const TransformStep>(TransformStep{m, open.context.steps});
-        }
-        open.collapsible = true;
-    } else if (name == "color") {
-        if (!st.dropped) {
-            const glm::dvec4 c = color(st.args, st.where);
-            for (int i = 0; i < 4; ++i) {
-                if (open.context.color[i] < 0.0) open.context.color[i] = c[i];  // outermost wins
+            break;
+        case Module::Resize:
+            // Its leaves are placed relative to it, and scaled when the model is built.
+            open.gather = Open::Gather::Resize;
+            if (!st.dropped) {
+                open.resize = resizeArguments(st.args);
+                open.resize.outer = open.context.transform;
+                open.resize.where = st.where;
+                open.context.frame = open.context.frame * open.context.transform;
+                open.context.transform = glm::dmat4(1.0);
+                open.context.steps = nullptr;
             }
-        }
-        open.collapsible = true;
-    } else if (unsupportedNames().count(name) != 0) {
-        known = false;
-        if (!st.dropped) unsupported(name, st.where);
-    } else {
-        lex_.failAt(st.where, "unknown module '" + name + "'");
+            break;
+        case Module::Multmatrix:
+            if (!st.dropped) {
+                const glm::dmat4 m = multmatrix(st.args, st.where);
+                open.context.transform = open.context.transform * m;
+                open.context.steps = std::make_shared<const TransformStep>(TransformStep{m, open.context.steps});
+            }
+            open.collapsible = true;
+            break;
+        case Module::Color:
+            if (!st.dropped) {
+                const glm::dvec4 c = color(st.args, st.where);
+                for (int i = 0; i < 4; ++i) {
+                    if (open.context.color[i] < 0.0) open.context.color[i] = c[i];  // outermost wins
+                }
+            }
+            open.collapsible = true;
+            break;
+        case Module::Unsupported:
+            known = false;
+            if (!st.dropped) unsupported(st.name, st.where);
+            break;
+        default: lex_.failAt(st.where, "unknown module '" + st.name + "'");
     }
     if (!known || st.dropped) {
         open.node = -1;
@@ -944,70 +932,93 @@ glm::dvec4 Parser::color(const std::vector<CsgArgument>& args, const SourceLocat
 
 // ---- Flat (2D) statements ----
 
-bool Parser::isFlatShape(const std::string& name, const std::vector<CsgArgument>& args) const {
-    if (isFlatShapeName(name)) return true;
-    if (name != "import") return false;
+bool Parser::isFlatShape(Module module, const std::vector<CsgArgument>& args) const {
+    if (isFlatShapeModule(module)) return true;
+    if (module != Module::Import) return false;
     const CsgArgument* file = find(args, "file", 0);
     return file != nullptr && file->value.type == CsgValue::Type::String && isFlatImportPath(file->value.string);
 }
 
 // Adds the statement to the pending flat tree (unless dropped) and sets up
 // its block; returns the new node, or -1. The caller links it to its parent.
-int Parser::flatStatement(const std::string& name, const std::vector<CsgArgument>& args, Open& open, bool dropped,
-                          const SourceLocation& where) {
+int Parser::flatStatement(const Statement& st, Open& open, bool dropped) {
+    const std::vector<CsgArgument>& args = st.args;
+    const SourceLocation& where = st.where;
     open.flat = true;
     open.flatNode = -1;
     FlatNode node;
     node.where = where;
     bool container = true;
-    if (name == "group" || name == "union" || name == "render" || name == "assign" || name == "color") {
-        node.op = FlatOp::Union;
-        if (name == "color" && !dropped) color(args, where);  // checked, though a colour means nothing in 2D
-    } else if (name == "intersection") {
-        node.op = FlatOp::Intersection;
-    } else if (name == "difference") {
-        node.op = FlatOp::Difference;
-    } else if (name == "multmatrix") {
-        node.op = FlatOp::Transform;
-        if (!dropped) node.matrix = multmatrix(args, where);
-    } else if (name == "offset") {
-        node.op = FlatOp::Offset;
-        if (!dropped) node.offset = offset(args, where);
-    } else if (name == "resize") {
-        node.op = FlatOp::Resize;
-        if (!dropped) {
-            const Resize r = resizeArguments(args);
-            node.newsize = {r.newsize.x, r.newsize.y};
-            node.autosize = {r.autosize[0], r.autosize[1]};
+    switch (st.module) {
+        case Module::Group:
+        case Module::Union:
+        case Module::Render:
+        case Module::Assign:
+        case Module::Color:
+            node.op = FlatOp::Union;
+            if (st.module == Module::Color && !dropped) color(args, where);  // checked, though a colour means nothing in 2D
+            break;
+        case Module::Intersection: node.op = FlatOp::Intersection; break;
+        case Module::Difference: node.op = FlatOp::Difference; break;
+        case Module::Multmatrix:
+            node.op = FlatOp::Transform;
+            if (!dropped) node.matrix = multmatrix(args, where);
+            break;
+        case Module::Offset:
+            node.op = FlatOp::Offset;
+            if (!dropped) node.offset = offset(args, where);
+            break;
+        case Module::Resize:
+            node.op = FlatOp::Resize;
+            if (!dropped) {
+                const Resize r = resizeArguments(args);
+                node.newsize = {r.newsize.x, r.newsize.y};
+                node.autosize = {r.autosize[0], r.autosize[1]};
+            }
+            break;
+        case Module::Hull: node.op = FlatOp::Hull; break;
+        case Module::Minkowski: node.op = FlatOp::Minkowski; break;
+        case Module::Square:
+        case Module::Circle:
+        case Module::Polygon:
+        case Module::Text:
+        case Module::Import:
+            if (isFlatShape(st.module, args)) {
+                node.op = FlatOp::Shape;
+                container = false;
+                if (!dropped) {
+                    node.shape = static_cast<int>(pending().tree.shapes.size());
+                    pending().tree.shapes.push_back(flatShape(st.module, args, where));
+                }
+                break;
+            }
+            [[fallthrough]];  // an import of a solid
+        case Module::Cube:
+        case Module::Sphere:
+        case Module::Cylinder:
+        case Module::Polyhedron:
+        case Module::Surface:
+        case Module::LinearExtrude:
+        case Module::RotateExtrude: {
+            node.op = FlatOp::Empty;
+            container = false;
+            const CsgArgument* file = st.module == Module::Import ? find(args, "file", 0) : nullptr;
+            if (dropped) {
+            } else if (file != nullptr && file->value.type == CsgValue::Type::String && file->value.string.empty()) {
+                warnOnce("empty-import", where, "import has an empty file name; left out");
+            } else {
+                warnOnce("3d-in-2d", where,
+                         "'" + st.name + "' is a 3D object inside a 2D operation; it is ignored, as OpenSCAD ignores it");
+            }
+            break;
         }
-    } else if (name == "hull") {
-        node.op = FlatOp::Hull;
-    } else if (name == "minkowski") {
-        node.op = FlatOp::Minkowski;
-    } else if (isFlatShape(name, args)) {
-        node.op = FlatOp::Shape;
-        container = false;
-        if (!dropped) {
-            node.shape = static_cast<int>(pending().tree.shapes.size());
-            pending().tree.shapes.push_back(flatShape(name, args, where));
-        }
-    } else if (isSolidName(name) || name == "import" || name == "linear_extrude" || name == "rotate_extrude") {
-        node.op = FlatOp::Empty;
-        container = false;
-        const CsgArgument* file = name == "import" ? find(args, "file", 0) : nullptr;
-        if (dropped) {
-        } else if (file != nullptr && file->value.type == CsgValue::Type::String && file->value.string.empty()) {
-            warnOnce("empty-import", where, "import has an empty file name; left out");
-        } else {
-            warnOnce("3d-in-2d", where,
-                     "'" + name + "' is a 3D object inside a 2D operation; it is ignored, as OpenSCAD ignores it");
-        }
-    } else if (unsupportedNames().count(name) != 0) {
-        node.op = FlatOp::Empty;
-        container = false;
-        if (!dropped) unsupported(name, where);
-    } else {
-        lex_.failAt(where, "unknown module '" + name + "'");
+        case Module::Unsupported:
+            node.op = FlatOp::Empty;
+            container = false;
+            if (!dropped) unsupported(st.name, where);
+            break;
+        case Module::Projection:  // read by statement() before any 2D statement
+        case Module::Unknown: lex_.failAt(where, "unknown module '" + st.name + "'");
     }
     if (dropped) return -1;
     const int index = pending().tree.add(std::move(node));
@@ -1528,13 +1539,14 @@ double Parser::radius(const std::vector<CsgArgument>& args, const char* rname, c
     return fallback;
 }
 
-FlatPrimitive Parser::flatShape(const std::string& name, const std::vector<CsgArgument>& args,
-                                const SourceLocation& where) {
-    if (name == "square") return square(args);
-    if (name == "circle") return circle(args, where);
-    if (name == "polygon") return polygon(args, where);
-    if (name == "text") return text(args, where);
-    return flatImport(args, where);
+FlatPrimitive Parser::flatShape(Module module, const std::vector<CsgArgument>& args, const SourceLocation& where) {
+    switch (module) {
+        case Module::Square: return square(args);
+        case Module::Circle: return circle(args, where);
+        case Module::Polygon: return polygon(args, where);
+        case Module::Text: return text(args, where);
+        default: return flatImport(args, where);
+    }
 }
 
 Square Parser::square(const std::vector<CsgArgument>& args) {
@@ -1724,14 +1736,14 @@ Surface Parser::surface(const std::vector<CsgArgument>& args, const SourceLocati
     return surf;
 }
 
-int Parser::makeLeaf(const std::string& name, const std::vector<CsgArgument>& args, const Context& ctx,
+int Parser::makeLeaf(Module module, const std::vector<CsgArgument>& args, const Context& ctx,
                      const SourceLocation& where) {
     Leaf leaf;
-    if (name == "cube") leaf.primitive = cube(args, where);
-    else if (name == "surface") leaf.primitive = surface(args, where);
-    else if (name == "sphere") leaf.primitive = sphere(args, where);
-    else if (name == "cylinder") leaf.primitive = cylinder(args, where);
-    else if (name == "polyhedron") {
+    if (module == Module::Cube) leaf.primitive = cube(args, where);
+    else if (module == Module::Surface) leaf.primitive = surface(args, where);
+    else if (module == Module::Sphere) leaf.primitive = sphere(args, where);
+    else if (module == Module::Cylinder) leaf.primitive = cylinder(args, where);
+    else if (module == Module::Polyhedron) {
         std::optional<Polyhedron> p = polyhedron(args, where);
         if (!p) return -1;
         leaf.primitive = std::move(*p);
