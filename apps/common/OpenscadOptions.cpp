@@ -6,7 +6,7 @@
 #include <regex>
 
 #include "CommandLine.h"
-#include "SceneLoad.h"
+#include "strata/core/InputFile.h"
 
 namespace strata::apps {
 namespace {

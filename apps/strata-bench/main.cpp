@@ -39,7 +39,7 @@
 #include "OpenCsgRun.h"
 #include "OpenscadOptions.h"
 #include "PlainDraw.h"
-#include "SceneLoad.h"
+#include "strata/scene/SceneLoad.h"
 #include "Scenes.h"
 #include "strata/core/Timing.h"
 #include "strata/camera/Camera.h"
@@ -582,7 +582,7 @@ int main(int argc, char** argv) {
     try {
         // Loaded first, so a bad file fails before minutes of frames.
         std::vector<scene::Tree> fileTrees;
-        for (const std::string& path : options.files) fileTrees.push_back(apps::loadSceneFile(path, options.defines));
+        for (const std::string& path : options.files) fileTrees.push_back(scene::loadSceneFile(path, options.defines));
 
         std::vector<Size> sizes;
         for (const std::string& s : options.sizes) sizes.push_back(parseSize(s));

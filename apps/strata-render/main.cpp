@@ -19,7 +19,7 @@
 
 #include "Options.h"
 #include "HugePages.h"
-#include "SceneLoad.h"
+#include "strata/scene/SceneLoad.h"
 #include "StderrProgress.h"
 #include "Worker.h"
 #include "strata/core/Timing.h"
@@ -147,7 +147,7 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
     checkOutputFolder(options.exportPath);
 
     auto t = Clock::now();
-    apps::SceneFile file = apps::readSceneFile(options.scene, options.defines);
+    scene::SceneFile file = scene::readSceneFile(options.scene, options.defines);
     const scene::Tree& tree = file.tree;
     stats.parseMs = msSince(t);
     // Warnings are printed once everything is written: a run that fails

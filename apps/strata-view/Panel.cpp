@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <string>
 
-#include "SceneLoad.h"
+#include "strata/scene/SceneLoad.h"
 #include "strata/core/InputFile.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/render/ColorScheme.h"
@@ -443,7 +443,7 @@ void Viewer::drawOpenPanel() {
             const std::string name = it->path().filename().string();
             if (name.empty() || name.front() == '.') continue;
             const bool sub = it->is_directory(ec);
-            if (sub || apps::isSceneExtension(lowerExtension(name))) listed_.push_back({name, sub});
+            if (sub || scene::isSceneExtension(lowerExtension(name))) listed_.push_back({name, sub});
         }
         std::sort(listed_.begin(), listed_.end(),
                   [](const FolderEntry& a, const FolderEntry& b) { return a.folder != b.folder ? a.folder : a.name < b.name; });

@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "SceneLoad.h"
+#include "strata/scene/SceneLoad.h"
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/io/ImageWriter.h"
@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 LoadedScene loadSceneFile(const std::string& path) {
     LoadedScene scene;
-    apps::SceneFile file = apps::readSceneFile(path);
+    scene::SceneFile file = scene::readSceneFile(path);
     scene.tree = std::move(file.tree);
     scene.openscadOutput = std::move(file.openscadOutput);
     scene.csgExport = std::move(file.csgExport);

@@ -1,7 +1,7 @@
 #pragma once
 // Reading the file strata-view shows: what strata-render accepts (a .csg, a
 // .scad through the installed openscad, or one closed .stl/.obj/.off/.ply
-// mesh; apps/common/SceneLoad.h), meshed, with a .scad's CSG export kept for
+// mesh; strata/scene/SceneLoad.h), meshed, with a .scad's CSG export kept for
 // saving. CPU only, so it runs on the loader thread.
 
 #include <string>
@@ -20,7 +20,7 @@ struct LoadedScene {
     // tree's positions name; empty for a .csg or a mesh.
     std::string csgExport;
     // The files besides the scene's own that a reload must follow: a
-    // .scad's use and include files and imports (apps::SceneFile).
+    // .scad's use and include files and imports (scene::SceneFile).
     std::vector<std::string> dependencies;
 };
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "RunProcess.h"
-#include "ScadExport.h"
+#include "strata/scene/ScadExport.h"
 #include "SceneFile.h"
 #include "TempDir.h"
 
@@ -113,11 +113,11 @@ TEST(SaveCsgExport, ALoadedScadKeepsOpenscadsExportAndACsgKeepsNone) {
 }
 
 TEST(SceneDependencies, AMakeRuleGivesItsFilesWithEscapedSpaces) {
-    EXPECT_EQ(strata::apps::makeRuleFiles("out.csg: \\\n\t/a/p.stl \\\n\t/a/my\\ lib.scad \\\n\tmain.scad\n"),
+    EXPECT_EQ(strata::scene::makeRuleFiles("out.csg: \\\n\t/a/p.stl \\\n\t/a/my\\ lib.scad \\\n\tmain.scad\n"),
               (std::vector<std::string>{"/a/p.stl", "/a/my lib.scad", "main.scad"}));
-    EXPECT_EQ(strata::apps::makeRuleFiles("x.csg: a.scad b.scad"), (std::vector<std::string>{"a.scad", "b.scad"}));
-    EXPECT_TRUE(strata::apps::makeRuleFiles("").empty());
-    EXPECT_TRUE(strata::apps::makeRuleFiles("no colon at all").empty());
+    EXPECT_EQ(strata::scene::makeRuleFiles("x.csg: a.scad b.scad"), (std::vector<std::string>{"a.scad", "b.scad"}));
+    EXPECT_TRUE(strata::scene::makeRuleFiles("").empty());
+    EXPECT_TRUE(strata::scene::makeRuleFiles("no colon at all").empty());
 }
 
 TEST(SceneDependencies, AScadNamesEveryFileItUsesIncludesAndImports) {

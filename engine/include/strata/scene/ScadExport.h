@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace strata::apps {
+namespace strata::scene {
 
 struct ScadExport {
     std::string csg;                   // the CSG export, as OpenSCAD wrote it
@@ -28,4 +28,4 @@ std::vector<std::string> makeRuleFiles(const std::string& rule);
 // complaint and, where it names one, the line).
 ScadExport exportScad(const std::string& scad, const std::vector<std::string>& defines = {});
 
-}  // namespace strata::apps
+}  // namespace strata::scene

@@ -1,4 +1,4 @@
-#include "SceneLoad.h"
+#include "strata/scene/SceneLoad.h"
 
 #include <cctype>
 #include <cstdio>
@@ -7,14 +7,14 @@
 #include <optional>
 #include <sstream>
 
-#include "ScadExport.h"
+#include "strata/scene/ScadExport.h"
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/scene/CsgParser.h"
 #include "strata/scene/ImportFormats.h"
 #include "strata/scene/ScadTrace.h"
 
-namespace strata::apps {
+namespace strata::scene {
 
 bool isMeshExtension(const std::string& ext) { return scene::isImportExtension(ext, scene::ImportKind::Mesh); }
 
@@ -99,4 +99,4 @@ scene::Tree loadSceneFile(const std::string& path, const std::vector<std::string
     return readSceneFile(path, defines).tree;
 }
 
-}  // namespace strata::apps
+}  // namespace strata::scene

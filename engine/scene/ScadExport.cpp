@@ -1,4 +1,4 @@
-#include "ScadExport.h"
+#include "strata/scene/ScadExport.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -17,7 +17,7 @@
 
 extern char** environ;
 
-namespace strata::apps {
+namespace strata::scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -192,4 +192,4 @@ ScadExport exportScad(const std::string& scad, const std::vector<std::string>& d
     return exported;
 }
 
-}  // namespace strata::apps
+}  // namespace strata::scene

@@ -2,9 +2,9 @@
 // A scene file as the programs take it: OpenSCAD's .csg export through the
 // parser, a .scad through the installed openscad's CSG export (ScadExport.h),
 // or one closed mesh (.stl, .obj, .off, .ply) as a tree of a single Import
-// leaf. strata-render, strata-bench and strata-view load their scenes
-// through it, so all three accept and refuse the same files with the same
-// messages.
+// leaf. strata-render, strata-bench, strata-view and an embedding host load
+// their scenes through it, so all accept and refuse the same files with the
+// same messages.
 
 #include <string>
 #include <vector>
@@ -12,7 +12,7 @@
 #include "strata/core/InputFile.h"
 #include "strata/scene/Tree.h"
 
-namespace strata::apps {
+namespace strata::scene {
 
 // A scene file read, with what a .scad brings besides its tree.
 struct SceneFile {
@@ -43,4 +43,4 @@ bool isMeshExtension(const std::string& ext);
 bool isSceneExtension(const std::string& ext);
 void checkReadable(const std::string& path);
 
-}  // namespace strata::apps
+}  // namespace strata::scene
