@@ -1,0 +1,202 @@
+#pragma once
+// The renderer's state and its members, for the render room's own files:
+// Renderer.cpp (the facade, a scene's upload, a frame planned and carried
+// out, read-back), TileRunner.cpp (the tiles of a frame: their plan, and
+// the peel, evaluate and normal passes run over each) and ResultSampler.cpp
+// (sampleResult: the result peeled round by round).
+
+#include "strata/render/Renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+
+#include "AlphaPass.h"
+#include "EvaluatePass.h"
+#include "FramePlan.h"
+#include "FrameTargets.h"
+#include "GroupPeel.h"
+#include "NormalPass.h"
+#include "PeelPass.h"
+#include "PlainPass.h"
+#include "SceneBuffers.h"
+#include "ShadePass.h"
+#include "ShaderInterface.h"
+#include "TranslucentPass.h"
+#include "ViewSetup.h"
+#include "strata/core/Error.h"
+#include "strata/core/Timing.h"
+#include "strata/csg/CompiledTree.h"
+#include "strata/csg/ConvexGroups.h"
+#include "strata/csg/IdenticalLeaves.h"
+#include "strata/gpu/Check.h"
+#include "strata/render/ColorScheme.h"
+
+namespace strata::render {
+
+using Clock = std::chrono::steady_clock;
+
+// Flips the row order in place: GL's bottom-up rows into image rows, top
+// first, and back.
+template <class T>
+inline void flipRows(std::span<T> rows, int width, int height, int channels) {
+    const std::size_t row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+    for (int y = 0; y < height / 2; ++y) {
+        const auto top = rows.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y));
+        const auto bottom = rows.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(height - 1 - y));
+        std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row), bottom);
+    }
+}
+
+// The fixed-function state every pass of a frame starts from.
+void resetDrawState();
+
+// A pass made on its first use: each compiles its shaders when made, and a
+// frame that never needs one (a plain frame needs no peel, evaluator or
+// normal pass; most models have no translucent leaf) should not pay for
+// them, least of all the first frame of a process.
+template <class Pass>
+class Lazy {
+public:
+    Pass* operator->() {
+        if (!pass_) pass_.emplace();
+        return &*pass_;
+    }
+
+private:
+    std::optional<Pass> pass_;
+};
+
+struct Renderer::Impl {
+    Lazy<PeelPass> peel;
+    Lazy<EvaluatePass> evaluate;
+    Lazy<NormalPass> normals;
+    Lazy<PlainPass> plain;
+    Lazy<ShadePass> shade;
+    Lazy<AlphaPass> alpha;
+    Lazy<TranslucentPass> translucent;
+    // The leaves a plain frame of the scene draws (PlainPass::plainLeaves;
+    // none: the scene is not drawn plainly), and whether the plain pass
+    // still has another scene's.
+    std::vector<int> plainLeaves;
+    bool plainStale = true;
+    FrameTargets targets;
+    SceneBuffers scene;
+    // The tree compiled with every operand its own (`separate`), with
+    // convex intersections grouped (ConvexGroups.h), and with those and the
+    // operands that only unions lead to grouped (for views where every ray
+    // starts outside), each with its reachedByUnionsOnly; `current` is the
+    // one the evaluator holds.
+    struct Compilation {
+        csg::CompiledTree tree;
+        std::vector<char> unionsOnly;
+    };
+    Compilation separate, grouped, unionGrouped;
+    std::size_t unionOnlyOperands = 0;  // the operands groupUnionOperands may join (RenderSettings::unionGroupFrom)
+    const Compilation* current = nullptr;
+    const Compilation& compilation(TreeForm form) const {
+        return form == TreeForm::Separate ? separate : form == TreeForm::Grouped ? grouped : unionGrouped;
+    }
+    std::vector<TranslucentLeaf> translucentLeaves;
+    std::vector<AlphaLeaf> alphaLeaves;
+    std::size_t leafCount = 0;
+    std::size_t copiedLeaves = 0;  // leaves identical to a lower one (IdenticalLeaves.h)
+    bool hasScene = false;
+    GLint maxTextureSize = 0;
+    // sampleResult's: where each tile's rounds go (null in other frames),
+    // and each pixel's last change found (EvaluatePass::runResultRound).
+    const std::function<void(const ResultRound&)>* roundSink = nullptr;
+    gpu::Texture resultStart;
+    bool canMarkLeaves = FrameTargets::canMarkLeaves();
+
+    Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
+
+    // Renderer::setScene's; `release` (`model` itself, or null): let the
+    // meshes go as they reach the GPU.
+    void setScene(const scene::Tree& tree, const geometry::Model& model, geometry::Model* release);
+
+    // A plain frame (PlainPass.h) in place of the peel, evaluate and normal passes.
+    // `drawn` holds every pixel its leaves cover.
+    // `litAs`: also light it as drawn, into the cleared image (no outline).
+    void drawPlain(const ViewSetup& view, const PixelRect& drawn, const std::vector<glm::vec2>& baseColors,
+                   const PlainPass::Output& output, Frame& frame);
+    // Every pass; the images stay on the GPU. Fills frame's size and stats.
+    // `aovs`: the depth, normal and leaf images will be read back.
+    ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
+    // The frame's view; throws strata::Error before setScene, for a negative
+    // layer count, or for an image larger than the GPU's largest texture.
+    ViewSetup frameView(const Camera& camera, const RenderSettings& settings) const;
+    // Where a frame's operands lie on screen (drawFrame's, for peelAndEvaluate).
+    struct ScreenRects {
+        std::vector<PixelRect> rects;      // each operand's screen rectangle
+        std::vector<int> markLeaves;       // the leaves that hold mark slots
+        std::vector<PixelRect> markRects;  // and their screen rectangles
+        PixelRect drawn;                   // every pixel the frame draws: all of the above
+    };
+    ScreenRects screenRects(const ViewSetup& view, const csg::CompiledTree& compiled, bool plainFrame) const;
+    // The frame's plan (FramePlan.h) from what this renderer knows of its scene.
+    FramePlan planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const;
+    // `rects`: each operand's screen rectangle (screenRect of its vertices).
+    // `markLeaves`, `markRects`: the leaves that hold mark slots (operands,
+    // and a group's members in its place) and their screen rectangles.
+    // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
+    // `litAs`: the normal pass lights the surfaces into the image, which
+    // the caller has cleared to the background (NormalPass.h).
+    void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const std::vector<int>& markLeaves,
+                         const std::vector<PixelRect>& markRects, const RenderSettings& settings,
+                         const std::vector<glm::vec2>& baseColors, const std::optional<Lighting>& litAs,
+                         Frame& frame);
+    // What every tile of a frame reads (peelAndEvaluate's arguments).
+    struct TileInputs {
+        const ViewSetup& view;
+        const std::vector<PixelRect>& rects;
+        const std::vector<ScreenHull>& hulls;
+        const std::vector<int>& markLeaves;
+        const std::vector<PixelRect>& markRects;
+        const RenderSettings& settings;
+        const std::vector<glm::vec2>& baseColors;
+        const PeelRequest& request;
+        const std::optional<Lighting>& litAs;
+    };
+    struct TileCounts {
+        int drawn = 0;   // tiles peeled, evaluated and given normals
+        int splits = 0;  // tiles split in four because their layers outgrew the budget
+    };
+    // The tile grid the frame starts from (see planTiles' body); throws
+    // strata::Error where even the smallest tile's layers exceed the budget.
+    struct TilePlan {
+        std::vector<PixelRect> grid;
+        std::size_t budgetTiles = 1;     // tiles the budget alone asks
+        std::size_t wholeLayerBytes = 0; // the layers' estimate for the frame in one tile
+    };
+    TilePlan planTiles(const TileInputs& in) const;
+    // Peels each tile of `grid`, then evaluates it and recovers its normals;
+    // a tile whose auto peeling outgrows the budget is split in four.
+    TileCounts runTiles(const TileInputs& in, const std::vector<PixelRect>& grid, Frame& frame);
+    // The result peel's rounds over one peeled tile (sampleResult).
+    void peelResultRounds(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                          Frame& frame);
+    // The evaluate and normal passes over one peeled tile.
+    void evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                      Frame& frame);
+    // Paints the tile's blocks' forms (EvaluatePass::run) into frame.blockForms.
+    void keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame);
+    void keepLayers(const PixelRect& tile, const std::vector<int>& operands, const std::vector<PixelRect>& rects,
+                    const std::vector<OperandLayers>& layers, Frame& frame);
+    // Shade, alpha and translucent passes over the G-buffer in `targets`.
+    // `marked`: ShadePass::run's. `lit`: the image is lit already (a frame
+    // lit as drawn), only the alpha and translucent passes are left.
+    void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
+                    const std::optional<PixelRect>& marked, bool lit = false);
+    void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
+    void readBack(Frame& frame, const RenderSettings& settings);  // what settings.read* ask, beside image and leaves
+};
+
+}  // namespace strata::render

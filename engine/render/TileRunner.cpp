@@ -1,0 +1,298 @@
+#include "RendererImpl.h"
+
+namespace strata::render {
+
+namespace {
+
+std::string mebibytes(std::size_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+    return text;
+}
+
+// Tiles cut for the operands' coverage (RenderSettings::coverageTilingFrom)
+// are at least this many pixels a side.
+constexpr int kSmallestCoverageTile = 64;
+
+// `tile` cut in four on the evaluator's block grid: each side of at least two
+// blocks is halved (rounded up to whole blocks), a shorter one is kept, so
+// no tile is thinner than a block unless the frame is. Empty parts are left
+// out; a tile that cannot be cut comes back alone.
+std::vector<PixelRect> quarters(const PixelRect& tile) {
+    auto half = [](int size) {
+        const int b = EvaluatePass::kBlock;
+        return size >= 2 * b ? (size / 2 + b - 1) / b * b : size;
+    };
+    const int w0 = half(tile.width), h0 = half(tile.height);
+    std::vector<PixelRect> parts;
+    for (const PixelRect& part : {PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0},
+                                  PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
+                                  PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
+                                  PixelRect{tile.x, tile.y, w0, h0}}) {
+        if (!part.empty()) parts.push_back(part);
+    }
+    return parts;
+}
+
+}  // namespace
+
+void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects,
+                                     const std::vector<int>& markLeaves, const std::vector<PixelRect>& markRects,
+                                     const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
+                                     const std::optional<Lighting>& litAs, Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int>& operands = compiled.operandLeaf;
+    if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
+    PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
+                        compiled.operandGroups, compiled.unionGroups};
+    // Every ray starts outside every operand: those that only unions lead to
+    // need their first layer alone (the debug views show every layer).
+    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers && roundSink == nullptr) {
+        request.firstLayerOnly = current->unionsOnly;
+    }
+    // Each single leaf's hull on the screen, which the evaluator's blocks
+    // test besides the rectangle: a thin bar seen aslant (a Menger sponge's)
+    // reaches a few blocks of the many its rectangle holds. Groups, and
+    // leaves of many vertices, keep their rectangle alone.
+    constexpr std::size_t kMostHullVertices = 4096;
+    std::vector<ScreenHull> hulls(operands.size());
+    for (std::size_t k = 0; k < operands.size() && settings.screenHulls; ++k) {
+        if (compiled.leavesOf(k).size() != 1 || compiled.isUnionGroup(k)) continue;
+        hulls[k] = screenHull(view, scene.leafVertices(operands[k]), kMostHullVertices);
+    }
+    const TileInputs in{view, rects, hulls, markLeaves, markRects, settings, baseColors, request, litAs};
+    const TilePlan plan = planTiles(in);
+    const std::vector<PixelRect>& grid = plan.grid;
+    const TileCounts counts = runTiles(in, grid, frame);
+    stats.tiles = counts.drawn;
+    std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
+        return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
+    });
+    if (plan.budgetTiles > 1) {
+        stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
+                              std::to_string(view.height) + " would exceed the budget of " +
+                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(counts.drawn) +
+                              " tiles, each peeling only the operands that meet it");
+    } else if (grid.size() > 1) {
+        stats.notes.push_back("rendered in " + std::to_string(counts.drawn) +
+                              " tiles, each peeling only the operands that meet it: " +
+                              mebibytes(stats.textureBytes) + " of layers instead of " +
+                              mebibytes(plan.wholeLayerBytes) + " for the whole frame");
+    }
+    if (counts.splits > 0) {
+        stats.notes.push_back("auto peeling needed more layers than estimated: split " +
+                              std::to_string(counts.splits) + " tiles to stay within " +
+                              mebibytes(settings.memoryBudget));
+    }
+    if (settings.layers > 1) {
+        const bool anyConvex = std::any_of(operands.begin(), operands.end(),
+                                           [&](int leaf) { return scene.leaf(leaf).convex; });
+        if (anyConvex) stats.notes.push_back("convex operands peeled once: a second layer would be empty");
+    }
+}
+
+Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
+    // The whole frame, or an even grid of quarters, of quarters of those,
+    // ..., as fine as the densest tile needs for the layers its operands
+    // need (a first guess for auto) to fit the budget. Only the operands
+    // whose rectangle meets a tile are peeled for it, so memory follows the
+    // operands per tile, not their number in the frame. One tile size for
+    // the whole frame lets every tile (and the next frame) reuse one layer
+    // texture: llvmpipe zeroes each new texture, and a fresh 512 MiB costs
+    // more than the peel of several extra tiles.
+    const std::vector<int>& operands = current->tree.operandLeaf;
+    const std::size_t budget = in.settings.memoryBudget;
+    std::vector<char> inTile(operands.size());
+    auto area = [](const PixelRect& tile) {
+        return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
+    };
+    // A grid and each of its tiles' estimates, made once per grid.
+    struct Grid {
+        std::vector<PixelRect> tiles;
+        std::vector<PeelPass::LayerEstimate> estimates;
+    };
+    auto withEstimates = [&](std::vector<PixelRect> tiles) {
+        Grid grid{std::move(tiles), {}};
+        for (const PixelRect& tile : grid.tiles) {
+            for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = in.rects[k].intersects(tile) ? 1 : 0;
+            grid.estimates.push_back(PeelPass::estimateLayers(scene, operands, inTile, in.request));
+        }
+        return grid;
+    };
+    auto bytes = [&](const Grid& grid, std::size_t t) { return grid.estimates[t].bytesPerPixel() * area(grid.tiles[t]); };
+    auto quartered = [](const Grid& grid) {
+        std::vector<PixelRect> parts;
+        for (const PixelRect& tile : grid.tiles) {
+            for (const PixelRect& part : quarters(tile)) parts.push_back(part);
+        }
+        return parts;
+    };
+    Grid grid = withEstimates({PixelRect{0, 0, in.view.width, in.view.height}});
+    TilePlan plan;
+    plan.wholeLayerBytes = bytes(grid, 0);
+    for (;;) {
+        std::size_t over = 0;
+        while (over < grid.tiles.size() && bytes(grid, over) <= budget) ++over;
+        if (over == grid.tiles.size()) break;
+        std::vector<PixelRect> parts = quartered(grid);
+        if (parts.size() == grid.tiles.size()) {  // no tile can be cut: `over` is as small as tiles get
+            const PeelPass::LayerEstimate& estimate = grid.estimates[over];
+            const std::size_t perPixel = estimate.bytesPerPixel();
+            throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate.layers) +
+                        " peel layers for only " + std::to_string(budget / perPixel) +
+                        " pixels at a time; give it at least " + mebibytes(perPixel * area(grid.tiles[over])));
+        }
+        grid = withEstimates(std::move(parts));
+    }
+    // Within the budget, finer still while the layers take more than
+    // coverageTilingFrom and the operands are small on screen: a quarter then
+    // peels only the few that meet it, so its layers shrink by far more
+    // than the area, for a few more draws (at most coverageTilingDraws
+    // times as many a step). Operands that span the frame would be drawn
+    // once per tile for a quarter of the memory each, and stay whole.
+    auto draws = [](const Grid& g) {
+        std::size_t sum = 0;
+        for (const PeelPass::LayerEstimate& e : g.estimates) sum += static_cast<std::size_t>(e.layers);
+        return sum;
+    };
+    auto layerBytes = [&](const Grid& g) {
+        std::size_t most = 0;
+        for (std::size_t t = 0; t < g.tiles.size(); ++t) most = std::max(most, bytes(g, t));
+        return most;
+    };
+    plan.budgetTiles = grid.tiles.size();
+    while (layerBytes(grid) > in.settings.coverageTilingFrom) {
+        std::vector<PixelRect> parts = quartered(grid);
+        const bool small = std::any_of(parts.begin(), parts.end(), [](const PixelRect& tile) {
+            return std::min(tile.width, tile.height) < kSmallestCoverageTile;
+        });
+        if (parts.size() == grid.tiles.size() || small) break;
+        Grid cut = withEstimates(std::move(parts));
+        if (static_cast<double>(draws(cut)) > in.settings.coverageTilingDraws * static_cast<double>(draws(grid))) break;
+        grid = std::move(cut);
+    }
+    plan.grid = std::move(grid.tiles);
+    return plan;
+}
+
+Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const std::vector<PixelRect>& grid,
+                                                    Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const csg::CompiledTree& compiled = current->tree;
+    const std::vector<int>& operands = compiled.operandLeaf;
+    std::deque<PixelRect> tiles(grid.begin(), grid.end());
+    std::vector<OperandLayers> layers;
+    TileCounts counts;
+    while (!tiles.empty()) {
+        // Every tile fits the budget by its estimate: the grid's, and their
+        // quarters (fewer operands, fewer pixels) split off below.
+        const PixelRect tile = tiles.front();
+        tiles.pop_front();
+
+        const auto start = Clock::now();
+        const bool fits = peel->run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
+        glFinish();
+        stats.peelMs += msSince(start);
+        stats.textureBytes = std::max(stats.textureBytes, peel->textureBytes());
+        stats.textureAllocations += peel->allocations();
+        stats.peelPasses += peel->passes();
+        stats.listPeeledOperands += peel->collected();
+        if (!fits) {
+            if (quarters(tile).size() == 1) {
+                throw Error("renderer: the scene needs more peel layers at one spot than " +
+                            std::string("the memory budget of ") + mebibytes(in.settings.memoryBudget) +
+                            " and the GPU's " + std::to_string(peel->maxArrayLayers()) + " array layers allow");
+            }
+            // Auto peeling went deeper than guessed: split the tile in four.
+            for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
+            ++counts.splits;
+            continue;
+        }
+        for (std::size_t k = 0; k < operands.size(); ++k) {
+            for (int leaf : compiled.leavesOf(k)) {
+                int& used = stats.layersPerLeaf[static_cast<std::size_t>(leaf)];
+                used = std::max(used, layers[k].count);
+            }
+        }
+        if (in.settings.keepPeelLayers) keepLayers(tile, operands, in.rects, layers, frame);
+        if (roundSink != nullptr) {
+            peelResultRounds(in, tile, layers, frame);
+        } else {
+            evaluateTile(in, tile, layers, frame);
+        }
+        ++counts.drawn;
+    }
+    return counts;
+}
+
+void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, const std::vector<OperandLayers>& layers,
+                                  Frame& frame) {
+    FrameStats& stats = frame.stats;
+    const csg::CompiledTree& compiled = current->tree;
+    auto start = Clock::now();
+    std::vector<BlockForm> forms;
+    evaluate->run(targets, peel->layers(), tile, layers, in.rects, in.hulls, EvaluatePass::groupTable(leafCount, compiled, layers),
+                 peel->groupIds(), in.settings.generalEvaluator, in.view.coincidence, stats,
+                 in.settings.keepBlockForms ? &forms : nullptr);
+    if (in.settings.keepBlockForms) keepBlockForms(tile, forms, frame);
+    const std::vector<std::uint32_t> shown = evaluate->shownFaces();  // waits for the evaluator
+    stats.evaluateMs += msSince(start);
+    start = Clock::now();
+    normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects,
+                 in.litAs);
+    glFinish();
+    stats.normalMs += msSince(start);
+}
+
+void Renderer::Impl::keepBlockForms(const PixelRect& tile, const std::vector<BlockForm>& forms, Frame& frame) {
+    if (forms.empty()) return;  // nothing drawn in the tile
+    const std::size_t w = static_cast<std::size_t>(frame.width);
+    constexpr int block = EvaluatePass::kBlock;
+    const int blocksX = (tile.width + block - 1) / block;
+    for (int y = 0; y < tile.height; ++y) {
+        const std::size_t row = static_cast<std::size_t>(frame.height - 1 - (tile.y + y));  // rows top first
+        for (int x = 0; x < tile.width; ++x) {
+            const std::size_t b = static_cast<std::size_t>((y / block) * blocksX + x / block);
+            frame.blockForms[row * w + static_cast<std::size_t>(tile.x + x)] = forms[b];
+        }
+    }
+}
+
+void Renderer::Impl::keepLayers(const PixelRect& tile, const std::vector<int>& operands,
+                                const std::vector<PixelRect>& rects, const std::vector<OperandLayers>& layers,
+                                Frame& frame) {
+    const std::size_t n = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
+    const float none = std::numeric_limits<float>::infinity();
+    std::vector<float> texels(static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height) * 2);
+    for (std::size_t k = 0; k < operands.size(); ++k) {
+        for (int l = 0; l < layers[k].count; ++l) {
+            auto it = std::find_if(frame.peelLayers.begin(), frame.peelLayers.end(), [&](const PeelLayerImage& p) {
+                return p.leaf == operands[k] && p.layer == l;
+            });
+            if (it == frame.peelLayers.end()) {
+                frame.peelLayers.push_back({operands[k], l, std::vector<float>(n, none), std::vector<float>(n, none)});
+                it = frame.peelLayers.end() - 1;
+            }
+            const PixelRect valid = PeelPass::region(rects[k], tile, EvaluatePass::kBlock);
+            if (valid.empty()) continue;
+            peel->layers().downloadRegion(valid.x, valid.y, layers[k].first + l, valid.width, valid.height, 1, GL_RG,
+                                         GL_FLOAT, std::as_writable_bytes(std::span(texels)));
+            for (int y = valid.y; y < valid.y + valid.height; ++y) {
+                for (int x = valid.x; x < valid.x + valid.width; ++x) {
+                    const std::size_t from =
+                        (static_cast<std::size_t>(y - valid.y) * static_cast<std::size_t>(valid.width) +
+                         static_cast<std::size_t>(x - valid.x)) * 2;
+                    // GL rows count from the bottom; image rows from the top.
+                    const std::size_t to = static_cast<std::size_t>(frame.height - 1 - (tile.y + y)) * frame.width +
+                                           static_cast<std::size_t>(tile.x + x);
+                    const float nearValue = -texels[from], farValue = texels[from + 1];
+                    it->nearDepth[to] = nearValue >= shader::kClearedDepth ? none : nearValue;
+                    it->farDepth[to] = farValue <= -shader::kClearedDepth ? none : farValue;
+                }
+            }
+        }
+    }
+}
+
+}  // namespace strata::render
