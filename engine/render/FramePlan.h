@@ -7,7 +7,11 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
 
+#include "ViewSetup.h"
 #include "strata/csg/CompiledTree.h"
 #include "strata/render/Frame.h"
 
@@ -39,5 +43,40 @@ struct FramePlan {
 };
 
 FramePlan planFrame(const FrameFacts& facts, const RenderSettings& settings);
+
+// The peel layers a tile needs for the operands it meets: how many, and
+// their bytes a pixel (PeelPass::estimateLayers).
+struct TileEstimate {
+    int layers = 1;
+    std::size_t bytesPerPixel = 0;
+};
+
+// The tiles an evaluated frame is drawn in.
+struct TileGrid {
+    std::vector<PixelRect> tiles;
+    std::size_t budgetTiles = 1;      // tiles the budget alone asks
+    std::size_t wholeLayerBytes = 0;  // the layers' estimate for the frame in one tile
+};
+
+// The whole frame, or an even grid of quarters, of quarters of those, ...,
+// as fine as the densest tile needs for its operands' layers to fit
+// settings.memoryBudget; then finer while the layers take more than
+// settings.coverageTilingFrom and a step draws at most
+// settings.coverageTilingDraws times as many layers (operands small on
+// screen), no tile cut for coverage below 64 pixels a side. `rects`: each operand's screen rectangle; `estimate(inTile)`:
+// the layers of a tile that meets the operands `inTile` marks. Throws
+// strata::Error where even the smallest tile's layers exceed the budget.
+// Tiles are cut on a grid of `block` pixels (quarters).
+TileGrid planTileGrid(int width, int height, const std::vector<PixelRect>& rects, const RenderSettings& settings,
+                      int block, const std::function<TileEstimate(const std::vector<char>& inTile)>& estimate);
+
+// `tile` cut in four on a grid of `block` pixels: each side of at least two
+// blocks is halved (rounded up to whole blocks), a shorter one is kept, so
+// no tile is thinner than a block unless the frame is. Empty parts are left
+// out; a tile that cannot be cut comes back alone.
+std::vector<PixelRect> quarters(const PixelRect& tile, int block);
+
+// Bytes as the frame's notes and messages give them: "144.0 MiB".
+std::string mebibytes(std::size_t bytes);
 
 }  // namespace strata::render

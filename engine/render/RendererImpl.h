@@ -169,14 +169,9 @@ struct Renderer::Impl {
         int drawn = 0;   // tiles peeled, evaluated and given normals
         int splits = 0;  // tiles split in four because their layers outgrew the budget
     };
-    // The tile grid the frame starts from (see planTiles' body); throws
-    // strata::Error where even the smallest tile's layers exceed the budget.
-    struct TilePlan {
-        std::vector<PixelRect> grid;
-        std::size_t budgetTiles = 1;     // tiles the budget alone asks
-        std::size_t wholeLayerBytes = 0; // the layers' estimate for the frame in one tile
-    };
-    TilePlan planTiles(const TileInputs& in) const;
+    // The tile grid the frame starts from (planTileGrid, FramePlan.h), with
+    // PeelPass's estimates of each tile's layers.
+    TileGrid planTiles(const TileInputs& in) const;
     // Peels each tile of `grid`, then evaluates it and recovers its normals;
     // a tile whose auto peeling outgrows the budget is split in four.
     TileCounts runTiles(const TileInputs& in, const std::vector<PixelRect>& grid, Frame& frame);

@@ -2,40 +2,6 @@
 
 namespace strata::render {
 
-namespace {
-
-std::string mebibytes(std::size_t bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
-    return text;
-}
-
-// Tiles cut for the operands' coverage (RenderSettings::coverageTilingFrom)
-// are at least this many pixels a side.
-constexpr int kSmallestCoverageTile = 64;
-
-// `tile` cut in four on the evaluator's block grid: each side of at least two
-// blocks is halved (rounded up to whole blocks), a shorter one is kept, so
-// no tile is thinner than a block unless the frame is. Empty parts are left
-// out; a tile that cannot be cut comes back alone.
-std::vector<PixelRect> quarters(const PixelRect& tile) {
-    auto half = [](int size) {
-        const int b = EvaluatePass::kBlock;
-        return size >= 2 * b ? (size / 2 + b - 1) / b * b : size;
-    };
-    const int w0 = half(tile.width), h0 = half(tile.height);
-    std::vector<PixelRect> parts;
-    for (const PixelRect& part : {PixelRect{tile.x + w0, tile.y + h0, tile.width - w0, tile.height - h0},
-                                  PixelRect{tile.x, tile.y + h0, w0, tile.height - h0},
-                                  PixelRect{tile.x + w0, tile.y, tile.width - w0, h0},
-                                  PixelRect{tile.x, tile.y, w0, h0}}) {
-        if (!part.empty()) parts.push_back(part);
-    }
-    return parts;
-}
-
-}  // namespace
-
 void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects,
                                      const std::vector<int>& markLeaves, const std::vector<PixelRect>& markRects,
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
@@ -62,8 +28,8 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         hulls[k] = screenHull(view, scene.leafVertices(operands[k]), kMostHullVertices);
     }
     const TileInputs in{view, rects, hulls, markLeaves, markRects, settings, baseColors, request, litAs};
-    const TilePlan plan = planTiles(in);
-    const std::vector<PixelRect>& grid = plan.grid;
+    const TileGrid plan = planTiles(in);
+    const std::vector<PixelRect>& grid = plan.tiles;
     const TileCounts counts = runTiles(in, grid, frame);
     stats.tiles = counts.drawn;
     std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
@@ -92,88 +58,13 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     }
 }
 
-Renderer::Impl::TilePlan Renderer::Impl::planTiles(const TileInputs& in) const {
-    // The whole frame, or an even grid of quarters, of quarters of those,
-    // ..., as fine as the densest tile needs for the layers its operands
-    // need (a first guess for auto) to fit the budget. Only the operands
-    // whose rectangle meets a tile are peeled for it, so memory follows the
-    // operands per tile, not their number in the frame. One tile size for
-    // the whole frame lets every tile (and the next frame) reuse one layer
-    // texture: llvmpipe zeroes each new texture, and a fresh 512 MiB costs
-    // more than the peel of several extra tiles.
+TileGrid Renderer::Impl::planTiles(const TileInputs& in) const {
     const std::vector<int>& operands = current->tree.operandLeaf;
-    const std::size_t budget = in.settings.memoryBudget;
-    std::vector<char> inTile(operands.size());
-    auto area = [](const PixelRect& tile) {
-        return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
-    };
-    // A grid and each of its tiles' estimates, made once per grid.
-    struct Grid {
-        std::vector<PixelRect> tiles;
-        std::vector<PeelPass::LayerEstimate> estimates;
-    };
-    auto withEstimates = [&](std::vector<PixelRect> tiles) {
-        Grid grid{std::move(tiles), {}};
-        for (const PixelRect& tile : grid.tiles) {
-            for (std::size_t k = 0; k < operands.size(); ++k) inTile[k] = in.rects[k].intersects(tile) ? 1 : 0;
-            grid.estimates.push_back(PeelPass::estimateLayers(scene, operands, inTile, in.request));
-        }
-        return grid;
-    };
-    auto bytes = [&](const Grid& grid, std::size_t t) { return grid.estimates[t].bytesPerPixel() * area(grid.tiles[t]); };
-    auto quartered = [](const Grid& grid) {
-        std::vector<PixelRect> parts;
-        for (const PixelRect& tile : grid.tiles) {
-            for (const PixelRect& part : quarters(tile)) parts.push_back(part);
-        }
-        return parts;
-    };
-    Grid grid = withEstimates({PixelRect{0, 0, in.view.width, in.view.height}});
-    TilePlan plan;
-    plan.wholeLayerBytes = bytes(grid, 0);
-    for (;;) {
-        std::size_t over = 0;
-        while (over < grid.tiles.size() && bytes(grid, over) <= budget) ++over;
-        if (over == grid.tiles.size()) break;
-        std::vector<PixelRect> parts = quartered(grid);
-        if (parts.size() == grid.tiles.size()) {  // no tile can be cut: `over` is as small as tiles get
-            const PeelPass::LayerEstimate& estimate = grid.estimates[over];
-            const std::size_t perPixel = estimate.bytesPerPixel();
-            throw Error("renderer: a memory budget of " + mebibytes(budget) + " holds " + std::to_string(estimate.layers) +
-                        " peel layers for only " + std::to_string(budget / perPixel) +
-                        " pixels at a time; give it at least " + mebibytes(perPixel * area(grid.tiles[over])));
-        }
-        grid = withEstimates(std::move(parts));
-    }
-    // Within the budget, finer still while the layers take more than
-    // coverageTilingFrom and the operands are small on screen: a quarter then
-    // peels only the few that meet it, so its layers shrink by far more
-    // than the area, for a few more draws (at most coverageTilingDraws
-    // times as many a step). Operands that span the frame would be drawn
-    // once per tile for a quarter of the memory each, and stay whole.
-    auto draws = [](const Grid& g) {
-        std::size_t sum = 0;
-        for (const PeelPass::LayerEstimate& e : g.estimates) sum += static_cast<std::size_t>(e.layers);
-        return sum;
-    };
-    auto layerBytes = [&](const Grid& g) {
-        std::size_t most = 0;
-        for (std::size_t t = 0; t < g.tiles.size(); ++t) most = std::max(most, bytes(g, t));
-        return most;
-    };
-    plan.budgetTiles = grid.tiles.size();
-    while (layerBytes(grid) > in.settings.coverageTilingFrom) {
-        std::vector<PixelRect> parts = quartered(grid);
-        const bool small = std::any_of(parts.begin(), parts.end(), [](const PixelRect& tile) {
-            return std::min(tile.width, tile.height) < kSmallestCoverageTile;
-        });
-        if (parts.size() == grid.tiles.size() || small) break;
-        Grid cut = withEstimates(std::move(parts));
-        if (static_cast<double>(draws(cut)) > in.settings.coverageTilingDraws * static_cast<double>(draws(grid))) break;
-        grid = std::move(cut);
-    }
-    plan.grid = std::move(grid.tiles);
-    return plan;
+    return planTileGrid(in.view.width, in.view.height, in.rects, in.settings, EvaluatePass::kBlock,
+                        [&](const std::vector<char>& inTile) {
+                            const PeelPass::LayerEstimate e = PeelPass::estimateLayers(scene, operands, inTile, in.request);
+                            return TileEstimate{e.layers, e.bytesPerPixel()};
+                        });
 }
 
 Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const std::vector<PixelRect>& grid,
@@ -199,13 +90,13 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
         stats.peelPasses += peel->passes();
         stats.listPeeledOperands += peel->collected();
         if (!fits) {
-            if (quarters(tile).size() == 1) {
+            if (quarters(tile, EvaluatePass::kBlock).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
                             std::string("the memory budget of ") + mebibytes(in.settings.memoryBudget) +
                             " and the GPU's " + std::to_string(peel->maxArrayLayers()) + " array layers allow");
             }
             // Auto peeling went deeper than guessed: split the tile in four.
-            for (const PixelRect& part : quarters(tile)) tiles.push_front(part);
+            for (const PixelRect& part : quarters(tile, EvaluatePass::kBlock)) tiles.push_front(part);
             ++counts.splits;
             continue;
         }

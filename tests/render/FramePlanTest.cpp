@@ -1,11 +1,18 @@
 // The frame plan (engine/render/FramePlan.h) against the rules
 // docs/algorithm.md states for each kind of frame: when a union is drawn
-// plainly, which compiled tree the evaluator walks, and when the surfaces
-// are lit as they are drawn. CPU only: the plan is made before any pass.
+// plainly, which compiled tree the evaluator walks, when the surfaces are
+// lit as they are drawn, and which tiles a frame is drawn in (every pixel
+// in one tile, each within the memory budget, cut further for operands
+// small on screen only while that saves layers). CPU only: the plan is
+// made before any pass.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "FramePlan.h"
+#include "strata/core/Error.h"
 
 using namespace strata;
 using render::FrameFacts;
@@ -142,4 +149,90 @@ TEST(FramePlan, AResultWithNoCodeIsNeitherDrawnNorEvaluated) {
     RenderSettings separate;
     separate.groupOperands = false;
     EXPECT_FALSE(render::planFrame(mixed, separate).evaluated);
+}
+
+namespace {
+
+// Every pixel of a width x height frame in exactly one tile.
+void expectPartition(const std::vector<render::PixelRect>& tiles, int width, int height) {
+    std::vector<int> covered(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+    for (const render::PixelRect& t : tiles) {
+        ASSERT_FALSE(t.empty());
+        for (int y = t.y; y < t.y + t.height; ++y)
+            for (int x = t.x; x < t.x + t.width; ++x) {
+                ASSERT_TRUE(x >= 0 && x < width && y >= 0 && y < height) << x << "," << y;
+                ++covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+            }
+    }
+    for (int c : covered) ASSERT_EQ(c, 1);
+}
+
+// A tile's layers: `layers` for each operand it meets, 8 bytes a layer and pixel.
+render::TileEstimate perOperand(const std::vector<char>& inTile, int layers) {
+    int met = 0;
+    for (char c : inTile) met += c ? 1 : 0;
+    const int total = std::max(1, met * layers);
+    return {total, static_cast<std::size_t>(total) * 8};
+}
+
+}  // namespace
+
+TEST(TilePlan, QuartersCutOnTheBlockGridAndKeepEveryPixel) {
+    const render::PixelRect tile{10, 20, 100, 40};
+    const std::vector<render::PixelRect> parts = render::quarters(tile, 16);
+    ASSERT_EQ(parts.size(), 4u);
+    for (const render::PixelRect& p : parts) {
+        EXPECT_EQ((p.x - tile.x) % 16, 0);  // cuts fall on the block grid from the tile's corner
+        EXPECT_EQ((p.y - tile.y) % 16, 0);
+    }
+    std::vector<render::PixelRect> moved;
+    for (render::PixelRect p : parts) moved.push_back({p.x - tile.x, p.y - tile.y, p.width, p.height});
+    expectPartition(moved, tile.width, tile.height);
+    // A side shorter than two blocks is kept whole; a tile with both cannot be cut.
+    EXPECT_EQ(render::quarters({0, 0, 100, 20}, 16).size(), 2u);
+    EXPECT_EQ(render::quarters({0, 0, 31, 31}, 16).size(), 1u);
+}
+
+TEST(TilePlan, AFrameWithinTheBudgetIsOneTileAndAFrameBeyondItIsCutUntilEachTileFits) {
+    const std::vector<render::PixelRect> rects{{0, 0, 512, 512}};  // one operand over the whole frame
+    auto threeLayers = [](const std::vector<char>& inTile) { return perOperand(inTile, 3); };
+    RenderSettings settings;
+    settings.memoryBudget = 512 * 512 * 24;
+    settings.coverageTilingFrom = settings.memoryBudget;
+    render::TileGrid one = render::planTileGrid(512, 512, rects, settings, 16, threeLayers);
+    EXPECT_EQ(one.tiles.size(), 1u);
+    EXPECT_EQ(one.budgetTiles, 1u);
+    EXPECT_EQ(one.wholeLayerBytes, std::size_t(512) * 512 * 24);
+
+    settings.memoryBudget = 512 * 512 * 24 / 4;  // a quarter of the frame's layers
+    render::TileGrid four = render::planTileGrid(512, 512, rects, settings, 16, threeLayers);
+    EXPECT_EQ(four.tiles.size(), 4u);
+    EXPECT_EQ(four.budgetTiles, 4u);
+    expectPartition(four.tiles, 512, 512);
+    for (const render::PixelRect& t : four.tiles)
+        EXPECT_LE(std::size_t(24) * static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height),
+                  settings.memoryBudget);
+
+    settings.memoryBudget = 16 * 16 * 24 - 1;  // not even one block's layers
+    EXPECT_THROW(render::planTileGrid(512, 512, rects, settings, 16, threeLayers), strata::Error);
+}
+
+TEST(TilePlan, OperandsSmallOnScreenAreTiledByCoverageWhileItSavesLayers) {
+    // Four small operands, one in each corner of the frame: a quarter meets
+    // one of them, so its layers are a quarter of the frame's.
+    const std::vector<render::PixelRect> corners{{0, 0, 40, 40}, {472, 0, 40, 40}, {0, 472, 40, 40}, {472, 472, 40, 40}};
+    auto eightLayers = [](const std::vector<char>& inTile) { return perOperand(inTile, 8); };
+    RenderSettings settings;
+    settings.memoryBudget = std::size_t(1) << 30;  // the budget asks for no tiles
+    settings.coverageTilingFrom = 1;
+    const render::TileGrid grid = render::planTileGrid(512, 512, corners, settings, 16, eightLayers);
+    EXPECT_EQ(grid.budgetTiles, 1u);
+    EXPECT_GT(grid.tiles.size(), 1u);
+    expectPartition(grid.tiles, 512, 512);
+    for (const render::PixelRect& t : grid.tiles) EXPECT_GE(std::min(t.width, t.height), 64);  // never below 64 a side
+
+    // An operand over the whole frame meets every quarter: cutting would
+    // draw it four times for no fewer layers a tile, so the frame stays whole.
+    const std::vector<render::PixelRect> whole{{0, 0, 512, 512}};
+    EXPECT_EQ(render::planTileGrid(512, 512, whole, settings, 16, eightLayers).tiles.size(), 1u);
 }
