@@ -64,6 +64,11 @@ FramePlan planFrame(const FrameFacts& facts, const RenderSettings& settings) {
     plan.aovNormals = facts.aovs && settings.readNormal;
     plan.litAsDrawn =
         !settings.outline && (plan.plainFrame || (plan.evaluated && !plan.aovNormals && !facts.resultPeel));
+    plan.resultPeel = facts.resultPeel;
+    // Every ray starts outside every operand: those that only unions lead to
+    // need their first layer alone (the debug views show every layer, and
+    // the result peel walks past it).
+    plan.firstLayerOnly = facts.outside && !settings.keepPeelLayers && !facts.resultPeel;
     return plan;
 }
 

@@ -40,6 +40,8 @@ struct FramePlan {
     bool evaluated = false;              // peeled and evaluated
     bool aovNormals = false;             // its normals are read back
     bool litAsDrawn = false;             // lit as its surfaces are drawn: no shade pass
+    bool resultPeel = false;             // sampleResult's rounds: nothing shaded, a wider coincidence
+    bool firstLayerOnly = false;         // every ray starts outside: the operands only unions lead to need one layer
 };
 
 FramePlan planFrame(const FrameFacts& facts, const RenderSettings& settings);

@@ -275,15 +275,7 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
 ViewSetup Renderer::Impl::frameView(const Camera& camera, const RenderSettings& settings) const {
     if (!hasScene) throw Error("renderer: render() before setScene()");
     if (settings.layers < 0) throw Error("renderer: layers must be 0 (auto) or positive");
-    ViewSetup view = makeView(camera, scene.bounds());
-    // The result peel (sampleResult) runs its rays along the model's axes,
-    // on grids that put rays exactly along a solid's silhouette edges,
-    // where the rasterizer's depths of the front and back faces that meet
-    // there (interpolated from vertices snapped to its sub-pixel grid) part
-    // by up to 2^-17 of the scene's scale: a chord that exact arithmetic
-    // gives no length. Its cells are far coarser than that, so it takes
-    // sixteen times the tolerance of an image.
-    if (roundSink != nullptr) view.coincidence *= 16.0;
+    const ViewSetup view = makeView(camera, scene.bounds());
     if (view.width > maxTextureSize || view.height > maxTextureSize) {
         throw Error("renderer: image size " + std::to_string(view.width) + "x" + std::to_string(view.height) +
                     " exceeds the GPU's largest texture, " + std::to_string(maxTextureSize));
@@ -333,7 +325,16 @@ FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings&
 ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame,
                                     bool aovs) {
     const auto frameStart = Clock::now();
-    const ViewSetup view = frameView(camera, settings);
+    ViewSetup view = frameView(camera, settings);
+    const FramePlan plan = planFrame(view, settings, aovs);
+    // The result peel (sampleResult) runs its rays along the model's axes,
+    // on grids that put rays exactly along a solid's silhouette edges,
+    // where the rasterizer's depths of the front and back faces that meet
+    // there (interpolated from vertices snapped to its sub-pixel grid) part
+    // by up to 2^-17 of the scene's scale: a chord that exact arithmetic
+    // gives no length. Its cells are far coarser than that, so it takes
+    // sixteen times the tolerance of an image.
+    if (plan.resultPeel) view.coincidence *= 16.0;
     const ColorScheme& scheme = colorScheme(settings.colorScheme);
 
     frame.width = view.width;
@@ -344,7 +345,6 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         frame.blockForms.assign(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height),
                                 BlockForm::None);
     }
-    const FramePlan plan = planFrame(view, settings, aovs);
     const Compilation& chosen = compilation(plan.form);
     if (current != &chosen && !plan.plainFrame) {
         evaluate->setTree(chosen.tree, canMarkLeaves);
@@ -391,14 +391,14 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
             const float background[4] = {scheme.background.r, scheme.background.g, scheme.background.b, 1.0f};
             glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, background);
         }
-        peelAndEvaluate(view, screen.rects, screen.markLeaves, screen.markRects, settings,
+        peelAndEvaluate(view, plan, screen.rects, screen.markLeaves, screen.markRects, settings,
                         ShadePass::baseColors(scene, scheme), litAs, frame);
     } else {
         stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");
     }
 
-    if (roundSink == nullptr) {
+    if (!plan.resultPeel) {
         const auto start = Clock::now();
         shadeFrame(view, scheme, settings, screen.drawn, plan.litAsDrawn);
         stats.shadeMs = msSince(start);

@@ -143,19 +143,22 @@ struct Renderer::Impl {
     ScreenRects screenRects(const ViewSetup& view, const csg::CompiledTree& compiled, bool plainFrame) const;
     // The frame's plan (FramePlan.h) from what this renderer knows of its scene.
     FramePlan planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const;
+    // `plan`: the frame's (planFrame).
     // `rects`: each operand's screen rectangle (screenRect of its vertices).
     // `markLeaves`, `markRects`: the leaves that hold mark slots (operands,
     // and a group's members in its place) and their screen rectangles.
     // `baseColors`: ShadePass::baseColors for this frame's colour scheme.
     // `litAs`: the normal pass lights the surfaces into the image, which
     // the caller has cleared to the background (NormalPass.h).
-    void peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects, const std::vector<int>& markLeaves,
+    void peelAndEvaluate(const ViewSetup& view, const FramePlan& plan, const std::vector<PixelRect>& rects,
+                         const std::vector<int>& markLeaves,
                          const std::vector<PixelRect>& markRects, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, const std::optional<Lighting>& litAs,
                          Frame& frame);
     // What every tile of a frame reads (peelAndEvaluate's arguments).
     struct TileInputs {
         const ViewSetup& view;
+        const FramePlan& plan;
         const std::vector<PixelRect>& rects;
         const std::vector<ScreenHull>& hulls;
         const std::vector<int>& markLeaves;

@@ -2,7 +2,7 @@
 
 namespace strata::render {
 
-void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<PixelRect>& rects,
+void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const FramePlan& plan, const std::vector<PixelRect>& rects,
                                      const std::vector<int>& markLeaves, const std::vector<PixelRect>& markRects,
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
                                      const std::optional<Lighting>& litAs, Frame& frame) {
@@ -12,11 +12,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
     if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
     PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
                         compiled.operandGroups, compiled.unionGroups};
-    // Every ray starts outside every operand: those that only unions lead to
-    // need their first layer alone (the debug views show every layer).
-    if (beyondNearPlane(view, scene.bounds()) && !settings.keepPeelLayers && roundSink == nullptr) {
-        request.firstLayerOnly = current->unionsOnly;
-    }
+    if (plan.firstLayerOnly) request.firstLayerOnly = current->unionsOnly;
     // Each single leaf's hull on the screen, which the evaluator's blocks
     // test besides the rectangle: a thin bar seen aslant (a Menger sponge's)
     // reaches a few blocks of the many its rectangle holds. Groups, and
@@ -27,15 +23,15 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         if (compiled.leavesOf(k).size() != 1 || compiled.isUnionGroup(k)) continue;
         hulls[k] = screenHull(view, scene.leafVertices(operands[k]), kMostHullVertices);
     }
-    const TileInputs in{view, rects, hulls, markLeaves, markRects, settings, baseColors, request, litAs};
-    const TileGrid plan = planTiles(in);
-    const std::vector<PixelRect>& grid = plan.tiles;
+    const TileInputs in{view, plan, rects, hulls, markLeaves, markRects, settings, baseColors, request, litAs};
+    const TileGrid tiles = planTiles(in);
+    const std::vector<PixelRect>& grid = tiles.tiles;
     const TileCounts counts = runTiles(in, grid, frame);
     stats.tiles = counts.drawn;
     std::sort(frame.peelLayers.begin(), frame.peelLayers.end(), [](const PeelLayerImage& a, const PeelLayerImage& b) {
         return a.leaf != b.leaf ? a.leaf < b.leaf : a.layer < b.layer;
     });
-    if (plan.budgetTiles > 1) {
+    if (tiles.budgetTiles > 1) {
         stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
                               std::to_string(view.height) + " would exceed the budget of " +
                               mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(counts.drawn) +
@@ -44,7 +40,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const std::vector<Pi
         stats.notes.push_back("rendered in " + std::to_string(counts.drawn) +
                               " tiles, each peeling only the operands that meet it: " +
                               mebibytes(stats.textureBytes) + " of layers instead of " +
-                              mebibytes(plan.wholeLayerBytes) + " for the whole frame");
+                              mebibytes(tiles.wholeLayerBytes) + " for the whole frame");
     }
     if (counts.splits > 0) {
         stats.notes.push_back("auto peeling needed more layers than estimated: split " +
@@ -107,7 +103,7 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
             }
         }
         if (in.settings.keepPeelLayers) keepLayers(tile, operands, in.rects, layers, frame);
-        if (roundSink != nullptr) {
+        if (in.plan.resultPeel) {
             peelResultRounds(in, tile, layers, frame);
         } else {
             evaluateTile(in, tile, layers, frame);

@@ -133,6 +133,24 @@ TEST(FramePlan, AnEvaluatedFrameIsLitAsDrawnOnlyWhereNoNormalIsReadBack) {
     EXPECT_FALSE(render::planFrame(window, openScadLook()).litAsDrawn);
 }
 
+TEST(FramePlan, OnlyAViewFromOutsideOfAnImagePeelsUnionOperandsOneLayerDeep) {
+    const FramePlan image = render::planFrame(differenceReadBack(), RenderSettings{});
+    EXPECT_TRUE(image.firstLayerOnly);
+    EXPECT_FALSE(image.resultPeel);
+    FrameFacts inside = differenceReadBack();
+    inside.outside = false;  // a ray starting inside an operand needs its later layers
+    EXPECT_FALSE(render::planFrame(inside, RenderSettings{}).firstLayerOnly);
+    RenderSettings layers;
+    layers.keepPeelLayers = true;  // the debug views show every layer
+    EXPECT_FALSE(render::planFrame(differenceReadBack(), layers).firstLayerOnly);
+    FrameFacts result = differenceReadBack();
+    result.resultPeel = true;  // the result peel walks past the first surface
+    const FramePlan rounds = render::planFrame(result, RenderSettings{});
+    EXPECT_TRUE(rounds.resultPeel);
+    EXPECT_FALSE(rounds.firstLayerOnly);
+    EXPECT_TRUE(rounds.evaluated);
+}
+
 TEST(FramePlan, AResultWithNoCodeIsNeitherDrawnNorEvaluated) {
     for (const Kind kind : {Kind::Empty, Kind::Everything}) {
         FrameFacts facts = differenceReadBack();
