@@ -14,6 +14,7 @@
 
 #include "strata/render/Limits.h"
 #include "strata/core/Error.h"
+#include "strata/core/InputFile.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/gpu/Gl.h"
 #include "strata/io/ImageWriter.h"
@@ -580,7 +581,7 @@ bool Viewer::startExport(const std::string& path, bool exact) {
     const io::ExportFormat* format = io::exportFormatOf(path);
     if (format == nullptr || (!exact && format->kind != io::ExportKind::Mesh)) {
         message_ = Error(SourceLocation{path, 0, 0},
-                         "cannot export to '" + std::filesystem::path(path).extension().string() + "' (expected " +
+                         "cannot export to '" + lowerExtension(path) + "' (expected " +
                              (exact ? io::extensionList() : io::extensionList(io::ExportKind::Mesh)) + ")")
                        .what();
         return false;

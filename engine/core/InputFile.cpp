@@ -44,6 +44,11 @@ std::string readInputFile(const std::string& path, const char* what, unsigned ma
     return bytes;
 }
 
+void requireReadable(const std::string& path) {
+    const std::string why = unreadableReason(path);
+    if (!why.empty()) throw Error(SourceLocation{path, 0, 0}, "cannot read (" + why + ")");
+}
+
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;

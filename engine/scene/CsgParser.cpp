@@ -562,8 +562,7 @@ Tree parseCsg(std::istream& in, const std::string& name, const std::string& base
 }
 
 Tree parseCsgFile(const std::string& path, const ParseOptions& options) {
-    const std::string why = unreadableReason(path);
-    if (!why.empty()) throw Error(SourceLocation{path, 0, 0}, "cannot read (" + why + ")");
+    requireReadable(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(SourceLocation{path, 0, 0}, "cannot open file");
     std::string baseDir = std::filesystem::path(path).parent_path().string();

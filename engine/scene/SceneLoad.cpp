@@ -16,9 +16,9 @@
 
 namespace strata::scene {
 
-bool isMeshExtension(const std::string& ext) { return scene::isImportExtension(ext, scene::ImportKind::Mesh); }
-
-bool isSceneExtension(const std::string& ext) { return ext == ".csg" || ext == ".scad" || isMeshExtension(ext); }
+bool isSceneExtension(const std::string& ext) {
+    return ext == ".csg" || ext == ".scad" || isImportExtension(ext, ImportKind::Mesh);
+}
 
 namespace {
 
@@ -60,18 +60,13 @@ std::shared_ptr<const scene::ScadTrace> scadTrace(const std::string& path, const
 
 }  // namespace
 
-void checkReadable(const std::string& path) {
-    const std::string why = unreadableReason(path);
-    if (!why.empty()) throw Error(SourceLocation{path, 0, 0}, "cannot read (" + why + ")");
-}
-
 SceneFile readSceneFile(const std::string& path, const std::vector<std::string>& defines) {
     const std::string ext = lowerExtension(path);
     if (!isSceneExtension(ext))
         throw Error(SourceLocation{path, 0, 0},
                     "unknown scene type '" + ext + "' (expected " +
                         scene::importExtensionList(scene::ImportKind::Mesh, ".csg, .scad") + ")");
-    checkReadable(path);
+    requireReadable(path);
     SceneFile file;
     if (ext == ".csg") {
         file.tree = scene::parseCsgFile(path);

@@ -18,6 +18,10 @@ std::string unreadableReason(const std::string& path);
 // unreadableReason names a reason, or the file is larger than `maxMiB`.
 std::string readInputFile(const std::string& path, const char* what, unsigned maxMiB = 256);
 
+// Throws strata::Error "PATH: cannot read (why)" (named by the file, no
+// line) where unreadableReason names a reason.
+void requireReadable(const std::string& path);
+
 // The extension of `path`'s file name with its dot, in ASCII lower case
 // (".stl" for "Part.STL"); "" where the name has none.
 std::string lowerExtension(const std::string& path);

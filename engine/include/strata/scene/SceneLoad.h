@@ -35,12 +35,8 @@ SceneFile readSceneFile(const std::string& path, const std::vector<std::string>&
 // readSceneFile's tree alone.
 scene::Tree loadSceneFile(const std::string& path, const std::vector<std::string>& defines = {});
 
-// Its parts, given the extension in lower case (strata::lowerExtension,
-// strata/core/InputFile.h): whether it names a mesh format; and a throw,
-// naming the file, unless `path` is a file that can be opened.
-bool isMeshExtension(const std::string& ext);
-// Whether it names a scene file: .csg, .scad or a mesh format.
+// Whether an extension in lower case (strata::lowerExtension,
+// strata/core/InputFile.h) names a scene file: .csg, .scad or a mesh format.
 bool isSceneExtension(const std::string& ext);
-void checkReadable(const std::string& path);
 
 }  // namespace strata::scene
