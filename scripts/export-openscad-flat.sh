@@ -4,7 +4,7 @@
 # its mesh of the same model (NAME.off: `openscad -o NAME.off`, 3D results;
 # NAME.stl in polyhedron/, since OpenSCAD's OFF keeps a polyhedron's faces as
 # they were given and only its STL shows how it splits them) or outline
-# (NAME.svg, 2D results). tests/geometry/FlatExportsTest.cpp compares
+# (NAME.svg, 2D results). tests/model/FlatExportsTest.cpp compares
 # strata's meshes with them.
 #
 #   scripts/export-openscad-flat.sh

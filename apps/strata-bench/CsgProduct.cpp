@@ -67,13 +67,13 @@ unsigned convexityOnLine(const std::string& line) {
     return 1;
 }
 
-CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, std::size_t renderingLimit) {
+CsgProducts csgProducts(const scene::Tree& tree, const model::Model& model, std::size_t renderingLimit) {
     CsgProducts out;
     std::vector<std::optional<LeafBox>> boxes(tree.leaves.size());
     for (std::size_t i = 0; i < tree.leaves.size() && i < model.leafMeshes.size(); ++i) {
-        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const mesh::Mesh& mesh = model.leafMeshes[i];
         if (mesh.triangles.empty()) continue;
-        const geometry::Bounds b = geometry::boundsOf(mesh);
+        const mesh::Bounds b = mesh::boundsOf(mesh);
         boxes[i] = LeafBox{b.min, b.max};
     }
     out.sum = sumOfProducts(tree, boxes, 2 * renderingLimit);
@@ -105,7 +105,7 @@ CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model, s
         ProductLeaf& leaf = out.leaves[i];
         leaf.convex = convexPrimitive(tree.leaves[i].primitive);
         leaf.convexity = convexityOf(tree.leaves[i], sources);
-        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const mesh::Mesh& mesh = model.leafMeshes[i];
         leaf.positions.reserve(mesh.triangles.size() * 9);
         for (const auto& triangle : mesh.triangles)
             for (std::uint32_t v : triangle) {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "SumOfProducts.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {
@@ -28,14 +28,14 @@ struct ProductLeaf {
 };
 
 struct CsgProducts {
-    std::vector<ProductLeaf> leaves;  // one per Tree::leaves, from the same geometry::Model strata draws
+    std::vector<ProductLeaf> leaves;  // one per Tree::leaves, from the same model::Model strata draws
     SumOfProducts sum;                // products of indices into `leaves`
-    geometry::Bounds bounds;          // of the leaves in any product
+    mesh::Bounds bounds;          // of the leaves in any product
     std::string unavailable;          // non-empty: OpenSCAD would draw nothing with OpenCSG, and why
 };
 
 // `renderingLimit`: OpenSCAD's "Turn off rendering at ... elements".
-CsgProducts csgProducts(const scene::Tree& tree, const geometry::Model& model,
+CsgProducts csgProducts(const scene::Tree& tree, const model::Model& model,
                         std::size_t renderingLimit = kOpenScadRenderingLimit);
 
 // The `convexity = N` argument on one line of a .csg, else 1 (OpenSCAD's

@@ -9,8 +9,8 @@
 #include "Coverage.h"
 #include "OpenCsgComparator.h"
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {
@@ -53,7 +53,7 @@ using OpenCsgCaps = std::map<std::string, int>;
 // SCS is skipped for non-convex operands (it is only correct
 // for convex ones); settings are skipped above the K where they went over the cap.
 OpenCsgResult runOpenCsg(OpenCsgComparator& comparator, gpu::Context& strata, const scene::Tree& tree,
-                         const geometry::Model& model, const render::Camera& camera,
+                         const model::Model& model, const render::Camera& camera,
                          const std::vector<std::uint8_t>& strataCoverage, const OpenCsgRunOptions& options,
                          const std::string& caseKey, int k, OpenCsgCaps& caps);
 

@@ -11,7 +11,7 @@
 
 namespace strata::bench {
 
-PlainDraw::PlainDraw(const scene::Tree& tree, const geometry::Model& model, int width, int height)
+PlainDraw::PlainDraw(const scene::Tree& tree, const model::Model& model, int width, int height)
     : program_(gpu::Program::fromFiles("bench plain", {"bench/plain.vert", "bench/plain.frag"})),
       vertexArray_("bench plain"),
       color_(gpu::Texture::create2D("bench plain color", GL_RGBA8, width, height)),
@@ -25,7 +25,7 @@ PlainDraw::PlainDraw(const scene::Tree& tree, const geometry::Model& model, int 
     std::vector<glm::vec3> positions;
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
         if (!inCsg[i]) continue;
-        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const mesh::Mesh& mesh = model.leafMeshes[i];
         for (const auto& tri : mesh.triangles)
             for (std::uint32_t v : tri) {
                 positions.emplace_back(mesh.positions[v]);

@@ -7,12 +7,12 @@
 #include <cstddef>
 
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
 #include "strata/gpu/VertexArray.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::bench {
@@ -21,7 +21,7 @@ class PlainDraw {
 public:
     // Uploads the meshes of the leaves in the CSG (background leaves left
     // out) as one array of world-space float positions. Needs a current context.
-    PlainDraw(const scene::Tree& tree, const geometry::Model& model, int width, int height);
+    PlainDraw(const scene::Tree& tree, const model::Model& model, int width, int height);
 
     // Clears, draws everything, glFinish. Returns wall-clock milliseconds.
     double drawFrame(const render::Camera& camera);
@@ -35,7 +35,7 @@ private:
     gpu::Texture color_;
     gpu::Texture depth_;
     gpu::Framebuffer framebuffer_;
-    geometry::Bounds bounds_;
+    mesh::Bounds bounds_;
     std::size_t vertices_ = 0;
     int width_ = 0, height_ = 0;
 };

@@ -6,7 +6,7 @@
 
 #include "Solids.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::bench {
 namespace {
@@ -63,7 +63,7 @@ BenchScene stack(int k, const render::Camera& base) {
     BenchScene out;
     Tree& tree = out.tree;
     std::vector<int> children{addCube(tree, {0, 0, 0}, {12, 12, 3})};
-    geometry::Bounds slab;
+    mesh::Bounds slab;
     slab.extend(glm::dvec3(-6, -6, -1.5));
     slab.extend(glm::dvec3(6, 6, 1.5));
     const render::Camera camera = render::defaultCamera(slab, base);

@@ -5,7 +5,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::bench {
 
@@ -16,6 +16,6 @@ struct ViewMatrices {
 
 // The camera's view and projection with near and far planes hugging `bounds`
 // (what the camera sees of the drawn triangles), as a viewer would set them.
-ViewMatrices fittedView(const render::Camera& camera, const geometry::Bounds& bounds);
+ViewMatrices fittedView(const render::Camera& camera, const mesh::Bounds& bounds);
 
 }  // namespace strata::bench

@@ -41,16 +41,16 @@
 #include "PlainDraw.h"
 #include "strata/scene/SceneLoad.h"
 #include "Scenes.h"
-#include "strata/core/Timing.h"
 #include "strata/camera/Camera.h"
 #include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/Model.h"
+#include "strata/core/Timing.h"
 #include "strata/gpu/Check.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
 #include "strata/io/Json.h"
+#include "strata/model/Model.h"
 #include "strata/render/Limits.h"
 #include "strata/render/Renderer.h"
 
@@ -169,7 +169,7 @@ std::vector<std::uint8_t> coverageOf(const render::Frame& frame) {
 
 // strata's frames of `scene` into a host framebuffer, timed: the medians
 // into `result`. Returns one read-back frame (not timed) for its coverage.
-render::Frame timeStrata(const Options& options, const bench::BenchScene& scene, const geometry::Model& model,
+render::Frame timeStrata(const Options& options, const bench::BenchScene& scene, const model::Model& model,
                          const render::Camera& camera, Result& result) {
     const auto setupStart = Clock::now();
     render::Renderer renderer;
@@ -229,7 +229,7 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
 }
 
 // The floor, plain rasterization of the same triangles, timed into `result`.
-void timePlain(const Options& options, const bench::BenchScene& scene, const geometry::Model& model,
+void timePlain(const Options& options, const bench::BenchScene& scene, const model::Model& model,
                const render::Camera& camera, Result& result) {
     bench::PlainDraw plain(scene.tree, model, camera.width, camera.height);
     result.triangles = plain.triangles();
@@ -258,7 +258,7 @@ Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openC
     base.height = size.height;
     const auto setupStart = Clock::now();
     bench::BenchScene benchScene = make(base);
-    const geometry::Model model = geometry::buildModel(benchScene.tree);
+    const model::Model model = model::buildModel(benchScene.tree);
     const render::Camera camera =
         benchScene.camera ? *benchScene.camera : render::defaultCamera(render::viewBounds(benchScene.tree, model), base);
     result.setupMs = msSince(setupStart);

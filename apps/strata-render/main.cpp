@@ -22,19 +22,19 @@
 #include "strata/scene/SceneLoad.h"
 #include "StderrProgress.h"
 #include "Worker.h"
-#include "strata/core/Timing.h"
+#include "strata/camera/Camera.h"
+#include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
+#include "strata/core/Timing.h"
 #include "strata/export/Export.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/io/Stats.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
-#include "strata/camera/Camera.h"
 #include "strata/render/ColorScheme.h"
 #include "strata/render/Renderer.h"
-#include "strata/camera/ViewBounds.h"
 #include "strata/scene/Tree.h"
 
 namespace {
@@ -63,7 +63,7 @@ struct Gpu {
 // images staged into `staged`.
 // The model's meshes are let go once the renderer holds them, unless the
 // CPU reference needs them (a million cubes: about 400 MB).
-void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, geometry::Model model, Gpu& gpu,
+void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, model::Model model, Gpu& gpu,
                   io::RunStats& stats, std::vector<io::StagedFile>& staged) {
     render::Camera base;
     base.width = options.width;
@@ -162,15 +162,15 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
     auto phaseProgress = [&options](const char* phase) {
         return options.quiet ? nullptr : std::make_unique<apps::StderrProgress>("strata-render", phase);
     };
-    geometry::Model model;
+    model::Model model;
     {
         const std::unique_ptr<apps::StderrProgress> progress = phaseProgress("building the model");
         const ProgressScope scope(progress.get());
-        model = geometry::buildModel(tree);
+        model = model::buildModel(tree);
     }
     stats.geometryMs = msSince(t);
     for (const Warning& w : model.warnings) stats.warnings.push_back(w.message);
-    for (const geometry::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
+    for (const mesh::Mesh& mesh : model.leafMeshes) stats.triangles += mesh.triangles.size();
 
     // Every output is staged, then all are committed: a failure anywhere writes none.
     std::vector<io::StagedFile> staged;

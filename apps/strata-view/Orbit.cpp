@@ -153,7 +153,7 @@ render::Camera Orbit::camera(const render::Camera& base) const {
     return c;
 }
 
-Orbit fittedOrbit(const geometry::Bounds& bounds, const render::Camera& base) {
+Orbit fittedOrbit(const mesh::Bounds& bounds, const render::Camera& base) {
     Orbit orbit = orbitFromCamera(render::defaultCamera(bounds, base));
     // OpenSCAD backs off until the box's sphere fits the vertical field of
     // view. A view narrower than it is tall (beside a wide panel) would then
@@ -167,7 +167,7 @@ Orbit fittedOrbit(const geometry::Bounds& bounds, const render::Camera& base) {
     return orbit;
 }
 
-Orbit viewAll(const Orbit& orbit, const geometry::Bounds& bounds, const render::Camera& base) {
+Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const render::Camera& base) {
     const Orbit fitted = fittedOrbit(bounds, base);
     Orbit result;
     result.center = fitted.center;

@@ -13,8 +13,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "strata/geometry/Mesh.h"
 #include "strata/camera/Camera.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::view {
 
@@ -87,9 +87,9 @@ struct Orbit {
 // OpenSCAD's default view fitted to `bounds` (render::defaultCamera); in a
 // view narrower than it is tall, backed off further until the box's sphere
 // fits the width too.
-Orbit fittedOrbit(const geometry::Bounds& bounds, const render::Camera& base);
+Orbit fittedOrbit(const mesh::Bounds& bounds, const render::Camera& base);
 // "View all": the fitted centre and distance, but this orbit's angles.
-Orbit viewAll(const Orbit& orbit, const geometry::Bounds& bounds, const render::Camera& base);
+Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const render::Camera& base);
 Orbit orbitFromCamera(const render::Camera& camera);
 
 // The world point seen at pixel (i, j) (row 0 at the top) at view depth

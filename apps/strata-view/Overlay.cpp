@@ -40,7 +40,7 @@ Overlay::Overlay()
       edgeArray_("strata-view edges"),
       lineArray_("strata-view lines") {}
 
-void Overlay::setScene(const geometry::Model& model) {
+void Overlay::setScene(const model::Model& model) {
     std::vector<Vertex> vertices;
     std::vector<glm::vec3> points;
     for (std::size_t leaf = 0; leaf < model.leafMeshes.size(); ++leaf) {

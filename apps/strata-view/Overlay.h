@@ -14,11 +14,11 @@
 #include <glm/vec3.hpp>
 
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/Texture.h"
 #include "strata/gpu/VertexArray.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 
 namespace strata::view {
@@ -36,7 +36,7 @@ class Overlay {
 public:
     Overlay();  // needs a current GL context
     // The leaves' edges, kept for every frame until the next scene.
-    void setScene(const geometry::Model& model);
+    void setScene(const model::Model& model);
     // Draws into `framebuffer` (camera.width x camera.height), over `image`
     // (RGBA8, row 0 at the top: the frame's own, or a debug view's), which
     // is already in it; tested against the frame's depth and leaf AOVs.

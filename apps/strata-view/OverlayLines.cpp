@@ -189,7 +189,7 @@ std::vector<ScreenSegment> gizmoSegments(const render::Camera& camera, const glm
     return out;
 }
 
-void appendMeshEdges(const geometry::Mesh& mesh, std::vector<glm::vec3>& points) {
+void appendMeshEdges(const mesh::Mesh& mesh, std::vector<glm::vec3>& points) {
     std::unordered_set<std::uint64_t> seen;
     seen.reserve(mesh.triangles.size() * 2);
     for (const auto& t : mesh.triangles)

@@ -14,7 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::view {
 
@@ -77,7 +77,7 @@ struct ScreenSegment {
 std::vector<ScreenSegment> gizmoSegments(const render::Camera& camera, const glm::vec3& labelColor);
 
 // Each edge of the mesh's triangles once, as pairs of points.
-void appendMeshEdges(const geometry::Mesh& mesh, std::vector<glm::vec3>& points);
+void appendMeshEdges(const mesh::Mesh& mesh, std::vector<glm::vec3>& points);
 
 // OpenSCAD's "axes-color" of a colour scheme (its color-schemes/render/*.json;
 // black for the built-in Cornfield).

@@ -4,10 +4,10 @@
 #include <utility>
 #include <vector>
 
-#include "strata/scene/SceneLoad.h"
 #include "strata/core/Error.h"
 #include "strata/core/InputFile.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/scene/SceneLoad.h"
 
 namespace strata::view {
 
@@ -20,7 +20,7 @@ LoadedScene loadSceneFile(const std::string& path) {
     scene.openscadOutput = std::move(file.openscadOutput);
     scene.csgExport = std::move(file.csgExport);
     scene.dependencies = std::move(file.dependencies);
-    scene.model = geometry::buildModel(scene.tree);
+    scene.model = model::buildModel(scene.tree);
     // What the model forgave (an inside-out polyhedron) is shown with the reader's warnings.
     scene.tree.warnings.insert(scene.tree.warnings.end(), scene.model.warnings.begin(), scene.model.warnings.end());
     return scene;

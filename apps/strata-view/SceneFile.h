@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::view {
 
 struct LoadedScene {
     scene::Tree tree;
-    geometry::Model model;
+    model::Model model;
     std::vector<std::string> openscadOutput;  // a .scad's ECHO, WARNING, ... lines, as OpenSCAD printed them
     // A .scad's CSG export as OpenSCAD wrote it, the text whose lines the
     // tree's positions name; empty for a .csg or a mesh.

@@ -3,7 +3,7 @@
 // parsed tree as OpenSCAD's modifiers would be written in the source: a hidden
 // node is dropped with its subtree (OpenSCAD's '*'), a highlighted one has
 // every leaf under it marked Display::Highlight ('#'). The leaves vector is
-// kept whole, so the geometry::Model built for the parsed tree still fits the
+// kept whole, so the model::Model built for the parsed tree still fits the
 // edited one and no tessellation is redone.
 
 #include <set>

@@ -88,7 +88,7 @@ Ray Camera::ray(int i, int j) const {
 
 double Camera::viewDepth(const glm::dvec3& p) const { return glm::dot(p - eye, forward()); }
 
-double coincidenceTolerance(const Camera& camera, const geometry::Bounds& box) {
+double coincidenceTolerance(const Camera& camera, const mesh::Bounds& box) {
     auto largest = [](const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
     double scale = largest(camera.eye);
     if (!box.empty()) {
@@ -160,7 +160,7 @@ Camera cameraFromArguments(const std::vector<double>& numbers, const Camera& bas
     return camera;
 }
 
-Camera defaultCamera(const geometry::Bounds& bounds, const Camera& base) {
+Camera defaultCamera(const mesh::Bounds& bounds, const Camera& base) {
     checkFieldOfView(base.fovDegrees);
     Camera camera = base;
     // Camera::viewAll with autocenter: centre on the box, and back off until a

@@ -5,8 +5,8 @@
 
 namespace strata::render {
 
-geometry::Bounds viewBounds(const scene::Tree& tree, const geometry::Model& model) {
-    geometry::Bounds bounds;
+mesh::Bounds viewBounds(const scene::Tree& tree, const model::Model& model) {
+    mesh::Bounds bounds;
     // (node, positive): an explicit stack, so any tree depth costs no C++ stack.
     std::vector<std::pair<int, bool>> todo;
     if (tree.root >= 0) todo.emplace_back(tree.root, true);
@@ -23,7 +23,7 @@ geometry::Bounds viewBounds(const scene::Tree& tree, const geometry::Model& mode
         if (node.kind == scene::NodeKind::Leaf) {
             const auto leaf = static_cast<std::size_t>(node.leaf);
             if (positive && leaf < model.leafMeshes.size() && !model.leafMeshes[leaf].positions.empty())
-                bounds.extend(geometry::boundsOf(model.leafMeshes[leaf]));
+                bounds.extend(mesh::boundsOf(model.leafMeshes[leaf]));
             continue;
         }
         for (std::size_t c = 0; c < node.children.size(); ++c) {

@@ -21,7 +21,6 @@
 namespace strata::contour {
 namespace {
 
-
 constexpr const char* kProgressWhat = "contour";
 
 // Patch vertices stay this far (in cell sizes) inside their own cell unless
@@ -76,7 +75,7 @@ glm::dvec3 unitNormal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
 class Contourer {
 public:
     Contourer(DexelImage& image, ContourStats& stats);
-    geometry::Mesh run();
+    mesh::Mesh run();
 
 private:
     std::size_t cellSlot(int i, int j) const { return std::size_t(i) + std::size_t(j) * std::size_t(cells_.x); }
@@ -101,7 +100,7 @@ private:
     std::array<std::vector<std::uint8_t>, kVertexRing> flips_;
     std::array<std::vector<std::uint32_t>, kVertexRing> firstVertex_;
     std::vector<std::size_t> rowCount_;  // per row of a slab: its vertices or quads, then where they start
-    geometry::Mesh mesh_;
+    mesh::Mesh mesh_;
 };
 
 Contourer::Contourer(DexelImage& image, ContourStats& stats)
@@ -113,7 +112,7 @@ Contourer::Contourer(DexelImage& image, ContourStats& stats)
     rowCount_.assign(std::size_t(std::max(cells_.y, 0)), 0);
 }
 
-geometry::Mesh Contourer::run() {
+mesh::Mesh Contourer::run() {
     image_.signPlane(0, planes_[0]);
     image_.signPlane(1, planes_[1]);
     computeConfigs(0);
@@ -374,13 +373,13 @@ void Contourer::addQuad(const std::array<std::uint32_t, 4>& q, std::size_t at) {
 
 }  // namespace
 
-geometry::Mesh contourCounting(const Dexels& dexels, ContourStats& stats) {
+mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats) {
     DexelImage image(dexels);
     if (image.empty()) return {};
     return Contourer(image, stats).run();
 }
 
-geometry::Mesh contour(const Dexels& dexels) {
+mesh::Mesh contour(const Dexels& dexels) {
     ContourStats stats;
     return contourCounting(dexels, stats);
 }

@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "strata/contour/Dexels.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::contour {
 
@@ -16,6 +16,6 @@ struct ContourStats {
 };
 
 // contour(), counting as it goes.
-geometry::Mesh contourCounting(const Dexels& dexels, ContourStats& stats);
+mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats);
 
 }  // namespace strata::contour

@@ -13,7 +13,7 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
     return (h ^ v) * 0x100000001b3ull;
 }
 
-std::uint64_t meshHash(const geometry::Mesh& mesh) {
+std::uint64_t meshHash(const mesh::Mesh& mesh) {
     std::uint64_t h = 0xcbf29ce484222325ull;
     for (const glm::dvec3& p : mesh.positions) {
         h = mix(h, std::bit_cast<std::uint64_t>(p.x));
@@ -25,21 +25,21 @@ std::uint64_t meshHash(const geometry::Mesh& mesh) {
     return h * 0xff51afd7ed558ccdull;
 }
 
-bool sameSolid(const scene::Leaf& a, const geometry::Mesh& ma, const scene::Leaf& b, const geometry::Mesh& mb) {
+bool sameSolid(const scene::Leaf& a, const mesh::Mesh& ma, const scene::Leaf& b, const mesh::Mesh& mb) {
     return a.display == b.display && a.color == b.color && ma.triangles == mb.triangles &&
            ma.positions == mb.positions;
 }
 
 }  // namespace
 
-std::vector<int> identicalLeaves(const scene::Tree& tree, const geometry::Model& model) {
+std::vector<int> identicalLeaves(const scene::Tree& tree, const model::Model& model) {
     const std::size_t n = tree.leaves.size();
     std::vector<int> same(n);
     std::unordered_map<std::uint64_t, std::vector<int>> byHash;  // hash -> the first leaf of each distinct solid
     for (std::size_t i = 0; i < n; ++i) {
         same[i] = static_cast<int>(i);
         if (i >= model.leafMeshes.size() || model.leafMeshes[i].triangles.empty()) continue;
-        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const mesh::Mesh& mesh = model.leafMeshes[i];
         std::vector<int>& firsts = byHash[meshHash(mesh)];
         for (int j : firsts) {
             const auto u = static_cast<std::size_t>(j);

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "strata/core/Error.h"
-#include "strata/geometry/Exact.h"
-#include "strata/geometry/Flat.h"
-#include "strata/geometry/MeshCheck.h"
+#include "strata/exact/Exact.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/io/FlatWriter.h"
+#include "strata/mesh/MeshCheck.h"
+#include "strata/model/FlatEvaluation.h"
 
 namespace strata::exporting {
 
@@ -20,13 +20,13 @@ namespace strata::exporting {
 // point or on one line, and the triangles between them would have no area
 // or cross their neighbours: such points become one vertex, and triangles
 // without area are removed with the mesh kept closed (dropDegenerateTriangles).
-void roundForFile(geometry::Mesh& mesh) {
+void roundForFile(mesh::Mesh& mesh) {
     // Component by component: GCC 12 at -O3 dropped the rounding of x and y
     // when the vector was rebuilt from floats in one expression.
     for (glm::dvec3& p : mesh.positions) {
         for (int k = 0; k < 3; ++k) p[k] = static_cast<double>(static_cast<float>(p[k]));
     }
-    geometry::dropDegenerateTriangles(mesh);
+    mesh::dropDegenerateTriangles(mesh);
 }
 
 io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path) {
@@ -34,16 +34,16 @@ io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path)
         throw Error(SourceLocation{tree.source, 0, 0},
                     "a 3D model has no 2D drawing to export (export it as " + io::extensionList(io::ExportKind::Mesh) + ")");
     }
-    const geometry::Outlines outlines = geometry::flatResult(tree);
+    const flat::Outlines outlines = model::flatResult(tree);
     if (outlines.empty()) throw Error(SourceLocation{tree.source, 0, 0}, "the 2D result is empty: nothing to export");
     return io::stageFlat(path, outlines);
 }
 
-StagedExport stageExactMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+StagedExport stageExactMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
                             const glm::vec4& faceColor) {
     requireSolidModel(tree);
-    geometry::Mesh result;
-    if (tree.root >= 0) result = geometry::exactResult(tree, tree.root, model.leafMeshes);
+    mesh::Mesh result;
+    if (tree.root >= 0) result = exact::exactResult(tree, tree.root, model.leafMeshes, model::objectMesh);
     roundForFile(result);
     // Rounded, a triangle lies within a few float steps of its leaf's face,
     // no longer on it: colours are found within that reach.

@@ -4,14 +4,14 @@
 
 #include "ExportParts.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/SurfaceColors.h"
 #include "strata/io/ExportFormats.h"
 #include "strata/io/FlatWriter.h"
 #include "strata/io/MeshWriter.h"
+#include "strata/model/SurfaceColors.h"
 
 namespace strata::exporting {
 
-StagedExport stageExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+StagedExport stageExport(const scene::Tree& tree, const model::Model& model, const std::string& path,
                          const ExportSettings& settings) {
     if (settings.sampled) return stageSampledMesh(tree, model, path, settings);
     if (io::isFlatPath(path)) return StagedExport{stageFlatExport(tree, path)};
@@ -25,13 +25,13 @@ void requireSolidModel(const scene::Tree& tree) {
     }
 }
 
-io::StagedFile stageResultMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
-                               const geometry::Mesh& result, const glm::vec4& faceColor, double reach) {
+io::StagedFile stageResultMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
+                               const mesh::Mesh& result, const glm::vec4& faceColor, double reach) {
     if (result.triangles.empty())
         throw Error(SourceLocation{tree.source, 0, 0}, "the CSG result is empty: nothing to export");
     std::vector<glm::vec4> colors;
     if (const io::ExportFormat* format = io::exportFormatOf(path); format != nullptr && format->colors)
-        colors = geometry::surfaceColors(result, tree, model, faceColor, reach);
+        colors = model::surfaceColors(result, tree, model, faceColor, reach);
     return io::stageMesh(path, result, colors);
 }
 

@@ -8,19 +8,19 @@
 #include <glm/vec4.hpp>
 
 #include "strata/export/Export.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::exporting {
 
 // The exact result as every mesh file holds it (ExactExport.cpp).
-StagedExport stageExactMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+StagedExport stageExactMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
                             const glm::vec4& faceColor);
 
 // The sampled result's mesh (SampledExport.cpp).
-StagedExport stageSampledMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
                               const ExportSettings& settings);
 
-// The 2D result of a flat model (geometry::flatResult) staged as the drawing
+// The 2D result of a flat model (model::flatResult) staged as the drawing
 // `path` names (SVG or DXF). Throws, naming the scene, for a 3D model or an
 // empty result (ExactExport.cpp).
 io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path);
@@ -29,16 +29,16 @@ io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path)
 // gets the same points) and removes what rounding flattened (vertices
 // brought together, triangles left without area), keeping it closed
 // (ExactExport.cpp).
-void roundForFile(geometry::Mesh& mesh);
+void roundForFile(mesh::Mesh& mesh);
 
 // What both meshes share (Export.cpp). Throws, naming the scene, for a 2D
 // model, which has no solid to export.
 void requireSolidModel(const scene::Tree& tree);
 // Throws, naming the scene, for an empty `result`; otherwise stages it for
 // `path`, each triangle coloured by its leaf when the format carries colours
-// (geometry::surfaceColors, with `reach` for a result that only
+// (model::surfaceColors, with `reach` for a result that only
 // approximates the leaves' faces).
-io::StagedFile stageResultMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
-                               const geometry::Mesh& result, const glm::vec4& faceColor, double reach = 0.0);
+io::StagedFile stageResultMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
+                               const mesh::Mesh& result, const glm::vec4& faceColor, double reach = 0.0);
 
 }  // namespace strata::exporting

@@ -10,10 +10,10 @@
 #include <optional>
 #include <vector>
 
-#include "strata/core/Timing.h"
 #include "strata/camera/ViewBounds.h"
 #include "strata/contour/Contour.h"
 #include "strata/core/Error.h"
+#include "strata/core/Timing.h"
 #include "strata/gpu/Context.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
@@ -24,7 +24,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-contour::Dexels sample(const scene::Tree& tree, const geometry::Model& model, const contour::DexelGrid& grid,
+contour::Dexels sample(const scene::Tree& tree, const model::Model& model, const contour::DexelGrid& grid,
                        const ExportSettings& settings) {
     if (settings.reference) return remesh::sampleWithReference(reference::ReferenceScene(tree, model), grid);
     gpu::Context context;  // made first, destroyed last
@@ -96,12 +96,12 @@ void checkNothingBelowGrid(const contour::Dexels& dexels, int resolution, const 
 
 }  // namespace
 
-StagedExport stageSampledMesh(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
                               const ExportSettings& settings) {
     requireSolidModel(tree);
-    const geometry::Bounds box = render::viewBounds(tree, model);
+    const mesh::Bounds box = render::viewBounds(tree, model);
     StagedExport out;
-    geometry::Mesh result;  // stays empty where there is nothing to sample
+    mesh::Mesh result;  // stays empty where there is nothing to sample
     double reach = 0.0;
     if (tree.root >= 0 && !box.empty()) {
         auto t = Clock::now();

@@ -23,9 +23,9 @@ std::string number(double x) {
     return std::string(text, r.ptr);
 }
 
-std::string svg(const geometry::Outlines& shape) {
+std::string svg(const flat::Outlines& shape) {
     glm::dvec2 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
-    for (const geometry::Outline& o : shape.outlines) {
+    for (const flat::Outline& o : shape.outlines) {
         for (const glm::dvec2& p : o.points) {
             low = glm::min(low, p);
             high = glm::max(high, p);
@@ -39,7 +39,7 @@ std::string svg(const geometry::Outlines& shape) {
     out += "<svg width=\"" + number(size.x) + "mm\" height=\"" + number(size.y) + "mm\" viewBox=\"" + number(low.x) +
            " " + number(-high.y) + " " + number(size.x) + " " + number(size.y) +
            "\" xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\">\n<title>strata model</title>\n<path d=\"\n";
-    for (const geometry::Outline& o : shape.outlines) {
+    for (const flat::Outline& o : shape.outlines) {
         for (std::size_t i = 0; i < o.points.size(); ++i) {
             out += (i == 0 ? "M " : " L ") + number(o.points[i].x) + "," + number(-o.points[i].y);
         }
@@ -55,14 +55,14 @@ void group(std::string& out, int code, const std::string& value) {
     out += std::string(c.size() < 3 ? 3 - c.size() : 0, ' ') + c + "\n" + value + "\n";
 }
 
-std::string dxf(const geometry::Outlines& shape) {
+std::string dxf(const flat::Outlines& shape) {
     std::string out;
     group(out, 0, "SECTION");
     group(out, 2, "BLOCKS");
     group(out, 0, "ENDSEC");
     group(out, 0, "SECTION");
     group(out, 2, "ENTITIES");
-    for (const geometry::Outline& o : shape.outlines) {
+    for (const flat::Outline& o : shape.outlines) {
         for (std::size_t i = 0; i < o.points.size(); ++i) {
             const glm::dvec2& a = o.points[i];
             const glm::dvec2& b = o.points[(i + 1) % o.points.size()];
@@ -95,12 +95,12 @@ FlatFormat flatFormatOf(const std::string& path) {
     return format != nullptr && format->extension == ".svg" ? FlatFormat::Svg : FlatFormat::Dxf;
 }
 
-std::vector<unsigned char> flatBytes(const geometry::Outlines& outlines, FlatFormat format) {
+std::vector<unsigned char> flatBytes(const flat::Outlines& outlines, FlatFormat format) {
     const std::string text = format == FlatFormat::Svg ? svg(outlines) : dxf(outlines);
     return std::vector<unsigned char>(text.begin(), text.end());
 }
 
-StagedFile stageFlat(const std::string& path, const geometry::Outlines& outlines) {
+StagedFile stageFlat(const std::string& path, const flat::Outlines& outlines) {
     return StagedFile::write(path, "drawing", flatBytes(outlines, flatFormatOf(path)));
 }
 

@@ -44,7 +44,7 @@ std::string exact(double x) {
     return std::string(text, r.ptr);
 }
 
-Bytes stl(const geometry::Mesh& mesh) {
+Bytes stl(const mesh::Mesh& mesh) {
     Bytes out;
     out.reserve(84 + mesh.triangles.size() * 50);
     std::string header = "binary STL written by strata";
@@ -66,7 +66,7 @@ Bytes stl(const geometry::Mesh& mesh) {
     return out;
 }
 
-Bytes off(const geometry::Mesh& mesh) {
+Bytes off(const mesh::Mesh& mesh) {
     Bytes out;
     put(out, "OFF\n" + std::to_string(mesh.positions.size()) + " " + std::to_string(mesh.triangles.size()) + " 0\n");
     for (const glm::dvec3& p : mesh.positions) put(out, exact(p.x) + " " + exact(p.y) + " " + exact(p.z) + "\n");
@@ -75,7 +75,7 @@ Bytes off(const geometry::Mesh& mesh) {
     return out;
 }
 
-Bytes obj(const geometry::Mesh& mesh) {
+Bytes obj(const mesh::Mesh& mesh) {
     Bytes out;
     put(out, "# written by strata\n");
     for (const glm::dvec3& p : mesh.positions) put(out, "v " + exact(p.x) + " " + exact(p.y) + " " + exact(p.z) + "\n");
@@ -113,7 +113,7 @@ private:
 
 unsigned char channel(float v) { return static_cast<unsigned char>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); }
 
-Bytes threeMf(const geometry::Mesh& mesh, std::span<const glm::vec4> colors) {
+Bytes threeMf(const mesh::Mesh& mesh, std::span<const glm::vec4> colors) {
     Lib3mf lib;
     NMR::PLib3MFModel* model = nullptr;
     Lib3mf::check(NMR::lib3mf_createmodel(&model), "creating a model");
@@ -195,7 +195,7 @@ MeshFormat meshFormatOf(const std::string& path) {
     throw Error(SourceLocation{path, 0, 0}, "cannot export to '" + ext + "' (expected " + extensionList(ExportKind::Mesh) + ")");
 }
 
-std::vector<unsigned char> meshBytes(const geometry::Mesh& mesh, MeshFormat format, std::span<const glm::vec4> colors) {
+std::vector<unsigned char> meshBytes(const mesh::Mesh& mesh, MeshFormat format, std::span<const glm::vec4> colors) {
     switch (format) {
         case MeshFormat::Stl: return stl(mesh);
         case MeshFormat::Off: return off(mesh);
@@ -205,7 +205,7 @@ std::vector<unsigned char> meshBytes(const geometry::Mesh& mesh, MeshFormat form
     return {};
 }
 
-StagedFile stageMesh(const std::string& path, const geometry::Mesh& mesh, std::span<const glm::vec4> colors) {
+StagedFile stageMesh(const std::string& path, const mesh::Mesh& mesh, std::span<const glm::vec4> colors) {
     const MeshFormat format = meshFormatOf(path);
     std::vector<unsigned char> bytes;
     try {

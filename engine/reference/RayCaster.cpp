@@ -306,7 +306,7 @@ struct ReferenceScene::Impl {
     glm::dvec3 boxMin{kInfinity}, boxMax{-kInfinity};  // padded box of every traced triangle
     glm::dvec3 offset{0.0};
     double size = 0.0;  // the box's diagonal
-    geometry::Bounds bounds;  // of every leaf mesh, background leaves too: the GPU's box for the tolerance
+    mesh::Bounds bounds;  // of every leaf mesh, background leaves too: the GPU's box for the tolerance
     double padding = 0.0;
 };
 
@@ -438,7 +438,7 @@ RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double
     return shownHit(*shown.pick, shown.pickSame);
 }
 
-ReferenceScene::ReferenceScene(const scene::Tree& tree, const geometry::Model& model)
+ReferenceScene::ReferenceScene(const scene::Tree& tree, const model::Model& model)
     : impl_(std::make_unique<Impl>(tree)) {
     if (model.leafMeshes.size() != tree.leaves.size()) {
         throw Error("reference: the model has " + std::to_string(model.leafMeshes.size()) +
@@ -446,14 +446,14 @@ ReferenceScene::ReferenceScene(const scene::Tree& tree, const geometry::Model& m
     }
     Impl& impl = *impl_;
     impl.byLeaf.assign(tree.leaves.size(), nullptr);
-    for (const geometry::Mesh& mesh : model.leafMeshes) {
-        if (!mesh.triangles.empty()) impl.bounds.extend(geometry::boundsOf(mesh));
+    for (const mesh::Mesh& mesh : model.leafMeshes) {
+        if (!mesh.triangles.empty()) impl.bounds.extend(mesh::boundsOf(mesh));
     }
 
     // The box of what is traced, and the padding that follows from its size.
     double largest = 0.0;
     for (int leaf : impl.program.leaves()) {
-        const geometry::Mesh& mesh = model.leafMeshes[static_cast<std::size_t>(leaf)];
+        const mesh::Mesh& mesh = model.leafMeshes[static_cast<std::size_t>(leaf)];
         for (const auto& triangle : mesh.triangles) {
             for (uint32_t v : triangle) {
                 if (v >= mesh.positions.size()) {
@@ -490,7 +490,7 @@ ReferenceScene::ReferenceScene(const scene::Tree& tree, const geometry::Model& m
     impl.check(__LINE__);
 
     for (int leaf : impl.program.leaves()) {
-        const geometry::Mesh& mesh = model.leafMeshes[static_cast<std::size_t>(leaf)];
+        const mesh::Mesh& mesh = model.leafMeshes[static_cast<std::size_t>(leaf)];
         if (mesh.triangles.empty()) continue;
         auto geometry = std::make_unique<LeafGeometry>();
         geometry->leaf = leaf;
@@ -593,7 +593,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
     return image;
 }
 
-ReferenceImage renderReference(const scene::Tree& tree, const geometry::Model& model, const render::Camera& camera,
+ReferenceImage renderReference(const scene::Tree& tree, const model::Model& model, const render::Camera& camera,
                                const ReferenceOptions& options) {
     return ReferenceScene(tree, model).render(camera, options);
 }

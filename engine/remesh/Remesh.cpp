@@ -122,7 +122,7 @@ std::size_t rayCount(const contour::DexelGrid& grid, int a) {
 
 }  // namespace
 
-contour::DexelGrid gridFor(const geometry::Bounds& box, int resolution) {
+contour::DexelGrid gridFor(const mesh::Bounds& box, int resolution) {
     if (resolution < kLeastResolution || resolution > kMostResolution) {
         throw Error("export: the resolution must be " + std::to_string(kLeastResolution) + " to " +
                     std::to_string(kMostResolution) + " cells, got " + std::to_string(resolution));

@@ -9,14 +9,14 @@
 
 namespace strata::render {
 
-bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh, double maxWork) {
+bool isConvexLeaf(const scene::Primitive& primitive, const mesh::Mesh& mesh, double maxWork) {
     if (std::holds_alternative<scene::Cube>(primitive) || std::holds_alternative<scene::Sphere>(primitive) ||
         std::holds_alternative<scene::Cylinder>(primitive) || std::holds_alternative<scene::Hull>(primitive)) {
         return true;
     }
     const double work = static_cast<double>(mesh.positions.size()) * static_cast<double>(mesh.triangles.size());
     if (mesh.triangles.empty() || work > maxWork) return false;
-    const double tolerance = 1e-9 * geometry::boundsOf(mesh).diagonal();
+    const double tolerance = 1e-9 * mesh::boundsOf(mesh).diagonal();
     for (const auto& t : mesh.triangles) {
         const glm::dvec3& a = mesh.positions[t[0]];
         const glm::dvec3 n = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
@@ -30,7 +30,7 @@ bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh,
     return true;
 }
 
-bool everyShellHasVolume(const geometry::Mesh& mesh) {
+bool everyShellHasVolume(const mesh::Mesh& mesh) {
     // Shells: the vertices joined by triangles (union-find).
     std::vector<std::uint32_t> parent(mesh.positions.size());
     std::iota(parent.begin(), parent.end(), 0u);
@@ -50,7 +50,7 @@ bool everyShellHasVolume(const geometry::Mesh& mesh) {
         volume[shell] += glm::dot(mesh.positions[t[0]], glm::cross(mesh.positions[t[1]], mesh.positions[t[2]])) / 6.0;
         used[shell] = 1;
     }
-    const double size = geometry::boundsOf(mesh).diagonal();
+    const double size = mesh::boundsOf(mesh).diagonal();
     const double least = 1e-12 * size * size * size;
     for (std::size_t v = 0; v < volume.size(); ++v) {
         if (used[v] && std::abs(volume[v]) <= least) return false;

@@ -4,7 +4,7 @@
 // no occlusion query for it. And which leaves have a shell of no volume,
 // whose entry and exit share one depth.
 
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::render {
@@ -14,7 +14,7 @@ namespace strata::render {
 // polyhedra and imports are tested (every vertex on the inner side of every
 // face plane) when that costs at most `maxWork` vertex-plane tests, and are
 // assumed non-convex above it.
-bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh,
+bool isConvexLeaf(const scene::Primitive& primitive, const mesh::Mesh& mesh,
                   double maxWork = 4.0e6);
 
 // False when a connected shell of `mesh` encloses no volume (within 1e-12
@@ -22,6 +22,6 @@ bool isConvexLeaf(const scene::Primitive& primitive, const geometry::Mesh& mesh,
 // ray enters and leaves at one depth. The renderer peels such a leaf in
 // full even where one layer would otherwise do (Renderer.cpp), since the
 // first layer alone would keep the entry and lose the exit.
-bool everyShellHasVolume(const geometry::Mesh& mesh);
+bool everyShellHasVolume(const mesh::Mesh& mesh);
 
 }  // namespace strata::render

@@ -79,14 +79,14 @@ namespace {
 // calls crowd(i) for each of its boxes instead of comparing them. Returns
 // false, having stopped, past `budget` comparisons.
 template <class Pair, class Crowd>
-bool nearPairs(std::span<const geometry::Bounds> boxes, double margin, std::size_t budget, std::size_t crowded,
+bool nearPairs(std::span<const mesh::Bounds> boxes, double margin, std::size_t budget, std::size_t crowded,
                Pair&& pair, Crowd&& crowd) {
     constexpr std::size_t kMostCells = 64;
     if (boxes.size() < 2) return true;
     std::vector<double> extents;
     extents.reserve(boxes.size());
-    geometry::Bounds whole;
-    for (const geometry::Bounds& b : boxes) {
+    mesh::Bounds whole;
+    for (const mesh::Bounds& b : boxes) {
         const glm::dvec3 size = b.max - b.min;
         extents.push_back(std::max({size.x, size.y, size.z}));
         whole.extend(b);
@@ -102,7 +102,7 @@ bool nearPairs(std::span<const geometry::Bounds> boxes, double margin, std::size
         return static_cast<std::int64_t>(std::floor((v - origin) / cell));
     };
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const geometry::Bounds& b = boxes[i];
+        const mesh::Bounds& b = boxes[i];
         std::int64_t low[3], high[3];
         std::uint64_t count = 1;
         for (int axis = 0; axis < 3; ++axis) {
@@ -150,7 +150,7 @@ bool nearPairs(std::span<const geometry::Bounds> boxes, double margin, std::size
     return true;
 }
 
-bool boxesMeet(const geometry::Bounds& p, const geometry::Bounds& q, double margin) {
+bool boxesMeet(const mesh::Bounds& p, const mesh::Bounds& q, double margin) {
     for (int axis = 0; axis < 3; ++axis) {
         if (p.max[axis] + margin < q.min[axis] - margin || q.max[axis] + margin < p.min[axis] - margin) return false;
     }
@@ -165,7 +165,7 @@ std::vector<int> PlainPass::mayTie(const SceneBuffers& scene, std::span<const in
     // `budget` comparisons every leaf does.
     constexpr std::size_t kCrowded = 64;
     std::vector<int> present;
-    std::vector<geometry::Bounds> boxes;
+    std::vector<mesh::Bounds> boxes;
     present.reserve(leaves.size());
     for (int leaf : leaves) {
         if (scene.leaf(leaf).bounds.empty()) continue;
@@ -203,7 +203,7 @@ std::optional<PlainPass::TieDraws> PlainPass::tyingTriangles(const SceneBuffers&
         std::uint32_t leaf;
     };
     std::vector<Triangle> triangles;
-    std::vector<geometry::Bounds> boxes;
+    std::vector<mesh::Bounds> boxes;
     std::vector<SceneBuffers::LeafTriangles> drawn(leaves.size());
     std::vector<std::size_t> firstTriangle(leaves.size() + 1, 0);
     triangles.reserve(total);
@@ -218,7 +218,7 @@ std::optional<PlainPass::TieDraws> PlainPass::tyingTriangles(const SceneBuffers&
             const glm::dvec3 n = glm::cross(glm::dvec3(t.corner[1]) - a, glm::dvec3(t.corner[2]) - a);
             const double length = glm::length(n);
             t.normal = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
-            geometry::Bounds box;
+            mesh::Bounds box;
             for (const glm::vec3& p : t.corner) box.extend(glm::dvec3(p));
             triangles.push_back(t);
             boxes.push_back(box);

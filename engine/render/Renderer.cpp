@@ -160,16 +160,16 @@ void Renderer::Impl::readColor(Frame& frame) {
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
-void Renderer::setScene(const scene::Tree& tree, const geometry::Model& model) {
+void Renderer::setScene(const scene::Tree& tree, const model::Model& model) {
     impl_->setScene(tree, model, nullptr);
 }
 
-void Renderer::setScene(const scene::Tree& tree, geometry::Model&& model) {
+void Renderer::setScene(const scene::Tree& tree, model::Model&& model) {
     impl_->setScene(tree, model, &model);
     model = {};
 }
 
-void Renderer::Impl::setScene(const scene::Tree& tree, const geometry::Model& model, geometry::Model* release) {
+void Renderer::Impl::setScene(const scene::Tree& tree, const model::Model& model, model::Model* release) {
     Impl& impl = *this;
     impl.scene.describe(tree, model);
     std::vector<bool> empty(model.leafMeshes.size());

@@ -120,7 +120,7 @@ struct Renderer::Impl {
 
     // Renderer::setScene's; `release` (`model` itself, or null): let the
     // meshes go as they reach the GPU.
-    void setScene(const scene::Tree& tree, const geometry::Model& model, geometry::Model* release);
+    void setScene(const scene::Tree& tree, const model::Model& model, model::Model* release);
 
     // A plain frame (PlainPass.h) in place of the peel, evaluate and normal passes.
     // `drawn` holds every pixel its leaves cover.

@@ -17,7 +17,7 @@
 #include "Convexity.h"
 #include "ShaderInterface.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/LastCorners.h"
+#include "strata/mesh/LastCorners.h"
 
 namespace strata::render {
 
@@ -62,7 +62,7 @@ void setSurfaceView(gpu::Program& program, const ViewSetup& view, glm::ivec2 til
     }
 }
 
-FacePlanes::FacePlanes(const geometry::Bounds& scene)
+FacePlanes::FacePlanes(const mesh::Bounds& scene)
     : unit_(std::max(scene.empty() ? 1.0 : scene.diagonal(), 1e-300) * 1e-9) {}
 
 bool FacePlanes::keyOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, Key& key, glm::vec4& plane) const {
@@ -106,14 +106,14 @@ std::optional<std::uint64_t> FacePlanes::hashOf(const glm::dvec3& a, const glm::
     return hashKey(key);
 }
 
-void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& model) {
+void SceneBuffers::describe(const scene::Tree& tree, const model::Model& model) {
     if (model.leafMeshes.size() != tree.leaves.size()) {
         throw Error("renderer: the model has " + std::to_string(model.leafMeshes.size()) +
                     " leaf meshes for a tree of " + std::to_string(tree.leaves.size()) + " leaves");
     }
     vertices_.clear();
     std::size_t meshVertices = 0;
-    for (const geometry::Mesh& mesh : model.leafMeshes) meshVertices += mesh.positions.size();
+    for (const mesh::Mesh& mesh : model.leafMeshes) meshVertices += mesh.positions.size();
     vertices_.reserve(meshVertices);
     firstVertex_.assign(1, 0);
     firstVertex_.reserve(model.leafMeshes.size() + 1);
@@ -123,8 +123,8 @@ void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& mode
     layoutStart_.assign(model.leafMeshes.size() + 1, 0);
     std::size_t layoutVertices = 0, indexCount = 0;
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
-        const geometry::Mesh& mesh = model.leafMeshes[i];
-        const std::size_t copies = geometry::lastCornerLayout(mesh).source.size();
+        const mesh::Mesh& mesh = model.leafMeshes[i];
+        const std::size_t copies = mesh::lastCornerLayout(mesh).source.size();
         if (layoutVertices + copies > 0xffffffffu) throw Error("renderer: more than 2^32 vertices");
         layoutStart_[i] = static_cast<std::uint32_t>(layoutVertices);
         layoutVertices += copies;
@@ -148,7 +148,7 @@ void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& mode
     // Every triangle's plane, to know which planes two leaves share.
     facePlanes_ = FacePlanes(bounds_);
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
-        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const mesh::Mesh& mesh = model.leafMeshes[i];
         for (const auto& t : mesh.triangles) {
             facePlanes_.add(static_cast<int>(i), mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
         }
@@ -156,7 +156,7 @@ void SceneBuffers::describe(const scene::Tree& tree, const geometry::Model& mode
     sharing_.clear();
 }
 
-void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) {
+void SceneBuffers::fill(const model::Model& model, model::Model* release) {
     // Each triangle ends on a vertex of its own (lastCornerLayout), which
     // carries its face plane: the provoking vertex of a flat varying.
     const std::size_t layoutVertices = layoutStart_.back();
@@ -167,8 +167,8 @@ void SceneBuffers::fill(const geometry::Model& model, geometry::Model* release) 
     // Leaf i's vertices, planes and triangles onto the arrays, which start
     // at layout vertex `base`.
     auto append = [&](std::size_t i, std::size_t base) {
-        const geometry::Mesh& mesh = model.leafMeshes[i];
-        const geometry::LastCornerLayout layout = geometry::lastCornerLayout(mesh);
+        const mesh::Mesh& mesh = model.leafMeshes[i];
+        const mesh::LastCornerLayout layout = mesh::lastCornerLayout(mesh);
         const std::uint32_t firstVertex = layoutStart_[i];
         for (std::uint32_t v : layout.source) {
             const glm::dvec3& p = mesh.positions[v];
@@ -318,14 +318,14 @@ void SceneBuffers::drawLeaf(int leaf) const {
                    reinterpret_cast<const void*>(range.firstIndex * sizeof(std::uint32_t)));
 }
 
-void SceneBuffers::hashPlanes(const geometry::Model& model, const std::vector<int>& leaves) {
+void SceneBuffers::hashPlanes(const model::Model& model, const std::vector<int>& leaves) {
     // Planes as FacePlanes tells them apart, each hashed to one number.
     const FacePlanes planes(bounds_);
     for (int leaf : leaves) {
         const auto i = static_cast<std::size_t>(leaf);
         std::vector<std::uint64_t>& keys = planes_[i];
         if (!leaves_[i].convex || !keys.empty()) continue;
-        const geometry::Mesh& mesh = model.leafMeshes[i];
+        const mesh::Mesh& mesh = model.leafMeshes[i];
         for (const auto& t : mesh.triangles) {
             if (const std::optional<std::uint64_t> key =
                     planes.hashOf(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]])) {

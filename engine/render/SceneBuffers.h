@@ -3,7 +3,7 @@
 // buffer, with per-leaf ranges, and three vertex arrays over it, shared by
 // every pass that draws leaves; one index buffer serves them all:
 // - vertexArray(): positions (attribute 0), the triangles in
-//   geometry::lastCornerLayout: each ends on a vertex of its own, copied
+//   mesh::lastCornerLayout: each ends on a vertex of its own, copied
 //   where needed. Corners keep the mesh's order, and copies their position,
 //   so a triangle is set up and rasterized exactly as the mesh has it.
 //   Attribute 1: the face plane of the triangle that ends on the vertex
@@ -36,10 +36,10 @@
 #include <glm/vec4.hpp>
 
 #include "ViewSetup.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Buffer.h"
 #include "strata/gpu/Program.h"
 #include "strata/gpu/VertexArray.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::render {
@@ -63,7 +63,7 @@ struct DrawElementsIndirectCommand {
 class FacePlanes {
 public:
     FacePlanes() = default;
-    explicit FacePlanes(const geometry::Bounds& scene);
+    explicit FacePlanes(const mesh::Bounds& scene);
     // Notes the plane of leaf `leaf`'s triangle a b c (counter-clockwise from outside).
     void add(int leaf, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
     // The triangle's (n, n . a): the plane shared by every triangle added in
@@ -93,7 +93,7 @@ private:
 struct LeafRange {
     std::size_t firstIndex = 0;     // into the index buffer
     std::size_t indexCount = 0;     // 3 per triangle; 0 for an empty leaf
-    geometry::Bounds bounds;        // world space
+    mesh::Bounds bounds;        // world space
     bool convex = false;
     bool solidShells = true;        // everyShellHasVolume (Convexity.h)
 };
@@ -108,8 +108,8 @@ public:
     // null): let each mesh go (release->leafMeshes[i] left empty) as it is
     // read, and hand the freed memory back to the system, so that a million
     // leaves never hold their meshes and their buffers at once.
-    void describe(const scene::Tree& tree, const geometry::Model& model);
-    void fill(const geometry::Model& model, geometry::Model* release);
+    void describe(const scene::Tree& tree, const model::Model& model);
+    void fill(const model::Model& model, model::Model* release);
 
     // glDrawElements of leaf `leaf`'s triangles; either vertex array must be bound.
     void drawLeaf(int leaf) const;
@@ -143,10 +143,10 @@ public:
     const std::vector<LeafRange>& leaves() const { return leaves_; }
     const LeafRange& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
     // Of every leaf with triangles, background leaves included.
-    const geometry::Bounds& bounds() const { return bounds_; }
+    const mesh::Bounds& bounds() const { return bounds_; }
     // Hashes the face planes of the convex `leaves` (model as in describe),
     // for shareAPlane; leaves not hashed have no planes there.
-    void hashPlanes(const geometry::Model& model, const std::vector<int>& leaves);
+    void hashPlanes(const model::Model& model, const std::vector<int>& leaves);
     // Whether two of the convex `leaves` have faces in one plane, facing the
     // same way (to a billionth of the scene's size): where members of an
     // intersection group can tie (GroupPeel.h). Remembered per set of leaves.
@@ -172,7 +172,7 @@ private:
     std::vector<glm::vec3> vertices_;          // all leaves' vertices, as in positions_
     std::vector<std::size_t> firstVertex_;     // per leaf, and one past the last
     std::vector<std::uint32_t> layoutStart_;   // per leaf, and one past the last: into the layouts' vertices
-    geometry::Bounds bounds_;
+    mesh::Bounds bounds_;
 };
 
 // Sets surface.vert's uniforms (the view) on `program`, a program whose

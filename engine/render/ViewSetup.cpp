@@ -19,7 +19,7 @@ namespace {
 constexpr double kNearFloor = 1e-6;
 constexpr double kMargin = 1e-3;
 
-std::array<glm::dvec3, 8> corners(const geometry::Bounds& b) {
+std::array<glm::dvec3, 8> corners(const mesh::Bounds& b) {
     std::array<glm::dvec3, 8> c;
     for (int k = 0; k < 8; ++k) {
         c[static_cast<std::size_t>(k)] = {(k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
@@ -30,7 +30,7 @@ std::array<glm::dvec3, 8> corners(const geometry::Bounds& b) {
 
 }  // namespace
 
-ViewSetup makeView(const Camera& camera, const geometry::Bounds& sceneBounds) {
+ViewSetup makeView(const Camera& camera, const mesh::Bounds& sceneBounds) {
     if (camera.width <= 0 || camera.height <= 0) {
         throw Error("camera: image size must be positive, got " + std::to_string(camera.width) + "x" +
                     std::to_string(camera.height));
@@ -117,7 +117,7 @@ PixelRect RectBuilder::rect() const {
 
 }  // namespace
 
-bool beyondNearPlane(const ViewSetup& view, const geometry::Bounds& box) {
+bool beyondNearPlane(const ViewSetup& view, const mesh::Bounds& box) {
     if (box.empty()) return true;
     for (const glm::dvec3& c : corners(box)) {
         if (glm::dot(c - view.eyeD, view.forwardD) <= view.nearPlane) return false;
@@ -125,7 +125,7 @@ bool beyondNearPlane(const ViewSetup& view, const geometry::Bounds& box) {
     return true;
 }
 
-PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box) {
+PixelRect screenRect(const ViewSetup& view, const mesh::Bounds& box) {
     if (box.empty()) return {};
     RectBuilder builder{view};
     for (const glm::dvec3& c : corners(box)) builder.add(c);

@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::render {
 
@@ -60,15 +60,15 @@ struct ViewSetup {
 // margin), so nothing is clipped but by the near plane when the eye is inside
 // the scene; far beyond the farthest depth. Throws strata::Error on a camera
 // that cannot make an image (zero size, eye == center, bad field of view).
-ViewSetup makeView(const Camera& camera, const geometry::Bounds& sceneBounds);
+ViewSetup makeView(const Camera& camera, const mesh::Bounds& sceneBounds);
 
 // Whether all of `box` lies beyond the near plane: then every ray starts
 // outside every solid in it.
-bool beyondNearPlane(const ViewSetup& view, const geometry::Bounds& box);
+bool beyondNearPlane(const ViewSetup& view, const mesh::Bounds& box);
 
 // The pixels that `box` can cover (with a pixel of margin), clamped to the
 // frame; the whole frame when the box reaches the near plane.
-PixelRect screenRect(const ViewSetup& view, const geometry::Bounds& box);
+PixelRect screenRect(const ViewSetup& view, const mesh::Bounds& box);
 
 // The pixels that the triangles over `vertices` can cover (with a pixel of
 // margin): tighter than the box's rectangle. The whole frame when a vertex

@@ -13,7 +13,7 @@ bool convexByConstruction(const Primitive& p) {
 
 // Leaves whose parameters make no solid (a cube with a side of 0, a sphere
 // of radius 0, a cylinder of no height or no radius): OpenSCAD makes them
-// empty, and geometry::tessellate makes no mesh for them.
+// empty, and mesh::tessellate makes no mesh for them.
 bool emptyByParameters(const Primitive& p) {
     if (const auto* c = std::get_if<Cube>(&p)) {
         const glm::dvec3 s = c->size;
@@ -47,7 +47,6 @@ void Parser::openProjection(const Statement& st, Open open, const Open& parent) 
     }
     enterBlock(st, std::move(open));
 }
-
 
 // resize(newsize = [x, y, z], auto = [0, 0, 0] | true): a size of 0 keeps an axis.
 Resize Parser::resizeArguments(const std::vector<CsgArgument>& args) const {

@@ -37,9 +37,9 @@
 #include "Compare.h"
 #include "DiffImages.h"
 #include "Manifest.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/CsgParser.h"
@@ -92,13 +92,13 @@ Gl& gl() {
 
 struct Scene {
     scene::Tree tree;
-    geometry::Model model;
+    model::Model model;
 };
 
 Scene load(const Shot& shot) {
     Scene s;
     s.tree = scene::parseCsgFile(kDir + "/scenes/" + shot.scene);
-    s.model = geometry::buildModel(s.tree);
+    s.model = model::buildModel(s.tree);
     return s;
 }
 

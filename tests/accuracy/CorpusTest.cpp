@@ -22,8 +22,8 @@
 
 #include "Manifest.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/MeshImport.h"
-#include "strata/geometry/Model.h"
+#include "strata/mesh/MeshImport.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayTriangle.h"
 #include "strata/scene/CsgParser.h"
 
@@ -58,7 +58,7 @@ int booleanDepth(const scene::Tree& tree, int node) {
 }
 
 // Number of crossings of the ray with the mesh after its start (t > 0).
-int crossings(const geometry::Mesh& mesh, const render::Ray& ray) {
+int crossings(const mesh::Mesh& mesh, const render::Ray& ray) {
     const reference::RayFrame frame(ray);
     int count = 0;
     for (const auto& t : mesh.triangles) {
@@ -71,8 +71,8 @@ int crossings(const geometry::Mesh& mesh, const render::Ray& ray) {
 
 // The most crossings of one ray with the mesh, over a grid of rays through its
 // bounds along each axis and the four body diagonals.
-int depthComplexity(const geometry::Mesh& mesh) {
-    const geometry::Bounds b = geometry::boundsOf(mesh);
+int depthComplexity(const mesh::Mesh& mesh) {
+    const mesh::Bounds b = mesh::boundsOf(mesh);
     const glm::dvec3 c = b.center();
     const double reach = b.diagonal();
     const glm::dvec3 directions[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {-1, 1, 1}, {1, -1, 1}, {1, 1, -1}};
@@ -94,7 +94,7 @@ int depthComplexity(const geometry::Mesh& mesh) {
 }
 
 // The most crossings of one leaf by one ray of a coarse grid over the shot's image.
-int operandComplexityInView(const Shot& shot, const geometry::Model& model, int leaf) {
+int operandComplexityInView(const Shot& shot, const model::Model& model, int leaf) {
     render::Camera coarse = shot.camera;
     coarse.width = 32;
     coarse.height = 32;
@@ -162,8 +162,8 @@ TEST(AccuracyCorpus, EverySceneParsesCleanlyIntoClosedLeaves) {
         EXPECT_TRUE(tree.warnings.empty()) << (tree.warnings.empty() ? "" : tree.warnings.front().message);
         EXPECT_TRUE(tree.unsupported.empty());
         EXPECT_FALSE(tree.leaves.empty());
-        geometry::Model model;
-        ASSERT_NO_THROW(model = geometry::buildModel(tree));
+        model::Model model;
+        ASSERT_NO_THROW(model = model::buildModel(tree));
         EXPECT_FALSE(model.bounds.empty());
         for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
             EXPECT_FALSE(model.leafMeshes[i].triangles.empty()) << "leaf " << i << " is empty";
@@ -209,7 +209,7 @@ TEST(AccuracyCorpus, ImportedMeshesHaveDepthComplexityOfSixOrMore) {
                                   std::string(STRATA_TEST_DIR) + "/../examples/meshes/twisted_star.stl"};
     for (const std::string& path : meshes) {
         SCOPED_TRACE(path);
-        const geometry::Mesh mesh = geometry::importMesh(path);
+        const mesh::Mesh mesh = mesh::importMesh(path);
         EXPECT_GE(depthComplexity(mesh), 6);
     }
 }
@@ -224,7 +224,7 @@ TEST(AccuracyCorpus, NonConvexStacksHaveAnOperandCrossedFourTimesInView) {
         SCOPED_TRACE(shot.name);
         flaggedScenes.insert(shot.scene);
         const scene::Tree tree = parse(shot.scene);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         int best = 0;
         for (std::size_t leaf = 0; leaf < tree.leaves.size(); ++leaf) {
             best = std::max(best, operandComplexityInView(shot, model, static_cast<int>(leaf)));
@@ -254,8 +254,8 @@ TEST(AccuracyCorpus, InsideShotsStartRaysInsideTheModel) {
         if (shot.family != "inside") continue;
         SCOPED_TRACE(shot.name);
         ++count;
-        const geometry::Model model = geometry::buildModel(parse(shot.scene));
-        const geometry::Bounds& b = model.bounds;
+        const model::Model model = model::buildModel(parse(shot.scene));
+        const mesh::Bounds& b = model.bounds;
         if (shot.camera.projection == render::Projection::Perspective) {
             const glm::dvec3 e = shot.camera.eye;
             EXPECT_TRUE(e.x > b.min.x && e.x < b.max.x && e.y > b.min.y && e.y < b.max.y && e.z > b.min.z &&
@@ -280,12 +280,12 @@ TEST(AccuracyCorpus, InsideShotsStartRaysInsideTheModel) {
 // size; turned copies of one plane lie a rounding apart). That holds for
 // faces in one plane, shared faces, identical solids and a ring of vertices
 // in a face; the near family's faces, 1e-3 apart, do not count.
-bool leavesTouch(const geometry::Model& model) {
+bool leavesTouch(const model::Model& model) {
     const double tolerance = 1e-9 * model.bounds.diagonal();
     for (std::size_t a = 0; a < model.leafMeshes.size(); ++a) {
         for (std::size_t b = 0; b < model.leafMeshes.size(); ++b) {
             if (a == b) continue;
-            const geometry::Mesh& on = model.leafMeshes[b];
+            const mesh::Mesh& on = model.leafMeshes[b];
             for (const glm::dvec3& p : model.leafMeshes[a].positions) {
                 for (const auto& t : on.triangles) {
                     const glm::dvec3 p0 = on.positions[t[0]], p1 = on.positions[t[1]], p2 = on.positions[t[2]];
@@ -311,7 +311,7 @@ TEST(AccuracyCorpus, CoincidentScenesHaveLeavesThatTouchExactly) {
         const auto shot = std::find_if(shots().begin(), shots().end(), [&](const Shot& s) { return s.scene == file; });
         if (shot->family != "coincident" && shot->family != "near") continue;
         SCOPED_TRACE(file);
-        const geometry::Model model = geometry::buildModel(parse(file));
+        const model::Model model = model::buildModel(parse(file));
         if (shot->family == "near") {
             EXPECT_FALSE(leavesTouch(model)) << "the near family's faces lie 1e-3 of the size apart, never closer";
             continue;

@@ -4,40 +4,40 @@
 #include "CsgProduct.h"
 #include "Scenes.h"
 #include "Solids.h"
-#include "strata/geometry/MeshCheck.h"
-#include "strata/geometry/Model.h"
+#include "strata/mesh/MeshCheck.h"
+#include "strata/model/Model.h"
 
 using namespace strata;
 
 namespace {
 
-geometry::Mesh meshOf(const scene::Polyhedron& polyhedron) {
+mesh::Mesh meshOf(const scene::Polyhedron& polyhedron) {
     scene::Tree tree;
     scene::Leaf leaf;
     leaf.primitive = polyhedron;
     tree.root = tree.addLeaf(std::move(leaf));
-    return geometry::buildModel(tree).leafMeshes.at(0);  // throws unless closed and outward
+    return model::buildModel(tree).leafMeshes.at(0);  // throws unless closed and outward
 }
 
 }  // namespace
 
 TEST(BenchSolids, TorusIsAClosedOutwardSolid) {
-    const geometry::Mesh mesh = meshOf(bench::torus(1.0, 0.3, 32, 16));
+    const mesh::Mesh mesh = meshOf(bench::torus(1.0, 0.3, 32, 16));
     EXPECT_EQ(mesh.triangles.size(), 2u * 32 * 16);
-    EXPECT_TRUE(geometry::checkMesh(mesh).ok()) << geometry::checkMesh(mesh).describe();
+    EXPECT_TRUE(mesh::checkMesh(mesh).ok()) << mesh::checkMesh(mesh).describe();
 }
 
 TEST(BenchSolids, TorusKnotIsAClosedOutwardSolidOfOver100kTriangles) {
-    const geometry::Mesh mesh = meshOf(bench::torusKnot(3.0, 1.2, 1024, 64));
+    const mesh::Mesh mesh = meshOf(bench::torusKnot(3.0, 1.2, 1024, 64));
     EXPECT_EQ(mesh.triangles.size(), 131072u);
-    EXPECT_TRUE(geometry::checkMesh(mesh).ok()) << geometry::checkMesh(mesh).describe();
+    EXPECT_TRUE(mesh::checkMesh(mesh).ok()) << mesh::checkMesh(mesh).describe();
 }
 
 TEST(BenchScenes, EverySceneBecomesOpenCsgProducts) {
     render::Camera base;
     for (const std::string& name : bench::sceneNames()) {
         const bench::BenchScene scene = bench::makeScene(name, 3, 1, base);
-        const geometry::Model model = geometry::buildModel(scene.tree);
+        const model::Model model = model::buildModel(scene.tree);
         const bench::CsgProducts products = bench::csgProducts(scene.tree, model);
         ASSERT_TRUE(products.unavailable.empty()) << name << ": " << products.unavailable;
         ASSERT_FALSE(products.sum.products.empty()) << name;
@@ -74,7 +74,7 @@ TEST(BenchScenes, SingleChildGroupsAreTheirChild) {
     const int cubeInGroup = tree.addNode(scene::NodeKind::Union, {tree.addLeaf(cube)});
     const int difference = tree.addNode(scene::NodeKind::Difference, {cubeInGroup, tree.addLeaf(sphere)});
     tree.root = tree.addNode(scene::NodeKind::Union, {difference});
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     const bench::CsgProducts products = bench::csgProducts(tree, model);
     ASSERT_TRUE(products.unavailable.empty()) << products.unavailable;
     ASSERT_EQ(products.sum.products.size(), 1u);
@@ -84,5 +84,5 @@ TEST(BenchScenes, SingleChildGroupsAreTheirChild) {
     // Two objects side by side: a union of two products.
     scene::Tree two;
     two.root = two.addNode(scene::NodeKind::Union, {two.addLeaf(cube), two.addLeaf(sphere)});
-    EXPECT_EQ(bench::csgProducts(two, geometry::buildModel(two)).sum.products.size(), 2u);
+    EXPECT_EQ(bench::csgProducts(two, model::buildModel(two)).sum.products.size(), 2u);
 }

@@ -12,7 +12,7 @@
 #include "Scenes.h"
 #include "strata/camera/ViewBounds.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -47,7 +47,7 @@ void expectCoversWhatStrataCovers(bench::OpenCsgComparator& comparator, gpu::Con
         base.width = 128;
         base.height = 96;
         const bench::BenchScene scene = bench::makeScene(name, k, 1, base);
-        const geometry::Model model = geometry::buildModel(scene.tree);
+        const model::Model model = model::buildModel(scene.tree);
         const render::Camera camera = render::defaultCamera(render::viewBounds(scene.tree, model), base);
         render::Renderer renderer;
         renderer.setScene(scene.tree, model);
@@ -146,7 +146,7 @@ TEST(OpenCsgComparator, SumOfProductsCoversWhatStrataCovers) {
         render::Camera base;
         base.width = 128;
         base.height = 96;
-        const geometry::Model model = geometry::buildModel(c.tree);
+        const model::Model model = model::buildModel(c.tree);
         const render::Camera camera = render::defaultCamera(render::viewBounds(c.tree, model), base);
         render::Renderer renderer;
         renderer.setScene(c.tree, model);
@@ -184,7 +184,7 @@ TEST(OpenCsgComparator, GivesUpPastTheElementLimit) {
     base.width = 64;
     base.height = 48;
     const bench::BenchScene scene = bench::makeScene("blowup", 18, 1, base);
-    const geometry::Model model = geometry::buildModel(scene.tree);
+    const model::Model model = model::buildModel(scene.tree);
     const render::Camera camera = render::defaultCamera(render::viewBounds(scene.tree, model), base);
     const std::vector<std::uint8_t> none(std::size_t(base.width) * std::size_t(base.height), 0);
     bench::OpenCsgCaps caps;

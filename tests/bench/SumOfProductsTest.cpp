@@ -6,7 +6,7 @@
 #include "CsgProduct.h"
 #include "Scenes.h"
 #include "SumOfProducts.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 
 using namespace strata;
 using bench::NormalizedProduct;
@@ -179,7 +179,7 @@ TEST(SumOfProducts, BlowupSceneGrowsAsTwoToTheK) {
     render::Camera base;
     {
         const bench::BenchScene scene = bench::makeScene("blowup", 4, 1, base);
-        const bench::CsgProducts products = bench::csgProducts(scene.tree, geometry::buildModel(scene.tree));
+        const bench::CsgProducts products = bench::csgProducts(scene.tree, model::buildModel(scene.tree));
         ASSERT_TRUE(products.unavailable.empty()) << products.unavailable;
         ASSERT_EQ(products.sum.products.size(), 16u);
         for (const NormalizedProduct& p : products.sum.products) {
@@ -191,7 +191,7 @@ TEST(SumOfProducts, BlowupSceneGrowsAsTwoToTheK) {
     {
         // 2^20 products of 20: far past OpenSCAD's limit, which stops it early.
         const bench::BenchScene scene = bench::makeScene("blowup", 20, 1, base);
-        const bench::CsgProducts products = bench::csgProducts(scene.tree, geometry::buildModel(scene.tree));
+        const bench::CsgProducts products = bench::csgProducts(scene.tree, model::buildModel(scene.tree));
         EXPECT_TRUE(products.sum.gaveUp);
         EXPECT_EQ(products.sum.elements, bench::kOpenScadNormalizeLimit + 1);
         EXPECT_NE(products.unavailable.find("200000"), std::string::npos) << products.unavailable;
@@ -226,7 +226,7 @@ TEST(SumOfProducts, RenderingLimitAndTwiceItForTheNormalization) {
     {
         // difference() of 12 cubes: one product of 12, after 11 elements.
         const scene::Tree tree = cubes(K::Difference, 12);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         const bench::CsgProducts over = bench::csgProducts(tree, model, 11);
         EXPECT_FALSE(over.sum.gaveUp);
         EXPECT_EQ(over.sum.elements, 11u);
@@ -241,11 +241,11 @@ TEST(SumOfProducts, RenderingLimitAndTwiceItForTheNormalization) {
         // stops past 10, so 11 cubes normalize (and are too many to draw)
         // and 12 give up.
         const scene::Tree eleven = cubes(K::Union, 11), twelve = cubes(K::Union, 12);
-        const bench::CsgProducts a = bench::csgProducts(eleven, geometry::buildModel(eleven), 5);
+        const bench::CsgProducts a = bench::csgProducts(eleven, model::buildModel(eleven), 5);
         EXPECT_FALSE(a.sum.gaveUp);
         EXPECT_EQ(a.sum.elements, 10u);
         EXPECT_NE(a.unavailable.find("OpenCSG off"), std::string::npos) << a.unavailable;
-        const bench::CsgProducts b = bench::csgProducts(twelve, geometry::buildModel(twelve), 5);
+        const bench::CsgProducts b = bench::csgProducts(twelve, model::buildModel(twelve), 5);
         EXPECT_TRUE(b.sum.gaveUp);
         EXPECT_EQ(b.sum.elements, 11u);
         EXPECT_NE(b.unavailable.find("gave up"), std::string::npos) << b.unavailable;

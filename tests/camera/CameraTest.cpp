@@ -219,7 +219,7 @@ TEST(Camera, BadArgumentsThrow) {
 
 TEST(Camera, DefaultViewFitsTheBoundsLikeOpenScadViewAll) {
     // Camera::viewAll with autocenter: centre on the box; distance = (|diagonal| / 2) / sin(fov / 2).
-    strata::geometry::Bounds bounds;
+    strata::mesh::Bounds bounds;
     bounds.min = {0.0, -2.0, 1.0};
     bounds.max = {10.0, 4.0, 5.0};
     Camera base;
@@ -241,8 +241,8 @@ TEST(Camera, DefaultViewFitsTheBoundsLikeOpenScadViewAll) {
 }
 
 TEST(Camera, DefaultViewOfNothingIsOpenScadsResetView) {
-    const Camera camera = strata::render::defaultCamera(strata::geometry::Bounds{}, Camera{});
+    const Camera camera = strata::render::defaultCamera(strata::mesh::Bounds{}, Camera{});
     expectNear(camera.center, {0, 0, 0}, 0.0);
     EXPECT_NEAR(glm::length(camera.eye), 140.0, 1e-10);
-    EXPECT_THROW(strata::render::defaultCamera(strata::geometry::Bounds{}, Camera{.fovDegrees = 0.0}), strata::Error);
+    EXPECT_THROW(strata::render::defaultCamera(strata::mesh::Bounds{}, Camera{.fovDegrees = 0.0}), strata::Error);
 }

@@ -27,11 +27,11 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-geometry::Mesh contourOf(const Solid& solid, const DexelGrid& grid) { return contour(sample(solid, grid)); }
+mesh::Mesh contourOf(const Solid& solid, const DexelGrid& grid) { return contour(sample(solid, grid)); }
 
 void expectSound(const MeshInspection& m) { EXPECT_TRUE(m.sound()) << m.describe(); }
 
-double nearestVertex(const geometry::Mesh& mesh, const glm::dvec3& p) {
+double nearestVertex(const mesh::Mesh& mesh, const glm::dvec3& p) {
     double best = 1e300;
     for (const glm::dvec3& v : mesh.positions) best = std::min(best, glm::length(v - p));
     return best;
@@ -39,7 +39,7 @@ double nearestVertex(const geometry::Mesh& mesh, const glm::dvec3& p) {
 
 // The vertices within `tolerance` of the segment a–b, as distances from a
 // along it, sorted, with both ends added: consecutive values are the gaps.
-std::vector<double> alongSegment(const geometry::Mesh& mesh, const glm::dvec3& a, const glm::dvec3& b,
+std::vector<double> alongSegment(const mesh::Mesh& mesh, const glm::dvec3& a, const glm::dvec3& b,
                                  double tolerance) {
     const glm::dvec3 d = glm::normalize(b - a);
     const double length = glm::length(b - a);
@@ -85,7 +85,7 @@ struct SharpFeatures {
     double volumeError = 0.0;     // relative
 };
 
-SharpFeatures measureBox(const geometry::Mesh& mesh, const MeshInspection& m, const BoxShape& box, double edgeTol) {
+SharpFeatures measureBox(const mesh::Mesh& mesh, const MeshInspection& m, const BoxShape& box, double edgeTol) {
     SharpFeatures s;
     for (int c = 0; c < 8; ++c) s.cornerError = std::max(s.cornerError, nearestVertex(mesh, box.corner(c)));
     for (const glm::dvec3& v : mesh.positions) s.surfaceError = std::max(s.surfaceError, std::abs(box.distance(v)));
@@ -105,7 +105,7 @@ SharpFeatures measureBox(const geometry::Mesh& mesh, const MeshInspection& m, co
 TEST(Contour, AxisAlignedBoxOffTheGridKeepsCornersAndEdgesExactly) {
     const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
     const double h = 0.1;
-    const geometry::Mesh mesh = contourOf(*box(low, high), gridAround(low, high, h));
+    const mesh::Mesh mesh = contourOf(*box(low, high), gridAround(low, high, h));
     const MeshInspection m = inspect(mesh);
     expectSound(m);
     EXPECT_EQ(m.components, 1u);
@@ -139,7 +139,7 @@ TEST(Contour, RotatedBoxKeepsCornersAndEdges) {
     for (double h : {0.1, 0.05}) {
         glm::dvec3 low(1e300), high(-1e300);
         for (int c = 0; c < 8; ++c) low = glm::min(low, shape.corner(c)), high = glm::max(high, shape.corner(c));
-        const geometry::Mesh mesh = contourOf(*orientedBox(center, axes, half), gridAround(low, high, h));
+        const mesh::Mesh mesh = contourOf(*orientedBox(center, axes, half), gridAround(low, high, h));
         const MeshInspection m = inspect(mesh);
         expectSound(m);
         EXPECT_EQ(m.components, 1u);
@@ -172,7 +172,7 @@ TEST(Contour, SphereVolumeConvergesAtSecondOrder) {
     double previous = 0.0;
     for (double h : {0.2, 0.1, 0.05, 0.025}) {
         const glm::dvec3 reach(r);
-        const geometry::Mesh mesh = contourOf(*sphere(center, r), gridAround(center - reach, center + reach, h));
+        const mesh::Mesh mesh = contourOf(*sphere(center, r), gridAround(center - reach, center + reach, h));
         const MeshInspection m = inspect(mesh);
         expectSound(m);
         EXPECT_EQ(m.components, 1u);
@@ -203,7 +203,7 @@ void expectBoxMinusBall(const glm::dvec3& low, const glm::dvec3& high, const glm
     // by about a cell): the bound is (area / r + rim length) × h².
     double previous = 0.0;
     for (double h : {0.1, 0.05, 0.025}) {
-        const geometry::Mesh mesh = contourOf(*solid, gridAround(low, high, h));
+        const mesh::Mesh mesh = contourOf(*solid, gridAround(low, high, h));
         const MeshInspection m = inspect(mesh);
         expectSound(m);
         EXPECT_EQ(m.components, 1u);
@@ -242,7 +242,7 @@ TEST(Contour, TorusHasGenusOne) {
     const double major = 0.8, minor = 0.3;
     const glm::dvec3 reach(major + minor, major + minor, minor);
     for (double h : {0.1, 0.05}) {
-        const geometry::Mesh mesh = contourOf(*torus(center, major, minor), gridAround(center - reach, center + reach, h));
+        const mesh::Mesh mesh = contourOf(*torus(center, major, minor), gridAround(center - reach, center + reach, h));
         const MeshInspection m = inspect(mesh);
         expectSound(m);
         EXPECT_EQ(m.components, 1u);
@@ -266,7 +266,7 @@ TEST(Contour, WallsTwoCellsThickSurvive) {
     const glm::dvec3 high(low.x + thickness, 0.4883, 0.5317);
     const double wallVolume = thickness * (high.y - low.y) * (high.z - low.z);
     {
-        const geometry::Mesh mesh = contourOf(*box(low, high), gridAround(low, high, h));
+        const mesh::Mesh mesh = contourOf(*box(low, high), gridAround(low, high, h));
         const MeshInspection m = inspect(mesh);
         expectSound(m);
         EXPECT_EQ(m.components, 1u);
@@ -275,7 +275,7 @@ TEST(Contour, WallsTwoCellsThickSurvive) {
     // Two walls with a gap of two cells between them.
     const glm::dvec3 shift(2.0 * thickness, 0.0, 0.0);
     const auto walls = unite({box(low, high), box(low + shift, high + shift)});
-    const geometry::Mesh mesh = contourOf(*walls, gridAround(low, high + shift, h));
+    const mesh::Mesh mesh = contourOf(*walls, gridAround(low, high + shift, h));
     const MeshInspection m = inspect(mesh);
     expectSound(m);
     EXPECT_EQ(m.components, 2u);
@@ -305,10 +305,9 @@ SolidPtr randomBalls(std::mt19937& random, const DexelGrid& grid, bool onVertice
     return unite(std::move(balls));
 }
 
-
 // Winding number of the mesh at p (sum of the triangles' signed solid angles
 // over 4π; Van Oosterom and Strackee's formula).
-double windingNumber(const geometry::Mesh& mesh, const glm::dvec3& p) {
+double windingNumber(const mesh::Mesh& mesh, const glm::dvec3& p) {
     double sum = 0.0;
     for (const auto& t : mesh.triangles) {
         const glm::dvec3 a = mesh.positions[t[0]] - p, b = mesh.positions[t[1]] - p, c = mesh.positions[t[2]] - p;
@@ -327,7 +326,7 @@ double windingNumber(const geometry::Mesh& mesh, const glm::dvec3& p) {
 // cell clear of the surface. Unlike CGAL's nesting of
 // components, this holds where components cross one another, and for a
 // cavity (a gap between balls that a grid vertex sees).
-int misorientedVertices(const geometry::Mesh& mesh, const Solid& solid, const DexelGrid& grid) {
+int misorientedVertices(const mesh::Mesh& mesh, const Solid& solid, const DexelGrid& grid) {
     auto at = [&](int i, int j, int k) { return grid.origin + grid.spacing * glm::dvec3(i, j, k); };
     // A vertex nearer the surface than about half a cell may lie on either
     // side of a dual-contoured surface (which cuts chords of small balls):
@@ -378,7 +377,7 @@ TEST(Contour, RandomBallsOnACoarseGridAreAlwaysManifold) {
     for (int trial = 0; trial < kTrials; ++trial) {
         const SolidPtr solid = randomBalls(random, grid, trial % 2 == 0);
         ContourStats stats;
-        const geometry::Mesh mesh = contourCounting(sample(*solid, grid), stats);
+        const mesh::Mesh mesh = contourCounting(sample(*solid, grid), stats);
         total.ambiguousFaces += stats.ambiguousFaces;
         total.flippedFaces += stats.flippedFaces;
         if (mesh.triangles.empty()) continue;

@@ -37,7 +37,7 @@ std::string MeshInspection::describe() const {
     return s;
 }
 
-MeshInspection inspect(const geometry::Mesh& mesh, bool lookForSelfIntersections) {
+MeshInspection inspect(const mesh::Mesh& mesh, bool lookForSelfIntersections) {
     MeshInspection r;
     std::vector<Point> points;
     points.reserve(mesh.positions.size());

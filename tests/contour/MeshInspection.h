@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::contour::test {
 
@@ -31,6 +31,6 @@ struct MeshInspection {
     std::string describe() const;
 };
 
-MeshInspection inspect(const geometry::Mesh& mesh, bool lookForSelfIntersections = true);
+MeshInspection inspect(const mesh::Mesh& mesh, bool lookForSelfIntersections = true);
 
 }  // namespace strata::contour::test

@@ -14,7 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "strata/csg/CompiledTree.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/CsgParser.h"
 
 using namespace strata;
@@ -23,7 +23,7 @@ namespace {
 
 struct Compiled {
     scene::Tree tree;
-    geometry::Model model;
+    model::Model model;
     csg::CompiledTree code;
 };
 
@@ -33,14 +33,14 @@ Compiled compile(const std::string& text) {
     Compiled c;
     std::istringstream in(text);
     c.tree = scene::parseCsg(in, "t.csg", "");
-    c.model = geometry::buildModel(c.tree);
+    c.model = model::buildModel(c.tree);
     std::vector<bool> empty(c.model.leafMeshes.size());
     for (std::size_t i = 0; i < empty.size(); ++i) empty[i] = c.model.leafMeshes[i].triangles.empty();
     c.code = csg::compileTree(c.tree, empty);
     return c;
 }
 
-double volume(const geometry::Mesh& m) {
+double volume(const mesh::Mesh& m) {
     double v6 = 0.0;
     for (const auto& t : m.triangles) v6 += glm::dot(m.positions[t[0]], glm::cross(m.positions[t[1]], m.positions[t[2]]));
     return v6 / 6.0;

@@ -8,7 +8,7 @@
 #include "strata/core/Error.h"
 #include "strata/csg/CompiledTree.h"
 #include "strata/csg/IdenticalLeaves.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 
 using namespace strata;
 using scene::NodeKind;
@@ -45,7 +45,7 @@ TEST(IdenticalLeaves, SameSolidColourAndDisplayMapToTheLowest) {
     tiny.transform = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0 + 1e-15));
     nodes.push_back(tree.addLeaf(tiny));                                // 8: one ulp away
     tree.root = tree.addNode(NodeKind::Union, nodes);
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     const std::vector<int> same = csg::identicalLeaves(tree, model);
     EXPECT_EQ(same, (std::vector<int>{0, 1, 0, 3, 3, 5, 6, 1, 8}));
 
@@ -63,7 +63,7 @@ TEST(IdenticalLeaves, ACopyMinusItsOriginalIsEmpty) {
     const int a = tree.addLeaf(cube({0, 0, 0}));
     const int b = tree.addLeaf(cube({0, 0, 0}));
     tree.root = tree.addNode(NodeKind::Difference, {a, b});
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     EXPECT_EQ(csg::compileTree(tree, {}, csg::identicalLeaves(tree, model)).kind,
               csg::CompiledTree::Kind::Empty);
     EXPECT_EQ(csg::compileTree(tree).kind, csg::CompiledTree::Kind::Code);  // not shared: two operands

@@ -43,10 +43,10 @@
 #include "strata/camera/Camera.h"
 #include "strata/core/Error.h"
 #include "strata/csg/CompiledTree.h"
-#include "strata/geometry/Model.h"
-#include "strata/geometry/Primitives.h"
 #include "strata/gpu/Context.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/mesh/Primitives.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/Tree.h"
 
@@ -185,7 +185,7 @@ scene::Leaf shellsLeaf(double radius, int fn) {
     scene::Sphere sphere;
     sphere.r = radius;
     sphere.fragments.fn = fn;
-    const geometry::Mesh shell = geometry::tessellate(sphere);
+    const mesh::Mesh shell = mesh::tessellate(sphere);
     scene::Polyhedron poly;
     for (double z : kSphereZ) {
         const int base = static_cast<int>(poly.points.size());
@@ -202,7 +202,7 @@ scene::Leaf shellsLeaf(double radius, int fn) {
 
 render::Frame draw(render::Renderer& renderer, const scene::Tree& tree, const render::Camera& camera,
                    render::RenderSettings settings) {
-    renderer.setScene(tree, geometry::buildModel(tree));
+    renderer.setScene(tree, model::buildModel(tree));
     return renderer.render(camera, settings);
 }
 
@@ -332,7 +332,7 @@ int cheeseFigures(render::Renderer& renderer, const Writer& write) {
         return tree;
     };
     // OpenSCAD's default view, fitted to the cube: what `strata-render` shows.
-    geometry::Bounds bounds;
+    mesh::Bounds bounds;
     bounds.extend(glm::dvec3(-1.0));
     bounds.extend(glm::dvec3(1.0));
     render::Camera base;
@@ -393,7 +393,7 @@ int formFigures(render::Renderer& renderer, const Writer& write) {
     lens.push_back(tree.addLeaf(cubeLeaf({-0.35, 0.05, 1.0}, {0.55, 0.9, 1.8})));
     tree.root = tree.addNode(NodeKind::Union, {holed, tree.addNode(NodeKind::Intersection, lens)});
 
-    geometry::Bounds bounds;
+    mesh::Bounds bounds;
     bounds.extend(glm::dvec3(-1.0));
     bounds.extend(glm::dvec3(1.0, 1.0, 1.6));
     render::Camera base;

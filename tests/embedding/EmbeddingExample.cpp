@@ -38,10 +38,10 @@
 
 #include "strata/camera/Camera.h"
 #include "strata/core/Error.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Gl.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/Tree.h"
 
@@ -77,7 +77,7 @@ HostMesh box(glm::dvec3 lo, glm::dvec3 hi) {
 
 // A leaf made of the host's mesh. strata's Polyhedron is OpenSCAD's, whose
 // faces run clockwise seen from outside, so each triangle is reversed.
-// geometry::buildModel checks that the mesh is closed and consistently
+// model::buildModel checks that the mesh is closed and consistently
 // oriented, and throws a strata::Error saying what is wrong if not.
 scene::Leaf leafFromHostMesh(const HostMesh& mesh, std::optional<glm::dvec4> color = std::nullopt) {
     scene::Polyhedron poly;
@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
 
         // 3. The meshes, checked, and uploaded with the compiled tree. Call
         //    setScene again after editing the tree.
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         render::Renderer renderer;
         renderer.setScene(tree, model);
 

@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "../geometry/GeometryTestUtil.h"
+#include "../mesh/MeshTestUtil.h"
 #include "strata/core/Error.h"
 #include "strata/export/Export.h"
-#include "strata/geometry/FlatImport.h"
-#include "strata/geometry/MeshCheck.h"
-#include "strata/geometry/MeshImport.h"
-#include "strata/geometry/Model.h"
+#include "strata/flat/FlatImport.h"
+#include "strata/mesh/MeshCheck.h"
+#include "strata/mesh/MeshImport.h"
+#include "strata/model/Model.h"
 #include "strata/scene/CsgParser.h"
 
 using namespace strata;
@@ -56,14 +56,14 @@ protected:
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     // Stages and commits `tree`'s export as `name`; the mesh read back.
-    geometry::Mesh exported(const std::string& text, const std::string& name, const exporting::ExportSettings& settings,
+    mesh::Mesh exported(const std::string& text, const std::string& name, const exporting::ExportSettings& settings,
                             std::size_t* triangles = nullptr) {
         const scene::Tree tree = parse(text);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         exporting::StagedExport staged = exporting::stageExport(tree, model, path(name), settings);
         staged.file.commit();
         if (triangles != nullptr) *triangles = staged.triangles;
-        return geometry::importMesh(path(name));
+        return mesh::importMesh(path(name));
     }
 
 private:
@@ -72,9 +72,9 @@ private:
 
 // The area of one outline with holes inside it, however the file orients
 // them (a DXF's loops come back as drawn): the largest loop less the others.
-double areaOfOneHoledOutline(const geometry::Outlines& outlines) {
+double areaOfOneHoledOutline(const flat::Outlines& outlines) {
     std::vector<double> areas;
-    for (const geometry::Outline& o : outlines.outlines) {
+    for (const flat::Outline& o : outlines.outlines) {
         double twice = 0.0;
         for (std::size_t i = 0; i < o.points.size(); ++i) {
             const glm::dvec2& a = o.points[i];
@@ -93,10 +93,10 @@ double areaOfOneHoledOutline(const geometry::Outlines& outlines) {
 
 TEST_F(ExportEntry, TheExactMeshIsTheClosedSolidOfTheTree) {
     std::size_t triangles = 0;
-    const geometry::Mesh mesh = exported(kNotchedCube, "notched.off", exporting::ExportSettings{}, &triangles);
+    const mesh::Mesh mesh = exported(kNotchedCube, "notched.off", exporting::ExportSettings{}, &triangles);
     EXPECT_EQ(mesh.triangles.size(), triangles);
-    EXPECT_TRUE(geometry::checkMesh(mesh).ok()) << geometry::checkMesh(mesh).describe();
-    EXPECT_NEAR(geometry::test::signedVolume(mesh), kNotchedVolume, 1e-9);
+    EXPECT_TRUE(mesh::checkMesh(mesh).ok()) << mesh::checkMesh(mesh).describe();
+    EXPECT_NEAR(mesh::test::signedVolume(mesh), kNotchedVolume, 1e-9);
 }
 
 TEST_F(ExportEntry, TheSampledMeshIsClosedAndWithinACellOfTheSolid) {
@@ -104,21 +104,21 @@ TEST_F(ExportEntry, TheSampledMeshIsClosedAndWithinACellOfTheSolid) {
     settings.sampled = true;
     settings.reference = true;  // the CPU reference: no GL context
     settings.resolution = 20;
-    const geometry::Mesh mesh = exported(kNotchedCube, "notched.stl", settings);
-    EXPECT_TRUE(geometry::checkMesh(mesh).ok()) << geometry::checkMesh(mesh).describe();
+    const mesh::Mesh mesh = exported(kNotchedCube, "notched.stl", settings);
+    EXPECT_TRUE(mesh::checkMesh(mesh).ok()) << mesh::checkMesh(mesh).describe();
     // Flat faces on the grid's offset planes come back on their planes: the
     // volume is the solid's to well within a cell's layer over its surface.
-    EXPECT_NEAR(geometry::test::signedVolume(mesh), kNotchedVolume, 1.0);
+    EXPECT_NEAR(mesh::test::signedVolume(mesh), kNotchedVolume, 1.0);
 }
 
 TEST_F(ExportEntry, ADrawingOfAFlatModelReadsBackToItsArea) {
     for (const char* name : {"holed.svg", "holed.dxf"}) {
         const scene::Tree tree = parse(kHoledRectangle);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         exporting::stageExport(tree, model, path(name), exporting::ExportSettings{}).file.commit();
         scene::FlatImport import;
         import.path = path(name);
-        const geometry::Outlines read = geometry::importFlat(import);
+        const flat::Outlines read = flat::importFlat(import);
         EXPECT_EQ(read.outlines.size(), 2u) << name;
         EXPECT_NEAR(areaOfOneHoledOutline(read), 24.0 - 4.0, 1e-6) << name;
     }
@@ -131,7 +131,7 @@ TEST_F(ExportEntry, AFormatOfTheOtherDimensionIsRefusedAndNothingIsWritten) {
     };
     for (const auto& [text, name] : cases) {
         const scene::Tree tree = parse(text);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         try {
             exporting::stageExport(tree, model, path(name), exporting::ExportSettings{});
             ADD_FAILURE() << name << " was staged";

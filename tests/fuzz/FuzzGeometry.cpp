@@ -4,7 +4,7 @@
 // sanitizers) (solids, 2D shapes and their
 // booleans, offsets, linear and rotate extrusions, hulls, Minkowski sums,
 // projections, resizes, transforms), which is parsed and built into meshes
-// as strata-render builds a scene (geometry::buildModel), and of a solid
+// as strata-render builds a scene (model::buildModel), and of a solid
 // tree its exact result, as the exact export evaluates it.
 //
 // Any input must either give closed meshes with finite points or throw
@@ -22,9 +22,9 @@
 #include <string>
 
 #include "strata/core/Error.h"
-#include "strata/geometry/Exact.h"
-#include "strata/geometry/MeshCheck.h"
-#include "strata/geometry/Model.h"
+#include "strata/exact/Exact.h"
+#include "strata/mesh/MeshCheck.h"
+#include "strata/model/Model.h"
 #include "strata/scene/CsgParser.h"
 
 namespace {
@@ -170,19 +170,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         std::istringstream in(csg);
         const scene::Tree tree = scene::parseCsg(in, "fuzz.csg", ".");
-        const geometry::Model model = geometry::buildModel(tree);
-        for (const geometry::Mesh& mesh : model.leafMeshes) {
+        const model::Model model = model::buildModel(tree);
+        for (const mesh::Mesh& mesh : model.leafMeshes) {
             for (const glm::dvec3& p : mesh.positions) {
                 if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) broken("a non-finite point", csg);
             }
-            if (!mesh.triangles.empty() && !geometry::checkMesh(mesh).ok()) broken("a leaf mesh that is not closed", csg);
+            if (!mesh.triangles.empty() && !mesh::checkMesh(mesh).ok()) broken("a leaf mesh that is not closed", csg);
         }
         // The whole solid's exact result, as --export evaluates it: closed
         // too (its booleans in the frames their leaves share, its coplanar
         // triangles joined).
         if (tree.root >= 0 && !tree.isFlat()) {
-            const geometry::Mesh result = geometry::exactResult(tree, tree.root, model.leafMeshes);
-            if (!result.triangles.empty() && !geometry::checkMesh(result).ok()) broken("an exact result that is not closed", csg);
+            const mesh::Mesh result = exact::exactResult(tree, tree.root, model.leafMeshes, model::objectMesh);
+            if (!result.triangles.empty() && !mesh::checkMesh(result).ok()) broken("an exact result that is not closed", csg);
         }
     } catch (const Error&) {
         // A refusal in one line is the contract's answer.

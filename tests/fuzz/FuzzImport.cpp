@@ -19,9 +19,9 @@
 #include <string>
 
 #include "strata/core/Error.h"
-#include "strata/geometry/FlatImport.h"
-#include "strata/geometry/MeshImport.h"
-#include "strata/geometry/Surface.h"
+#include "strata/flat/FlatImport.h"
+#include "strata/mesh/MeshImport.h"
+#include "strata/mesh/Surface.h"
 
 #ifndef STRATA_FUZZ_FORMAT
 #error "STRATA_FUZZ_FORMAT names the format (stl, obj, off, ply, dxf, svg, dat, png)"
@@ -50,7 +50,7 @@ struct RemoveAtExit {
     ~RemoveAtExit() { std::remove(inputPath().c_str()); }
 } removeAtExit;
 
-void checkMesh(const geometry::Mesh& mesh) {
+void checkMesh(const mesh::Mesh& mesh) {
     for (const glm::dvec3& p : mesh.positions) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) broken("non-finite vertex");
     }
@@ -61,8 +61,8 @@ void checkMesh(const geometry::Mesh& mesh) {
     }
 }
 
-void checkOutlines(const geometry::Outlines& outlines) {
-    for (const geometry::Outline& outline : outlines.outlines) {
+void checkOutlines(const flat::Outlines& outlines) {
+    for (const flat::Outline& outline : outlines.outlines) {
         for (const glm::dvec2& p : outline.points) {
             if (!std::isfinite(p.x) || !std::isfinite(p.y)) broken("non-finite outline point");
         }
@@ -73,13 +73,13 @@ void read(const std::string& format, const std::string& path) {
     if (format == "dxf" || format == "svg") {
         scene::FlatImport import;
         import.path = path;
-        checkOutlines(geometry::importFlat(import));
+        checkOutlines(flat::importFlat(import));
     } else if (format == "dat" || format == "png") {
         scene::Surface surface;
         surface.path = path;
-        checkMesh(geometry::tessellate(surface));
+        checkMesh(mesh::tessellate(surface));
     } else {
-        checkMesh(geometry::importMesh(path));
+        checkMesh(mesh::importMesh(path));
     }
 }
 

@@ -1,4 +1,4 @@
-// libFuzzer target for text() (geometry::textGlyphs): fontconfig, HarfBuzz
+// libFuzzer target for text() (flat::textGlyphs): fontconfig, HarfBuzz
 // and FreeType under strata's calls.
 //
 // The input's first bytes choose the node's other arguments (size, spacing,
@@ -18,7 +18,7 @@
 #include <string>
 
 #include "strata/core/Error.h"
-#include "strata/geometry/Text.h"
+#include "strata/flat/Text.h"
 
 namespace {
 
@@ -72,8 +72,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t length = std::min(size - kChoices, kMaxText);
     text.text.assign(reinterpret_cast<const char*>(data + kChoices), length);
     try {
-        for (const geometry::Outlines& glyph : geometry::textGlyphs(text)) {
-            for (const geometry::Outline& outline : glyph.outlines) {
+        for (const flat::Outlines& glyph : flat::textGlyphs(text)) {
+            for (const flat::Outline& outline : glyph.outlines) {
                 for (const glm::dvec2& p : outline.points) {
                     if (!std::isfinite(p.x) || !std::isfinite(p.y)) broken("non-finite outline point");
                 }

@@ -25,8 +25,8 @@ using namespace strata;
 namespace {
 
 // A unit tetrahedron, outward.
-geometry::Mesh tetrahedron() {
-    geometry::Mesh m;
+mesh::Mesh tetrahedron() {
+    mesh::Mesh m;
     m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0.1 + 0.2}};  // 0.30000000000000004: a double OFF must keep
     m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     return m;
@@ -48,7 +48,7 @@ TEST(MeshWriter, FormatsAreChosenByTheExtension) {
 }
 
 TEST(MeshWriter, BinaryStlHoldsEveryTriangleWithItsNormal) {
-    const geometry::Mesh m = tetrahedron();
+    const mesh::Mesh m = tetrahedron();
     const std::vector<unsigned char> bytes = io::meshBytes(m, io::MeshFormat::Stl);
     ASSERT_EQ(bytes.size(), 84u + 50u * m.triangles.size());
     std::uint32_t count = 0;
@@ -73,7 +73,7 @@ TEST(MeshWriter, BinaryStlHoldsEveryTriangleWithItsNormal) {
 }
 
 TEST(MeshWriter, OffAndObjKeepEveryDoubleExactly) {
-    const geometry::Mesh m = tetrahedron();
+    const mesh::Mesh m = tetrahedron();
     {
         std::istringstream in(text(io::meshBytes(m, io::MeshFormat::Off)));
         std::string magic;
@@ -123,7 +123,7 @@ TEST(MeshWriter, OffAndObjKeepEveryDoubleExactly) {
 }
 
 TEST(MeshWriter, ThreeMfReadsBackThroughLib3mfWithItsColours) {
-    const geometry::Mesh m = tetrahedron();
+    const mesh::Mesh m = tetrahedron();
     const std::vector<glm::vec4> colors{{1, 0, 0, 1}, {1, 0, 0, 1}, {0, 0.5f, 1, 1}, {1, 0, 0, 1}};
     std::vector<unsigned char> bytes = io::meshBytes(m, io::MeshFormat::ThreeMf, colors);
     ASSERT_GT(bytes.size(), 4u);

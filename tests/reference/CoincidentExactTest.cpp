@@ -34,7 +34,7 @@
 #include "DiffImages.h"
 #include "OrbitCamera.h"
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/scene/CsgParser.h"
 #include "strata/scene/Tree.h"
@@ -69,7 +69,7 @@ struct View {
 // OpenSCAD's default view of `bounds`, and three more at the same distance:
 // azimuth and elevation in degrees (azimuth from +x toward +y), off round
 // numbers so no pixel's ray runs along a face of the axis-aligned models.
-std::vector<View> views(const geometry::Bounds& bounds) {
+std::vector<View> views(const mesh::Bounds& bounds) {
     render::Camera base;
     base.width = 160;
     base.height = 120;
@@ -85,13 +85,13 @@ std::vector<View> views(const geometry::Bounds& bounds) {
 
 struct Loaded {
     scene::Tree tree;
-    geometry::Model model;
+    model::Model model;
 };
 
 Loaded load(scene::Tree tree) {
     Loaded l;
     l.tree = std::move(tree);
-    l.model = geometry::buildModel(l.tree);
+    l.model = model::buildModel(l.tree);
     return l;
 }
 

@@ -416,7 +416,7 @@ TEST(RayCaster, ThreadsDoNotChangeTheImageAndProgressReachesTheEnd) {
 // start "inside": Embree's float traversal must not lose a triangle that the
 // exact test claims.
 TEST(RayCaster, RaysThroughVerticesAndEdgesKeepInsideAndOutsideApart) {
-    const strata::geometry::Mesh meshes[] = {sphere(1.0, 16, {0.2, -0.1, 0.3}), box({-1, -2, -0.5}, {1, 2, 0.5}),
+    const strata::mesh::Mesh meshes[] = {sphere(1.0, 16, {0.2, -0.1, 0.3}), box({-1, -2, -0.5}, {1, 2, 0.5}),
                                              sphere(3.0, 9)};
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);

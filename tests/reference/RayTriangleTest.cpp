@@ -26,7 +26,7 @@ struct Claim {
     bool entering;
 };
 
-std::vector<Claim> claims(const strata::geometry::Mesh& mesh, const Ray& ray) {
+std::vector<Claim> claims(const strata::mesh::Mesh& mesh, const Ray& ray) {
     const RayFrame frame(ray);
     std::vector<Claim> out;
     for (const auto& tri : mesh.triangles) {
@@ -70,7 +70,7 @@ TEST(RayTriangle, EdgeOnTrianglesAreNeverCrossed) {
 // A flat grid of triangles: rays through the grid's shared edges and vertices,
 // straight and slanted, must be claimed by exactly one triangle.
 TEST(RayTriangle, SharedEdgesAndVerticesAreClaimedOnce) {
-    strata::geometry::Mesh grid;
+    strata::mesh::Mesh grid;
     const int n = 6;
     for (int y = 0; y <= n; ++y) {
         for (int x = 0; x <= n; ++x) grid.positions.push_back({x * 0.5, y * 0.5, 0.0});
@@ -119,7 +119,7 @@ TEST(RayTriangle, SharedEdgesAndVerticesAreClaimedOnce) {
 // crosses once; a ray that grazes it (stays outside on both sides) is
 // claimed by both faces or by none, never by one.
 TEST(RayTriangle, RidgeIsCrossedOnceAndGrazedEvenly) {
-    strata::geometry::Mesh roof;
+    strata::mesh::Mesh roof;
     roof.positions = {{-1, 0, 0}, {1, 0, 0}, {0, 1, -1}, {0, -1, -1}};
     roof.triangles = {{0, 1, 2}, {1, 0, 3}};  // the shared edge runs both ways: consistently oriented
     // Their outward normals point up: (0,1,1) and (0,-1,1), normalized.
@@ -149,7 +149,7 @@ TEST(RayTriangle, RidgeIsCrossedOnceAndGrazedEvenly) {
 // vertices and edges, where tolerance-based tests drop or double crossings.
 TEST(RayTriangle, ConvexMeshesAreEnteredOnceAndLeftOnce) {
     using namespace strata::reference::test;
-    const strata::geometry::Mesh meshes[] = {box({-1, -2, -0.5}, {1, 2, 0.5}), sphere(1.5, 16), sphere(2.0, 7, {1, 1, 1})};
+    const strata::mesh::Mesh meshes[] = {box({-1, -2, -0.5}, {1, 2, 0.5}), sphere(1.5, 16), sphere(2.0, 7, {1, 1, 1})};
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     int crossed = 0;

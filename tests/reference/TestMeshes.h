@@ -2,7 +2,7 @@
 // Meshes for the reference tests, built here rather than by engine/geometry so
 // the tests stand on their own: an axis-aligned box, OpenSCAD 2021.01's sphere
 // (rings of n vertices, flat caps, no poles), mirroring, and a way to pack
-// leaves into a scene::Tree and a geometry::Model.
+// leaves into a scene::Tree and a model::Model.
 
 #include <cmath>
 #include <numbers>
@@ -11,13 +11,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::reference::test {
 
-inline geometry::Mesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
-    geometry::Mesh mesh;
+inline mesh::Mesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
+    mesh::Mesh mesh;
     for (int k = 0; k < 8; ++k) {
         mesh.positions.push_back({(k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z});
     }
@@ -40,10 +40,10 @@ inline geometry::Mesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
 // OpenSCAD 2021.01's sphere with n fragments: floor((n+1)/2) rings, ring i at
 // polar angle 180*(i+0.5)/rings, vertex k at 360*k/n from +X. Caps are fans
 // from the ring's first vertex, so a ray down the axis meets a shared edge.
-inline geometry::Mesh sphere(double r, int n, const glm::dvec3& centre = glm::dvec3(0.0)) {
+inline mesh::Mesh sphere(double r, int n, const glm::dvec3& centre = glm::dvec3(0.0)) {
     const double pi = std::numbers::pi;
     const int rings = (n + 1) / 2;
-    geometry::Mesh mesh;
+    mesh::Mesh mesh;
     for (int i = 0; i < rings; ++i) {
         const double phi = pi * (i + 0.5) / rings;
         for (int k = 0; k < n; ++k) {
@@ -73,13 +73,13 @@ inline double capHeight(double r, int n) {
 }
 
 // Mirror in the plane `axis` = 0; the winding is reversed so it stays outward.
-inline geometry::Mesh mirrored(geometry::Mesh mesh, int axis) {
+inline mesh::Mesh mirrored(mesh::Mesh mesh, int axis) {
     for (auto& p : mesh.positions) p[axis] = -p[axis];
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
     return mesh;
 }
 
-inline double signedVolume(const geometry::Mesh& mesh) {
+inline double signedVolume(const mesh::Mesh& mesh) {
     double v = 0.0;
     for (const auto& t : mesh.triangles) {
         v += glm::dot(mesh.positions[t[0]], glm::cross(mesh.positions[t[1]], mesh.positions[t[2]])) / 6.0;
@@ -90,9 +90,9 @@ inline double signedVolume(const geometry::Mesh& mesh) {
 // A tree and its model built side by side: leaf(mesh) returns the node index.
 struct SceneBuilder {
     scene::Tree tree;
-    geometry::Model model;
+    model::Model model;
 
-    int leaf(geometry::Mesh mesh, scene::Display display = scene::Display::Normal) {
+    int leaf(mesh::Mesh mesh, scene::Display display = scene::Display::Normal) {
         scene::Leaf leaf;
         leaf.display = display;
         model.leafMeshes.push_back(std::move(mesh));

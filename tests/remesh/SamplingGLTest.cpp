@@ -16,8 +16,8 @@
 #include <glm/geometric.hpp>
 
 #include "strata/camera/ViewBounds.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/remesh/Remesh.h"
 #include "strata/render/Renderer.h"
@@ -50,7 +50,7 @@ protected:
     static Counts compare(const std::string& text, int resolution,
                           const render::RenderSettings& settings = render::RenderSettings{}) {
         const scene::Tree tree = parse(text);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         const contour::DexelGrid grid = remesh::gridFor(render::viewBounds(tree, model), resolution);
         render::Renderer renderer;
         renderer.setScene(tree, model);

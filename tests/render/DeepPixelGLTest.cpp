@@ -10,8 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 
@@ -47,7 +47,7 @@ class DeepPixels : public ::testing::TestWithParam<int> {};
 
 TEST_P(DeepPixels, MatchTheReference) {
     const scene::Tree tree = intersectionOfSpheres(GetParam());
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     render::Camera base;
     base.width = base.height = 64;
     const render::Camera camera = render::cameraFromArguments({20, -30, 25, 0, 0, 0}, base);

@@ -20,8 +20,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 #include "SphereShells.h"
 
@@ -158,7 +158,7 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
     render::FrameStats fastBlocks;
     for (int s = 0; s < 4; ++s) {
         const scene::Tree tree = flatTree(c.kind, c.count, rng, c.shells);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         renderer.setScene(tree, model);
         for (int which = 0; which < 3; ++which) {
             const render::Camera camera = cameraFor(which, rng);
@@ -235,7 +235,7 @@ TEST(EvaluatorFormsHulls, ThinBarsAslantGiveTheFrameOfTheirRectangles) {
             parts.push_back(tree.addLeaf(bar));
         }
         tree.root = tree.addNode(NodeKind::Difference, parts);
-        renderer.setScene(tree, geometry::buildModel(tree));
+        renderer.setScene(tree, model::buildModel(tree));
         for (int which = 0; which < 3; ++which) {
             render::Camera camera = cameraFor(which, rng);
             camera.width = camera.height = 160;  // blocks enough for the hulls to leave some out
@@ -279,7 +279,7 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
             children.push_back(tree.addLeaf(std::move(leaf)));
         }
         tree.root = tree.addNode(kind, children);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         renderer.setScene(tree, model);
         render::Camera camera;
         camera.width = camera.height = 64;
@@ -336,7 +336,7 @@ TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
     sheet.primitive = flat;
     const int sheetLeaf = tree.addLeaf(std::move(sheet));
     tree.root = tree.addNode(NodeKind::Union, {block, sheetLeaf});
-    renderer.setScene(tree, geometry::buildModel(tree));
+    renderer.setScene(tree, model::buildModel(tree));
     render::Camera camera;  // straight down, orthographic: both faces at exactly one depth
     camera.width = camera.height = 64;
     camera.projection = render::Projection::Orthographic;
@@ -358,7 +358,7 @@ TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
     scene::Leaf onlySheet;
     onlySheet.primitive = flat;
     alone.root = alone.addLeaf(std::move(onlySheet));
-    renderer.setScene(alone, geometry::buildModel(alone));
+    renderer.setScene(alone, model::buildModel(alone));
     const auto [fastAlone, generalAlone] = fastAndGeneral(renderer, camera);
     EXPECT_GT(fastAlone.stats.firstSurfaceBlocks, 0u);
     EXPECT_EQ(fastAlone.stats.layersPerLeaf.at(0), 1);
@@ -392,7 +392,7 @@ TEST(EvaluatorFormsMap, EachPixelKnowsItsBlocksForm) {
     for (double x : {-1.2, 0.0}) addSphere({x, -1.0, 1.0}, 0.4);
     for (int i = 0; i < 10; ++i) addSphere({0.9 + 0.08 * (i % 5), 0.9 + 0.1 * (i / 5), 1.0}, 0.25);
     tree.root = tree.addNode(NodeKind::Difference, children);
-    renderer.setScene(tree, geometry::buildModel(tree));
+    renderer.setScene(tree, model::buildModel(tree));
     render::Camera camera;
     camera.width = camera.height = 96;
     camera.projection = render::Projection::Orthographic;

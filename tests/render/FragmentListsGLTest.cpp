@@ -16,8 +16,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 #include "FrameCompare.h"
 #include "SphereShells.h"
@@ -101,7 +101,7 @@ TEST(FragmentLists, GiveTheLayersOfDualPeeling) {
     for (NodeKind kind : {NodeKind::Difference, NodeKind::Union, NodeKind::Intersection}) {
         for (int s = 0; s < 2; ++s) {
             const scene::Tree tree = shellsTree(kind, kind == NodeKind::Intersection ? 2 : 3, rng);
-            const geometry::Model model = geometry::buildModel(tree);
+            const model::Model model = model::buildModel(tree);
             renderer.setScene(tree, model);
             for (int which = 0; which < 3; ++which) {
                 const render::Camera view = camera(which, rng);
@@ -154,7 +154,7 @@ TEST(FragmentLists, AFullListFallsBackToPasses) {
         slab.primitive = scene::Cube{{4.0, 4.0, 6.0}, true};
         stack.primitive = test::sphereShells(centres, 0.4, 16);
         tree.root = tree.addNode(NodeKind::Difference, {tree.addLeaf(std::move(slab)), tree.addLeaf(std::move(stack))});
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         renderer.setScene(tree, model);
         render::RenderSettings settings;
         settings.fragmentListTriangles = 0;
@@ -182,7 +182,7 @@ TEST(FragmentLists, AreForOperandsOfManyTriangles) {
     right.primitive = test::sphereShells({{0.6, 0.0, 0.5}, {0.6, 0.0, -0.5}}, 0.4, 12);
     tree.root = tree.addNode(NodeKind::Difference, {tree.addLeaf(std::move(cube)), tree.addLeaf(std::move(left)),
                                                     tree.addLeaf(std::move(right))});
-    renderer.setScene(tree, geometry::buildModel(tree));
+    renderer.setScene(tree, model::buildModel(tree));
     std::mt19937 rng(7u);
     const render::Camera view = camera(0, rng);
     render::RenderSettings settings;
@@ -199,7 +199,7 @@ TEST(FragmentLists, TheirImagesLeaveNothingOutsideLaterBudgets) {
     render::Renderer renderer, fresh;
     std::mt19937 rng(5u);
     const scene::Tree tree = shellsTree(NodeKind::Difference, 3, rng);
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     renderer.setScene(tree, model);
     fresh.setScene(tree, model);
     render::Camera large = camera(0, rng);

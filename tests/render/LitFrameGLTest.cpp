@@ -23,10 +23,10 @@
 #include "SphereShells.h"
 #include "strata/camera/Camera.h"
 #include "strata/camera/ViewBounds.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/CsgParser.h"
 
@@ -105,7 +105,7 @@ protected:
         context_.reset();
     }
 
-    static void setScene(const scene::Tree& tree) { renderer_->setScene(tree, geometry::buildModel(tree)); }
+    static void setScene(const scene::Tree& tree) { renderer_->setScene(tree, model::buildModel(tree)); }
 
     // The scene set last, without the outline in `look`'s light: the frame
     // lit as drawn (no normals read back), and a window's (renderInto),
@@ -182,8 +182,8 @@ TEST_F(LitFrameGLTest, RealModelsEqualTheShadedImage) {
     // OpenSCAD's default view of each.
     for (const char* name : {"Old_example004", "Basics_text_on_cube", "Basics_logo", "Old_example008"}) {
         const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
-        geometry::Model model = geometry::buildModel(tree);
-        const geometry::Bounds bounds = render::viewBounds(tree, model);
+        model::Model model = model::buildModel(tree);
+        const mesh::Bounds bounds = render::viewBounds(tree, model);
         renderer_->setScene(tree, std::move(model));
         render::Camera base;
         base.width = 2 * kSize;

@@ -29,8 +29,8 @@
 
 #include "strata/camera/Camera.h"
 #include "strata/camera/ViewBounds.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/CsgParser.h"
@@ -76,7 +76,7 @@ struct View {
     std::vector<double> camera;  // --camera's numbers; none: OpenSCAD's default view
 };
 
-render::Camera cameraFor(const View& view, const scene::Tree& tree, const geometry::Model& model) {
+render::Camera cameraFor(const View& view, const scene::Tree& tree, const model::Model& model) {
     render::Camera base;
     base.width = 400;
     base.height = 300;
@@ -95,7 +95,7 @@ protected:
     // each view: no lone pixel in either.
     static void expectNoLonePixels(const std::string& path, const std::vector<View>& views, bool reference) {
         const scene::Tree tree = scene::parseCsgFile(path);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         render::Renderer renderer;
         renderer.setScene(tree, model);
         for (const View& view : views) {

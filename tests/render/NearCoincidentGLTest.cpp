@@ -24,8 +24,8 @@
 #include "Compare.h"
 #include "OrbitCamera.h"
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
+#include "strata/model/Model.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/CsgParser.h"
@@ -38,7 +38,7 @@ namespace {
 const std::string kDir = STRATA_TEST_DIR "/data/coincident/";
 
 // OpenSCAD's default view of `bounds` and two more around it, one from below.
-std::vector<render::Camera> views(const geometry::Bounds& bounds) {
+std::vector<render::Camera> views(const mesh::Bounds& bounds) {
     render::Camera base;
     base.width = 320;
     base.height = 240;
@@ -71,9 +71,9 @@ std::unique_ptr<gpu::Context> NearCoincidentGL::context_;
 TEST_P(NearCoincidentGL, GpuMatchesOpenScadsExactResult) {
     const std::string name = GetParam();
     const scene::Tree tree = scene::parseCsgFile(kDir + name + ".csg");
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     const scene::Tree exactTree = scene::meshFileTree(kDir + name + ".off");
-    const geometry::Model exactModel = geometry::buildModel(exactTree);
+    const model::Model exactModel = model::buildModel(exactTree);
     reference::ReferenceOptions exactOptions;
     exactOptions.coincidence = false;  // every crossing of the thin walls counts
     render::Renderer renderer;

@@ -23,10 +23,10 @@
 #include "FrameCompare.h"
 #include "SphereShells.h"
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
 #include "strata/gpu/Context.h"
 #include "strata/gpu/Framebuffer.h"
 #include "strata/gpu/Texture.h"
+#include "strata/model/Model.h"
 #include "strata/render/Renderer.h"
 #include "strata/scene/CsgParser.h"
 
@@ -89,7 +89,7 @@ protected:
         context_.reset();
     }
 
-    static void setScene(const scene::Tree& tree) { renderer_->setScene(tree, geometry::buildModel(tree)); }
+    static void setScene(const scene::Tree& tree) { renderer_->setScene(tree, model::buildModel(tree)); }
 
     // The scene set last, drawn plainly and through every pass (each operand
     // its own): the frames agree to the bit (surfaces, normals, leaves and
@@ -310,9 +310,9 @@ TEST_F(PlainFrameGLTest, RealUnionModelsEqualTheFullPipeline) {
     // from OpenSCAD's default view.
     for (const char* name : {"Old_example019", "Old_example022", "Old_example018", "Basics_rotate_extrude"}) {
         const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
-        geometry::Model model = geometry::buildModel(tree);
-        geometry::Bounds bounds;
-        for (const geometry::Mesh& mesh : model.leafMeshes)
+        model::Model model = model::buildModel(tree);
+        mesh::Bounds bounds;
+        for (const mesh::Mesh& mesh : model.leafMeshes)
             for (const glm::dvec3& p : mesh.positions) bounds.extend(p);
         renderer_->setScene(tree, std::move(model));
         render::Camera base = cameraAt({0, 0, 0});

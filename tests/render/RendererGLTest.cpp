@@ -32,7 +32,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "FrameCompare.h"
 #include "SphereShells.h"
 #include "strata/gpu/Context.h"
@@ -92,7 +92,7 @@ std::vector<int> slabAndSpheres(scene::Tree& tree, unsigned seed, int count, dou
 // Adds a closed box, 2 * half wide and deep, z from -0.5 to 0.5, to `poly`
 // as one more shell.
 void appendBox(scene::Polyhedron& poly, double half) {
-    const geometry::Mesh box = geometry::tessellate(scene::Cube{{2 * half, 2 * half, 1.0}, true});
+    const mesh::Mesh box = mesh::tessellate(scene::Cube{{2 * half, 2 * half, 1.0}, true});
     const int base = static_cast<int>(poly.points.size());
     for (const glm::dvec3& p : box.positions) poly.points.push_back(p);
     for (const auto& t : box.triangles) {  // OpenSCAD's order: clockwise seen from outside
@@ -146,7 +146,7 @@ protected:
     }
 
     render::Frame draw(const scene::Tree& tree, const render::Camera& camera, render::RenderSettings settings = {}) {
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         renderer_->setScene(tree, model);
         render::Frame frame = renderer_->render(camera, settings);
         const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
@@ -288,7 +288,7 @@ TEST_F(RendererGLTest, ASmallerModelAfterALargeOneLeavesNoTrace) {
     const render::Frame f = draw(small, camera);
     // A fresh renderer, whose images were never written, for comparison.
     render::Renderer fresh;
-    fresh.setScene(small, geometry::buildModel(small));
+    fresh.setScene(small, model::buildModel(small));
     const render::Frame want = fresh.render(camera, {});
     ASSERT_GT(want.stats.coveredPixels, 0u);
     ASSERT_LT(want.stats.coveredPixels, static_cast<std::size_t>(kSize) * kSize / 10);
@@ -577,7 +577,7 @@ TEST_F(RendererGLTest, RenderIntoLeavesNoTraceOfTheFrameBefore) {
         const render::Frame expected = draw(tree, topCamera(), settings);
         const render::Frame before = draw(plate, topCamera(), settings);
         ASSERT_EQ(before.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize));
-        renderer_->setScene(tree, geometry::buildModel(tree));
+        renderer_->setScene(tree, model::buildModel(tree));
         renderer_->renderInto(host.id(), 0, 0, topCamera(), settings);
         std::vector<std::uint8_t> pixels(static_cast<std::size_t>(kSize * kSize * 4));
         target.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(pixels)));
@@ -611,10 +611,10 @@ TEST_F(RendererGLTest, IdenticalLeavesShareOneOperandAndChangeNoSurface) {
         }
     }
     tree.root = node;
-    const geometry::Model model = geometry::buildModel(tree);
+    const model::Model model = model::buildModel(tree);
     // The same solids, but each copy's triangles in an order of its own, so
     // that no two leaves are identical bit for bit: the path without sharing.
-    geometry::Model apart = model;
+    model::Model apart = model;
     for (int c : copies) {
         auto& triangles = apart.leafMeshes[static_cast<std::size_t>(c)].triangles;
         std::rotate(triangles.begin(), triangles.begin() + 1 + c, triangles.end());
@@ -746,7 +746,7 @@ TEST_F(RendererGLTest, AGroupsScratchImagesTakeNoLayers) {
     for (int i = 0; i < 3; ++i) lens.push_back(tree.addLeaf(sphereLeaf({0.2 * i, 0.1, 0.0}, 2.2)));
     tree.root = tree.addNode(NodeKind::Intersection, lens);
     render::Renderer fresh;  // the shared renderer keeps the largest layer texture of the tests before
-    fresh.setScene(tree, geometry::buildModel(tree));
+    fresh.setScene(tree, model::buildModel(tree));
     const render::Frame f = fresh.render(topCamera(), {});
     ASSERT_EQ(f.stats.operands, 1);
     // Two RG32F layers; the group's images are two RGBA32F ones, a depth and
@@ -958,7 +958,7 @@ TEST_F(RendererGLTest, SmallScatteredOperandsArePeeledInTilesOfTheirOwn) {
     render::RenderSettings roomy;
     roomy.coverageTilingFrom = std::size_t(16) << 20;
     render::Renderer fresh;  // the shared renderer keeps the largest layer texture of the tests before
-    fresh.setScene(tree, geometry::buildModel(tree));
+    fresh.setScene(tree, model::buildModel(tree));
     const render::Frame tiled = fresh.render(camera, roomy);  // first: the texture is made for the tiles
     render::RenderSettings whole;
     whole.coverageTilingFrom = std::numeric_limits<std::size_t>::max();
@@ -1402,7 +1402,7 @@ TEST_F(RendererGLTest, ASceneWhoseMeshesAreLetGoRendersTheSame) {
                              {tree.addNode(NodeKind::Union, parts), tree.addLeaf(cubeLeaf({-1, -1, 0.1}, {1, 0, 1}))});
     const render::Camera camera = topCamera();
     const render::Frame kept = draw(tree, camera);
-    geometry::Model model = geometry::buildModel(tree);
+    model::Model model = model::buildModel(tree);
     renderer_->setScene(tree, std::move(model));
     EXPECT_TRUE(model.leafMeshes.empty());  // NOLINT(bugprone-use-after-move): the contract says so
     const render::Frame released = renderer_->render(camera, {});

@@ -26,7 +26,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "SphereShells.h"
 #include "strata/gpu/Context.h"
 #include "strata/render/Renderer.h"
@@ -72,8 +72,8 @@ bool member(const scene::Tree& tree, int node, const std::vector<char>& inside) 
 
 class Oracle {
 public:
-    Oracle(const scene::Tree& tree, const geometry::Model& model) : tree_(tree), model_(model) {
-        for (const geometry::Mesh& m : model.leafMeshes) bounds_.push_back(geometry::boundsOf(m));
+    Oracle(const scene::Tree& tree, const model::Model& model) : tree_(tree), model_(model) {
+        for (const mesh::Mesh& m : model.leafMeshes) bounds_.push_back(mesh::boundsOf(m));
     }
 
     OraclePixel trace(const render::Camera& camera, int i, int j, double coincidence) const {
@@ -86,7 +86,7 @@ public:
         std::vector<char> inside(leaves, 0);
         for (std::size_t l = 0; l < leaves; ++l) {
             if (!slabHit(ray, bounds_[l])) continue;
-            const geometry::Mesh& mesh = model_.leafMeshes[l];
+            const mesh::Mesh& mesh = model_.leafMeshes[l];
             for (const auto& t : mesh.triangles) {
                 const glm::dvec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
                 double s, u, v;
@@ -122,7 +122,7 @@ private:
     // Barycentric distance from an edge below which a hit counts as "on the edge".
     static constexpr double kEdgeMargin = 2e-3;
 
-    static bool slabHit(const render::Ray& ray, const geometry::Bounds& b) {
+    static bool slabHit(const render::Ray& ray, const mesh::Bounds& b) {
         double t0 = -1e300, t1 = 1e300;
         for (int k = 0; k < 3; ++k) {
             if (std::abs(ray.direction[k]) < 1e-300) {
@@ -156,8 +156,8 @@ private:
     }
 
     const scene::Tree& tree_;
-    const geometry::Model& model_;
-    std::vector<geometry::Bounds> bounds_;
+    const model::Model& model_;
+    std::vector<mesh::Bounds> bounds_;
 };
 
 // A polyhedron of a few sphere shells in a row: a non-convex operand that
@@ -226,7 +226,7 @@ TEST(RendererOracle, RandomScenesAgreeWithABruteForceRayCaster) {
     for (int s = 0; s < kScenes; ++s) {
         scene::Tree tree;
         tree.root = randomTree(tree, rng, 4);
-        const geometry::Model model = geometry::buildModel(tree);
+        const model::Model model = model::buildModel(tree);
         renderer.setScene(tree, model);
         const Oracle oracle(tree, model);
         const double diagonal = model.bounds.empty() ? 1.0 : model.bounds.diagonal();

@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "strata/geometry/Primitives.h"
+#include "strata/mesh/Primitives.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::test {
@@ -17,7 +17,7 @@ inline scene::Polyhedron sphereShells(const std::vector<glm::dvec3>& centres, do
     scene::Sphere ball;
     ball.r = radius;
     ball.fragments.fn = fn;
-    const geometry::Mesh mesh = geometry::tessellate(ball);
+    const mesh::Mesh mesh = mesh::tessellate(ball);
     scene::Polyhedron poly;
     for (const glm::dvec3& centre : centres) {
         const int base = static_cast<int>(poly.points.size());

@@ -20,7 +20,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/CsgParser.h"
 
 using namespace strata;
@@ -164,8 +164,8 @@ TEST_P(OpenScadExample, ParsesWithTheExpectedLeavesAndWarnings) {
 TEST_P(OpenScadExample, LeafBoundsMatchOpenScadsTessellation) {
     const Example& e = GetParam();
     const scene::Tree tree = scene::parseCsgFile(path(e));
-    geometry::Model model;
-    ASSERT_NO_THROW(model = geometry::buildModel(tree));
+    model::Model model;
+    ASSERT_NO_THROW(model = model::buildModel(tree));
 
     ASSERT_EQ(model.leafMeshes.size(), tree.leaves.size());
     for (std::size_t i = 0; i < model.leafMeshes.size(); ++i) {
@@ -187,7 +187,7 @@ TEST_P(OpenScadExample, LeafBoundsMatchOpenScadsTessellation) {
 TEST_P(OpenScadExample, BoundsContainOpenScadsResult) {
     const Example& e = GetParam();
     if (!e.resultBounds) return;  // OpenSCAD's result is empty: nothing to contain
-    const geometry::Model model = geometry::buildModel(scene::parseCsgFile(path(e)));
+    const model::Model model = model::buildModel(scene::parseCsgFile(path(e)));
     ASSERT_FALSE(model.bounds.empty());
     const Box& result = *e.resultBounds;
     for (int k = 0; k < 3; ++k) {
@@ -234,8 +234,8 @@ TEST(BundledExamples, ParseAndBuildWithoutWarnings) {
         ASSERT_NO_THROW(tree = scene::parseCsgFile(p));
         EXPECT_EQ(tree.leaves.size(), count);
         EXPECT_TRUE(tree.warnings.empty()) << tree.warnings.front().message;
-        geometry::Model model;
-        ASSERT_NO_THROW(model = geometry::buildModel(tree));
+        model::Model model;
+        ASSERT_NO_THROW(model = model::buildModel(tree));
         EXPECT_FALSE(model.bounds.empty());
     }
 }

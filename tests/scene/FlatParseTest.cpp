@@ -11,11 +11,11 @@
 
 #include <glm/geometric.hpp>
 
-#include "../geometry/GeometryTestUtil.h"
-#include "strata/geometry/Exact.h"
-#include "strata/geometry/Mesh.h"
-#include "strata/geometry/MeshCheck.h"
-#include "strata/geometry/Model.h"
+#include "../mesh/MeshTestUtil.h"
+#include "strata/exact/Exact.h"
+#include "strata/mesh/Mesh.h"
+#include "strata/mesh/MeshCheck.h"
+#include "strata/model/Model.h"
 #include "strata/scene/CsgParser.h"
 
 using namespace strata;
@@ -40,7 +40,7 @@ std::string errorOf(const std::string& text) {
 const FlatNode& node(const FlatTree& t, int i) { return t.nodes.at(static_cast<std::size_t>(i)); }
 
 // Signed volume by the divergence theorem, computed here from the triangles.
-double volume(const geometry::Mesh& m) {
+double volume(const mesh::Mesh& m) {
     double v6 = 0.0;
     for (const auto& t : m.triangles) v6 += glm::dot(m.positions[t[0]], glm::cross(m.positions[t[1]], m.positions[t[2]]));
     return v6 / 6.0;
@@ -303,7 +303,7 @@ TEST(FlatParse, APlacedMinkowskiOfAUnionMovesItsHullsOnce) {
         "\t\t\t\tcube(size = [2, 2, 2], center = false);\n\t\t\t}\n\t\t}\n"
         "\t\tsphere($fn = 8, $fa = 12, $fs = 2, r = 1);\n\t}\n}\n");
     ASSERT_EQ(t.leaves.size(), 2u);
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     EXPECT_NEAR(model.bounds.min.x, 9.07612, 1e-5);
     EXPECT_NEAR(model.bounds.max.x, 17.9239, 1e-4);
     EXPECT_NEAR(model.bounds.min.y, -0.923879, 1e-6);
@@ -324,18 +324,18 @@ TEST(FlatParse, ABackgroundChildOfAPlacedMinkowskiStaysInTheWorld) {
         "\t\t\tcube(size = [1, 1, 1], center = false);\n\t\t}\n"
         "\t\tcylinder($fn = 4, $fa = 12, $fs = 2, h = 1, r1 = 1, r2 = 1, center = false);\n\t}\n}\n");
     ASSERT_EQ(t.background.size(), 1u);
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     const Node& root = t.nodes[static_cast<std::size_t>(t.root)];
     ASSERT_EQ(root.kind, NodeKind::Leaf);
-    const geometry::Mesh& sum = model.leafMeshes[static_cast<std::size_t>(root.leaf)];
-    const geometry::Bounds b = geometry::boundsOf(sum);
+    const mesh::Mesh& sum = model.leafMeshes[static_cast<std::size_t>(root.leaf)];
+    const mesh::Bounds b = mesh::boundsOf(sum);
     EXPECT_NEAR(b.min.x, 19.0, 1e-12);
     EXPECT_NEAR(b.max.x, 23.0, 1e-12);
     EXPECT_NEAR(b.min.y, -1.0, 1e-12);
     EXPECT_NEAR(b.max.z, 3.0, 1e-12);
     EXPECT_NEAR(volume(sum), 42.0, 1e-9);
     const int backgroundLeaf = t.nodes[static_cast<std::size_t>(t.background[0])].leaf;
-    const geometry::Bounds c = geometry::boundsOf(model.leafMeshes[static_cast<std::size_t>(backgroundLeaf)]);
+    const mesh::Bounds c = mesh::boundsOf(model.leafMeshes[static_cast<std::size_t>(backgroundLeaf)]);
     EXPECT_EQ(c.min, glm::dvec3(20, 0, 5));
     EXPECT_EQ(c.max, glm::dvec3(21, 1, 6));
 }
@@ -352,7 +352,7 @@ TEST(FlatParse, APlacedFlatMinkowskiAmongSolidsMovesOnce) {
         "\t\tcircle($fn = 4, $fa = 12, $fs = 2, r = 1);\n\t}\n}\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     EXPECT_TRUE(t.isFlat());
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     EXPECT_EQ(model.bounds.min, glm::dvec3(4, 4, -0.5));
     EXPECT_EQ(model.bounds.max, glm::dvec3(9, 9, 0.5));
     EXPECT_NEAR(volume(model.leafMeshes[0]), 23.0, 1e-9);  // a slab one unit thick
@@ -370,7 +370,7 @@ TEST(FlatParse, AFlatHullOfColouredChildrenIsOneShape) {
         "\t\tcolor([0, 0, 1, 1]) {\n\t\t\tsquare(size = [1, 1], center = false);\n\t\t}\n\t}\n}\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     EXPECT_FALSE(t.leaves[0].color.has_value());
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     EXPECT_EQ(model.bounds.min, glm::dvec3(0, 0, -0.5));
     EXPECT_EQ(model.bounds.max, glm::dvec3(6, 2, 0.5));
     EXPECT_NEAR(volume(model.leafMeshes[0]), 10.0, 1e-9);
@@ -385,7 +385,7 @@ TEST(FlatParse, HullOfADifferenceHullsItsExactResult) {
     const auto& h = std::get<Hull>(t.leaves[0].primitive);
     ASSERT_EQ(h.parts.size(), 1u);
     EXPECT_TRUE(std::holds_alternative<Exact>(h.parts[0].primitive));
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     EXPECT_NEAR(model.bounds.max.z, 1.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.x, 2.0, 1e-12);
 }
@@ -407,8 +407,8 @@ TEST(FlatParse, MinkowskiOfADifferenceSumsItsConvexParts) {
     const auto& sum = std::get<MinkowskiSum>(t.leaves[0].primitive);
     ASSERT_EQ(sum.operands.size(), 2u);
     EXPECT_TRUE(std::holds_alternative<Exact>(sum.operands[0]->leaves[0].primitive));
-    const geometry::Model model = geometry::buildModel(t);
-    EXPECT_NEAR(geometry::test::signedVolume(model.leafMeshes[0]), kSumOfLAndBox, 1e-9);
+    const model::Model model = model::buildModel(t);
+    EXPECT_NEAR(mesh::test::signedVolume(model.leafMeshes[0]), kSumOfLAndBox, 1e-9);
     EXPECT_NEAR(model.bounds.min.x, -0.5, 1e-12);
     EXPECT_NEAR(model.bounds.max.y, 5.25, 1e-12);
     EXPECT_NEAR(model.bounds.max.z, 3.125, 1e-12);
@@ -424,13 +424,13 @@ TEST(FlatParse, MinkowskiOfAPolyhedronSumsItsConvexParts) {
                          kBox + " }\n");
     ASSERT_EQ(t.leaves.size(), 1u);
     ASSERT_TRUE(std::holds_alternative<MinkowskiSum>(t.leaves[0].primitive));
-    const geometry::Model model = geometry::buildModel(t);
-    EXPECT_TRUE(geometry::checkMesh(model.leafMeshes[0]).ok());
-    EXPECT_NEAR(geometry::test::signedVolume(model.leafMeshes[0]), kSumOfLAndBox, 1e-9);
+    const model::Model model = model::buildModel(t);
+    EXPECT_TRUE(mesh::checkMesh(model.leafMeshes[0]).ok());
+    EXPECT_NEAR(mesh::test::signedVolume(model.leafMeshes[0]), kSumOfLAndBox, 1e-9);
     // The same sum again is answered by the cache.
-    const std::size_t hits = geometry::exactCacheHits();
-    const geometry::Model again = geometry::buildModel(t);
-    EXPECT_EQ(geometry::exactCacheHits(), hits + 1);
+    const std::size_t hits = exact::exactCacheHits();
+    const model::Model again = model::buildModel(t);
+    EXPECT_EQ(exact::exactCacheHits(), hits + 1);
     EXPECT_EQ(again.leafMeshes[0].triangles.size(), model.leafMeshes[0].triangles.size());
 }
 
@@ -467,13 +467,13 @@ TEST(FlatParse, ResizeScalesTheBoxOfItsLeavesTogether) {
     ASSERT_EQ(t.leaves.size(), 2u);
     ASSERT_EQ(t.resizes.size(), 1u);
     EXPECT_EQ(t.resizes[0].leaves.size(), 2u);
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     EXPECT_NEAR(model.bounds.min.x, 5.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.x, 15.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.y, 2.0 * 10.0 / 6.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.z, 2.0 * 10.0 / 6.0, 1e-12);
     // The gap between the cubes scales with them.
-    EXPECT_NEAR(geometry::boundsOf(model.leafMeshes[1]).min.x, 5.0 + 4.0 * 10.0 / 6.0, 1e-12);
+    EXPECT_NEAR(mesh::boundsOf(model.leafMeshes[1]).min.x, 5.0 + 4.0 * 10.0 / 6.0, 1e-12);
 }
 
 TEST(FlatParse, ResizeOfADifferenceTakesTheBoxOfItsExactResult) {
@@ -484,7 +484,7 @@ TEST(FlatParse, ResizeOfADifferenceTakesTheBoxOfItsExactResult) {
     ASSERT_EQ(t.leaves.size(), 1u);
     EXPECT_TRUE(std::holds_alternative<Exact>(t.leaves[0].primitive));
     ASSERT_EQ(t.resizes.size(), 1u);
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     for (int i = 0; i < 3; ++i) {
         EXPECT_NEAR(model.bounds.min[i], 0.0, 1e-12) << i;
         EXPECT_NEAR(model.bounds.max[i], 6.0, 1e-12) << i;
@@ -527,7 +527,7 @@ TEST(FlatParse, TheShadowOfADifferenceIsItsExactResults) {
     const auto& shadow = std::get<Projection>(s.shapes.at(0));
     ASSERT_EQ(shadow.solid->leaves.size(), 1u);
     EXPECT_TRUE(std::holds_alternative<Exact>(shadow.solid->leaves[0].primitive));
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     const double pentagon = 0.5 * 5 * 0.25 * std::sin(2 * 3.14159265358979323846 / 5);
     EXPECT_NEAR(volume(model.leafMeshes[0]), 4.0 - pentagon, 1e-4);  // Clipper's grid: within a few 2^-16
 }
@@ -541,7 +541,7 @@ TEST(FlatParse, TheNewerDialectsSlantedExtrusionMovesTheTopAlongV) {
     const auto& e = std::get<LinearExtrude>(t.leaves[0].primitive);
     EXPECT_NEAR(e.direction.x, 0.6, 1e-15);
     EXPECT_NEAR(e.direction.z, 0.8, 1e-15);
-    const geometry::Model model = geometry::buildModel(t);
+    const model::Model model = model::buildModel(t);
     EXPECT_NEAR(model.bounds.min.z, -4.0, 1e-12);
     EXPECT_NEAR(model.bounds.max.z, 4.0, 1e-12);
     EXPECT_NEAR(model.bounds.min.x, -2.0 - 3.0, 1e-12);
@@ -555,10 +555,10 @@ TEST(FlatParse, AnExactResultIsNotEvaluatedAgainWhenAnEditLeavesItAlone) {
         "cube(size = 6, center = true); } }\n";
     const Tree before = parse(shared + "cube(size = 1);\n");
     const Tree after = parse(shared + "multmatrix([[1, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cylinder(h = 3);\n");
-    const geometry::Model first = geometry::buildModel(before);
-    const std::size_t hits = geometry::exactCacheHits();
-    const geometry::Model second = geometry::buildModel(after);
-    EXPECT_EQ(geometry::exactCacheHits(), hits + 1);
+    const model::Model first = model::buildModel(before);
+    const std::size_t hits = exact::exactCacheHits();
+    const model::Model second = model::buildModel(after);
+    EXPECT_EQ(exact::exactCacheHits(), hits + 1);
     EXPECT_EQ(first.leafMeshes[0].positions, second.leafMeshes[0].positions);
     EXPECT_EQ(first.leafMeshes[0].triangles, second.leafMeshes[0].triangles);
 }

@@ -69,7 +69,7 @@ TEST(Orbit, PresetsPutTheEyeExactlyOnTheAxes) {
         const std::string arg = view::cameraArgument(orbit.camera(render::Camera{}));
         EXPECT_EQ(arg.find('e', 9), std::string::npos) << arg;
         // Fitting the view keeps the angles read back from the eye exact too.
-        geometry::Bounds b;
+        mesh::Bounds b;
         b.extend(glm::dvec3(-1, -2, -3));
         b.extend(glm::dvec3(5, 4, 3));
         const Orbit all = view::viewAll(orbit, b, render::Camera{});
@@ -202,7 +202,7 @@ TEST(Orbit, PointAtDepthLiesOnThePixelsRayAtThatViewDepth) {
 }
 
 TEST(Orbit, FittedViewIsStrataRendersDefaultCamera) {
-    geometry::Bounds b;
+    mesh::Bounds b;
     b.extend(glm::dvec3(-1, -2, -3));
     b.extend(glm::dvec3(5, 4, 3));
     render::Camera base;
@@ -219,7 +219,7 @@ TEST(Orbit, FittedViewIsStrataRendersDefaultCamera) {
 }
 
 TEST(Orbit, AViewNarrowerThanTallFitsTheBoxsSphereAcross) {
-    geometry::Bounds b;
+    mesh::Bounds b;
     b.extend(glm::dvec3(-30, -3, -3));
     b.extend(glm::dvec3(30, 3, 3));
     const double radius = glm::length(b.max - b.min) / 2;

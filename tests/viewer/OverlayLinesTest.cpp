@@ -78,7 +78,7 @@ TEST(OverlayLines, TheCornerCrossTurnsWithTheCamera) {
 }
 
 TEST(OverlayLines, EdgesAreEachTrianglesEdgesOnce) {
-    geometry::Mesh square;
+    mesh::Mesh square;
     square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     square.triangles = {{0, 1, 2}, {0, 2, 3}};
     std::vector<glm::vec3> points;

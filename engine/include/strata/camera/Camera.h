@@ -9,7 +9,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::render {
 
@@ -59,7 +59,7 @@ struct Camera {
 // over) between surfaces that exact arithmetic puts at one depth. The GPU
 // evaluator and the CPU reference take the same value for one frame.
 // Positive, also for an empty box.
-double coincidenceTolerance(const Camera& camera, const geometry::Bounds& box);
+double coincidenceTolerance(const Camera& camera, const mesh::Bounds& box);
 
 // OpenSCAD's --camera: 6 numbers (eye, center) or 7 (gimbal: translate, rotate,
 // distance). Throws strata::Error on any other count.
@@ -68,6 +68,6 @@ Camera cameraFromArguments(const std::vector<double>& numbers, const Camera& bas
 // OpenSCAD's default view (--viewall --autocenter) fitted to `bounds`: the
 // gimbal rotation (55, 0, 25), centred on the bounds, at the distance that
 // OpenSCAD's viewAll picks for the camera's field of view.
-Camera defaultCamera(const geometry::Bounds& bounds, const Camera& base);
+Camera defaultCamera(const mesh::Bounds& bounds, const Camera& base);
 
 }  // namespace strata::render

@@ -9,14 +9,14 @@
 // its way up to the root, so no normalisation is needed to find them:
 // difference(A, B) frames A only, difference(A, difference(B, C)) frames A and C.
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::render {
 
 // The union of the world-space boxes of the leaves in positive position under
-// tree.root and the background roots. `model` comes from geometry::buildModel(tree).
+// tree.root and the background roots. `model` comes from model::buildModel(tree).
 // Empty when no such leaf has a triangle.
-geometry::Bounds viewBounds(const scene::Tree& tree, const geometry::Model& model);
+mesh::Bounds viewBounds(const scene::Tree& tree, const model::Model& model);
 
 }  // namespace strata::render

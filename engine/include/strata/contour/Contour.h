@@ -6,7 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/contour/Dexels.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::contour {
 
@@ -15,7 +15,7 @@ namespace strata::contour {
 // and corners of the solid are kept where a cell's crossings show them.
 // Reports progress (core/Progress.h) per slab of cells. Throws strata::Error
 // on an inconsistent image (a ray that ends inside, crossings out of order).
-geometry::Mesh contour(const Dexels& dexels);
+mesh::Mesh contour(const Dexels& dexels);
 
 // A part of the solid, or a gap in it, that lies between two grid points
 // along a ray: no grid point sees it, so the contour loses it (a wall

@@ -13,13 +13,13 @@
 
 #include <vector>
 
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::csg {
 
 // Per tree leaf i: the lowest leaf whose solid is leaf i's exactly (i itself
 // where no lower one is). Leaves without triangles map to themselves.
-std::vector<int> identicalLeaves(const scene::Tree& tree, const geometry::Model& model);
+std::vector<int> identicalLeaves(const scene::Tree& tree, const model::Model& model);
 
 }  // namespace strata::csg

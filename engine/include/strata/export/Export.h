@@ -18,8 +18,8 @@
 
 #include <glm/vec4.hpp>
 
-#include "strata/geometry/Model.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/model/Model.h"
 #include "strata/remesh/Remesh.h"
 #include "strata/scene/Tree.h"
 
@@ -44,7 +44,7 @@ struct StagedExport {
 // drawing path, an empty result, or a sampling grid too coarse for a wall of
 // the solid, and naming `path` when it cannot be written. The GPU sampler
 // makes its own headless GL context: call it where no other is current.
-StagedExport stageExport(const scene::Tree& tree, const geometry::Model& model, const std::string& path,
+StagedExport stageExport(const scene::Tree& tree, const model::Model& model, const std::string& path,
                          const ExportSettings& settings);
 
 }  // namespace strata::exporting

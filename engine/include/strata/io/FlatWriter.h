@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "strata/geometry/Outlines.h"
+#include "strata/flat/Outlines.h"
 #include "strata/io/ImageWriter.h"
 
 namespace strata::io {
@@ -23,10 +23,10 @@ FlatFormat flatFormatOf(const std::string& path);
 // down, as SVG's axis runs, the view box the outlines' box, one unit a
 // millimetre); DXF: each outline as LINE entities on layer 0, between empty
 // BLOCKS and OBJECTS sections.
-std::vector<unsigned char> flatBytes(const geometry::Outlines& outlines, FlatFormat format);
+std::vector<unsigned char> flatBytes(const flat::Outlines& outlines, FlatFormat format);
 
 // Stages the drawing into `path` (commit() renames it into place). Throws
 // strata::Error("<path>: cannot write ...") as the image writers do.
-StagedFile stageFlat(const std::string& path, const geometry::Outlines& outlines);
+StagedFile stageFlat(const std::string& path, const flat::Outlines& outlines);
 
 }  // namespace strata::io

@@ -10,8 +10,8 @@
 
 #include <glm/vec4.hpp>
 
-#include "strata/geometry/Mesh.h"
 #include "strata/io/ImageWriter.h"
+#include "strata/mesh/Mesh.h"
 
 namespace strata::io {
 
@@ -26,11 +26,11 @@ MeshFormat meshFormatOf(const std::string& path);
 // bit for bit (OFF and OBJ: 17 significant digits; STL: single precision,
 // as the format holds). `colors`, one RGBA in [0,1] per triangle, is used
 // by 3MF only (a base material per distinct colour); empty: none.
-std::vector<unsigned char> meshBytes(const geometry::Mesh& mesh, MeshFormat format,
+std::vector<unsigned char> meshBytes(const mesh::Mesh& mesh, MeshFormat format,
                                      std::span<const glm::vec4> colors = {});
 
 // Stages the mesh into `path` (commit() renames it into place). Throws
 // strata::Error("<path>: cannot write ...") as the image writers do.
-StagedFile stageMesh(const std::string& path, const geometry::Mesh& mesh, std::span<const glm::vec4> colors = {});
+StagedFile stageMesh(const std::string& path, const mesh::Mesh& mesh, std::span<const glm::vec4> colors = {});
 
 }  // namespace strata::io

@@ -29,7 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/camera/Camera.h"
-#include "strata/geometry/Model.h"
+#include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::reference {
@@ -76,9 +76,9 @@ std::function<void(int done, int total)> progressOnStderr(const char* label = "r
 // render() may run on several threads at once.
 class ReferenceScene {
 public:
-    // model.leafMeshes[i] is tree.leaves[i] in world space (geometry::buildModel).
+    // model.leafMeshes[i] is tree.leaves[i] in world space (model::buildModel).
     // Throws strata::Error when they do not match or Embree fails.
-    ReferenceScene(const scene::Tree& tree, const geometry::Model& model);
+    ReferenceScene(const scene::Tree& tree, const model::Model& model);
     ~ReferenceScene();
     ReferenceScene(ReferenceScene&&) noexcept;
     ReferenceScene& operator=(ReferenceScene&&) noexcept;
@@ -97,7 +97,7 @@ private:
 };
 
 // ReferenceScene(tree, model).render(camera, options).
-ReferenceImage renderReference(const scene::Tree& tree, const geometry::Model& model, const render::Camera& camera,
+ReferenceImage renderReference(const scene::Tree& tree, const model::Model& model, const render::Camera& camera,
                                const ReferenceOptions& options = {});
 
 }  // namespace strata::reference

@@ -10,7 +10,7 @@
 // same rays traced in double precision), which tests compare them with.
 
 #include "strata/contour/Dexels.h"
-#include "strata/geometry/Mesh.h"
+#include "strata/mesh/Mesh.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
 
@@ -28,7 +28,7 @@ constexpr int kMostResolution = 4096;
 // box's faces by an irrational fraction of a cell, so that the faces of
 // typical models, at round coordinates, rarely lie on a grid plane. Throws
 // strata::Error for an empty or flat box or a resolution out of range.
-contour::DexelGrid gridFor(const geometry::Bounds& box, int resolution);
+contour::DexelGrid gridFor(const mesh::Bounds& box, int resolution);
 
 // The result's crossings along every grid line, by the GPU (the renderer
 // holds the scene: setScene). `settings` as for a frame (layers, memory

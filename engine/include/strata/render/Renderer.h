@@ -23,8 +23,8 @@
 #include <glm/vec3.hpp>
 
 #include "strata/camera/Camera.h"
+#include "strata/model/Model.h"
 #include "strata/render/Frame.h"
-#include "strata/geometry/Model.h"
 #include "strata/scene/Tree.h"
 
 namespace strata::render {
@@ -38,11 +38,11 @@ public:
 
     // Uploads the leaf meshes and compiles the tree (the passes' shaders are
     // compiled by the first frame that needs them). Call again after an edit.
-    void setScene(const scene::Tree& tree, const geometry::Model& model);
+    void setScene(const scene::Tree& tree, const model::Model& model);
     // The same, letting each leaf's mesh go as soon as it is on the GPU and
     // handing the memory back: for a caller that needs the meshes no more
     // (a million cubes then peak about 400 MB lower). `model` is left empty.
-    void setScene(const scene::Tree& tree, geometry::Model&& model);
+    void setScene(const scene::Tree& tree, model::Model&& model);
 
     // Renders and reads everything back.
     Frame render(const Camera& camera, const RenderSettings& settings);

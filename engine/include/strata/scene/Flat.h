@@ -1,7 +1,7 @@
 #pragma once
 // Flat (2D) subtrees as the CSG export writes them: square, circle, polygon,
 // text and 2D imports under 2D union / difference / intersection, multmatrix
-// and offset. A FlatTree is a description, not geometry: geometry::evaluateFlat
+// and offset. A FlatTree is a description, not geometry: model::evaluateFlat
 // turns it into outlines exactly as OpenSCAD 2021.01 does, node by node.
 //
 // Storage is flat like the Tree's: nodes refer to their children by index,

@@ -105,7 +105,7 @@ struct Hull {
 
 // A difference or intersection whose geometry a node needs (a hull, resize or
 // shadow of it): its subtree, read into a tree of its own, evaluated exactly
-// into one mesh (geometry::exactResult).
+// into one mesh (exact::exactResult).
 struct Exact {
     std::shared_ptr<const Tree> solid;
 };
@@ -113,7 +113,7 @@ struct Exact {
 // minkowski() of solids that are not all convex by construction: each
 // operand is a child's subtree (a union of leaves, any difference or
 // intersection in it already an Exact leaf), read into a tree of its own,
-// placed relative to the sum's leaf; geometry::minkowskiSum splits each into
+// placed relative to the sum's leaf; model::minkowskiSum splits each into
 // convex parts and joins the parts' sums exactly, as OpenSCAD does (an
 // operand with no solid is left out of the sum, as OpenSCAD leaves it out).
 struct MinkowskiSum {
@@ -162,7 +162,7 @@ struct Leaf {
 // resize(): the leaves under it are scaled together so that the box of the
 // result takes `newsize` (0 keeps an axis; `autosize` axes follow the largest
 // given one), then placed by `outer`. Their transforms are relative to the
-// resize; geometry::buildModel applies these in order (an inner resize is
+// resize; model::buildModel applies these in order (an inner resize is
 // listed before the one around it).
 struct Resize {
     glm::dvec3 newsize{0.0};
@@ -211,7 +211,7 @@ struct Tree {
 
 // The scene of one mesh file (STL, OBJ, OFF, PLY), as the apps open it: a
 // single Import leaf of `path`, the root a union of it. The file is read
-// later, by geometry::buildModel.
+// later, by model::buildModel.
 Tree meshFileTree(const std::string& path);
 
 // The OpenSCAD name of a leaf's primitive: "cube", ..., "linear_extrude",
