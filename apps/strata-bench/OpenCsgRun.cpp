@@ -65,7 +65,7 @@ OpenCsgSettingResult timeSetting(OpenCsgComparator& comparator, const OpenCsgSet
 }  // namespace
 
 OpenCsgResult runOpenCsg(OpenCsgComparator& comparator, gpu::Context& strata, const scene::Tree& tree,
-                         const model::Model& model, const render::Camera& camera,
+                         const model::Model& model, const camera::Camera& camera,
                          const std::vector<std::uint8_t>& strataCoverage, const OpenCsgRunOptions& options,
                          const std::string& caseKey, int k, OpenCsgCaps& caps) {
     OpenCsgResult out;

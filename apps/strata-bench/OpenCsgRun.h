@@ -53,7 +53,7 @@ using OpenCsgCaps = std::map<std::string, int>;
 // SCS is skipped for non-convex operands (it is only correct
 // for convex ones); settings are skipped above the K where they went over the cap.
 OpenCsgResult runOpenCsg(OpenCsgComparator& comparator, gpu::Context& strata, const scene::Tree& tree,
-                         const model::Model& model, const render::Camera& camera,
+                         const model::Model& model, const camera::Camera& camera,
                          const std::vector<std::uint8_t>& strataCoverage, const OpenCsgRunOptions& options,
                          const std::string& caseKey, int k, OpenCsgCaps& caps);
 

@@ -44,7 +44,7 @@ PlainDraw::PlainDraw(const scene::Tree& tree, const model::Model& model, int wid
     gpu::checkErrors();
 }
 
-double PlainDraw::drawFrame(const render::Camera& camera) {
+double PlainDraw::drawFrame(const camera::Camera& camera) {
     const ViewMatrices matrices = fittedView(camera, bounds_);
     const glm::mat4 viewProjection(matrices.projection * matrices.view);
     program_.setUniform("viewProjection", viewProjection);

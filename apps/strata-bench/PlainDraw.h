@@ -24,7 +24,7 @@ public:
     PlainDraw(const scene::Tree& tree, const model::Model& model, int width, int height);
 
     // Clears, draws everything, glFinish. Returns wall-clock milliseconds.
-    double drawFrame(const render::Camera& camera);
+    double drawFrame(const camera::Camera& camera);
 
     std::size_t triangles() const noexcept { return vertices_ / 3; }
 

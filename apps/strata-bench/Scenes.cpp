@@ -59,14 +59,14 @@ Tree cheese(int k, std::mt19937& rng) {
 // A 12 x 12 x 3 slab; K spheres of radius 0.5 centred on the view ray through
 // the slab's centre, evenly spread over 8 units of it, so they overlap once
 // K > 8 and many stick out of both faces.
-BenchScene stack(int k, const render::Camera& base) {
+BenchScene stack(int k, const camera::Camera& base) {
     BenchScene out;
     Tree& tree = out.tree;
     std::vector<int> children{addCube(tree, {0, 0, 0}, {12, 12, 3})};
     mesh::Bounds slab;
     slab.extend(glm::dvec3(-6, -6, -1.5));
     slab.extend(glm::dvec3(6, 6, 1.5));
-    const render::Camera camera = render::defaultCamera(slab, base);
+    const camera::Camera camera = camera::defaultCamera(slab, base);
     const glm::dvec3 f = camera.forward();
     const glm::dvec3 c = camera.center;
     for (int i = 0; i < k; ++i) {
@@ -183,7 +183,7 @@ const std::vector<std::string>& sceneNames() {
     return names;
 }
 
-BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const render::Camera& base) {
+BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const camera::Camera& base) {
     if (k < 1) throw Error("strata-bench: K must be at least 1, got " + std::to_string(k));
     // One stream per (scene, K), so adding a scene or a K leaves the others unchanged.
     std::seed_seq seq{seed, static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(name.size()),

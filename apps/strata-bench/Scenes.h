@@ -32,7 +32,7 @@ struct BenchScene {
     scene::Tree tree;
     // A camera the scene needs (stack: the spheres lie on its view ray);
     // empty: OpenSCAD's default view fitted to the scene.
-    std::optional<render::Camera> camera;
+    std::optional<camera::Camera> camera;
 };
 
 // The scene names, in the order the table lists them.
@@ -40,6 +40,6 @@ const std::vector<std::string>& sceneNames();
 
 // Throws strata::Error for an unknown name or K < 1.
 // `base` carries the image size (and, for stack, the field of view).
-BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const render::Camera& base);
+BenchScene makeScene(std::string_view name, int k, std::uint32_t seed, const camera::Camera& base);
 
 }  // namespace strata::bench

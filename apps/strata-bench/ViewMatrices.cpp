@@ -4,7 +4,7 @@
 
 namespace strata::bench {
 
-ViewMatrices fittedView(const render::Camera& camera, const mesh::Bounds& bounds) {
+ViewMatrices fittedView(const camera::Camera& camera, const mesh::Bounds& bounds) {
     double nearest = 1e300, farthest = -1e300;
     for (int c = 0; c < 8; ++c) {
         const glm::dvec3 p{c & 1 ? bounds.max.x : bounds.min.x, c & 2 ? bounds.max.y : bounds.min.y,

@@ -16,6 +16,6 @@ struct ViewMatrices {
 
 // The camera's view and projection with near and far planes hugging `bounds`
 // (what the camera sees of the drawn triangles), as a viewer would set them.
-ViewMatrices fittedView(const render::Camera& camera, const mesh::Bounds& bounds);
+ViewMatrices fittedView(const camera::Camera& camera, const mesh::Bounds& bounds);
 
 }  // namespace strata::bench

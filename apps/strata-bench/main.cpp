@@ -170,7 +170,7 @@ std::vector<std::uint8_t> coverageOf(const render::Frame& frame) {
 // strata's frames of `scene` into a host framebuffer, timed: the medians
 // into `result`. Returns one read-back frame (not timed) for its coverage.
 render::Frame timeStrata(const Options& options, const bench::BenchScene& scene, const model::Model& model,
-                         const render::Camera& camera, Result& result) {
+                         const camera::Camera& camera, Result& result) {
     const auto setupStart = Clock::now();
     render::Renderer renderer;
     renderer.setScene(scene.tree, model);
@@ -230,7 +230,7 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
 
 // The floor, plain rasterization of the same triangles, timed into `result`.
 void timePlain(const Options& options, const bench::BenchScene& scene, const model::Model& model,
-               const render::Camera& camera, Result& result) {
+               const camera::Camera& camera, Result& result) {
     bench::PlainDraw plain(scene.tree, model, camera.width, camera.height);
     result.triangles = plain.triangles();
     std::vector<double> plainFrames;
@@ -247,20 +247,20 @@ void timePlain(const Options& options, const bench::BenchScene& scene, const mod
 
 // `make` builds the scene for a camera carrying the image size.
 Result runCase(const Options& options, gpu::Context& context, OpenCsgSide& openCsg, const std::string& name, int k,
-               Size size, const std::function<bench::BenchScene(const render::Camera& base)>& make) {
+               Size size, const std::function<bench::BenchScene(const camera::Camera& base)>& make) {
     Result result;
     result.scene = name;
     result.k = k;
     result.size = size;
 
-    render::Camera base;
+    camera::Camera base;
     base.width = size.width;
     base.height = size.height;
     const auto setupStart = Clock::now();
     bench::BenchScene benchScene = make(base);
     const model::Model model = model::buildModel(benchScene.tree);
-    const render::Camera camera =
-        benchScene.camera ? *benchScene.camera : render::defaultCamera(render::viewBounds(benchScene.tree, model), base);
+    const camera::Camera camera =
+        benchScene.camera ? *benchScene.camera : camera::defaultCamera(camera::viewBounds(benchScene.tree, model), base);
     result.setupMs = msSince(setupStart);
 
     const render::Frame frameForCoverage = timeStrata(options, benchScene, model, camera, result);
@@ -532,7 +532,7 @@ std::vector<Result> runAll(const Options& options, gpu::Context& context, OpenCs
                            const std::vector<Size>& sizes, const std::vector<scene::Tree>& fileTrees) {
     std::vector<Result> results;
     auto run = [&](const std::string& name, int k, Size size,
-                   const std::function<bench::BenchScene(const render::Camera&)>& make) {
+                   const std::function<bench::BenchScene(const camera::Camera&)>& make) {
         Result result;
         try {
             result = runCase(options, context, openCsg, name, k, size, make);
@@ -548,13 +548,13 @@ std::vector<Result> runAll(const Options& options, gpu::Context& context, OpenCs
     for (const Size& size : sizes) {
         for (const std::string& name : options.scenes)
             for (int k : options.ks)
-                run(name, k, size, [&](const render::Camera& base) {
+                run(name, k, size, [&](const camera::Camera& base) {
                     return bench::makeScene(name, k, options.seed, base);
                 });
         for (std::size_t f = 0; f < fileTrees.size(); ++f) {
             const scene::Tree& tree = fileTrees[f];
             run(std::filesystem::path(options.files[f]).filename().string(), static_cast<int>(tree.leaves.size()),
-                size, [&](const render::Camera&) { return bench::BenchScene{tree, std::nullopt}; });
+                size, [&](const camera::Camera&) { return bench::BenchScene{tree, std::nullopt}; });
         }
     }
     return results;

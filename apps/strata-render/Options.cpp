@@ -100,9 +100,9 @@ void parseCamera(const std::string& text, RenderOptions& options) {
 void parseProjection(const std::string& text, RenderOptions& options) {
     const std::string t = lower(trim(text));
     if (t == "p" || t == "perspective")
-        options.projection = render::Projection::Perspective;
+        options.projection = camera::Projection::Perspective;
     else if (t == "o" || t == "ortho" || t == "orthogonal" || t == "orthographic")
-        options.projection = render::Projection::Orthographic;
+        options.projection = camera::Projection::Orthographic;
     else
         throw UsageError{"--projection: expected 'p' (perspective) or 'o' (orthographic), got '" + text + "'"};
 }

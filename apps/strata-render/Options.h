@@ -23,7 +23,7 @@ struct RenderOptions {
     std::string normal;                     // --normal FILE.exr
     int width = 512, height = 512;          // --imgsize W,H (OpenSCAD's default)
     std::optional<std::vector<double>> camera;  // --camera: 6 or 7 numbers; absent: fitted default view
-    render::Projection projection = render::Projection::Perspective;
+    camera::Projection projection = camera::Projection::Perspective;
     double fovDegrees = 22.5;
     int layers = 0;                         // 0: auto
     bool stats = false;

@@ -65,15 +65,15 @@ struct Gpu {
 // CPU reference needs them (a million cubes: about 400 MB).
 void renderImages(const apps::RenderOptions& options, const scene::Tree& tree, model::Model model, Gpu& gpu,
                   io::RunStats& stats, std::vector<io::StagedFile>& staged) {
-    render::Camera base;
+    camera::Camera base;
     base.width = options.width;
     base.height = options.height;
     base.fovDegrees = options.fovDegrees;
     base.projection = options.projection;
-    render::Camera camera;
+    camera::Camera camera;
     try {
-        camera = options.camera ? render::cameraFromArguments(*options.camera, base)
-                                : render::defaultCamera(render::viewBounds(tree, model), base);
+        camera = options.camera ? camera::cameraFromArguments(*options.camera, base)
+                                : camera::defaultCamera(camera::viewBounds(tree, model), base);
     } catch (const Error& e) {
         // The camera's own checks speak of the option; say who is speaking.
         throw Error(std::string("strata-render: ") + e.what());

@@ -53,7 +53,7 @@ glm::dvec2 sinCosDegrees(double angle) {
 }
 
 // The eye offset from the centre for OpenSCAD's gimbal with no roll:
-// Rz(rz) * Rx(rx - 90) * (0, -d, 0), as render::cameraFromArguments places it.
+// Rz(rz) * Rx(rx - 90) * (0, -d, 0), as camera::cameraFromArguments places it.
 glm::dvec3 offsetFor(double tilt, double turn, double distance) {
     const glm::dvec2 t = sinCosDegrees(tilt), z = sinCosDegrees(turn);
     return distance * glm::dvec3(t.x * z.x, -t.x * z.y, t.y);
@@ -97,7 +97,7 @@ void Orbit::orbit(double dx, double dy) {
 }
 
 void Orbit::pan(double dx, double dy, int viewWidth, int viewHeight) {
-    const render::Camera c = camera(render::Camera{});
+    const camera::Camera c = camera(camera::Camera{});
     const double d = distance();
     const glm::dvec3 move = -c.right() * (dx * kPanPerView * d / std::max(viewWidth, 1)) +
                             c.up() * (dy * kPanPerView * d / std::max(viewHeight, 1));
@@ -106,7 +106,7 @@ void Orbit::pan(double dx, double dy, int viewWidth, int viewHeight) {
 }
 
 void Orbit::moveAlongView(double dy, int viewHeight) {
-    const render::Camera c = camera(render::Camera{});
+    const camera::Camera c = camera(camera::Camera{});
     const glm::dvec3 move = c.forward() * (dy * kPanPerView * distance() / std::max(viewHeight, 1));
     eye += move;
     center += move;
@@ -119,7 +119,7 @@ void Orbit::zoom(double notches) {
 }
 
 void Orbit::zoomAt(double notches, double x, double y, int width, int height, double fovDegrees) {
-    const render::Camera c = camera(render::Camera{});
+    const camera::Camera c = camera(camera::Camera{});
     const double before = distance();
     zoom(notches);
     const double after = distance();
@@ -146,15 +146,15 @@ void Orbit::recenter(const glm::dvec3& point) {
     center = point;
 }
 
-render::Camera Orbit::camera(const render::Camera& base) const {
-    render::Camera c = base;
+camera::Camera Orbit::camera(const camera::Camera& base) const {
+    camera::Camera c = base;
     c.eye = eye;
     c.center = center;
     return c;
 }
 
-Orbit fittedOrbit(const mesh::Bounds& bounds, const render::Camera& base) {
-    Orbit orbit = orbitFromCamera(render::defaultCamera(bounds, base));
+Orbit fittedOrbit(const mesh::Bounds& bounds, const camera::Camera& base) {
+    Orbit orbit = orbitFromCamera(camera::defaultCamera(bounds, base));
     // OpenSCAD backs off until the box's sphere fits the vertical field of
     // view. A view narrower than it is tall (beside a wide panel) would then
     // cut the sphere off at its sides: there the distance fits the
@@ -167,7 +167,7 @@ Orbit fittedOrbit(const mesh::Bounds& bounds, const render::Camera& base) {
     return orbit;
 }
 
-Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const render::Camera& base) {
+Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const camera::Camera& base) {
     const Orbit fitted = fittedOrbit(bounds, base);
     Orbit result;
     result.center = fitted.center;
@@ -175,17 +175,17 @@ Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const render::Came
     return result;
 }
 
-Orbit orbitFromCamera(const render::Camera& camera) { return Orbit{camera.eye, camera.center}; }
+Orbit orbitFromCamera(const camera::Camera& camera) { return Orbit{camera.eye, camera.center}; }
 
-glm::dvec3 pointAtDepth(const render::Camera& camera, int i, int j, double depth) {
-    const render::Ray ray = camera.ray(i, j);
+glm::dvec3 pointAtDepth(const camera::Camera& camera, int i, int j, double depth) {
+    const camera::Ray ray = camera.ray(i, j);
     const glm::dvec3 f = camera.forward();
     // Solve dot(origin + t * dir - eye, f) = depth for t.
     const double t = (depth - glm::dot(ray.origin - camera.eye, f)) / glm::dot(ray.direction, f);
     return ray.origin + t * ray.direction;
 }
 
-std::string cameraArgument(const render::Camera& camera) {
+std::string cameraArgument(const camera::Camera& camera) {
     const std::array<double, 6> numbers{camera.eye.x,    camera.eye.y,    camera.eye.z,
                                         camera.center.x, camera.center.y, camera.center.z};
     std::string text = "--camera=";

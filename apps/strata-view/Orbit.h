@@ -81,23 +81,23 @@ struct Orbit {
     void recenter(const glm::dvec3& point);
 
     // The contract's camera with this eye and centre; the rest from `base`.
-    render::Camera camera(const render::Camera& base) const;
+    camera::Camera camera(const camera::Camera& base) const;
 };
 
-// OpenSCAD's default view fitted to `bounds` (render::defaultCamera); in a
+// OpenSCAD's default view fitted to `bounds` (camera::defaultCamera); in a
 // view narrower than it is tall, backed off further until the box's sphere
 // fits the width too.
-Orbit fittedOrbit(const mesh::Bounds& bounds, const render::Camera& base);
+Orbit fittedOrbit(const mesh::Bounds& bounds, const camera::Camera& base);
 // "View all": the fitted centre and distance, but this orbit's angles.
-Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const render::Camera& base);
-Orbit orbitFromCamera(const render::Camera& camera);
+Orbit viewAll(const Orbit& orbit, const mesh::Bounds& bounds, const camera::Camera& base);
+Orbit orbitFromCamera(const camera::Camera& camera);
 
 // The world point seen at pixel (i, j) (row 0 at the top) at view depth
 // `depth` (the depth AOV's dot(P - eye, f)).
-glm::dvec3 pointAtDepth(const render::Camera& camera, int i, int j, double depth);
+glm::dvec3 pointAtDepth(const camera::Camera& camera, int i, int j, double depth);
 
 // "--camera=EX,EY,EZ,CX,CY,CZ" exactly as strata-render reads it, each number
 // the shortest decimal that reads back to the same double.
-std::string cameraArgument(const render::Camera& camera);
+std::string cameraArgument(const camera::Camera& camera);
 
 }  // namespace strata::view

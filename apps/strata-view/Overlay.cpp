@@ -54,7 +54,7 @@ void Overlay::setScene(const model::Model& model) {
     if (!vertices.empty()) upload(edgeVertices_, edgeArray_, "strata-view edges", vertices);
 }
 
-void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const render::Frame& frame,
+void Overlay::draw(unsigned framebuffer, const camera::Camera& camera, const render::Frame& frame,
                    const std::vector<std::uint8_t>& image, const OverlayOptions& options) {
     const int w = camera.width, h = camera.height;
     if (depth_.id() == 0 || depth_.width() != w || depth_.height() != h) {
@@ -72,7 +72,7 @@ void Overlay::draw(unsigned framebuffer, const render::Camera& camera, const ren
     color_.upload(0, 0, 0, w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
 
     const double d = glm::length(camera.eye - camera.center);
-    const bool ortho = camera.projection == render::Projection::Orthographic;
+    const bool ortho = camera.projection == camera::Projection::Orthographic;
     // Wide enough for the axes (the distance either side of the origin) and the scene.
     const glm::dmat4 viewProjection = camera.projectionMatrix(ortho ? -1e4 * d : 1e-3 * d, 1e4 * d) * camera.viewMatrix();
     const glm::dvec4 origin = viewProjection * glm::dvec4(0, 0, 0, 1);

@@ -40,7 +40,7 @@ public:
     // Draws into `framebuffer` (camera.width x camera.height), over `image`
     // (RGBA8, row 0 at the top: the frame's own, or a debug view's), which
     // is already in it; tested against the frame's depth and leaf AOVs.
-    void draw(unsigned framebuffer, const render::Camera& camera, const render::Frame& frame,
+    void draw(unsigned framebuffer, const camera::Camera& camera, const render::Frame& frame,
               const std::vector<std::uint8_t>& image, const OverlayOptions& options);
 
 private:

@@ -156,7 +156,7 @@ std::vector<WorldSegment> scaleLabelSegments(double distance) {
     return out;
 }
 
-std::vector<ScreenSegment> gizmoSegments(const render::Camera& camera, const glm::vec3& labelColor) {
+std::vector<ScreenSegment> gizmoSegments(const camera::Camera& camera, const glm::vec3& labelColor) {
     const double pixelsPerUnit = camera.height / 2.0 / kGizmoHalfHeight;
     const glm::dvec2 origin(kGizmoInset * camera.width, kGizmoInset * camera.height);
     const glm::dvec3 right = camera.right(), up = camera.up();

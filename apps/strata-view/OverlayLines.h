@@ -74,7 +74,7 @@ struct ScreenSegment {
 // lower-left corner, each axis 1/18 of the view's height long in an
 // orthographic view turned as the camera, red X, green Y, blue Z, and the
 // letters X, Y, Z (6 pixels tall, in `labelColor`) just past their ends.
-std::vector<ScreenSegment> gizmoSegments(const render::Camera& camera, const glm::vec3& labelColor);
+std::vector<ScreenSegment> gizmoSegments(const camera::Camera& camera, const glm::vec3& labelColor);
 
 // Each edge of the mesh's triangles once, as pairs of points.
 void appendMeshEdges(const mesh::Mesh& mesh, std::vector<glm::vec3>& points);

@@ -182,7 +182,7 @@ void Viewer::drawPanel() {
         }
         nextInRow("view all", false);
         if (ImGui::Button("view all")) viewAllNow();
-        bool ortho = projection_ == render::Projection::Orthographic;
+        bool ortho = projection_ == camera::Projection::Orthographic;
         if (ImGui::Checkbox("orthographic", &ortho)) toggleProjection();
         nextInRow("reset", false);
         if (ImGui::Button("reset")) resetView();

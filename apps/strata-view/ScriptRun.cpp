@@ -94,11 +94,11 @@ bool Viewer::runCommand(const Command& c) {
             return true;
         case CommandKind::Layers: setLayers(c.words[0] == "auto" ? 0 : static_cast<int>(c.numbers[0])); return true;
         case CommandKind::Camera:
-            orbit_ = orbitFromCamera(render::cameraFromArguments(c.numbers, camera()));
+            orbit_ = orbitFromCamera(camera::cameraFromArguments(c.numbers, camera()));
             viewDirty_ = true;
             return true;
         case CommandKind::Projection:
-            projection_ = c.words[0] == "o" ? render::Projection::Orthographic : render::Projection::Perspective;
+            projection_ = c.words[0] == "o" ? camera::Projection::Orthographic : camera::Projection::Perspective;
             viewDirty_ = true;
             return true;
         case CommandKind::Fov:

@@ -113,8 +113,8 @@ Viewer::~Viewer() {
     overlay_.reset();
 }
 
-render::Camera Viewer::camera() const {
-    render::Camera base;
+camera::Camera Viewer::camera() const {
+    camera::Camera base;
     base.width = target_.width() > 0 ? target_.width() : window_.framebufferWidth();
     base.height = target_.height() > 0 ? target_.height() : window_.framebufferHeight();
     if (fixedSize_) std::tie(base.width, base.height) = *fixedSize_;
@@ -263,7 +263,7 @@ void Viewer::uploadScene() {
 void Viewer::renderView() {
     viewDirty_ = false;
     peelTiles_.clear();
-    const render::Camera cam = camera();
+    const camera::Camera cam = camera();
     try {
         if (debugView_ == DebugView::Shaded && !overlayOptions_.any()) {
             stats_ = renderer_.renderInto(target_.framebuffer(), 0, 0, cam, settings_);
@@ -355,8 +355,8 @@ void Viewer::changeLayers(int delta) {
 }
 
 void Viewer::toggleProjection() {
-    projection_ = projection_ == render::Projection::Perspective ? render::Projection::Orthographic
-                                                                  : render::Projection::Perspective;
+    projection_ = projection_ == camera::Projection::Perspective ? camera::Projection::Orthographic
+                                                                  : camera::Projection::Perspective;
     viewDirty_ = true;
 }
 
@@ -381,17 +381,17 @@ void Viewer::setShowEdges(bool on) {
 }
 
 void Viewer::resetView() {
-    orbit_ = fittedOrbit(render::viewBounds(scene_.tree, scene_.model), camera());
+    orbit_ = fittedOrbit(camera::viewBounds(scene_.tree, scene_.model), camera());
     viewDirty_ = true;
 }
 
 void Viewer::viewAllNow() {
-    orbit_ = viewAll(orbit_, render::viewBounds(scene_.tree, scene_.model), camera());
+    orbit_ = viewAll(orbit_, camera::viewBounds(scene_.tree, scene_.model), camera());
     viewDirty_ = true;
 }
 
 void Viewer::recenterAt(int i, int j) {
-    const render::Camera cam = camera();
+    const camera::Camera cam = camera();
     if (i < 0 || j < 0 || i >= cam.width || j >= cam.height) return;
     // The depth AOV of a full read-back frame: costly, but only on a double click.
     // Called from GLFW's input callbacks: no exception may leave.

@@ -86,7 +86,7 @@ private:
     // Sizes the view's target to the window (or the script's size); false while it has no area.
     bool fitTarget();
     void drawWindow();
-    render::Camera camera() const;
+    camera::Camera camera() const;
     void setLayers(int layers);
     void changeLayers(int delta);
     void toggleProjection();
@@ -215,7 +215,7 @@ private:
     std::optional<LoadTimes> lastShownLoad_; // the newest load whose frame was shown (print load)
 
     Orbit orbit_;
-    render::Projection projection_ = render::Projection::Perspective;
+    camera::Projection projection_ = camera::Projection::Perspective;
     double fov_ = 22.5;
     render::RenderSettings settings_;
     DebugView debugView_ = DebugView::Shaded;

@@ -10,7 +10,7 @@
 
 #include "strata/core/Error.h"
 
-namespace strata::render {
+namespace strata::camera {
 
 namespace {
 
@@ -178,4 +178,4 @@ Camera defaultCamera(const mesh::Bounds& bounds, const Camera& base) {
     return camera;
 }
 
-}  // namespace strata::render
+}  // namespace strata::camera

@@ -3,7 +3,7 @@
 #include <utility>
 #include <vector>
 
-namespace strata::render {
+namespace strata::camera {
 
 mesh::Bounds viewBounds(const scene::Tree& tree, const model::Model& model) {
     mesh::Bounds bounds;
@@ -35,4 +35,4 @@ mesh::Bounds viewBounds(const scene::Tree& tree, const model::Model& model) {
     return bounds;
 }
 
-}  // namespace strata::render
+}  // namespace strata::camera

@@ -99,7 +99,7 @@ void checkNothingBelowGrid(const contour::Dexels& dexels, int resolution, const 
 StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
                               const ExportSettings& settings) {
     requireSolidModel(tree);
-    const mesh::Bounds box = render::viewBounds(tree, model);
+    const mesh::Bounds box = camera::viewBounds(tree, model);
     StagedExport out;
     mesh::Mesh result;  // stays empty where there is nothing to sample
     double reach = 0.0;

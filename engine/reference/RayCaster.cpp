@@ -289,7 +289,7 @@ struct ReferenceScene::Impl {
         }
     }
 
-    RayHit trace(const render::Ray& ray, double tStart, double coincidence, Workspace& workspace) const;
+    RayHit trace(const camera::Ray& ray, double tStart, double coincidence, Workspace& workspace) const;
     bool clipToBox(const glm::dvec3& origin, const glm::dvec3& direction, double& enter) const;
     void gatherHits(const RayFrame& frame, const glm::dvec3& origin, const glm::dvec3& direction, double enter,
                     double tStart, Workspace& workspace) const;
@@ -412,7 +412,7 @@ inline RayHit ReferenceScene::Impl::shownHit(const RawHit& pick, bool pickSame) 
 // The reference's inner loop for one ray: clip to the box, gather Embree's
 // candidates, exact crossings, order, the tree along the ray; each step's
 // arrays stay in the workspace.
-RayHit ReferenceScene::Impl::trace(const render::Ray& ray, double tStart, double coincidence,
+RayHit ReferenceScene::Impl::trace(const camera::Ray& ray, double tStart, double coincidence,
                                    Workspace& workspace) const {
     RayHit miss;
     miss.t = kInfinity;
@@ -527,12 +527,12 @@ ReferenceScene::~ReferenceScene() = default;
 ReferenceScene::ReferenceScene(ReferenceScene&&) noexcept = default;
 ReferenceScene& ReferenceScene::operator=(ReferenceScene&&) noexcept = default;
 
-RayHit ReferenceScene::trace(const render::Ray& ray, double tStart, double coincidence) const {
+RayHit ReferenceScene::trace(const camera::Ray& ray, double tStart, double coincidence) const {
     Workspace workspace;
     return impl_->trace(ray, tStart, coincidence, workspace);
 }
 
-ReferenceImage ReferenceScene::render(const render::Camera& camera, const ReferenceOptions& options) const {
+ReferenceImage ReferenceScene::render(const camera::Camera& camera, const ReferenceOptions& options) const {
     if (camera.width <= 0 || camera.height <= 0) throw Error("reference: image size must be positive");
     if (!(options.nearDepth >= 0.0) || !std::isfinite(options.nearDepth)) {
         throw Error("reference: nearDepth must be finite and >= 0");
@@ -558,7 +558,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
             Workspace workspace;
             for (int j = nextRow++; j < camera.height; j = nextRow++) {
                 for (int i = 0; i < camera.width; ++i) {
-                    const render::Ray ray = camera.ray(i, j);
+                    const camera::Ray ray = camera.ray(i, j);
                     // The start where the ray crosses the plane at view depth nearDepth.
                     const double tStart =
                         (options.nearDepth - glm::dot(ray.origin - camera.eye, forward)) / glm::dot(ray.direction, forward);
@@ -593,7 +593,7 @@ ReferenceImage ReferenceScene::render(const render::Camera& camera, const Refere
     return image;
 }
 
-ReferenceImage renderReference(const scene::Tree& tree, const model::Model& model, const render::Camera& camera,
+ReferenceImage renderReference(const scene::Tree& tree, const model::Model& model, const camera::Camera& camera,
                                const ReferenceOptions& options) {
     return ReferenceScene(tree, model).render(camera, options);
 }

@@ -31,7 +31,7 @@ int edgeSign(double e, const glm::dvec3& a, const glm::dvec3& b) {
 
 }  // namespace
 
-RayFrame::RayFrame(const render::Ray& ray) : ray_{ray.origin, glm::normalize(ray.direction)} {
+RayFrame::RayFrame(const camera::Ray& ray) : ray_{ray.origin, glm::normalize(ray.direction)} {
     const glm::dvec3 d = ray_.direction;
     const glm::dvec3 m = glm::abs(d);
     glm::dvec3 axis{0.0};

@@ -57,7 +57,7 @@ RayAxes rayAxes(int a) { return {(a + 1) % 3, (a + 2) % 3}; }
 // grid line of the other two axes, and, per pixel column and row, the grid
 // index along the axis it runs on.
 struct AxisView {
-    render::Camera camera;
+    camera::Camera camera;
     int columnAxis = 0, rowAxis = 0;  // the grid axes that columns and rows step along
     std::vector<int> columnIndex, rowIndex;
 };
@@ -83,8 +83,8 @@ AxisView axisView(const contour::DexelGrid& grid, int a) {
     const glm::dvec3 size = grid.spacing * glm::dvec3(grid.count - 1);
     const glm::dvec3 center = grid.origin + size * 0.5;
     AxisView view;
-    render::Camera& camera = view.camera;
-    camera.projection = render::Projection::Orthographic;
+    camera::Camera& camera = view.camera;
+    camera.projection = camera::Projection::Orthographic;
     // Look from one cell before the grid's first plane; the basis the camera
     // derives from +a decides which grid axis runs along the columns.
     camera.center = center;
@@ -197,7 +197,7 @@ contour::Dexels sampleWithReference(const reference::ReferenceScene& scene, cons
             for (std::size_t r = next++; r < lists.size(); r = next++) {
                 const int iu = static_cast<int>(r % static_cast<std::size_t>(grid.count[axes.u]));
                 const int iv = static_cast<int>(r / static_cast<std::size_t>(grid.count[axes.u]));
-                render::Ray ray;
+                camera::Ray ray;
                 ray.origin[a] = start;
                 ray.origin[axes.u] = grid.origin[axes.u] + grid.spacing * iu;
                 ray.origin[axes.v] = grid.origin[axes.v] + grid.spacing * iv;

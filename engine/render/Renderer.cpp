@@ -2,6 +2,8 @@
 
 namespace strata::render {
 
+using camera::Camera;
+
 namespace {
 
 // Leaves to draw translucent: '#' leaves in the CSG, and every leaf of the

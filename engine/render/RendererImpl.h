@@ -129,10 +129,10 @@ struct Renderer::Impl {
                    const PlainPass::Output& output, Frame& frame);
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
-    ViewSetup drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
+    ViewSetup drawFrame(const camera::Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
     // The frame's view; throws strata::Error before setScene, for a negative
     // layer count, or for an image larger than the GPU's largest texture.
-    ViewSetup frameView(const Camera& camera, const RenderSettings& settings) const;
+    ViewSetup frameView(const camera::Camera& camera, const RenderSettings& settings) const;
     // Where a frame's operands lie on screen (drawFrame's, for peelAndEvaluate).
     struct ScreenRects {
         std::vector<PixelRect> rects;      // each operand's screen rectangle

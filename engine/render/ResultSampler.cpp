@@ -2,6 +2,8 @@
 
 namespace strata::render {
 
+using camera::Camera;
+
 void Renderer::Impl::peelResultRounds(const TileInputs& in, const PixelRect& tile,
                                       const std::vector<OperandLayers>& layers, Frame& frame) {
     FrameStats& stats = frame.stats;

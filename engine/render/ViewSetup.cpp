@@ -12,6 +12,10 @@
 
 namespace strata::render {
 
+using camera::Camera;
+using camera::Projection;
+using camera::coincidenceTolerance;
+
 namespace {
 
 // A fraction of the scene's diagonal: the smallest near plane, and the margin

@@ -60,7 +60,7 @@ struct ViewSetup {
 // margin), so nothing is clipped but by the near plane when the eye is inside
 // the scene; far beyond the farthest depth. Throws strata::Error on a camera
 // that cannot make an image (zero size, eye == center, bad field of view).
-ViewSetup makeView(const Camera& camera, const mesh::Bounds& sceneBounds);
+ViewSetup makeView(const camera::Camera& camera, const mesh::Bounds& sceneBounds);
 
 // Whether all of `box` lies beyond the near plane: then every ray starts
 // outside every solid in it.

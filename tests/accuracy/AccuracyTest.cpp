@@ -115,7 +115,7 @@ struct ShownCut {
     std::size_t inexact = 0;        // of those, pixels whose colour is neither shading exactly
 };
 
-ShownCut shownCut(const render::Camera& camera, const render::Frame& frame, std::span<const std::uint8_t> referenceCut) {
+ShownCut shownCut(const camera::Camera& camera, const render::Frame& frame, std::span<const std::uint8_t> referenceCut) {
     const std::size_t n = frame.leaf.size();
     const std::vector<std::uint8_t> none(n, 0), all(n, 1);
     const render::RenderSettings settings;
@@ -142,7 +142,7 @@ ShownCut shownCut(const render::Camera& camera, const render::Frame& frame, std:
 }
 
 struct Outcome {
-    render::Camera camera;
+    camera::Camera camera;
     render::Frame frame;
     ShownCut gpuCut;
     reference::ReferenceImage reference;
@@ -214,7 +214,7 @@ void appendReportRow(const Shot& shot, const std::string& layers, const Outcome&
                   "%zu\t%zu\t%zu\t%zu\t%zu\t%zu\t%.6f\t%zu\t"
                   "%.6f\t%zu\t%zu\t%.4g\t%.4g\t%zu\t%zu\t%.1f\t%.1f\t%s\t%s\n",
                   shot.name.c_str(), shot.scene.c_str(), shot.family.c_str(),
-                  o.camera.projection == render::Projection::Perspective ? "p" : "o", r.width, r.height,
+                  o.camera.projection == camera::Projection::Perspective ? "p" : "o", r.width, r.height,
                   layers.c_str(), maxLayers(o.frame), r.pixels, r.coveredReference, r.edgePixels,
                   r.nonEdge.coverage, r.nonEdge.depth, r.nonEdge.normal, r.nonEdgeNeighbourNormal, r.nonEdge.leaf, r.nonEdge.cut,
                   r.agreement(), r.edge.total(), r.edgeDisagreement(), r.edge.normal, r.edgeNeighbourNormal, r.maxDepthError / r.options.depthTolerance, r.maxNormalErrorDegrees,

@@ -30,9 +30,9 @@ bool isHit(const AovView& image, std::size_t k) { return image.leaf[k] >= 0; }
 // Rays and pixel footprints of the camera, for the depth-step test.
 class Geometry {
 public:
-    explicit Geometry(const render::Camera& camera) : camera_(camera), forward_(camera.forward()) {
+    explicit Geometry(const camera::Camera& camera) : camera_(camera), forward_(camera.forward()) {
         const double t = std::tan(camera.fovDegrees * std::numbers::pi / 360.0);
-        if (camera.projection == render::Projection::Perspective) {
+        if (camera.projection == camera::Projection::Perspective) {
             perspectiveScale_ = 2.0 * t / camera.height;
         } else {
             orthoFootprint_ = 2.0 * glm::length(camera.center - camera.eye) * t / camera.height;
@@ -41,19 +41,19 @@ public:
 
     // The world point at view depth `depth` on pixel (i, j)'s ray.
     glm::dvec3 point(int i, int j, double depth) const {
-        const render::Ray ray = camera_.ray(i, j);
+        const camera::Ray ray = camera_.ray(i, j);
         const double along = glm::dot(ray.direction, forward_);
         return ray.origin + ray.direction * (depth / along);
     }
 
     // Size of one pixel, in world units, at view depth `depth`.
     double footprint(double depth) const {
-        return camera_.projection == render::Projection::Perspective ? std::abs(depth) * perspectiveScale_
+        return camera_.projection == camera::Projection::Perspective ? std::abs(depth) * perspectiveScale_
                                                                     : orthoFootprint_;
     }
 
 private:
-    render::Camera camera_;
+    camera::Camera camera_;
     glm::dvec3 forward_;
     double perspectiveScale_ = 0.0;
     double orthoFootprint_ = 0.0;
@@ -106,7 +106,7 @@ void markEdges(const AovView& image, const Geometry& geometry, const CompareOpti
     }
 }
 
-void checkImage(const AovView& image, const render::Camera& camera, const char* what) {
+void checkImage(const AovView& image, const camera::Camera& camera, const char* what) {
     const std::size_t n = static_cast<std::size_t>(std::max(image.width, 0)) * std::max(image.height, 0);
     if (image.width != camera.width || image.height != camera.height) {
         throw Error(std::string("accuracy: the ") + what + " image is " + std::to_string(image.width) + "x" +
@@ -195,14 +195,14 @@ std::string CompareResult::summary() const {
     return s;
 }
 
-std::vector<EdgeKind> edgeMask(const render::Camera& camera, const AovView& image, const CompareOptions& options) {
+std::vector<EdgeKind> edgeMask(const camera::Camera& camera, const AovView& image, const CompareOptions& options) {
     checkImage(image, camera, "given");
     std::vector<EdgeKind> mask(static_cast<std::size_t>(image.width) * image.height, EdgeKind::None);
     markEdges(image, Geometry(camera), options, mask);
     return mask;
 }
 
-CompareResult compare(const render::Camera& camera, const AovView& gpu, const AovView& reference,
+CompareResult compare(const camera::Camera& camera, const AovView& gpu, const AovView& reference,
                       const CompareOptions& options) {
     checkImage(gpu, camera, "GPU");
     checkImage(reference, camera, "reference");

@@ -153,11 +153,11 @@ struct CompareResult {
 // Compares `gpu` with `reference`, both rendered with `camera` (whose rays
 // and footprints the depth-step test uses). Throws strata::Error when the
 // sizes differ from each other or from the camera's.
-CompareResult compare(const render::Camera& camera, const AovView& gpu, const AovView& reference,
+CompareResult compare(const camera::Camera& camera, const AovView& gpu, const AovView& reference,
                       const CompareOptions& options);
 
 // What each pixel of one image is beside (the strongest of its 8
 // neighbours' separations), as compare() computes it for the reference image.
-std::vector<EdgeKind> edgeMask(const render::Camera& camera, const AovView& image, const CompareOptions& options);
+std::vector<EdgeKind> edgeMask(const camera::Camera& camera, const AovView& image, const CompareOptions& options);
 
 }  // namespace strata::accuracy

@@ -26,8 +26,8 @@ constexpr int kSize = 96;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Orthographic, straight down -Z from z = 10: view depth = 10 - z.
-render::Camera topCamera(render::Projection projection = render::Projection::Orthographic, int size = kSize) {
-    render::Camera c;
+camera::Camera topCamera(camera::Projection projection = camera::Projection::Orthographic, int size = kSize) {
+    camera::Camera c;
     c.eye = {0.0, 0.0, 10.0};
     c.center = {0.0, 0.0, 0.0};
     c.projection = projection;
@@ -132,7 +132,7 @@ TEST(AccuracyCompare, AWrongRegionFailsByItsInteriorPixels) {
 TEST(AccuracyCompare, OnePixelInTenThousandIsTheAgreementBound) {
     // 200x200: 40000 non-edge pixels, of which 4 may disagree (99.99%), 5 not.
     constexpr int kBig = 200;
-    const render::Camera cam = topCamera(render::Projection::Orthographic, kBig);
+    const camera::Camera cam = topCamera(camera::Projection::Orthographic, kBig);
     Synth ref(kBig), gpu(kBig);
     ref.square(0, kBig, 0, kBig);
     gpu.square(0, kBig, 0, kBig);
@@ -335,11 +335,11 @@ TEST(AccuracyCompare, FacetBoundariesAboveTheNormalToleranceCreasesAboveThirtyDe
         Synth a;
         // Two planes meeting in the line x = 0 (between columns 47 and 48):
         // z = 0 for x < 0, z = x tan(a) for x > 0, with their normals.
-        const render::Camera cam = topCamera();
+        const camera::Camera cam = topCamera();
         const double t = std::tan(degrees * std::numbers::pi / 180.0);
         for (int j = 0; j < kSize; ++j) {
             for (int i = 0; i < kSize; ++i) {
-                const render::Ray ray = cam.ray(i, j);
+                const camera::Ray ray = cam.ray(i, j);
                 const double x = ray.origin.x;
                 const double z = x > 0 ? x * t : 0.0;
                 a.set(i, j, static_cast<float>(10.0 - z), x > 0 ? tilted(-degrees) : glm::vec3(0, 0, 1), 0);
@@ -358,14 +358,14 @@ TEST(AccuracyCompare, FacetBoundariesAboveTheNormalToleranceCreasesAboveThirtyDe
 TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
     // A plane seen at 85 degrees from its normal in perspective: its depth
     // changes fast from pixel to pixel, but every point lies on one plane.
-    render::Camera cam = topCamera(render::Projection::Perspective);
+    camera::Camera cam = topCamera(camera::Projection::Perspective);
     const glm::dvec3 n = glm::normalize(glm::dvec3(std::sin(85.0 * std::numbers::pi / 180.0), 0.0,
                                                    std::cos(85.0 * std::numbers::pi / 180.0)));
     const glm::dvec3 p0(0.0, 0.0, 0.0);
     Synth a;
     for (int j = 0; j < kSize; ++j) {
         for (int i = 0; i < kSize; ++i) {
-            const render::Ray ray = cam.ray(i, j);
+            const camera::Ray ray = cam.ray(i, j);
             const double denom = glm::dot(ray.direction, n);
             const double t = glm::dot(p0 - ray.origin, n) / denom;
             if (t <= 0.0 || denom >= 0.0) continue;  // only where the plane faces the eye
@@ -392,7 +392,7 @@ TEST(AccuracyCompare, AGrazingPlaneIsNotAnEdge) {
 
 TEST(AccuracyCompare, RefusesImagesOfAnotherSize) {
     Synth a;
-    render::Camera cam = topCamera();
+    camera::Camera cam = topCamera();
     cam.width = 95;
     EXPECT_THROW(compare(cam, a.view(), a.view(), options()), Error);
     EXPECT_THROW(compare(topCamera(), a.view(), a.view(), CompareOptions{}), Error);  // no depth tolerance

@@ -58,7 +58,7 @@ int booleanDepth(const scene::Tree& tree, int node) {
 }
 
 // Number of crossings of the ray with the mesh after its start (t > 0).
-int crossings(const mesh::Mesh& mesh, const render::Ray& ray) {
+int crossings(const mesh::Mesh& mesh, const camera::Ray& ray) {
     const reference::RayFrame frame(ray);
     int count = 0;
     for (const auto& t : mesh.triangles) {
@@ -95,7 +95,7 @@ int depthComplexity(const mesh::Mesh& mesh) {
 
 // The most crossings of one leaf by one ray of a coarse grid over the shot's image.
 int operandComplexityInView(const Shot& shot, const model::Model& model, int leaf) {
-    render::Camera coarse = shot.camera;
+    camera::Camera coarse = shot.camera;
     coarse.width = 32;
     coarse.height = 32;
     int best = 0;
@@ -144,7 +144,7 @@ TEST(AccuracyCorpus, CoversEveryFamilyAndBothProjections) {
     bool perspective = false, orthographic = false;
     for (const Shot& s : shots()) {
         families.insert(s.family);
-        (s.camera.projection == render::Projection::Perspective ? perspective : orthographic) = true;
+        (s.camera.projection == camera::Projection::Perspective ? perspective : orthographic) = true;
     }
     for (const char* f : {"stack", "deep", "nary", "nonconvex", "through", "thin", "near", "inside", "transform", "flat", "hull",
                           "coincident"}) {
@@ -256,7 +256,7 @@ TEST(AccuracyCorpus, InsideShotsStartRaysInsideTheModel) {
         ++count;
         const model::Model model = model::buildModel(parse(shot.scene));
         const mesh::Bounds& b = model.bounds;
-        if (shot.camera.projection == render::Projection::Perspective) {
+        if (shot.camera.projection == camera::Projection::Perspective) {
             const glm::dvec3 e = shot.camera.eye;
             EXPECT_TRUE(e.x > b.min.x && e.x < b.max.x && e.y > b.min.y && e.y < b.max.y && e.z > b.min.z &&
                         e.z < b.max.z);
@@ -359,7 +359,7 @@ TEST(AccuracyManifest, ReadsCamerasOptionsAndFlags) {
     EXPECT_EQ(s[0].scene, "sub/a-b.csg");
     EXPECT_EQ(s[0].name, "a_b_o0");
     EXPECT_EQ(s[1].name, "a_b_p1");
-    EXPECT_EQ(s[0].camera.projection, render::Projection::Orthographic);
+    EXPECT_EQ(s[0].camera.projection, camera::Projection::Orthographic);
     EXPECT_EQ(s[0].camera.width, 100);
     EXPECT_EQ(s[0].camera.height, 120);
     EXPECT_EQ(s[0].camera.eye, glm::dvec3(1, 2, 3));

@@ -43,7 +43,7 @@ void put(RgbaImage& image, std::size_t k, Rgb c) {
     image.rgba[4 * k + 3] = 255;
 }
 
-Rgb shade(const render::Camera& camera, const AovView& image, int i, int j) {
+Rgb shade(const camera::Camera& camera, const AovView& image, int i, int j) {
     const std::size_t k = static_cast<std::size_t>(j) * image.width + i;
     if (image.leaf[k] < 0) return {0.16, 0.16, 0.19};
     const glm::dvec3 n(image.normal[k]);
@@ -66,7 +66,7 @@ RgbaImage blank(int w, int h) {
 
 }  // namespace
 
-RgbaImage falseColour(const render::Camera& camera, const AovView& image) {
+RgbaImage falseColour(const camera::Camera& camera, const AovView& image) {
     RgbaImage out = blank(image.width, image.height);
     for (int j = 0; j < image.height; ++j) {
         for (int i = 0; i < image.width; ++i) put(out, static_cast<std::size_t>(j) * image.width + i, shade(camera, image, i, j));
@@ -74,7 +74,7 @@ RgbaImage falseColour(const render::Camera& camera, const AovView& image) {
     return out;
 }
 
-RgbaImage heatMap(const render::Camera& camera, const AovView& gpu, const AovView& reference,
+RgbaImage heatMap(const camera::Camera& camera, const AovView& gpu, const AovView& reference,
                   const CompareResult& result) {
     RgbaImage out = blank(result.width, result.height);
     for (int j = 0; j < result.height; ++j) {
@@ -132,7 +132,7 @@ void writePng(const std::string& path, const RgbaImage& image) {
     io::writePng(path, image.width, image.height, image.rgba);
 }
 
-ComparisonImages writeComparisonImages(const std::string& prefix, const render::Camera& camera, const AovView& gpu,
+ComparisonImages writeComparisonImages(const std::string& prefix, const camera::Camera& camera, const AovView& gpu,
                                        const AovView& reference, const CompareResult& result) {
     const std::filesystem::path folder = std::filesystem::path(prefix).parent_path();
     if (!folder.empty()) {

@@ -28,8 +28,8 @@ struct RgbaImage {
     std::vector<std::uint8_t> rgba;  // W*H*4, row 0 at the top
 };
 
-RgbaImage falseColour(const render::Camera& camera, const AovView& image);
-RgbaImage heatMap(const render::Camera& camera, const AovView& gpu, const AovView& reference,
+RgbaImage falseColour(const camera::Camera& camera, const AovView& image);
+RgbaImage heatMap(const camera::Camera& camera, const AovView& gpu, const AovView& reference,
                   const CompareResult& result);
 // The images left to right with `gap` pixels of white between, top-aligned.
 RgbaImage sideBySide(std::span<const RgbaImage> images, int gap = 2);
@@ -42,7 +42,7 @@ struct ComparisonImages {
 
 // Writes <prefix>-strata.png, <prefix>-reference.png, <prefix>-diff.png and
 // <prefix>-strip.png (the three side by side), creating prefix's folder.
-ComparisonImages writeComparisonImages(const std::string& prefix, const render::Camera& camera, const AovView& gpu,
+ComparisonImages writeComparisonImages(const std::string& prefix, const camera::Camera& camera, const AovView& gpu,
                                        const AovView& reference, const CompareResult& result);
 
 }  // namespace strata::accuracy

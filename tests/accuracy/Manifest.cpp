@@ -92,9 +92,9 @@ std::vector<Shot> loadManifest(const std::string& path) {
         shot.scene = fields[0].text;
         shot.family = fields[1].text;
         if (fields[2].text == "p") {
-            shot.camera.projection = render::Projection::Perspective;
+            shot.camera.projection = camera::Projection::Perspective;
         } else if (fields[2].text == "o") {
-            shot.camera.projection = render::Projection::Orthographic;
+            shot.camera.projection = camera::Projection::Orthographic;
         } else {
             throw Error(at(fields[2]), "projection must be 'p' or 'o', not '" + fields[2].text + "'");
         }

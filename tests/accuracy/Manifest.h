@@ -20,7 +20,7 @@ namespace strata::accuracy {
 struct Shot {
     std::string scene;                // file name, relative to the manifest's scenes/ folder
     std::string family;               // stack, deep, nary, nonconvex, through, thin, near, inside, transform
-    render::Camera camera;            // eye, center, projection, fov, image size
+    camera::Camera camera;            // eye, center, projection, fov, image size
     std::vector<std::string> flags;
     int line = 0;                     // in the manifest
     int index = 0;                    // this scene's k-th shot, from 0

@@ -12,11 +12,11 @@
 
 namespace strata::accuracy {
 
-inline render::Camera orbit(const render::Camera& standard, double azimuth, double elevation,
-                            render::Projection projection) {
+inline camera::Camera orbit(const camera::Camera& standard, double azimuth, double elevation,
+                            camera::Projection projection) {
     const double distance = glm::length(standard.eye - standard.center);
     const double az = azimuth * std::numbers::pi / 180.0, el = elevation * std::numbers::pi / 180.0;
-    render::Camera c = standard;
+    camera::Camera c = standard;
     c.eye = c.center + distance * glm::dvec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
     c.projection = projection;
     return c;

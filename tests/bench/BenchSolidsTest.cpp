@@ -34,7 +34,7 @@ TEST(BenchSolids, TorusKnotIsAClosedOutwardSolidOfOver100kTriangles) {
 }
 
 TEST(BenchScenes, EverySceneBecomesOpenCsgProducts) {
-    render::Camera base;
+    camera::Camera base;
     for (const std::string& name : bench::sceneNames()) {
         const bench::BenchScene scene = bench::makeScene(name, 3, 1, base);
         const model::Model model = model::buildModel(scene.tree);

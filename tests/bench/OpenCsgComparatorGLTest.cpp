@@ -43,12 +43,12 @@ int addSphere(scene::Tree& tree, glm::dvec3 center, double r) {
 void expectCoversWhatStrataCovers(bench::OpenCsgComparator& comparator, gpu::Context& context) {
     for (const auto& [name, k] : {std::pair<const char*, int>{"cheese", 8}, {"intersection", 2}}) {
         SCOPED_TRACE(name);
-        render::Camera base;
+        camera::Camera base;
         base.width = 128;
         base.height = 96;
         const bench::BenchScene scene = bench::makeScene(name, k, 1, base);
         const model::Model model = model::buildModel(scene.tree);
-        const render::Camera camera = render::defaultCamera(render::viewBounds(scene.tree, model), base);
+        const camera::Camera camera = camera::defaultCamera(camera::viewBounds(scene.tree, model), base);
         render::Renderer renderer;
         renderer.setScene(scene.tree, model);
         const render::Frame frame = renderer.render(camera, {});
@@ -143,11 +143,11 @@ TEST(OpenCsgComparator, SumOfProductsCoversWhatStrataCovers) {
     }
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
-        render::Camera base;
+        camera::Camera base;
         base.width = 128;
         base.height = 96;
         const model::Model model = model::buildModel(c.tree);
-        const render::Camera camera = render::defaultCamera(render::viewBounds(c.tree, model), base);
+        const camera::Camera camera = camera::defaultCamera(camera::viewBounds(c.tree, model), base);
         render::Renderer renderer;
         renderer.setScene(c.tree, model);
         const render::Frame frame = renderer.render(camera, {});
@@ -180,12 +180,12 @@ TEST(OpenCsgComparator, GivesUpPastTheElementLimit) {
         GTEST_SKIP() << "OpenCSG comparator unavailable: " << e.what();
     }
     context.makeCurrent();
-    render::Camera base;
+    camera::Camera base;
     base.width = 64;
     base.height = 48;
     const bench::BenchScene scene = bench::makeScene("blowup", 18, 1, base);
     const model::Model model = model::buildModel(scene.tree);
-    const render::Camera camera = render::defaultCamera(render::viewBounds(scene.tree, model), base);
+    const camera::Camera camera = camera::defaultCamera(camera::viewBounds(scene.tree, model), base);
     const std::vector<std::uint8_t> none(std::size_t(base.width) * std::size_t(base.height), 0);
     bench::OpenCsgCaps caps;
     const bench::OpenCsgResult result =

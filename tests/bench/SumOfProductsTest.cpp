@@ -176,7 +176,7 @@ TEST(SumOfProducts, ElementCountOfAUnionChainAndTheLimit) {
 }
 
 TEST(SumOfProducts, BlowupSceneGrowsAsTwoToTheK) {
-    render::Camera base;
+    camera::Camera base;
     {
         const bench::BenchScene scene = bench::makeScene("blowup", 4, 1, base);
         const bench::CsgProducts products = bench::csgProducts(scene.tree, model::buildModel(scene.tree));

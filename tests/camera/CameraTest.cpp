@@ -14,8 +14,8 @@
 #include "strata/camera/Camera.h"
 #include "strata/core/Error.h"
 
-using strata::render::Camera;
-using strata::render::Projection;
+using strata::camera::Camera;
+using strata::camera::Projection;
 
 namespace {
 
@@ -148,7 +148,7 @@ TEST(Camera, VectorFormTakesEyeAndCenter) {
     Camera base;
     base.fovDegrees = 40.0;
     base.width = 320;
-    const Camera camera = strata::render::cameraFromArguments({1, 2, 3, 4, 5, 6}, base);
+    const Camera camera = strata::camera::cameraFromArguments({1, 2, 3, 4, 5, 6}, base);
     expectNear(camera.eye, {1, 2, 3}, 0.0);
     expectNear(camera.center, {4, 5, 6}, 0.0);
     EXPECT_EQ(camera.fovDegrees, 40.0);
@@ -173,7 +173,7 @@ TEST(Camera, GimbalFormMatchesOpenScadNamedViews) {
         {180, 0, 0, {0, 0, -1}},  // bottom
     };
     for (const View& v : views) {
-        const Camera camera = strata::render::cameraFromArguments({1, 2, 3, v.rx, v.ry, v.rz, 50}, base);
+        const Camera camera = strata::camera::cameraFromArguments({1, 2, 3, v.rx, v.ry, v.rz, 50}, base);
         expectNear(camera.center, {1, 2, 3}, 1e-12);
         expectNear(camera.eye, glm::dvec3(1, 2, 3) + 50.0 * v.eyeDirection, 1e-12);
     }
@@ -183,7 +183,7 @@ TEST(Camera, DefaultGimbalLooksFromFrontRightAbove) {
     // $vpr = (55, 0, 25): 55 degrees down from the zenith, turned 25 degrees
     // towards +X from the front: the eye sits along
     // (sin55 sin25, -sin55 cos25, cos55) from the centre.
-    const Camera camera = strata::render::cameraFromArguments({0, 0, 0, 55, 0, 25, 140}, Camera{});
+    const Camera camera = strata::camera::cameraFromArguments({0, 0, 0, 55, 0, 25, 140}, Camera{});
     const glm::dvec3 expected{std::sin(deg(55)) * std::sin(deg(25)), -std::sin(deg(55)) * std::cos(deg(25)),
                               std::cos(deg(55))};
     expectNear(camera.eye, 140.0 * expected, 1e-10);
@@ -200,14 +200,14 @@ TEST(Camera, VectorAndGimbalFormsAgree) {
     const glm::dvec3 dir = center - eye;
     const double rx = 90.0 + std::atan2(dir.z, std::hypot(dir.x, dir.y)) * 180.0 / kPi;
     const double rz = std::atan2(dir.y, dir.x) * 180.0 / kPi - 90.0;
-    const Camera gimbal = strata::render::cameraFromArguments(
+    const Camera gimbal = strata::camera::cameraFromArguments(
         {center.x, center.y, center.z, rx, 0.0, rz, glm::length(dir)}, Camera{});
     expectNear(gimbal.eye, eye, 1e-10);
     expectNear(gimbal.center, center, 0.0);
 }
 
 TEST(Camera, BadArgumentsThrow) {
-    using strata::render::cameraFromArguments;
+    using strata::camera::cameraFromArguments;
     EXPECT_THROW(cameraFromArguments({1, 2, 3}, Camera{}), strata::Error);
     EXPECT_THROW(cameraFromArguments({1, 2, 3, 4, 5, 6, 7, 8}, Camera{}), strata::Error);
     EXPECT_THROW(cameraFromArguments({1, 2, 3, 1, 2, 3}, Camera{}), strata::Error);  // eye == center
@@ -224,7 +224,7 @@ TEST(Camera, DefaultViewFitsTheBoundsLikeOpenScadViewAll) {
     bounds.max = {10.0, 4.0, 5.0};
     Camera base;
     base.fovDegrees = 22.5;
-    const Camera camera = strata::render::defaultCamera(bounds, base);
+    const Camera camera = strata::camera::defaultCamera(bounds, base);
     const glm::dvec3 centre{5.0, 1.0, 3.0};
     const double radius = std::sqrt(10.0 * 10.0 + 6.0 * 6.0 + 4.0 * 4.0) / 2.0;
     const double distance = radius / std::sin(deg(22.5 / 2.0));
@@ -237,12 +237,12 @@ TEST(Camera, DefaultViewFitsTheBoundsLikeOpenScadViewAll) {
 
     // A wider field of view comes closer.
     base.fovDegrees = 60.0;
-    EXPECT_NEAR(glm::length(strata::render::defaultCamera(bounds, base).eye - centre), radius / 0.5, 1e-9);
+    EXPECT_NEAR(glm::length(strata::camera::defaultCamera(bounds, base).eye - centre), radius / 0.5, 1e-9);
 }
 
 TEST(Camera, DefaultViewOfNothingIsOpenScadsResetView) {
-    const Camera camera = strata::render::defaultCamera(strata::mesh::Bounds{}, Camera{});
+    const Camera camera = strata::camera::defaultCamera(strata::mesh::Bounds{}, Camera{});
     expectNear(camera.center, {0, 0, 0}, 0.0);
     EXPECT_NEAR(glm::length(camera.eye), 140.0, 1e-10);
-    EXPECT_THROW(strata::render::defaultCamera(strata::mesh::Bounds{}, Camera{.fovDegrees = 0.0}), strata::Error);
+    EXPECT_THROW(strata::camera::defaultCamera(strata::mesh::Bounds{}, Camera{.fovDegrees = 0.0}), strata::Error);
 }

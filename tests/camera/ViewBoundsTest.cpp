@@ -33,7 +33,7 @@ TEST(ViewBounds, DifferenceFramesItsFirstChildOnly) {
     const int a = cube(tree, {0, 0, 0}, 2);
     const int b = cube(tree, {1, 1, -5}, 10);  // reaches far beyond A
     tree.root = tree.addNode(scene::NodeKind::Difference, {a, b});
-    expectBox(render::viewBounds(tree, model::buildModel(tree)), {0, 0, 0}, {2, 2, 2});
+    expectBox(camera::viewBounds(tree, model::buildModel(tree)), {0, 0, 0}, {2, 2, 2});
 }
 
 TEST(ViewBounds, TheSubtrahendOfASubtrahendIsPositiveAgain) {
@@ -44,7 +44,7 @@ TEST(ViewBounds, TheSubtrahendOfASubtrahendIsPositiveAgain) {
     const int inner = tree.addNode(scene::NodeKind::Difference, {b, c});
     tree.root = tree.addNode(scene::NodeKind::Difference, {a, inner});
     // A - (B - C) = A*!B + A*C: A and C frame the view, B does not.
-    expectBox(render::viewBounds(tree, model::buildModel(tree)), {0, 0, 0}, {2, 2, 21});
+    expectBox(camera::viewBounds(tree, model::buildModel(tree)), {0, 0, 0}, {2, 2, 21});
 }
 
 TEST(ViewBounds, UnionsIntersectionsAndBackgroundPartsAllCount) {
@@ -55,11 +55,11 @@ TEST(ViewBounds, UnionsIntersectionsAndBackgroundPartsAllCount) {
     const int i = tree.addNode(scene::NodeKind::Intersection, {a, b});  // OpenSCAD extends, not intersects
     tree.root = tree.addNode(scene::NodeKind::Union, {i, c});
     tree.background.push_back(cube(tree, {0, 0, -3}, 1, scene::Display::Background));
-    expectBox(render::viewBounds(tree, model::buildModel(tree)), {0, 0, -3}, {6, 8, 1});
+    expectBox(camera::viewBounds(tree, model::buildModel(tree)), {0, 0, -3}, {6, 8, 1});
 }
 
 TEST(ViewBounds, NothingToFrameIsEmpty) {
     scene::Tree tree;
     tree.root = tree.addNode(scene::NodeKind::Union, {});
-    EXPECT_TRUE(render::viewBounds(tree, model::buildModel(tree)).empty());
+    EXPECT_TRUE(camera::viewBounds(tree, model::buildModel(tree)).empty());
 }

@@ -200,7 +200,7 @@ scene::Leaf shellsLeaf(double radius, int fn) {
     return leaf;
 }
 
-render::Frame draw(render::Renderer& renderer, const scene::Tree& tree, const render::Camera& camera,
+render::Frame draw(render::Renderer& renderer, const scene::Tree& tree, const camera::Camera& camera,
                    render::RenderSettings settings) {
     renderer.setScene(tree, model::buildModel(tree));
     return renderer.render(camera, settings);
@@ -248,7 +248,7 @@ int stackFigures(render::Renderer& renderer, const Writer& write) {
     // Nearly straight down the stack: 12 degrees off the Z axis, so the
     // block's side shows, and the centre ray still crosses all six shells.
     const double tilt = 12.0 * std::numbers::pi / 180.0;
-    render::Camera camera;
+    camera::Camera camera;
     camera.center = {0.0, 0.0, 0.0};
     camera.eye = 18.0 * glm::dvec3(-std::sin(tilt) * 0.6, -std::sin(tilt) * 0.8, std::cos(tilt));
     camera.width = camera.height = kSize;
@@ -335,9 +335,9 @@ int cheeseFigures(render::Renderer& renderer, const Writer& write) {
     mesh::Bounds bounds;
     bounds.extend(glm::dvec3(-1.0));
     bounds.extend(glm::dvec3(1.0));
-    render::Camera base;
+    camera::Camera base;
     base.width = base.height = kSize;
-    const render::Camera camera = render::defaultCamera(bounds, base);
+    const camera::Camera camera = camera::defaultCamera(bounds, base);
 
     render::RenderSettings settings;
     settings.keepPeelLayers = true;
@@ -396,9 +396,9 @@ int formFigures(render::Renderer& renderer, const Writer& write) {
     mesh::Bounds bounds;
     bounds.extend(glm::dvec3(-1.0));
     bounds.extend(glm::dvec3(1.0, 1.0, 1.6));
-    render::Camera base;
+    camera::Camera base;
     base.width = base.height = kSize;
-    const render::Camera camera = render::defaultCamera(bounds, base);
+    const camera::Camera camera = camera::defaultCamera(bounds, base);
     render::RenderSettings settings;
     settings.keepBlockForms = true;
     const render::Frame frame = draw(renderer, tree, camera, settings);

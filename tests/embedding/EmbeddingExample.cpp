@@ -98,8 +98,8 @@ scene::Leaf leafFromHostMesh(const HostMesh& mesh, std::optional<glm::dvec4> col
 // one. Throws strata::Error for what such a camera cannot express: a roll (an
 // up vector out of the plane of the view direction and world Z), an
 // off-centre frustum, or an aspect ratio other than width / height.
-render::Camera cameraFromMatrices(const glm::dmat4& view, const glm::dmat4& projection, int width, int height) {
-    render::Camera camera;
+camera::Camera cameraFromMatrices(const glm::dmat4& view, const glm::dmat4& projection, int width, int height) {
+    camera::Camera camera;
     camera.width = width;
     camera.height = height;
     // The eye is where eye space's origin lands in the world.
@@ -122,14 +122,14 @@ render::Camera cameraFromMatrices(const glm::dmat4& view, const glm::dmat4& proj
 
     if (perspective) {
         // projection[1][1] = 1 / tan(fov / 2); how far away `center` is does not matter.
-        camera.projection = render::Projection::Perspective;
+        camera.projection = camera::Projection::Perspective;
         camera.fovDegrees = glm::degrees(2.0 * std::atan(1.0 / projection[1][1]));
         camera.center = camera.eye + forward;
     } else {
         // projection[1][1] = 1 / h, h the half height of the view; the contract's
         // orthographic camera has h = |center - eye| * tan(fov / 2), so keep the
         // default fov and put `center` at the distance that gives h.
-        camera.projection = render::Projection::Orthographic;
+        camera.projection = camera::Projection::Orthographic;
         const double halfHeight = 1.0 / projection[1][1];
         const double distance = halfHeight / std::tan(glm::radians(camera.fovDegrees) / 2.0);
         camera.center = camera.eye + forward * distance;
@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
         const glm::dvec3 eye(1.0, -2.0, 6.0);
         const glm::dmat4 view = glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0));
         const glm::dmat4 projection = glm::perspective(glm::radians(40.0), double(width) / height, 0.1, 100.0);
-        const render::Camera camera = cameraFromMatrices(view, projection, width, height);
+        const camera::Camera camera = cameraFromMatrices(view, projection, width, height);
 
         // A rolled view has no strata camera: the helper refuses it.
         bool refused = false;

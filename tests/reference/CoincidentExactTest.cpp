@@ -63,24 +63,24 @@ std::vector<std::string> models() {
 
 struct View {
     std::string name;
-    render::Camera camera;
+    camera::Camera camera;
 };
 
 // OpenSCAD's default view of `bounds`, and three more at the same distance:
 // azimuth and elevation in degrees (azimuth from +x toward +y), off round
 // numbers so no pixel's ray runs along a face of the axis-aligned models.
 std::vector<View> views(const mesh::Bounds& bounds) {
-    render::Camera base;
+    camera::Camera base;
     base.width = 160;
     base.height = 120;
-    const render::Camera standard = render::defaultCamera(bounds, base);
-    auto orbit = [&](double azimuth, double elevation, render::Projection projection) {
+    const camera::Camera standard = camera::defaultCamera(bounds, base);
+    auto orbit = [&](double azimuth, double elevation, camera::Projection projection) {
         return accuracy::orbit(standard, azimuth, elevation, projection);
     };
     return {{"default", standard},
-            {"p_odd", orbit(23.7, 31.3, render::Projection::Perspective)},
-            {"p_below", orbit(-127.9, -23.6, render::Projection::Perspective)},
-            {"o_odd", orbit(61.3, 48.2, render::Projection::Orthographic)}};
+            {"p_odd", orbit(23.7, 31.3, camera::Projection::Perspective)},
+            {"p_below", orbit(-127.9, -23.6, camera::Projection::Perspective)},
+            {"o_odd", orbit(61.3, 48.2, camera::Projection::Orthographic)}};
 }
 
 struct Loaded {

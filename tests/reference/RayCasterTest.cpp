@@ -22,8 +22,8 @@
 
 using namespace strata::reference;
 using namespace strata::reference::test;
-using strata::render::Camera;
-using strata::render::Projection;
+using strata::camera::Camera;
+using strata::camera::Projection;
 
 namespace {
 
@@ -273,7 +273,7 @@ struct BruteResult {
     bool nearEdge = false;  // some hit on the ray is close to a triangle edge, or two hits nearly coincide
 };
 
-BruteResult bruteForce(const SceneBuilder& s, const strata::render::Ray& ray) {
+BruteResult bruteForce(const SceneBuilder& s, const strata::camera::Ray& ray) {
     std::vector<BruteHit> hits;
     for (std::size_t leaf = 0; leaf < s.model.leafMeshes.size(); ++leaf) {
         const auto& mesh = s.model.leafMeshes[leaf];

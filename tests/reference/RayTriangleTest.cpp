@@ -17,7 +17,7 @@
 using strata::reference::crossTriangle;
 using strata::reference::RayFrame;
 using strata::reference::TriangleCrossing;
-using strata::render::Ray;
+using strata::camera::Ray;
 
 namespace {
 

@@ -51,7 +51,7 @@ protected:
                           const render::RenderSettings& settings = render::RenderSettings{}) {
         const scene::Tree tree = parse(text);
         const model::Model model = model::buildModel(tree);
-        const contour::DexelGrid grid = remesh::gridFor(render::viewBounds(tree, model), resolution);
+        const contour::DexelGrid grid = remesh::gridFor(camera::viewBounds(tree, model), resolution);
         render::Renderer renderer;
         renderer.setScene(tree, model);
         const contour::Dexels gpu = remesh::sampleOnGpu(renderer, grid, settings);

@@ -48,9 +48,9 @@ class DeepPixels : public ::testing::TestWithParam<int> {};
 TEST_P(DeepPixels, MatchTheReference) {
     const scene::Tree tree = intersectionOfSpheres(GetParam());
     const model::Model model = model::buildModel(tree);
-    render::Camera base;
+    camera::Camera base;
     base.width = base.height = 64;
-    const render::Camera camera = render::cameraFromArguments({20, -30, 25, 0, 0, 0}, base);
+    const camera::Camera camera = camera::cameraFromArguments({20, -30, 25, 0, 0, 0}, base);
 
     gpu::Context context;
     render::Renderer renderer;

@@ -80,20 +80,20 @@ scene::Tree flatTree(NodeKind kind, int count, std::mt19937& rng, int shells = 0
     return tree;
 }
 
-render::Camera cameraFor(int which, std::mt19937& rng) {
+camera::Camera cameraFor(int which, std::mt19937& rng) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     glm::dvec3 dir;
     do dir = {unit(rng), unit(rng), unit(rng)};
     while (glm::length(dir) < 0.3 || std::abs(glm::normalize(dir).z) > 0.95);
     dir = glm::normalize(dir);
-    render::Camera camera;
+    camera::Camera camera;
     camera.width = camera.height = 64;
     if (which == 0) {  // outside, perspective
         camera.eye = dir * 9.0;
         camera.center = glm::dvec3(0.0);
         camera.fovDegrees = 35.0;
     } else if (which == 1) {  // outside, orthographic
-        camera.projection = render::Projection::Orthographic;
+        camera.projection = camera::Projection::Orthographic;
         camera.eye = dir * 8.0;
         camera.center = glm::dvec3(0.0);
         camera.fovDegrees = 40.0;
@@ -130,7 +130,7 @@ void expectSameFrame(const render::Frame& fast, const render::Frame& general, co
 // One view drawn twice: by the cheapest form of each block, then by the
 // array form alone. Every operand is its own: grouped, an intersection of
 // convex solids would be one operand and one form (ConvexGroups.h).
-std::pair<render::Frame, render::Frame> fastAndGeneral(render::Renderer& renderer, const render::Camera& camera) {
+std::pair<render::Frame, render::Frame> fastAndGeneral(render::Renderer& renderer, const camera::Camera& camera) {
     render::RenderSettings settings;
     settings.groupOperands = false;
     settings.keepBlockForms = true;
@@ -161,7 +161,7 @@ TEST_P(EvaluatorForms, EqualTheArrayForm) {
         const model::Model model = model::buildModel(tree);
         renderer.setScene(tree, model);
         for (int which = 0; which < 3; ++which) {
-            const render::Camera camera = cameraFor(which, rng);
+            const camera::Camera camera = cameraFor(which, rng);
             const auto [fast, general] = fastAndGeneral(renderer, camera);
             expectSameFrame(fast, general,
                             std::string(scene::kindName(c.kind)) + " of " + std::to_string(c.count) + ", scene " + std::to_string(s) +
@@ -237,7 +237,7 @@ TEST(EvaluatorFormsHulls, ThinBarsAslantGiveTheFrameOfTheirRectangles) {
         tree.root = tree.addNode(NodeKind::Difference, parts);
         renderer.setScene(tree, model::buildModel(tree));
         for (int which = 0; which < 3; ++which) {
-            render::Camera camera = cameraFor(which, rng);
+            camera::Camera camera = cameraFor(which, rng);
             camera.width = camera.height = 160;  // blocks enough for the hulls to leave some out
             render::RenderSettings settings;
             settings.groupOperands = false;
@@ -281,7 +281,7 @@ TEST(EvaluatorFormsTies, CoincidentFacesCancelAlike) {
         tree.root = tree.addNode(kind, children);
         const model::Model model = model::buildModel(tree);
         renderer.setScene(tree, model);
-        render::Camera camera;
+        camera::Camera camera;
         camera.width = camera.height = 64;
         camera.eye = {7.0, -9.0, 6.0};
         camera.center = {0.0, 0.0, 0.0};
@@ -337,9 +337,9 @@ TEST(EvaluatorFormsTies, AFlatSolidShowsNowhere) {
     const int sheetLeaf = tree.addLeaf(std::move(sheet));
     tree.root = tree.addNode(NodeKind::Union, {block, sheetLeaf});
     renderer.setScene(tree, model::buildModel(tree));
-    render::Camera camera;  // straight down, orthographic: both faces at exactly one depth
+    camera::Camera camera;  // straight down, orthographic: both faces at exactly one depth
     camera.width = camera.height = 64;
-    camera.projection = render::Projection::Orthographic;
+    camera.projection = camera::Projection::Orthographic;
     camera.eye = {0.0, 0.0, 10.0};
     camera.center = {0.0, 0.0, 0.0};
     const auto [fast, general] = fastAndGeneral(renderer, camera);
@@ -393,9 +393,9 @@ TEST(EvaluatorFormsMap, EachPixelKnowsItsBlocksForm) {
     for (int i = 0; i < 10; ++i) addSphere({0.9 + 0.08 * (i % 5), 0.9 + 0.1 * (i / 5), 1.0}, 0.25);
     tree.root = tree.addNode(NodeKind::Difference, children);
     renderer.setScene(tree, model::buildModel(tree));
-    render::Camera camera;
+    camera::Camera camera;
     camera.width = camera.height = 96;
-    camera.projection = render::Projection::Orthographic;
+    camera.projection = camera::Projection::Orthographic;
     camera.eye = {0.0, 0.0, 10.0};
     camera.center = {0.0, 0.0, 0.0};
     camera.fovDegrees = 30.0;

@@ -51,17 +51,17 @@ scene::Tree shellsTree(NodeKind kind, int operands, std::mt19937& rng) {
 
 // 0: outside, perspective; 1: outside, orthographic; 2: inside, the near
 // plane cutting shells.
-render::Camera camera(int which, std::mt19937& rng) {
+camera::Camera testCamera(int which, std::mt19937& rng) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     glm::dvec3 dir{unit(rng), unit(rng), 0.6};
     dir = glm::normalize(dir);
-    render::Camera camera;
+    camera::Camera camera;
     camera.width = 72;
     camera.height = 56;
     camera.center = glm::dvec3(0.0);
     camera.eye = dir * 7.0;
     camera.fovDegrees = 30.0;
-    if (which == 1) camera.projection = render::Projection::Orthographic;
+    if (which == 1) camera.projection = camera::Projection::Orthographic;
     if (which == 2) {
         camera.eye = dir * 0.3;
         camera.center = camera.eye - dir;
@@ -104,7 +104,7 @@ TEST(FragmentLists, GiveTheLayersOfDualPeeling) {
             const model::Model model = model::buildModel(tree);
             renderer.setScene(tree, model);
             for (int which = 0; which < 3; ++which) {
-                const render::Camera view = camera(which, rng);
+                const camera::Camera view = testCamera(which, rng);
                 for (int layers : {0, 1, 3}) {
                     for (bool keep : {false, true}) {
                         render::RenderSettings settings;
@@ -142,7 +142,7 @@ TEST(FragmentLists, AFullListFallsBackToPasses) {
     // collecting pass that found out).
     gpu::Context context;
     render::Renderer renderer;
-    render::Camera view;
+    camera::Camera view;
     view.width = view.height = 48;
     view.eye = {0.0, 0.0, 9.0};
     view.center = {0.0, 0.0, 0.0};
@@ -184,7 +184,7 @@ TEST(FragmentLists, AreForOperandsOfManyTriangles) {
                                                     tree.addLeaf(std::move(right))});
     renderer.setScene(tree, model::buildModel(tree));
     std::mt19937 rng(7u);
-    const render::Camera view = camera(0, rng);
+    const camera::Camera view = testCamera(0, rng);
     render::RenderSettings settings;
     EXPECT_EQ(renderer.render(view, settings).stats.listPeeledOperands, 0);
     settings.fragmentListTriangles = 100;
@@ -202,7 +202,7 @@ TEST(FragmentLists, TheirImagesLeaveNothingOutsideLaterBudgets) {
     const model::Model model = model::buildModel(tree);
     renderer.setScene(tree, model);
     fresh.setScene(tree, model);
-    render::Camera large = camera(0, rng);
+    camera::Camera large = testCamera(0, rng);
     large.width = 144;
     large.height = 112;
     render::RenderSettings lists;
@@ -220,7 +220,7 @@ TEST(FragmentLists, TheirImagesLeaveNothingOutsideLaterBudgets) {
     // Lists again, then at a quarter of the size in the budget that a
     // renderer which never drew the large frame needs.
     renderer.render(large, lists);
-    render::Camera small = large;
+    camera::Camera small = large;
     small.width /= 2;
     small.height /= 2;
     render::Renderer smallOnly;

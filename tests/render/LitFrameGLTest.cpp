@@ -84,8 +84,8 @@ scene::Tree drilledBlock(unsigned seed) {
     return tree;
 }
 
-render::Camera cameraAt(glm::dvec3 eye, render::Projection projection) {
-    render::Camera camera;
+camera::Camera cameraAt(glm::dvec3 eye, camera::Projection projection) {
+    camera::Camera camera;
     camera.eye = eye;
     camera.center = {0.0, 0.0, 0.0};
     camera.projection = projection;
@@ -110,7 +110,7 @@ protected:
     // The scene set last, without the outline in `look`'s light: the frame
     // lit as drawn (no normals read back), and a window's (renderInto),
     // show the image the shade pass gives, to the byte.
-    static void expectLitEqualsShaded(const render::Camera& camera, render::RenderSettings look,
+    static void expectLitEqualsShaded(const camera::Camera& camera, render::RenderSettings look,
                                       const std::string& what) {
         look.outline = false;
         render::RenderSettings shadedLook = look;
@@ -152,7 +152,7 @@ protected:
 std::unique_ptr<gpu::Context> LitFrameGLTest::context_;
 std::unique_ptr<render::Renderer> LitFrameGLTest::renderer_;
 
-const render::Projection kProjections[] = {render::Projection::Perspective, render::Projection::Orthographic};
+const camera::Projection kProjections[] = {camera::Projection::Perspective, camera::Projection::Orthographic};
 const render::Lighting kLights[] = {render::Lighting::Strata, render::Lighting::OpenScad};
 
 }  // namespace
@@ -161,7 +161,7 @@ TEST_F(LitFrameGLTest, DrilledBlocksInEitherLightEqualTheShadedImage) {
     for (unsigned seed : {3u, 4u}) {
         setScene(drilledBlock(seed));
         for (const render::Lighting lighting : kLights) {
-            for (const render::Projection projection : kProjections) {
+            for (const camera::Projection projection : kProjections) {
                 for (const bool marks : {true, false}) {
                     render::RenderSettings look;
                     look.lighting = lighting;
@@ -183,12 +183,12 @@ TEST_F(LitFrameGLTest, RealModelsEqualTheShadedImage) {
     for (const char* name : {"Old_example004", "Basics_text_on_cube", "Basics_logo", "Old_example008"}) {
         const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
         model::Model model = model::buildModel(tree);
-        const mesh::Bounds bounds = render::viewBounds(tree, model);
+        const mesh::Bounds bounds = camera::viewBounds(tree, model);
         renderer_->setScene(tree, std::move(model));
-        render::Camera base;
+        camera::Camera base;
         base.width = 2 * kSize;
         base.height = kSize + 31;
-        const render::Camera camera = render::defaultCamera(bounds, base);
+        const camera::Camera camera = camera::defaultCamera(bounds, base);
         for (const render::Lighting lighting : kLights) {
             render::RenderSettings look;
             look.lighting = lighting;

@@ -76,12 +76,12 @@ struct View {
     std::vector<double> camera;  // --camera's numbers; none: OpenSCAD's default view
 };
 
-render::Camera cameraFor(const View& view, const scene::Tree& tree, const model::Model& model) {
-    render::Camera base;
+camera::Camera cameraFor(const View& view, const scene::Tree& tree, const model::Model& model) {
+    camera::Camera base;
     base.width = 400;
     base.height = 300;
-    return view.camera.empty() ? render::defaultCamera(render::viewBounds(tree, model), base)
-                               : render::cameraFromArguments(view.camera, base);
+    return view.camera.empty() ? camera::defaultCamera(camera::viewBounds(tree, model), base)
+                               : camera::cameraFromArguments(view.camera, base);
 }
 
 }  // namespace
@@ -99,7 +99,7 @@ protected:
         render::Renderer renderer;
         renderer.setScene(tree, model);
         for (const View& view : views) {
-            const render::Camera camera = cameraFor(view, tree, model);
+            const camera::Camera camera = cameraFor(view, tree, model);
             const render::Frame frame = renderer.render(camera, {});
             EXPECT_GT(frame.stats.coveredPixels, std::size_t(camera.width * camera.height) / 8) << view.name;
             EXPECT_EQ(lonePixels(frame.normal, frame.leaf, frame.width, frame.height), 0) << path << ", " << view.name << ": GPU";

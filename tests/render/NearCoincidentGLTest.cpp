@@ -38,16 +38,16 @@ namespace {
 const std::string kDir = STRATA_TEST_DIR "/data/coincident/";
 
 // OpenSCAD's default view of `bounds` and two more around it, one from below.
-std::vector<render::Camera> views(const mesh::Bounds& bounds) {
-    render::Camera base;
+std::vector<camera::Camera> views(const mesh::Bounds& bounds) {
+    camera::Camera base;
     base.width = 320;
     base.height = 240;
-    const render::Camera standard = render::defaultCamera(bounds, base);
-    auto orbit = [&](double azimuth, double elevation, render::Projection projection) {
+    const camera::Camera standard = camera::defaultCamera(bounds, base);
+    auto orbit = [&](double azimuth, double elevation, camera::Projection projection) {
         return accuracy::orbit(standard, azimuth, elevation, projection);
     };
-    return {standard, orbit(-151.3, 27.4, render::Projection::Perspective),
-            orbit(203.9, -33.1, render::Projection::Orthographic)};
+    return {standard, orbit(-151.3, 27.4, camera::Projection::Perspective),
+            orbit(203.9, -33.1, camera::Projection::Orthographic)};
 }
 
 // Every hit as leaf 0: the exact mesh is one leaf, so which leaf shows is not compared.
@@ -79,7 +79,7 @@ TEST_P(NearCoincidentGL, GpuMatchesOpenScadsExactResult) {
     render::Renderer renderer;
     renderer.setScene(tree, model);
     const accuracy::CompareOptions options = accuracy::optionsForScene(exactModel.bounds.diagonal());
-    for (const render::Camera& camera : views(exactModel.bounds)) {
+    for (const camera::Camera& camera : views(exactModel.bounds)) {
         const render::Frame frame = renderer.render(camera, {});
         const reference::ReferenceImage exact = reference::renderReference(exactTree, exactModel, camera, exactOptions);
         const std::vector<std::int32_t> frameLeaf = oneLeaf(frame.leaf), exactLeaf = oneLeaf(exact.leaf);
@@ -87,7 +87,7 @@ TEST_P(NearCoincidentGL, GpuMatchesOpenScadsExactResult) {
         const accuracy::AovView ref{exact.width, exact.height, exact.depth, exact.normal, exactLeaf, {}};
         const accuracy::CompareResult r = accuracy::compare(camera, gpu, ref, options);
         std::printf("[ near ] %-18s %s %zu of %zu non-edge pixels disagree\n", name.c_str(),
-                    camera.projection == render::Projection::Orthographic ? "o" : "p", r.nonEdge.total(),
+                    camera.projection == camera::Projection::Orthographic ? "o" : "p", r.nonEdge.total(),
                     r.nonEdgePixels);
         EXPECT_GT(r.coveredReference, std::size_t(camera.width * camera.height) / 10);
         EXPECT_EQ(r.nonEdge.total(), 0u) << name << ": " << r.summary();

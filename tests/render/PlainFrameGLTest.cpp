@@ -66,8 +66,8 @@ scene::Leaf cylinderLeaf(glm::dvec3 base, double radius, double height) {
     return leaf;
 }
 
-render::Camera cameraAt(glm::dvec3 eye, render::Projection projection = render::Projection::Perspective) {
-    render::Camera camera;
+camera::Camera cameraAt(glm::dvec3 eye, camera::Projection projection = camera::Projection::Perspective) {
+    camera::Camera camera;
     camera.eye = eye;
     camera.center = {0.0, 0.0, 0.0};
     camera.projection = projection;
@@ -76,7 +76,7 @@ render::Camera cameraAt(glm::dvec3 eye, render::Projection projection = render::
     return camera;
 }
 
-const render::Projection kProjections[] = {render::Projection::Perspective, render::Projection::Orthographic};
+const camera::Projection kProjections[] = {camera::Projection::Perspective, camera::Projection::Orthographic};
 
 class PlainFrameGLTest : public ::testing::Test {
 protected:
@@ -102,7 +102,7 @@ protected:
     // outline of both; without the outline the plain frame is lit as drawn,
     // and its colours too are the full pipeline's, to the byte, wherever its
     // surfaces are. Returns the plain frame.
-    static render::Frame expectPlainEqualsFull(const render::Camera& camera, const std::string& what,
+    static render::Frame expectPlainEqualsFull(const camera::Camera& camera, const std::string& what,
                                                const render::RenderSettings& look = {}) {
         render::RenderSettings full = look;
         full.plainUnions = false;
@@ -189,7 +189,7 @@ TEST_F(PlainFrameGLTest, RandomUnionsEqualTheFullPipeline) {
     for (unsigned seed : {11u, 12u, 13u}) {
         setScene(randomUnion(seed, 40));
         for (const glm::dvec3& eye : eyes) {
-            for (render::Projection projection : kProjections) {
+            for (camera::Projection projection : kProjections) {
                 const render::Frame plain = expectPlainEqualsFull(
                     cameraAt(eye, projection), "seed " + std::to_string(seed) + ", projection " +
                                                    std::to_string(static_cast<int>(projection)));
@@ -207,7 +207,7 @@ TEST_F(PlainFrameGLTest, WithoutTheOutlineLitAsDrawnInEitherLight) {
         look.lighting = lighting;
         look.outline = false;
         for (const glm::dvec3& eye : {glm::dvec3(0.3, -0.4, 9.0), glm::dvec3(-3.0, 6.5, -4.0)}) {
-            for (render::Projection projection : kProjections) {
+            for (camera::Projection projection : kProjections) {
                 const render::Frame plain = expectPlainEqualsFull(
                     cameraAt(eye, projection), std::string(render::lightingName(lighting)) + ", projection " +
                                                    std::to_string(static_cast<int>(projection)), look);
@@ -242,7 +242,7 @@ TEST_F(PlainFrameGLTest, AFaceSharedByLeavesShowsTheLowestLeaf) {
     tree.root = tree.addNode(NodeKind::Union, blocks);
     setScene(tree);
     const glm::vec3 up = glm::vec3(turn * glm::dvec4(0, 0, 1, 0));
-    for (render::Projection projection : kProjections) {
+    for (camera::Projection projection : kProjections) {
         const render::Frame plain = expectPlainEqualsFull(cameraAt(glm::dvec3(up) * 9.0 + glm::dvec3(0.2, 0.1, 0), projection),
                                                           "projection " + std::to_string(static_cast<int>(projection)));
         EXPECT_EQ(plain.stats.tiedLeaves, 10u);
@@ -282,9 +282,9 @@ TEST_F(PlainFrameGLTest, TiesAreSoughtTriangleByTriangle) {
     }
     tree.root = tree.addNode(NodeKind::Union, parts);
     const glm::dvec3 up = glm::dvec3(turn * glm::dvec4(0, 0, 1, 0));
-    for (render::Projection projection : kProjections) {
+    for (camera::Projection projection : kProjections) {
         // The scene's first frame draws the tying leaves whole; the next sorts out their triangles.
-        const render::Camera camera = cameraAt(up * 9.0 + glm::dvec3(0.3, -0.2, 0), projection);
+        const camera::Camera camera = cameraAt(up * 9.0 + glm::dvec3(0.3, -0.2, 0), projection);
         setScene(tree);
         const render::Frame whole = expectPlainEqualsFull(camera, "a grid of blocks, first frame");
         EXPECT_EQ(whole.stats.tiedTriangles, 0u);
@@ -315,12 +315,12 @@ TEST_F(PlainFrameGLTest, RealUnionModelsEqualTheFullPipeline) {
         for (const mesh::Mesh& mesh : model.leafMeshes)
             for (const glm::dvec3& p : mesh.positions) bounds.extend(p);
         renderer_->setScene(tree, std::move(model));
-        render::Camera base = cameraAt({0, 0, 0});
+        camera::Camera base = cameraAt({0, 0, 0});
         base.width = 160;
         base.height = 120;
         // The first frame with the tying leaves whole, the second with their triangles sorted out.
         for (int frame = 0; frame < 2; ++frame) {
-            const render::Frame plain = expectPlainEqualsFull(render::defaultCamera(bounds, base), name);
+            const render::Frame plain = expectPlainEqualsFull(camera::defaultCamera(bounds, base), name);
             EXPECT_GT(plain.stats.coveredPixels, std::size_t(160 * 120) / 20) << name;
             EXPECT_GT(plain.stats.tiedLeaves, 0u) << name;
         }
@@ -370,7 +370,7 @@ TEST_F(PlainFrameGLTest, IdenticalLeavesAndModifiersDrawAsThroughEveryPass) {
     // images agree too.
     std::vector<int> parts;
     setScene(modifiersScene(parts));
-    for (render::Projection projection : kProjections) {
+    for (camera::Projection projection : kProjections) {
         const render::Frame plain =
             expectPlainEqualsFull(cameraAt({2.0, -6.0, 5.0}, projection), "modifiers");
         EXPECT_EQ(plain.stats.operands, 4);  // the repeated ball is drawn once
@@ -383,7 +383,7 @@ TEST_F(PlainFrameGLTest, FramesThatNeedThePeelRunEveryPass) {
     // the full pipeline.
     scene::Tree tree = randomUnion(5, 12);
     setScene(tree);
-    render::Camera inside = cameraAt({0.0, 0.0, 0.0});
+    camera::Camera inside = cameraAt({0.0, 0.0, 0.0});
     inside.center = {1.0, 0.0, 0.0};
     EXPECT_FALSE(renderer_->render(inside, {}).stats.plain);
     render::RenderSettings layers;
@@ -410,11 +410,11 @@ TEST_F(PlainFrameGLTest, RenderIntoAHostGivesThePlainImage) {
         setScene(modifiers ? modifiersScene(parts) : randomUnion(21, 16));
         for (const bool outline : {true, false}) {
             for (const render::Lighting lighting : {render::Lighting::Strata, render::Lighting::OpenScad}) {
-                for (render::Projection projection : kProjections) {
+                for (camera::Projection projection : kProjections) {
                     render::RenderSettings look;
                     look.outline = outline;
                     look.lighting = lighting;
-                    const render::Camera camera = cameraAt({4.0, -6.0, 5.0}, projection);
+                    const camera::Camera camera = cameraAt({4.0, -6.0, 5.0}, projection);
                     const std::string what = std::string(modifiers ? "modifiers, " : "") +
                                              std::string(render::lightingName(lighting)) +
                                              (outline ? ", outline" : "") + ", projection " +

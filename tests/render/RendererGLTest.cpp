@@ -107,9 +107,9 @@ scene::Leaf shellsLeaf(const std::vector<glm::dvec3>& centres, double radius) {
     return leaf;
 }
 
-render::Camera topCamera(render::Projection projection = render::Projection::Perspective,
+camera::Camera topCamera(camera::Projection projection = camera::Projection::Perspective,
                          double eyeHeight = kEyeHeight) {
-    render::Camera camera;
+    camera::Camera camera;
     camera.eye = {0.0, 0.0, eyeHeight};
     camera.center = {0.0, 0.0, eyeHeight - 10.0};
     camera.projection = projection;
@@ -145,7 +145,7 @@ protected:
         context_.reset();
     }
 
-    render::Frame draw(const scene::Tree& tree, const render::Camera& camera, render::RenderSettings settings = {}) {
+    render::Frame draw(const scene::Tree& tree, const camera::Camera& camera, render::RenderSettings settings = {}) {
         const model::Model model = model::buildModel(tree);
         renderer_->setScene(tree, model);
         render::Frame frame = renderer_->render(camera, settings);
@@ -157,7 +157,7 @@ protected:
     // Draws `tree` with leaf marks (where the driver has them) and with one
     // mark for all: every AOV and the image must be the same to the bit.
     // Returns the one-mark frame.
-    render::Frame expectMarksChangeNothing(const scene::Tree& tree, const render::Camera& camera) {
+    render::Frame expectMarksChangeNothing(const scene::Tree& tree, const camera::Camera& camera) {
         const render::Frame marked = draw(tree, camera);
         render::RenderSettings oneMark;
         oneMark.leafMarks = false;
@@ -185,7 +185,7 @@ protected:
 std::unique_ptr<gpu::Context> RendererGLTest::context_;
 std::unique_ptr<render::Renderer> RendererGLTest::renderer_;
 
-const render::Projection kProjections[] = {render::Projection::Perspective, render::Projection::Orthographic};
+const camera::Projection kProjections[] = {camera::Projection::Perspective, camera::Projection::Orthographic};
 
 // The paper's cube-and-sphere pair: cube [-1,1]^3, sphere r=1 on its top face.
 scene::Tree paperPair(NodeKind op) {
@@ -199,7 +199,7 @@ scene::Tree paperPair(NodeKind op) {
 }  // namespace
 
 TEST_F(RendererGLTest, CubeMinusSphereShowsTheCavityFloor) {
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         const render::Frame f = draw(paperPair(NodeKind::Difference), topCamera(p));
         // The ray passes the removed top face and meets the sphere's bottom cap
         // from inside the cube: the sphere's face, flipped to point up.
@@ -216,7 +216,7 @@ TEST_F(RendererGLTest, CubeMinusSphereShowsTheCavityFloor) {
 }
 
 TEST_F(RendererGLTest, ThePapersThreeOperationsInBothProjections) {
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         // Union: the sphere's top cap stands highest.
         expectCentre(draw(paperPair(NodeKind::Union), topCamera(p)), kEyeHeight - capHeight(1.0, 1.0, +1), 1,
                      {0, 0, 1});
@@ -233,7 +233,7 @@ TEST_F(RendererGLTest, IntersectionOfSpheresIsTheLens) {
     const int a = tree.addLeaf(sphereLeaf({0, 0, 0.5}, 1.0));
     const int b = tree.addLeaf(sphereLeaf({0, 0, -0.5}, 1.0));
     tree.root = tree.addNode(NodeKind::Intersection, {a, b});
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         // The lens's top is the lower sphere's top cap.
         expectCentre(draw(tree, topCamera(p)), kEyeHeight - capHeight(-0.5, 1.0, +1), 1, {0, 0, 1});
     }
@@ -246,7 +246,7 @@ TEST_F(RendererGLTest, OrthographicCubeCoversExactlyItsPixels) {
     for (const bool plain : {true, false}) {
         render::RenderSettings settings;
         settings.plainUnions = plain;
-        const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic), settings);
+        const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic), settings);
         EXPECT_EQ(f.stats.plain, plain);
         // The contract's orthographic ray of pixel (i, j) starts at x*h*a, y*h:
         // it hits the top face (depth 9, normal +Z) iff both are inside [-1, 1].
@@ -282,7 +282,7 @@ TEST_F(RendererGLTest, ASmallerModelAfterALargeOneLeavesNoTrace) {
     big.root = big.addNode(NodeKind::Union, {big.addLeaf(cubeLeaf({-3, -3, -1}, {3, 3, 1}))});
     scene::Tree small;
     small.root = small.addNode(NodeKind::Union, {small.addLeaf(cubeLeaf({1.0, 1.0, -1}, {1.6, 1.6, 1}))});
-    const render::Camera camera = topCamera(render::Projection::Orthographic);
+    const camera::Camera camera = topCamera(camera::Projection::Orthographic);
     const render::Frame first = draw(big, camera);
     ASSERT_EQ(first.stats.coveredPixels, static_cast<std::size_t>(kSize) * kSize);
     const render::Frame f = draw(small, camera);
@@ -307,7 +307,7 @@ TEST_F(RendererGLTest, PerspectiveCubeSideFaceDepthIsItsPlane) {
     // view depth: every pixel on it reads |eye.y| - 1, with normal -Y.
     scene::Tree tree;
     tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}))});
-    render::Camera camera;
+    camera::Camera camera;
     camera.eye = {0.0, -8.0, 0.0};
     camera.center = {0.0, 0.0, 0.0};
     camera.width = 64;
@@ -329,7 +329,7 @@ TEST_F(RendererGLTest, UnionOfSpheresAndCubeTakesTheHighest) {
     const int low = tree.addLeaf(sphereLeaf({0, 0, 0.5}, 0.9));
     const int high = tree.addLeaf(sphereLeaf({0, 0, 1.2}, 0.5));
     tree.root = tree.addNode(NodeKind::Union, {cube, low, high});
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         expectCentre(draw(tree, topCamera(p)), kEyeHeight - capHeight(1.2, 0.5, +1), 2, {0, 0, 1});
     }
 }
@@ -350,7 +350,7 @@ TEST_F(RendererGLTest, StackedSubtractionNeedsAllLayersOfANonConvexOperand) {
     const int spheres = tree.addLeaf(shellsLeaf({{0, 0, 1}, {0, 0, 0}, {0, 0, -1}}, 0.4));
     tree.root = tree.addNode(NodeKind::Difference, {slab, spheres});
     const double truth = kEyeHeight - capHeight(1.0, 0.4, -1);
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         render::RenderSettings one;
         one.layers = 1;
         const render::Frame wrong = draw(tree, topCamera(p), one);
@@ -401,14 +401,14 @@ TEST_F(RendererGLTest, AutoPeelingStopsWhereCountedSurfacesCoincide) {
     tree.root = tree.addNode(NodeKind::Intersection, {tree.addLeaf(boxes), tree.addLeaf(cubeLeaf({-2, -2, -2}, {2, 2, 2}))});
     render::RenderSettings passes;
     passes.fragmentListTriangles = -1;
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic), passes);
+    const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic), passes);
     expectCentre(f, kEyeHeight - 0.5, 0, {0, 0, 1});
     EXPECT_EQ(f.stats.layersPerLeaf[0], 1);
     EXPECT_EQ(f.stats.peelPasses, 1 + 2);  // the cube, then the boxes' two
     // A fragment list holds all four; they make one layer all the same.
     render::RenderSettings lists;
     lists.fragmentListTriangles = 0;
-    const render::Frame listed = draw(tree, topCamera(render::Projection::Orthographic), lists);
+    const render::Frame listed = draw(tree, topCamera(camera::Projection::Orthographic), lists);
     expectCentre(listed, kEyeHeight - 0.5, 0, {0, 0, 1});
     EXPECT_EQ(listed.stats.layersPerLeaf[0], 1);
     EXPECT_EQ(listed.stats.peelPasses, 1 + 1);
@@ -430,7 +430,7 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
     everyLayer.keepPeelLayers = true;
     apart.groupOperands = false;
     apart.plainUnions = false;  // the peel of such a union is what is tested
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         const render::Frame once = draw(tree, topCamera(p), apart);
         EXPECT_EQ(once.stats.layersPerLeaf[0], 1);
         EXPECT_EQ(once.stats.peelPasses, 2);  // one batch draw each
@@ -452,7 +452,7 @@ TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
     // union can start inside one: then every layer counts again. Here, just
     // outside the middle shell and looking down, the rays meet the middle and
     // the lower shells: four surfaces, two layers.
-    render::Camera inside = topCamera();
+    camera::Camera inside = topCamera();
     inside.eye = {0.3, 0.3, 0.2};
     inside.center = {0.3, 0.3, -5.0};
     EXPECT_EQ(draw(tree, inside).stats.layersPerLeaf[0], 2);
@@ -475,7 +475,7 @@ TEST_F(RendererGLTest, AFlatShellKeepsEveryLayerOfItsOperand) {
     scene::Leaf both;
     both.primitive = poly;
     tree.root = tree.addNode(NodeKind::Union, {tree.addLeaf(both)});
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));  // both faces at one depth
+    const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic));  // both faces at one depth
     expectCentre(f, kEyeHeight - 0.5, 0, {0, 0, 1});
     EXPECT_EQ(f.stats.layersPerLeaf[0], 2);
 }
@@ -619,7 +619,7 @@ TEST_F(RendererGLTest, IdenticalLeavesShareOneOperandAndChangeNoSurface) {
         auto& triangles = apart.leafMeshes[static_cast<std::size_t>(c)].triangles;
         std::rotate(triangles.begin(), triangles.begin() + 1 + c, triangles.end());
     }
-    for (render::Projection projection : kProjections) {
+    for (camera::Projection projection : kProjections) {
         renderer_->setScene(tree, apart);
         const render::Frame separate = renderer_->render(topCamera(projection), {});
         renderer_->setScene(tree, model);
@@ -684,7 +684,7 @@ TEST_F(RendererGLTest, EyeInsideASubtractedOperand) {
     const int cube = tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 1}));
     const int sphere = tree.addLeaf(sphereLeaf({0, 0, 2}, 1.6));
     tree.root = tree.addNode(NodeKind::Difference, {cube, sphere});
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         const render::Frame f = draw(tree, topCamera(p, 3.0));
         expectCentre(f, 3.0 - capHeight(2.0, 1.6, -1), 1, {0, 0, 1});
     }
@@ -699,16 +699,16 @@ TEST_F(RendererGLTest, NearPlaneThroughTheModel) {
     const int cube = tree.addLeaf(cubeLeaf({-2, -2, -2}, {2, 2, 2}));
     const int sphere = tree.addLeaf(sphereLeaf({0, 0, -1}, 0.5));
     tree.root = tree.addNode(NodeKind::Difference, {cube, sphere});
-    for (render::Projection p : kProjections) {
-        render::Camera camera = topCamera(p, 0.0);
+    for (camera::Projection p : kProjections) {
+        camera::Camera camera = topCamera(p, 0.0);
         // A side pixel whose ray passes the sphere (r = 0.5 at depth 1) and
         // leaves the cube through its bottom (depth 2):
         //   perspective, fov 90°: slope 0.79 at column 10, passing the
         //     sphere's centre at 1 * sin(atan 0.79) = 0.62 > 0.5, meeting the
         //     bottom at |x| = 1.58 < 2;
         //   orthographic, fov 22.5°: column 20 starts at x = -1.18.
-        camera.fovDegrees = p == render::Projection::Perspective ? 90.0 : 22.5;
-        const int column = p == render::Projection::Perspective ? 10 : 20;
+        camera.fovDegrees = p == camera::Projection::Perspective ? 90.0 : 22.5;
+        const int column = p == camera::Projection::Perspective ? 10 : 20;
         const render::Frame f = draw(tree, camera);
         expectCentre(f, 0.0 - capHeight(-1.0, 0.5, +1), 1, {0, 0, -1});
         // The side ray leaves through the cube's bottom face (its own face, not
@@ -779,10 +779,10 @@ TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
     render::RenderSettings grouped, separate, tiled;
     separate.groupOperands = false;
     tiled.memoryBudget = 30 * 30 * 8 * 3;
-    for (render::Projection projection : kProjections) {
+    for (camera::Projection projection : kProjections) {
         for (double height : {kEyeHeight, 0.0}) {
-            render::Camera camera = topCamera(projection, height);
-            if (height == 0.0) camera.fovDegrees = projection == render::Projection::Perspective ? 90.0 : 60.0;
+            camera::Camera camera = topCamera(projection, height);
+            if (height == 0.0) camera.fovDegrees = projection == camera::Projection::Perspective ? 90.0 : 60.0;
             const render::Frame one = draw(tree, camera, grouped);
             const render::Frame apart = renderer_->render(camera, separate);
             EXPECT_EQ(one.stats.operands, 2);
@@ -835,7 +835,7 @@ TEST_F(RendererGLTest, LeafMarksGiveTheFrameOfOneMark) {
     std::vector<int> children = slabAndSpheres(tree, 7, 300, 1.8, 0.7, 1.1, 0.15);
     children.push_back(tree.addLeaf(shellsLeaf({{0.5, 0.5, 1}, {0.5, 0.5, 0.3}}, 0.3)));
     tree.root = tree.addNode(NodeKind::Difference, children);
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p));
         const auto fromHighLeaves = std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l >= 255; });
         EXPECT_GT(fromHighLeaves, 50) << "leaves past the 255th must show";
@@ -851,7 +851,7 @@ TEST_F(RendererGLTest, CrowdedMarkSlotsGiveTheFrameOfOneMark) {
     scene::Tree tree;
     const std::vector<int> holes = slabAndSpheres(tree, 5, 90, 0.4, 0.6, 1.1, 0.45);
     tree.root = tree.addNode(NodeKind::Difference, holes);
-    for (render::Projection p : kProjections) {
+    for (camera::Projection p : kProjections) {
         const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p));
         const auto fromSpheres = std::count_if(plain.leaf.begin(), plain.leaf.end(), [](int l) { return l > 63; });
         EXPECT_GT(fromSpheres, 20) << "spheres past the 63rd must show";
@@ -875,7 +875,7 @@ TEST_F(RendererGLTest, UniqueLeafMarksGiveTheFrameOfOneMark) {
     tree.root = tree.addNode(NodeKind::Union, {slab, lens});
     ASSERT_LE(tree.leaves.size(), 63u);
     for (const double eyeHeight : {kEyeHeight, 0.5}) {
-        for (render::Projection p : kProjections) {
+        for (camera::Projection p : kProjections) {
             const render::Frame plain = expectMarksChangeNothing(tree, topCamera(p, eyeHeight));
             EXPECT_GT(plain.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 4);
             const auto holeWalls =
@@ -952,7 +952,7 @@ TEST_F(RendererGLTest, AFrameReadsBackOnlyTheOutputsAskedFor) {
 TEST_F(RendererGLTest, SmallScatteredOperandsArePeeledInTilesOfTheirOwn) {
     scene::Tree tree;
     tree.root = tree.addNode(NodeKind::Difference, slabAndSpheres(tree, 3, 48, 1.7, 0.7, 1.1, 0.15));
-    render::Camera camera = topCamera();
+    camera::Camera camera = topCamera();
     camera.width = camera.height = 512;
     // 49 layers and a scratch one of 512 x 512 x 8 bytes: 100 MiB in one tile.
     render::RenderSettings roomy;
@@ -981,7 +981,7 @@ TEST_F(RendererGLTest, OperandsThatSpanTheFrameStayInOneTile) {
     const int big = tree.addLeaf(sphereLeaf({0.1, -0.1, 1.0}, 1.9));
     const int bigger = tree.addLeaf(sphereLeaf({-0.1, 0.1, 1.4}, 2.2));
     tree.root = tree.addNode(NodeKind::Difference, {slab, big, bigger});
-    render::Camera camera = topCamera();
+    camera::Camera camera = topCamera();
     camera.width = camera.height = 512;
     render::RenderSettings eager;
     eager.coverageTilingFrom = 0;
@@ -1035,7 +1035,7 @@ TEST_F(RendererGLTest, ManyOperandsUseALargerEvaluator) {
 
 TEST_F(RendererGLTest, ColoursFollowTheSchemeAndTheLeaves) {
     scene::Tree tree = paperPair(NodeKind::Difference);
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic));
     const render::ColorScheme& cornfield = render::colorScheme("Cornfield");
     // Background: the scheme's colour, opaque.
     const std::size_t bg = at(f, 0, 0) * 4;
@@ -1055,7 +1055,7 @@ TEST_F(RendererGLTest, ColoursFollowTheSchemeAndTheLeaves) {
 
     // A leaf colour wins over the scheme, cut face included.
     tree.leaves[1].color = glm::dvec4(0.0, 0.0, 1.0, 1.0);
-    const render::Frame blue = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::Frame blue = draw(tree, topCamera(camera::Projection::Orthographic));
     const std::size_t c = at(blue, kCentre, kCentre) * 4;
     EXPECT_EQ(blue.rgba[c + 0], 0);
     EXPECT_EQ(blue.rgba[c + 1], 0);
@@ -1075,7 +1075,7 @@ TEST_F(RendererGLTest, ShadingAFramesOwnResultGivesItsImage) {
     // AOVs, shade() must give render()'s image to the bit.
     scene::Tree tree = paperPair(NodeKind::Difference);
     tree.leaves[0].color = glm::dvec4(0.2, 0.6, 0.9, 1.0);  // the cube its own; the cut sphere the scheme's
-    const render::Camera camera = topCamera();
+    const camera::Camera camera = topCamera();
     const render::Frame f = draw(tree, camera);
     std::vector<std::uint8_t> cut(f.leaf.size());
     for (std::size_t k = 0; k < cut.size(); ++k) cut[k] = f.leaf[k] == 1 ? 1 : 0;  // the sphere acts subtracted
@@ -1093,7 +1093,7 @@ TEST_F(RendererGLTest, BackgroundLeavesAreDrawnButNotInTheCsg) {
     const int g = tree.addLeaf(ghost);
     tree.root = tree.addNode(NodeKind::Union, {cube});
     tree.background = {g};
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic));
     // Outside the cube but over the ghost: no CSG surface, but not plain background.
     const double h = 10.0 * std::tan(22.5 / 2.0 * std::numbers::pi / 180.0);
     const int i = static_cast<int>(std::floor((1.0 - 1.1 / h) * kSize / 2.0));  // x ~ -1.1
@@ -1145,7 +1145,7 @@ TEST_F(RendererGLTest, ATranslucentLeafAloneShowsItsBackFacesOverTheBackground) 
     red.color = glm::dvec4(1.0, 0.0, 0.0, a);
     const int cube = tree.addLeaf(red);
     tree.root = tree.addNode(NodeKind::Union, {cube});
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic));
     // Back face (the bottom, lit as seen from inside) over the background,
     // then the top face over that.
     const glm::dvec3 top(255.0 * lit, 0.0, 0.0);
@@ -1156,7 +1156,7 @@ TEST_F(RendererGLTest, ATranslucentLeafAloneShowsItsBackFacesOverTheBackground) 
 
     // An opaque colour is drawn as before: lit, nothing behind it.
     tree.leaves[0].color = glm::dvec4(1.0, 0.0, 0.0, 1.0);
-    expectColour(centreColour(draw(tree, topCamera(render::Projection::Orthographic))), top);
+    expectColour(centreColour(draw(tree, topCamera(camera::Projection::Orthographic))), top);
 
     // What lies behind a translucent surface stays hidden, as in OpenSCAD
     // where the translucent object is drawn first: a blue slab under the cube.
@@ -1165,7 +1165,7 @@ TEST_F(RendererGLTest, ATranslucentLeafAloneShowsItsBackFacesOverTheBackground) 
     blue.color = glm::dvec4(0.0, 0.0, 1.0, 1.0);
     const int slab = tree.addLeaf(blue);
     tree.nodes[static_cast<std::size_t>(tree.root)].children.push_back(slab);
-    const render::Frame behind = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::Frame behind = draw(tree, topCamera(camera::Projection::Orthographic));
     expectColour(centreColour(behind), centreColour(f));
     const std::size_t beside = at(behind, kCentre, 5) * 4;  // y ~ 1.8: the slab alone
     EXPECT_EQ(behind.rgba[beside + 0], 0);
@@ -1186,7 +1186,7 @@ TEST_F(RendererGLTest, ATranslucentLeafWithOthersShowsTheBackgroundOnce) {
         const int other = tree.addLeaf(op == NodeKind::Difference ? cubeLeaf({0.8, 0.8, 0.8}, {1.5, 1.5, 1.5})
                                                                   : sphereLeaf({0, 0, 0}, 1.6));
         tree.root = tree.addNode(NodeKind::Union, {tree.addNode(op, {cube, other})});
-        const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+        const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic));
         ASSERT_EQ(f.leaf[at(f, kCentre, kCentre)], 0);
         expectColour(centreColour(f), want);
     }
@@ -1196,7 +1196,7 @@ TEST_F(RendererGLTest, ATranslucentSubtrahendsCutFacesShowTheBackgroundOnce) {
     const double a = 0.4, lit = topLight();
     scene::Tree tree = paperPair(NodeKind::Difference);
     tree.leaves[1].color = glm::dvec4(0.0, 0.0, 1.0, a);
-    const render::Frame f = draw(tree, topCamera(render::Projection::Orthographic));
+    const render::Frame f = draw(tree, topCamera(camera::Projection::Orthographic));
     ASSERT_EQ(f.leaf[at(f, kCentre, kCentre)], 1);  // the sphere's inside, its normal flipped up
     expectColour(centreColour(f), a * glm::dvec3(0.0, 0.0, 255.0 * lit) + (1.0 - a) * kCornfield);
 }
@@ -1210,7 +1210,7 @@ TEST_F(RendererGLTest, ShadingAFramesOwnResultKeepsItsTranslucentColours) {
     alone.color = glm::dvec4(0.0, 1.0, 0.0, 0.6);
     const int beside = tree.addLeaf(alone);
     tree.nodes[static_cast<std::size_t>(tree.root)].children.push_back(beside);
-    const render::Camera camera = topCamera();
+    const camera::Camera camera = topCamera();
     const render::Frame f = draw(tree, camera);
     std::vector<std::uint8_t> cut(f.leaf.size());
     for (std::size_t k = 0; k < cut.size(); ++k) cut[k] = f.leaf[k] == 1 ? 1 : 0;
@@ -1233,7 +1233,7 @@ TEST_F(RendererGLTest, EmptyResultAndBadSettings) {
     bad = {};
     bad.layers = -1;
     EXPECT_THROW(renderer_->render(topCamera(), bad), Error);
-    render::Camera zero = topCamera();
+    camera::Camera zero = topCamera();
     zero.width = 0;
     EXPECT_THROW(renderer_->render(zero, {}), Error);
 }
@@ -1262,7 +1262,7 @@ TEST_F(RendererGLTest, GroupedMembersSharingAFaceShowTheLowestLeafThere) {
         tree.root = tree.addNode(NodeKind::Intersection, blocks);
         render::RenderSettings separate;
         separate.groupOperands = false;
-        const render::Camera camera = topCamera();
+        const camera::Camera camera = topCamera();
         const render::Frame one = draw(tree, camera);
         const render::Frame apart = renderer_->render(camera, separate);
         EXPECT_EQ(one.stats.operands, 1);
@@ -1309,7 +1309,7 @@ TEST_F(RendererGLTest, UnitedMembersSharingAFaceShowTheLowestLeafThere) {
         separate.groupOperands = false;
         unite.unionGroupFrom = 2;
         separate.plainUnions = unite.plainUnions = false;  // the groups' peel is what is tested
-        const render::Camera camera = topCamera();
+        const camera::Camera camera = topCamera();
         const render::Frame one = draw(tree, camera, unite);
         const render::Frame apart = renderer_->render(camera, separate);
         EXPECT_EQ(one.stats.operands, 1);
@@ -1366,10 +1366,10 @@ TEST_F(RendererGLTest, UnitedOperandsChangeNoSurface) {
     separate.groupOperands = false;
     tiled.memoryBudget = tiledApart.memoryBudget = 40 * 40 * 8 * 6;
     tiledApart.groupOperands = false;
-    for (render::Projection projection : kProjections) {
+    for (camera::Projection projection : kProjections) {
         for (double height : {kEyeHeight, 0.0}) {
-            render::Camera camera = topCamera(projection, height);
-            if (height == 0.0) camera.fovDegrees = projection == render::Projection::Perspective ? 90.0 : 60.0;
+            camera::Camera camera = topCamera(projection, height);
+            if (height == 0.0) camera.fovDegrees = projection == camera::Projection::Perspective ? 90.0 : 60.0;
             const render::Frame one = draw(tree, camera, unite);
             const render::Frame apart = renderer_->render(camera, separate);
             const bool outside = height == kEyeHeight;
@@ -1400,7 +1400,7 @@ TEST_F(RendererGLTest, ASceneWhoseMeshesAreLetGoRendersTheSame) {
     }
     tree.root = tree.addNode(NodeKind::Difference,
                              {tree.addNode(NodeKind::Union, parts), tree.addLeaf(cubeLeaf({-1, -1, 0.1}, {1, 0, 1}))});
-    const render::Camera camera = topCamera();
+    const camera::Camera camera = topCamera();
     const render::Frame kept = draw(tree, camera);
     model::Model model = model::buildModel(tree);
     renderer_->setScene(tree, std::move(model));

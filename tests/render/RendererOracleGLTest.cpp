@@ -76,8 +76,8 @@ public:
         for (const mesh::Mesh& m : model.leafMeshes) bounds_.push_back(mesh::boundsOf(m));
     }
 
-    OraclePixel trace(const render::Camera& camera, int i, int j, double coincidence) const {
-        const render::Ray ray = camera.ray(i, j);
+    OraclePixel trace(const camera::Camera& camera, int i, int j, double coincidence) const {
+        const camera::Ray ray = camera.ray(i, j);
         const glm::dvec3 f = camera.forward();
         const double startDepth = glm::dot(ray.origin - camera.eye, f);  // 0 for both projections
         std::vector<OracleHit> hits;
@@ -122,7 +122,7 @@ private:
     // Barycentric distance from an edge below which a hit counts as "on the edge".
     static constexpr double kEdgeMargin = 2e-3;
 
-    static bool slabHit(const render::Ray& ray, const mesh::Bounds& b) {
+    static bool slabHit(const camera::Ray& ray, const mesh::Bounds& b) {
         double t0 = -1e300, t1 = 1e300;
         for (int k = 0; k < 3; ++k) {
             if (std::abs(ray.direction[k]) < 1e-300) {
@@ -139,7 +139,7 @@ private:
     }
 
     // Möller–Trumbore; s along the ray (may be negative: the caller filters by depth).
-    static bool intersect(const render::Ray& ray, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+    static bool intersect(const camera::Ray& ray, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                           double& s, double& u, double& v) {
         const glm::dvec3 e1 = b - a, e2 = c - a;
         const glm::dvec3 p = glm::cross(ray.direction, e2);
@@ -232,7 +232,7 @@ TEST(RendererOracle, RandomScenesAgreeWithABruteForceRayCaster) {
         const double diagonal = model.bounds.empty() ? 1.0 : model.bounds.diagonal();
 
         for (int c = 0; c < 3; ++c) {
-            render::Camera camera;
+            camera::Camera camera;
             std::uniform_real_distribution<double> unit(-1.0, 1.0);
             glm::dvec3 dir;
             do dir = {unit(rng), unit(rng), unit(rng)};
@@ -241,7 +241,7 @@ TEST(RendererOracle, RandomScenesAgreeWithABruteForceRayCaster) {
             // Camera 2 sits inside the scene's box, so the near plane cuts the model.
             camera.eye = c == 2 ? glm::dvec3(unit(rng), unit(rng), unit(rng)) * 0.5 : dir * (6.0 + 3.0 * unit(rng));
             camera.center = c == 2 ? camera.eye - dir : glm::dvec3(0.0);
-            camera.projection = c == 1 ? render::Projection::Orthographic : render::Projection::Perspective;
+            camera.projection = c == 1 ? camera::Projection::Orthographic : camera::Projection::Perspective;
             camera.fovDegrees = c == 2 ? 70.0 : 30.0;
             if (c == 1) {  // orthographic: half-height |C - E| tan(fov/2) = 4 tan(30°) ~ 2.3
                 camera.center = camera.eye - dir * 4.0;
@@ -250,7 +250,7 @@ TEST(RendererOracle, RandomScenesAgreeWithABruteForceRayCaster) {
             camera.width = kSize;
             camera.height = kSize;
             const render::Frame frame = renderer.render(camera, {});
-            const double coincidence = render::coincidenceTolerance(camera, model.bounds);
+            const double coincidence = camera::coincidenceTolerance(camera, model.bounds);
 
             std::size_t disagree = 0, ambiguous = 0;
             for (int j = 0; j < kSize; ++j) {

@@ -27,9 +27,9 @@ void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance = 1e-
     EXPECT_NEAR(a.z, b.z, tolerance);
 }
 
-// The eye render::cameraFromArguments places for OpenSCAD's gimbal form.
+// The eye camera::cameraFromArguments places for OpenSCAD's gimbal form.
 glm::dvec3 gimbalEye(const glm::dvec3& center, double rx, double rz, double distance) {
-    return render::cameraFromArguments({center.x, center.y, center.z, rx, 0.0, rz, distance}, render::Camera{}).eye;
+    return camera::cameraFromArguments({center.x, center.y, center.z, rx, 0.0, rz, distance}, camera::Camera{}).eye;
 }
 
 }  // namespace
@@ -66,13 +66,13 @@ TEST(Orbit, PresetsPutTheEyeExactlyOnTheAxes) {
     for (const auto& k : cases) {
         orbit.preset(k.preset);
         EXPECT_EQ(orbit.eye, c + k.offset) << view::presetName(k.preset);
-        const std::string arg = view::cameraArgument(orbit.camera(render::Camera{}));
+        const std::string arg = view::cameraArgument(orbit.camera(camera::Camera{}));
         EXPECT_EQ(arg.find('e', 9), std::string::npos) << arg;
         // Fitting the view keeps the angles read back from the eye exact too.
         mesh::Bounds b;
         b.extend(glm::dvec3(-1, -2, -3));
         b.extend(glm::dvec3(5, 4, 3));
-        const Orbit all = view::viewAll(orbit, b, render::Camera{});
+        const Orbit all = view::viewAll(orbit, b, camera::Camera{});
         const glm::dvec3 direction = (all.eye - all.center) / all.distance();
         EXPECT_EQ(direction, k.offset / 10.0) << view::presetName(k.preset);
     }
@@ -187,8 +187,8 @@ TEST(Orbit, RecentreKeepsDirectionAndDistance) {
 }
 
 TEST(Orbit, PointAtDepthLiesOnThePixelsRayAtThatViewDepth) {
-    for (render::Projection p : {render::Projection::Perspective, render::Projection::Orthographic}) {
-        render::Camera cam;
+    for (camera::Projection p : {camera::Projection::Perspective, camera::Projection::Orthographic}) {
+        camera::Camera cam;
         cam.eye = {4, -30, 9};
         cam.center = {0, 1, 2};
         cam.width = 64;
@@ -196,7 +196,7 @@ TEST(Orbit, PointAtDepthLiesOnThePixelsRayAtThatViewDepth) {
         cam.projection = p;
         const glm::dvec3 point = view::pointAtDepth(cam, 50, 7, 25.0);
         EXPECT_NEAR(cam.viewDepth(point), 25.0, 1e-9);
-        const render::Ray ray = cam.ray(50, 7);
+        const camera::Ray ray = cam.ray(50, 7);
         EXPECT_NEAR(glm::length(glm::cross(point - ray.origin, ray.direction)), 0.0, 1e-9);
     }
 }
@@ -205,8 +205,8 @@ TEST(Orbit, FittedViewIsStrataRendersDefaultCamera) {
     mesh::Bounds b;
     b.extend(glm::dvec3(-1, -2, -3));
     b.extend(glm::dvec3(5, 4, 3));
-    render::Camera base;
-    const render::Camera expected = render::defaultCamera(b, base);
+    camera::Camera base;
+    const camera::Camera expected = camera::defaultCamera(b, base);
     const Orbit fitted = view::fittedOrbit(b, base);
     EXPECT_EQ(fitted.eye, expected.eye);
     EXPECT_EQ(fitted.center, expected.center);
@@ -223,7 +223,7 @@ TEST(Orbit, AViewNarrowerThanTallFitsTheBoxsSphereAcross) {
     b.extend(glm::dvec3(-30, -3, -3));
     b.extend(glm::dvec3(30, 3, 3));
     const double radius = glm::length(b.max - b.min) / 2;
-    render::Camera base;
+    camera::Camera base;
     base.width = 300;
     base.height = 600;
     // The sphere's edge touches the view's sides: its angular radius seen
@@ -233,15 +233,15 @@ TEST(Orbit, AViewNarrowerThanTallFitsTheBoxsSphereAcross) {
     EXPECT_NEAR(fitted.distance(), radius / std::sin(halfAcross), 1e-9 * radius);
     expectNear(fitted.center, b.center());
     // The direction is OpenSCAD's default all the same.
-    const render::Camera openscad = render::defaultCamera(b, base);
+    const camera::Camera openscad = camera::defaultCamera(b, base);
     expectNear(glm::normalize(fitted.eye - fitted.center), glm::normalize(openscad.eye - openscad.center));
     // As wide as tall or wider: OpenSCAD's distance exactly.
     base.width = 600;
-    EXPECT_EQ(view::fittedOrbit(b, base).eye, render::defaultCamera(b, base).eye);
+    EXPECT_EQ(view::fittedOrbit(b, base).eye, camera::defaultCamera(b, base).eye);
 }
 
 TEST(Orbit, CameraArgumentReadsBackToTheSameDoubles) {
-    render::Camera cam;
+    camera::Camera cam;
     cam.eye = {0.1 + 0.2, -1.0 / 3.0, 1e-300};
     cam.center = {-0.0, 123456789.123456789, 2.5};
     const std::string arg = view::cameraArgument(cam);
@@ -252,5 +252,5 @@ TEST(Orbit, CameraArgumentReadsBackToTheSameDoubles) {
     ASSERT_EQ(numbers.size(), 6u);
     EXPECT_EQ(glm::dvec3(numbers[0], numbers[1], numbers[2]), cam.eye);
     EXPECT_EQ(glm::dvec3(numbers[3], numbers[4], numbers[5]), cam.center);
-    EXPECT_EQ(view::cameraArgument(render::cameraFromArguments(numbers, cam)), arg);
+    EXPECT_EQ(view::cameraArgument(camera::cameraFromArguments(numbers, cam)), arg);
 }

@@ -59,7 +59,7 @@ TEST(OverlayLines, ScaleMarkersAsOpenScadDrawsThem) {
 }
 
 TEST(OverlayLines, TheCornerCrossTurnsWithTheCamera) {
-    render::Camera top;
+    camera::Camera top;
     top.eye = {0, 0, 100};
     top.center = {0, 0, 0};
     top.width = 360;

@@ -11,7 +11,7 @@
 
 #include "strata/mesh/Mesh.h"
 
-namespace strata::render {
+namespace strata::camera {
 
 enum class Projection { Perspective, Orthographic };
 
@@ -70,4 +70,4 @@ Camera cameraFromArguments(const std::vector<double>& numbers, const Camera& bas
 // OpenSCAD's viewAll picks for the camera's field of view.
 Camera defaultCamera(const mesh::Bounds& bounds, const Camera& base);
 
-}  // namespace strata::render
+}  // namespace strata::camera

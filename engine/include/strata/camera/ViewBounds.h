@@ -12,11 +12,11 @@
 #include "strata/model/Model.h"
 #include "strata/scene/Tree.h"
 
-namespace strata::render {
+namespace strata::camera {
 
 // The union of the world-space boxes of the leaves in positive position under
 // tree.root and the background roots. `model` comes from model::buildModel(tree).
 // Empty when no such leaf has a triangle.
 mesh::Bounds viewBounds(const scene::Tree& tree, const model::Model& model);
 
-}  // namespace strata::render
+}  // namespace strata::camera

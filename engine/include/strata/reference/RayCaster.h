@@ -87,9 +87,9 @@ public:
     // crossings within `coincidence` (of t) counting as one place
     // (docs/algorithm.md, "Coincident surfaces"; render() takes the
     // camera's coincidenceTolerance). 0: only equal t coincide.
-    RayHit trace(const render::Ray& ray, double tStart = 0.0, double coincidence = 0.0) const;
+    RayHit trace(const camera::Ray& ray, double tStart = 0.0, double coincidence = 0.0) const;
 
-    ReferenceImage render(const render::Camera& camera, const ReferenceOptions& options = {}) const;
+    ReferenceImage render(const camera::Camera& camera, const ReferenceOptions& options = {}) const;
 
 private:
     struct Impl;
@@ -97,7 +97,7 @@ private:
 };
 
 // ReferenceScene(tree, model).render(camera, options).
-ReferenceImage renderReference(const scene::Tree& tree, const model::Model& model, const render::Camera& camera,
+ReferenceImage renderReference(const scene::Tree& tree, const model::Model& model, const camera::Camera& camera,
                                const ReferenceOptions& options = {});
 
 }  // namespace strata::reference

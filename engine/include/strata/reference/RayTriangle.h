@@ -33,16 +33,16 @@ namespace strata::reference {
 // A ray and an orthonormal frame (b1, b2, direction), b1 x b2 = direction.
 class RayFrame {
 public:
-    explicit RayFrame(const render::Ray& ray);
+    explicit RayFrame(const camera::Ray& ray);
 
     // p in the ray's frame: (dot(p - o, b1), dot(p - o, b2), dot(p - o, d)).
     // The third coordinate is the ray parameter of p's foot on the ray.
     glm::dvec3 project(const glm::dvec3& p) const;
 
-    const render::Ray& ray() const { return ray_; }
+    const camera::Ray& ray() const { return ray_; }
 
 private:
-    render::Ray ray_;
+    camera::Ray ray_;
     glm::dvec3 b1_, b2_;
 };
 

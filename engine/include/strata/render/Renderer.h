@@ -45,7 +45,7 @@ public:
     void setScene(const scene::Tree& tree, model::Model&& model);
 
     // Renders and reads everything back.
-    Frame render(const Camera& camera, const RenderSettings& settings);
+    Frame render(const camera::Camera& camera, const RenderSettings& settings);
 
     // Renders without reading anything back, and copies the shaded image into
     // the host's `framebuffer` (a GL framebuffer name; 0 is the default one)
@@ -53,7 +53,7 @@ public:
     // window or a host's own render target. Returns the frame's figures
     // (readbackMs covers the copy; coveredPixels is not counted).
     // Leaves that framebuffer bound for drawing.
-    FrameStats renderInto(unsigned framebuffer, int x, int y, const Camera& camera, const RenderSettings& settings);
+    FrameStats renderInto(unsigned framebuffer, int x, int y, const camera::Camera& camera, const RenderSettings& settings);
 
     // Every place along each pixel's ray where the result's membership
     // changes, front to back, by peeling the result: each tile's operands are
@@ -64,7 +64,7 @@ public:
     // start at the near plane: for every change to show, the camera should
     // see the whole model from outside it (the export's orthographic views).
     // Nothing is shaded. Returns the figures (coveredPixels: changes found).
-    FrameStats sampleResult(const Camera& camera, const RenderSettings& settings,
+    FrameStats sampleResult(const camera::Camera& camera, const RenderSettings& settings,
                             const std::function<void(const ResultRound&)>& onRound);
 
     // Shades a result computed elsewhere (the CPU reference of strata-render
@@ -78,7 +78,7 @@ public:
         std::span<const std::int32_t> leaf;
         std::span<const std::uint8_t> cut;
     };
-    Frame shade(const Camera& camera, const RenderSettings& settings, const ExternalResult& result);
+    Frame shade(const camera::Camera& camera, const RenderSettings& settings, const ExternalResult& result);
 
 private:
     struct Impl;
