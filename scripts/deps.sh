@@ -17,6 +17,7 @@ packages=(
   libqhull-dev                           # hull() and minkowski(): convex hulls
   libcgal-dev                            # exact results of differences and intersections inside hull/resize/projection/minkowski, and --export-exact
   lib3mf-dev                             # --export to 3MF
+  libmimalloc-dev                        # the exact results' numbers (GMP's allocations on mimalloc)
   libgtest-dev libgmock-dev
   libimgui-dev                           # strata-view's panel (Dear ImGui, GLFW + OpenGL 3 backends)
   libopencsg-dev libglew-dev             # strata-bench's OpenCSG comparator (built only where found)

@@ -22,8 +22,8 @@
 #   build-fuzz/tests/fuzz/strata_fuzz_<target> build-fuzz/findings/<file>
 # --geometry builds and runs only strata_fuzz_geometry (small random trees
 # built into meshes: 2D, extrusions, hulls, Minkowski sums, projections),
-# for SECONDS. It instruments strata_geometry and CGAL, many minutes of
-# building, so CI does not run it; it is for long runs by hand.
+# for SECONDS. It instruments strata_model and the exact room's CGAL, many
+# minutes of building, so CI does not run it; it is for long runs by hand.
 # Needs Debian's clang and libclang-rt-14-dev (installed here when run as root).
 set -eu
 

@@ -563,7 +563,7 @@ std::vector<Result> runAll(const Options& options, gpu::Context& context, OpenCs
 }  // namespace
 
 int main(int argc, char** argv) {
-    apps::runWithHugePages(argv);  // as strata-render and strata-view run
+    apps::runWithHugePages(argv);  // llvmpipe's textures on huge pages, as glibc gives them only on request
     Options options;
     CLI::App app{"strata-bench: strata's frame times against a plain depth-tested draw"};
     const CLI::Option* scenes = addOptions(app, options);

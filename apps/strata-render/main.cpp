@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "Options.h"
-#include "HugePages.h"
 #include "strata/scene/SceneLoad.h"
 #include "StderrProgress.h"
 #include "Worker.h"
@@ -246,7 +245,6 @@ int renderAll(const apps::RenderOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    apps::runWithHugePages(argv);
     io::removeTemporariesOnSignals();
     const apps::ParseResult parsed = apps::parseOptions(argc, argv);
     if (parsed.exitNow) {

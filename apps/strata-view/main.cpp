@@ -11,7 +11,6 @@
 #include <optional>
 #include <vector>
 
-#include "HugePages.h"
 #include "Loader.h"
 #include "Options.h"
 #include "SceneFile.h"
@@ -29,7 +28,6 @@ constexpr std::chrono::milliseconds kWindowAfter{700};
 
 int main(int argc, char** argv) {
     using namespace strata;
-    apps::runWithHugePages(argv);
     io::removeTemporariesOnSignals();
     const view::ParsedOptions parsed = view::parseOptions(argc, argv);
     if (parsed.exitNow) {
