@@ -6,8 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <exception>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -215,6 +219,51 @@ ExactSolid solidOfTriangles(const ExactSolid& s, const std::vector<char>& keep, 
     return out;
 }
 
+// The triangles of each region in `changing` (indices into `regions`),
+// joined and triangulated afresh, in the same order. Regions share nothing
+// but the solid they read (CGAL's exact kernel is thread-safe for that
+// since 5.4), so they are split over the machine's cores, a few hundred at
+// a time; the first error any thread meets is thrown here.
+std::vector<std::vector<Triangle>> triangulatedRegions(const ExactSolid& s, const std::vector<std::vector<Face>>& regions,
+                                                       const std::vector<std::size_t>& changing, const Regions& parts,
+                                                       const std::vector<char>& keep) {
+    std::vector<std::vector<Triangle>> out(changing.size());
+    std::atomic<std::size_t> nextBatch{0};
+    std::mutex failMutex;
+    std::exception_ptr failure;
+    constexpr std::size_t kBatch = 256;
+    auto work = [&] {
+        std::vector<std::pair<Vertex, Vertex>> outline;
+        try {
+            for (std::size_t begin; (begin = nextBatch.fetch_add(kBatch)) < changing.size();) {
+                for (std::size_t i = begin; i < std::min(begin + kBatch, changing.size()); ++i) {
+                    const std::vector<Face>& region = regions[changing[i]];
+                    regionOutline(s, region, parts, keep, outline);
+                    triangulateOutline(s, outline, region.front(), out[i]);
+                }
+                if (std::lock_guard lock(failMutex); failure) return;
+            }
+        } catch (...) {
+            std::lock_guard lock(failMutex);
+            if (!failure) failure = std::current_exception();
+        }
+    };
+    const std::size_t threads =
+        std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), (changing.size() + kBatch - 1) / kBatch);
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < threads; ++t) {
+        try {
+            helpers.emplace_back(work);
+        } catch (const std::system_error&) {
+            break;  // fewer threads: the same triangles, later
+        }
+    }
+    work();
+    for (std::thread& t : helpers) t.join();
+    if (failure) std::rethrow_exception(failure);
+    return out;
+}
+
 }  // namespace
 
 void giveFacesSources(ExactSolid& solid) {
@@ -235,31 +284,38 @@ ExactSolid joinedCoplanarFaces(const ExactSolid& s) {
     // Each region's faces, and whether it changes.
     std::vector<std::vector<Face>> regions(s.num_faces());
     for (Face f : s.faces()) regions[findRoot(parts.parent, f.idx())].push_back(f);
+    // Triangles on the region's own outline points alone already are as few
+    // as any triangulation of it gives (V + 2h - 2 for V points and h
+    // holes): such a region stays as it is. The others are triangulated
+    // afresh, each alone.
+    std::vector<std::size_t> changing;  // indices into regions, in order
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        bool changes = false;
+        for (Face f : regions[r])
+            for (Vertex v : CGAL::vertices_around_face(s.halfedge(f), s)) changes = changes || !keep[v.idx()];
+        if (changes) changing.push_back(r);
+    }
+    const std::vector<std::vector<Triangle>> joined = triangulatedRegions(s, regions, changing, parts, keep);
 
+    // Gathered in region order, whatever thread made which.
     std::vector<Triangle> triangles;
     triangles.reserve(s.num_faces());
     std::vector<std::uint64_t> triangleSources;  // each triangle's, where the solid has them
     auto source = [&](Face f) { return sources ? (*sources)[f] : std::uint64_t(0); };
-    std::vector<std::pair<Vertex, Vertex>> outline;
-    for (const std::vector<Face>& region : regions) {
-        if (region.empty()) continue;
-        // Triangles on the region's own outline points alone already are as
-        // few as any triangulation of it gives (V + 2h - 2 for V points and
-        // h holes): such a region stays as it is.
-        bool changes = false;
-        for (Face f : region)
-            for (Vertex v : CGAL::vertices_around_face(s.halfedge(f), s)) changes = changes || !keep[v.idx()];
-        if (!changes) {
-            for (Face f : region) {
-                const Halfedge h = s.halfedge(f);
-                triangles.push_back({s.source(h), s.target(h), s.target(s.next(h))});
-                triangleSources.push_back(source(f));
-            }
+    std::size_t next = 0;  // into changing and joined
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        const std::vector<Face>& region = regions[r];
+        if (next < changing.size() && changing[next] == r) {
+            triangles.insert(triangles.end(), joined[next].begin(), joined[next].end());
+            triangleSources.resize(triangles.size(), source(region.front()));
+            ++next;
             continue;
         }
-        regionOutline(s, region, parts, keep, outline);
-        triangulateOutline(s, outline, region.front(), triangles);
-        triangleSources.resize(triangles.size(), source(region.front()));
+        for (Face f : region) {
+            const Halfedge h = s.halfedge(f);
+            triangles.push_back({s.source(h), s.target(h), s.target(s.next(h))});
+            triangleSources.push_back(source(f));
+        }
     }
     return solidOfTriangles(s, keep, triangles, triangleSources);
 }
