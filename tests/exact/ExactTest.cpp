@@ -240,3 +240,52 @@ TEST(ExactResult, ASubassemblyTurnedOrMirroredIsTheSameSolidMoved) {
                                           turn + " {\n" + kStep + "}\n}\n"));
     EXPECT_TRUE(flat.result.triangles.empty());
 }
+
+namespace {
+
+std::string barAt(char axis, double u, double v, double width) {
+    // A bar 33 long through a block of 27, across `axis`, centred at (u, v)
+    // in the other two coordinates.
+    const double along = 33.0, lo = -3.0;
+    std::ostringstream out;
+    const double a = u - width / 2, b = v - width / 2;
+    if (axis == 'x') out << "multmatrix([[1, 0, 0, " << lo << "], [0, 1, 0, " << a << "], [0, 0, 1, " << b << "], [0, 0, 0, 1]]) cube(size = [" << along << ", " << width << ", " << width << "], center = false);\n";
+    if (axis == 'y') out << "multmatrix([[1, 0, 0, " << a << "], [0, 1, 0, " << lo << "], [0, 0, 1, " << b << "], [0, 0, 0, 1]]) cube(size = [" << width << ", " << along << ", " << width << "], center = false);\n";
+    if (axis == 'z') out << "multmatrix([[1, 0, 0, " << a << "], [0, 1, 0, " << b << "], [0, 0, 1, " << lo << "], [0, 0, 0, 1]]) cube(size = [" << width << ", " << width << ", " << along << "], center = false);\n";
+    return out.str();
+}
+
+// A level-two Menger sponge of side 27: the block less, across each axis, the
+// carpet's holes: one bar 9 wide through the middle and eight 3 wide through
+// the middles of the cells around it. `grouped`: the bars in nested groups
+// (the block less one union of three unions, as OpenSCAD's recursive modules
+// write it); otherwise each bar a child of the difference.
+std::string sponge(bool grouped) {
+    std::string text = "difference() {\ncube(size = [27, 27, 27], center = false);\n";
+    if (grouped) text += "group() {\n";
+    for (char axis : {'x', 'y', 'z'}) {
+        if (grouped) text += "group() {\n";
+        text += barAt(axis, 13.5, 13.5, 9.0);
+        if (grouped) text += "group() {\n";
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (i != 1 || j != 1) text += barAt(axis, 4.5 + 9 * i, 4.5 + 9 * j, 3.0);
+        if (grouped) text += "}\n}\n";
+    }
+    if (grouped) text += "}\n";
+    return text + "}\n";
+}
+
+}  // namespace
+
+TEST(ExactResult, ASpongeCutByGroupsOfBarsIsTheClosedFormAndTheSameMeshAsByLoneBars) {
+    // 27^3 (20/27)^2: each level keeps 20 of every 27 cells.
+    const Evaluated grouped = evaluate(parse(sponge(true)));
+    EXPECT_NEAR(mesh::test::signedVolume(grouped.result), 10800.0, 1e-9);
+    EXPECT_TRUE(mesh::checkMesh(grouped.result).ok()) << mesh::checkMesh(grouped.result).describe();
+    // A difference takes a union's operands in its place: the grouped bars
+    // must give the very mesh the bars as the difference's own children give.
+    const Evaluated lone = evaluate(parse(sponge(false)));
+    EXPECT_EQ(grouped.result.positions, lone.result.positions);
+    EXPECT_EQ(grouped.result.triangles, lone.result.triangles);
+}
