@@ -6,12 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
-#include <exception>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -22,6 +18,8 @@
 #include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include "strata/core/Threads.h"
 
 namespace strata::exact::detail {
 namespace {
@@ -228,10 +226,8 @@ std::vector<std::vector<Triangle>> triangulatedRegions(const ExactSolid& s, cons
                                                        const std::vector<std::size_t>& changing, const Regions& parts,
                                                        const std::vector<char>& keep) {
     std::vector<std::vector<Triangle>> out(changing.size());
-    std::atomic<std::size_t> nextBatch{0};
-    std::mutex failMutex;
-    std::exception_ptr failure;
     constexpr std::size_t kBatch = 256;
+    std::atomic<std::size_t> nextBatch{0};
     auto work = [&] {
         std::vector<std::pair<Vertex, Vertex>> outline;
         try {
@@ -241,26 +237,14 @@ std::vector<std::vector<Triangle>> triangulatedRegions(const ExactSolid& s, cons
                     regionOutline(s, region, parts, keep, outline);
                     triangulateOutline(s, outline, region.front(), out[i]);
                 }
-                if (std::lock_guard lock(failMutex); failure) return;
             }
         } catch (...) {
-            std::lock_guard lock(failMutex);
-            if (!failure) failure = std::current_exception();
+            nextBatch = changing.size();  // the other threads take no more batches
+            throw;
         }
     };
-    const std::size_t threads =
-        std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), (changing.size() + kBatch - 1) / kBatch);
-    std::vector<std::thread> helpers;
-    for (std::size_t t = 1; t < threads; ++t) {
-        try {
-            helpers.emplace_back(work);
-        } catch (const std::system_error&) {
-            break;  // fewer threads: the same triangles, later
-        }
-    }
-    work();
-    for (std::thread& t : helpers) t.join();
-    if (failure) std::rethrow_exception(failure);
+    const std::size_t batches = (changing.size() + kBatch - 1) / kBatch;
+    runOnThreads(static_cast<int>(std::min<std::size_t>(hardwareThreads(), batches)), work);
     return out;
 }
 

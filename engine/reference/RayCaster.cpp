@@ -6,17 +6,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <limits>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
 #include "strata/core/Error.h"
+#include "strata/core/Threads.h"
 #include "strata/reference/IntervalCsg.h"
 #include "strata/reference/RayTriangle.h"
 
@@ -551,7 +550,6 @@ ReferenceImage ReferenceScene::render(const camera::Camera& camera, const Refere
     std::atomic<int> nextRow{0};
     int rowsDone = 0;
     std::mutex progressMutex;
-    std::exception_ptr failure;
 
     auto work = [&] {
         try {
@@ -577,19 +575,11 @@ ReferenceImage ReferenceScene::render(const camera::Camera& camera, const Refere
                 if (options.progress) options.progress(rowsDone, camera.height);
             }
         } catch (...) {
-            std::lock_guard lock(progressMutex);
-            if (!failure) failure = std::current_exception();
-            nextRow = camera.height;
+            nextRow = camera.height;  // the other threads take no more rows
+            throw;
         }
     };
-
-    int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, camera.height);
-    std::vector<std::thread> workers;
-    for (int k = 1; k < threads; ++k) workers.emplace_back(work);
-    work();
-    for (std::thread& worker : workers) worker.join();
-    if (failure) std::rethrow_exception(failure);
+    runOnThreads(std::clamp(options.threads > 0 ? options.threads : hardwareThreads(), 1, camera.height), work);
     return image;
 }
 

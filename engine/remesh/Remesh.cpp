@@ -5,11 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
+#include "strata/core/Threads.h"
 
 namespace strata::remesh {
 
@@ -184,7 +184,7 @@ contour::Dexels sampleWithReference(const reference::ReferenceScene& scene, cons
                                     int threads) {
     contour::Dexels dexels;
     dexels.grid = grid;
-    const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int workers = threads > 0 ? threads : hardwareThreads();
     for (int a = 0; a < 3; ++a) {
         reportProgress("export: sampling", static_cast<std::size_t>(a), 3);
         const RayAxes axes = rayAxes(a);
@@ -211,10 +211,7 @@ contour::Dexels sampleWithReference(const reference::ReferenceScene& scene, cons
                 }
             }
         };
-        std::vector<std::thread> pool;
-        for (int w = 1; w < workers; ++w) pool.emplace_back(work);
-        work();
-        for (std::thread& t : pool) t.join();
+        runOnThreads(workers, work);
         dexels.axes[static_cast<std::size_t>(a)] = pack(lists);
     }
     reportProgress("export: sampling", 3, 3);
