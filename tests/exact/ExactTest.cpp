@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -245,13 +246,20 @@ namespace {
 
 std::string barAt(char axis, double u, double v, double width) {
     // A bar 33 long through a block of 27, across `axis`, centred at (u, v)
-    // in the other two coordinates.
-    const double along = 33.0, lo = -3.0;
+    // in the other two coordinates (in x, y, z order).
+    const auto k = static_cast<std::size_t>(axis - 'x');
+    std::array<double, 3> corner{}, size{};
+    corner[k] = -3.0;
+    size[k] = 33.0;
+    const std::array<double, 2> centre{u, v};
+    for (std::size_t i = 0, other = 0; i < 3; ++i) {
+        if (i == k) continue;
+        corner[i] = centre[other++] - width / 2;
+        size[i] = width;
+    }
     std::ostringstream out;
-    const double a = u - width / 2, b = v - width / 2;
-    if (axis == 'x') out << "multmatrix([[1, 0, 0, " << lo << "], [0, 1, 0, " << a << "], [0, 0, 1, " << b << "], [0, 0, 0, 1]]) cube(size = [" << along << ", " << width << ", " << width << "], center = false);\n";
-    if (axis == 'y') out << "multmatrix([[1, 0, 0, " << a << "], [0, 1, 0, " << lo << "], [0, 0, 1, " << b << "], [0, 0, 0, 1]]) cube(size = [" << width << ", " << along << ", " << width << "], center = false);\n";
-    if (axis == 'z') out << "multmatrix([[1, 0, 0, " << a << "], [0, 1, 0, " << b << "], [0, 0, 1, " << lo << "], [0, 0, 0, 1]]) cube(size = [" << width << ", " << width << ", " << along << "], center = false);\n";
+    out << "multmatrix([[1, 0, 0, " << corner[0] << "], [0, 1, 0, " << corner[1] << "], [0, 0, 1, " << corner[2]
+        << "], [0, 0, 0, 1]]) cube(size = [" << size[0] << ", " << size[1] << ", " << size[2] << "], center = false);\n";
     return out.str();
 }
 
