@@ -19,7 +19,7 @@ bool isLiteral(std::uint32_t instruction) {
 enum class Join { Intersection, Union };
 
 CompiledTree joinLiterals(const CompiledTree& compiled, const std::vector<char>& groupable, std::size_t mostMembers,
-                          Join join) {
+                          std::size_t leastMembers, Join join) {
     if (compiled.kind != CompiledTree::Kind::Code || mostMembers < 2) return compiled;
     const std::vector<std::uint32_t>& code = compiled.code;
     // Literal instructions in code order: countingTree's literals are the same, one for one.
@@ -60,6 +60,7 @@ CompiledTree joinLiterals(const CompiledTree& compiled, const std::vector<char>&
     std::vector<char> deleted(code.size(), 0);
     bool any = false;
     for (const auto& [node, literals] : byNode) {
+        if (literals.size() < leastMembers) continue;
         for (std::size_t start = 0; start + 1 < literals.size(); start += mostMembers) {
             const std::size_t end = std::min(literals.size(), start + mostMembers);
             const std::uint32_t keeper = tree.literals[literals[start]].operand;
@@ -108,13 +109,13 @@ CompiledTree joinLiterals(const CompiledTree& compiled, const std::vector<char>&
 }  // namespace
 
 CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
-                                 std::size_t mostMembers) {
-    return joinLiterals(compiled, groupable, mostMembers, Join::Intersection);
+                                 std::size_t mostMembers, std::size_t leastMembers) {
+    return joinLiterals(compiled, groupable, mostMembers, leastMembers, Join::Intersection);
 }
 
 CompiledTree groupUnionOperands(const CompiledTree& compiled, const std::vector<char>& groupable,
                                 std::size_t mostMembers) {
-    return joinLiterals(compiled, groupable, mostMembers, Join::Union);
+    return joinLiterals(compiled, groupable, mostMembers, 2, Join::Union);
 }
 
 }  // namespace strata::csg

@@ -181,27 +181,19 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const model::Model& model
     for (std::size_t i = 0; i < same.size(); ++i) impl.copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
     impl.separate.tree = csg::compileTree(tree, empty, same);
     impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.tree, impl.scene);
-    std::vector<char> convex(impl.separate.tree.operandLeaf.size());
-    for (std::size_t k = 0; k < convex.size(); ++k) {
-        convex[k] = impl.scene.leaf(impl.separate.tree.operandLeaf[k]).convex ? 1 : 0;
+    impl.convexOperands.assign(impl.separate.tree.operandLeaf.size(), 0);
+    for (std::size_t k = 0; k < impl.convexOperands.size(); ++k) {
+        impl.convexOperands[k] = impl.scene.leaf(impl.separate.tree.operandLeaf[k]).convex ? 1 : 0;
     }
-    impl.grouped.tree = csg::groupConvexProducts(impl.separate.tree, convex, PeelRequest::kMostGroupMembers);
-    // The groups that ask whether their members share a plane (GroupPeel::tiesWanted).
-    for (const std::vector<int>& members : impl.grouped.tree.operandGroups) {
+    // The groups that ask whether their members share a plane
+    // (GroupPeel::tiesWanted), made while the meshes are here: every group
+    // any convexGroupFrom can make (groupTrees) is among these.
+    const csg::CompiledTree everyGroup =
+        csg::groupConvexProducts(impl.separate.tree, impl.convexOperands, PeelRequest::kMostGroupMembers);
+    for (const std::vector<int>& members : everyGroup.operandGroups) {
         if (members.size() > GroupPeel::kMostTieMembers) impl.scene.hashPlanes(model, members);
     }
-    impl.grouped.unionsOnly = reachedByUnionsOnly(impl.grouped.tree, impl.scene);
-    // Of those, the ones that only unions lead to, a group per run
-    // (groupUnionOperands): right only where every ray starts outside.
-    std::vector<char> unitable(impl.grouped.unionsOnly);
-    impl.unionOnlyOperands = 0;
-    for (std::size_t k = 0; k < unitable.size(); ++k) {
-        if (impl.grouped.tree.leavesOf(k).size() > 1) unitable[k] = 0;
-        impl.unionOnlyOperands += unitable[k] ? 1 : 0;
-    }
-    impl.unionGrouped.tree =
-        csg::groupUnionOperands(impl.grouped.tree, unitable, PeelRequest::kMostUnionMembers);
-    impl.unionGrouped.unionsOnly = reachedByUnionsOnly(impl.unionGrouped.tree, impl.scene);
+    impl.groupedFrom = -1;  // grouped at the first frame (groupTrees)
     // Last, once nothing above needs the meshes any more.
     impl.scene.fill(model, release);
     impl.plainLeaves = PlainPass::plainLeaves(impl.separate.tree, impl.scene);
@@ -312,6 +304,25 @@ Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const ViewSetup& view, c
     return out;
 }
 
+void Renderer::Impl::groupTrees(int convexGroupFrom) {
+    const std::size_t least = static_cast<std::size_t>(std::max(convexGroupFrom, 2));
+    grouped.tree = csg::groupConvexProducts(separate.tree, convexOperands, PeelRequest::kMostGroupMembers, least);
+    grouped.unionsOnly = reachedByUnionsOnly(grouped.tree, scene);
+    // Of those, the ones that only unions lead to, a group per run
+    // (groupUnionOperands): right only where every ray starts outside.
+    std::vector<char> unitable(grouped.unionsOnly);
+    unionOnlyOperands = 0;
+    for (std::size_t k = 0; k < unitable.size(); ++k) {
+        if (grouped.tree.leavesOf(k).size() > 1) unitable[k] = 0;
+        unionOnlyOperands += unitable[k] ? 1 : 0;
+    }
+    unionGrouped.tree = csg::groupUnionOperands(grouped.tree, unitable, PeelRequest::kMostUnionMembers);
+    unionGrouped.unionsOnly = reachedByUnionsOnly(unionGrouped.tree, scene);
+    groupedFrom = convexGroupFrom;
+    // The evaluator may hold a tree made before.
+    if (current != &separate) current = nullptr;
+}
+
 FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const {
     FrameFacts facts;
     facts.outside = beyondNearPlane(view, scene.bounds());
@@ -328,6 +339,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
                                     bool aovs) {
     const auto frameStart = Clock::now();
     ViewSetup view = frameView(camera, settings);
+    if (groupedFrom != settings.convexGroupFrom) groupTrees(settings.convexGroupFrom);
     const FramePlan plan = planFrame(view, settings, aovs);
     // The result peel (sampleResult) runs its rays along the model's axes,
     // on grids that put rays exactly along a solid's silhouette edges,

@@ -100,6 +100,13 @@ struct Renderer::Impl {
     };
     Compilation separate, grouped, unionGrouped;
     std::size_t unionOnlyOperands = 0;  // the operands groupUnionOperands may join (RenderSettings::unionGroupFrom)
+    // Which of separate's operands are convex, and the
+    // RenderSettings::convexGroupFrom that grouped and unionGrouped were made
+    // with (-1: none yet). groupTrees makes them again for another: a frame
+    // whose setting differs calls it before it plans.
+    std::vector<char> convexOperands;
+    int groupedFrom = -1;
+    void groupTrees(int convexGroupFrom);
     const Compilation* current = nullptr;
     const Compilation& compilation(TreeForm form) const {
         return form == TreeForm::Separate ? separate : form == TreeForm::Grouped ? grouped : unionGrouped;

@@ -587,6 +587,37 @@ TEST(ConvexGroups, AnIntersectionOfSolidsIsOneOperandInRunsOfTheMost) {
     EXPECT_TRUE(none.operandGroups.empty());
 }
 
+TEST(ConvexGroups, AnIntersectionOfFewerThanTheLeastStaysApart) {
+    // (A n B n C) - (D n E): the first intersection has three literals to
+    // join, the subtracted one two (!D | !E once compiled).
+    Tree tree;
+    const int a = leaf(tree), b = leaf(tree), c = leaf(tree), d = leaf(tree), e = leaf(tree);
+    tree.root = tree.addNode(NodeKind::Difference, {tree.addNode(NodeKind::Intersection, {a, b, c}),
+                                                    tree.addNode(NodeKind::Intersection, {d, e})});
+    const csg::CompiledTree compiled = csg::compileTree(tree);
+    const std::vector<char> all(5, 1);
+    EXPECT_EQ(csg::groupConvexProducts(compiled, all, 255, 2).operandCount(), 2);
+    const csg::CompiledTree three = csg::groupConvexProducts(compiled, all, 255, 3);
+    ASSERT_EQ(three.operandCount(), 3);  // the group of A, B and C; D; E
+    EXPECT_EQ(three.operandGroups[0], (std::vector<int>{0, 1, 2}));
+    const csg::CompiledTree four = csg::groupConvexProducts(compiled, all, 255, 4);
+    EXPECT_EQ(four.code, compiled.code);
+    EXPECT_TRUE(four.operandGroups.empty());
+    // Each form means what the tree does, on every membership of the five.
+    for (std::uint32_t inside = 0; inside < 32; ++inside) {
+        const bool want = (inside & 7u) == 7u && (inside & 24u) != 24u;
+        for (const csg::CompiledTree* form : {&compiled, &three}) {
+            std::vector<bool> in(static_cast<std::size_t>(form->operandCount()));
+            for (std::size_t k = 0; k < in.size(); ++k) {
+                bool every = true;
+                for (int member : form->leavesOf(k)) every = every && ((inside >> member) & 1u);
+                in[k] = every;
+            }
+            EXPECT_EQ(csg::runCode(form->code, in), want) << inside;
+        }
+    }
+}
+
 TEST(ConvexGroups, SubtractedAndRepeatedSolidsStayTheirOwn) {
     // (A - B - C) u (D n E) u (D n F): B and C are subtracted, D is in two
     // intersections, and E and F would be groups of one.

@@ -747,13 +747,44 @@ TEST_F(RendererGLTest, AGroupsScratchImagesTakeNoLayers) {
     tree.root = tree.addNode(NodeKind::Intersection, lens);
     render::Renderer fresh;  // the shared renderer keeps the largest layer texture of the tests before
     fresh.setScene(tree, model::buildModel(tree));
-    const render::Frame f = fresh.render(topCamera(), {});
+    render::RenderSettings grouped;
+    grouped.convexGroupFrom = 2;  // a group of four
+    const render::Frame f = fresh.render(topCamera(), grouped);
     ASSERT_EQ(f.stats.operands, 1);
     // Two RG32F layers; the group's images are two RGBA32F ones, a depth and
     // stencil texture and the members' ids: 16 + 44 bytes a pixel.
     const std::size_t pixels = static_cast<std::size_t>(kSize) * kSize;
     EXPECT_GT(f.stats.textureBytes, 16 * pixels);
     EXPECT_LE(f.stats.textureBytes, (16 + 44) * pixels);
+}
+
+TEST_F(RendererGLTest, OnlyIntersectionsOfManyConvexOperandsAreGroupedByDefault) {
+    // Spheres around the origin, intersected: up to eight stay operands of
+    // their own (the evaluator holds them in registers, cheaper than a
+    // group's passes), nine and more are one group; the images agree with
+    // the ungrouped frame either way.
+    for (const int count : {8, 9}) {
+        scene::Tree tree;
+        std::vector<int> spheres;
+        for (int i = 0; i < count; ++i) {
+            const double angle = 0.7 * i;
+            spheres.push_back(tree.addLeaf(sphereLeaf({0.4 * std::cos(angle), 0.4 * std::sin(angle), 0.1 * i}, 1.8)));
+        }
+        tree.root = tree.addNode(NodeKind::Intersection, spheres);
+        render::RenderSettings separate, grouped;
+        separate.groupOperands = false;
+        grouped.convexGroupFrom = 2;
+        const camera::Camera camera = topCamera();
+        const render::Frame byDefault = draw(tree, camera);
+        EXPECT_EQ(byDefault.stats.operands, count < 9 ? count : 1) << count << " spheres";
+        EXPECT_EQ(renderer_->render(camera, grouped).stats.operands, 1) << count << " spheres";
+        const render::Frame apart = renderer_->render(camera, separate);
+        EXPECT_EQ(apart.stats.operands, count);
+        ASSERT_GT(byDefault.stats.coveredPixels, static_cast<std::size_t>(kSize * kSize) / 10);
+        EXPECT_EQ(pixelsDiffering(byDefault, apart), 0u) << count << " spheres";
+        // The setting read again at the next frame of the same scene.
+        EXPECT_EQ(renderer_->render(camera, {}).stats.operands, count < 9 ? count : 1) << count << " spheres";
+    }
 }
 
 TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
@@ -777,6 +808,7 @@ TEST_F(RendererGLTest, ConvexIntersectionsAsOneOperandChangeNoSurface) {
                                                           coloured(cubeLeaf({-0.5, -0.7, -0.5}, {1.2, 0.7, 2}))});
     tree.root = tree.addNode(NodeKind::Difference, {tree.addNode(NodeKind::Intersection, lens), cut});
     render::RenderSettings grouped, separate, tiled;
+    grouped.convexGroupFrom = tiled.convexGroupFrom = 2;  // the cut's two members too
     separate.groupOperands = false;
     tiled.memoryBudget = 30 * 30 * 8 * 3;
     for (camera::Projection projection : kProjections) {
@@ -1260,10 +1292,11 @@ TEST_F(RendererGLTest, GroupedMembersSharingAFaceShowTheLowestLeafThere) {
             blocks.push_back(tree.addLeaf(turned(cubeLeaf({-1 - grow, -1.5 - grow, -3}, {1.5 + grow, 1 + grow, 1}))));
         }
         tree.root = tree.addNode(NodeKind::Intersection, blocks);
-        render::RenderSettings separate;
+        render::RenderSettings separate, grouped;
         separate.groupOperands = false;
+        grouped.convexGroupFrom = 2;
         const camera::Camera camera = topCamera();
-        const render::Frame one = draw(tree, camera);
+        const render::Frame one = draw(tree, camera, grouped);
         const render::Frame apart = renderer_->render(camera, separate);
         EXPECT_EQ(one.stats.operands, 1);
         EXPECT_EQ(one.stats.peelPasses, 4) << count << " members";  // entries, exits and their ties

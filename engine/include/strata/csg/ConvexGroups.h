@@ -25,12 +25,13 @@ namespace strata::csg {
 // most `mostMembers`: the run's first literal in code order stands for all
 // of them (it now names the group's operand) and the others leave the code.
 // So do the negated ones in every OR: !a | !b is !(a & b), and a subtracted
-// intersection, A - (B & C), is A & (!B | !C) once compiled. A group's
+// intersection, A - (B & C), is A & (!B | !C) once compiled. An AND (OR)
+// with fewer than `leastMembers` such literals keeps them apart. A group's
 // operand is its lowest member leaf; operandGroups[group] of the result
 // lists its member leaves, ascending. Operands are renumbered so that
 // operandLeaf stays ascending.
 CompiledTree groupConvexProducts(const CompiledTree& compiled, const std::vector<char>& groupable,
-                                 std::size_t mostMembers);
+                                 std::size_t mostMembers, std::size_t leastMembers = 2);
 
 // Unions of operands, peeled as one operand where only their nearest
 // surface matters.
