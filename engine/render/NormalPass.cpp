@@ -76,6 +76,14 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
         setSurfaceView(*p, view);
         if (litAs) ShadePass::setLight(*p, view, *litAs);
     }
+    // The peel drew a tile other than the frame's corner one through an
+    // offset viewport (PeelPass::beginPasses), which rounds window positions
+    // a little apart from this pass's: a sixteenth of the depth's change
+    // across a pixel covers that on faces seen nearly edge on
+    // (shaders/csg/normal.frag). At 1024 x 768 a 256th left 63 pixels of
+    // OpenSCAD's GEB example without their normal.
+    const bool offset = tile.x != 0 || tile.y != 0;
+    checked.setUniform(shader::kNormalSlack, offset ? 0.0625f : 0.0f);
     const std::vector<char> ownMarks =
         targets.leafMarks ? marksOwnedInRect(targets, markLeaves, markRects, tile) : std::vector<char>{};
     auto ownsMarks = [&](int leaf) {
@@ -105,6 +113,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
                 inUse = &program;
             }
             program.setUniform(shader::kNormalLeaf, leaf);
+            if (&program == &checked) program.setUniform(shader::kNormalConvex, scene.leaf(leaf).convex ? 1 : 0);
             program.setUniform(shader::kNormalBaseColor, baseColors[static_cast<std::size_t>(leaf)]);
             // Marks tell flips apart: a draw per flip the leaf shows. One mark for
             // all does not: one draw, and the shader reads the flip.

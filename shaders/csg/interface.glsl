@@ -72,6 +72,8 @@ SHARED int kEvaluateCoincidence = 8;  // the coincidence tolerance, a view depth
 SHARED int kNormalLeaf = 3;
 SHARED int kNormalBaseColor = 5;
 SHARED int kNormalFlip = 6;  // TRUST_MARKS only
+SHARED int kNormalConvex = 7;  // the checking variant: 1 where the leaf is convex
+SHARED int kNormalSlack = 8;   // the checking variant: the depth's slack, in its change across a pixel
 
 // translucent.frag (after surface.vert's).
 SHARED int kTranslucentColor = 3;

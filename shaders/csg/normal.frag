@@ -60,17 +60,33 @@ void main() {
     writeSurface(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
 #else
+// 1 where the leaf is convex: it has one fragment of each facing on a ray,
+// so the leaf and the facing name the visible surface's fragment.
+layout(location = kNormalConvex) uniform int uConvex;
+// Where the peel drew this tile through a viewport offset from the frame's
+// (NormalPass.cpp): how far, in the depth's change across the pixel, the
+// depth this pass computes may lie from the peel's; 0 where the two
+// viewports are one.
+layout(location = kNormalSlack) uniform float uSlack;
+
 void main() {
+    // The depth, and how much it changes across the pixel, before any
+    // fragment leaves (derivatives need the whole quad).
+    float depth = surfaceDepth();
+    float across = fwidth(depth);
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     int code = texelFetch(uResultLeaf, pixel, 0).r;
     if (leafOfCode(code) != uLeaf) discard;
     float result = texelFetch(uResultDepth, pixel, 0).r;
-    float t = taggedDepth(surfaceDepth(), gl_FrontFacing);
+    float t = taggedDepth(depth, gl_FrontFacing);
     if (isExit(t) != isExit(result)) discard;
-    // The same vertex stage as the peel pass; its viewport is the frame's
-    // where the peel pass's was one tile's. A few ulps of slack cover the
-    // rounding that an offset viewport or another fragment shader may bring.
-    if (abs(t - result) > 1.0e-6 * result) discard;
+    // Else the depth names it among the leaf's fragments of this facing:
+    // the vertex stage is the peel pass's, so the depth is the same to a
+    // few ulps (another fragment shader may round a little differently).
+    // Where the peel drew this tile through an offset viewport, the two
+    // round window positions a little apart, which moves the depth of a
+    // face seen nearly edge on, fast-changing across a pixel, by far more.
+    if (uConvex == 0 && abs(t - result) > max(1.0e-6 * result, uSlack * across)) discard;
     bool cut = flipOfCode(code);
     writeSurface(cut ? -vFaceNormal : vFaceNormal, cut ? uBaseColor.y : uBaseColor.x);
 }
