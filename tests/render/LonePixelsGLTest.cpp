@@ -123,12 +123,12 @@ TEST_F(LonePixelsGL, NoneOnTheFlatFacesOfMcadsBevelGearPair) {
 
 // A frame drawn in tiles peels each tile through a viewport offset from
 // the frame's, which the normal pass draws through, and the two round window
-// positions a little apart. On a face seen nearly edge on that moved the
-// depth the normal pass computed by more than the few ulps it allowed, and
-// the pixel kept no normal: at 1024 x 768, drawn in tiles as strata-render
-// draws it, 250 such pixels on the Menger sponge's tunnel walls and 434 on
-// the letters of OpenSCAD's GEB example. Every covered pixel has its normal
-// now.
+// positions a little apart. On a face seen nearly edge on that moves the
+// depth the normal pass computes by more than a few ulps; with no more
+// slack than that, the pixel keeps no normal: at 1024 x 768, drawn in tiles
+// as strata-render draws it, 250 such pixels on the Menger sponge's tunnel
+// walls and 434 on the letters of OpenSCAD's GEB example. Every covered
+// pixel must have its normal.
 TEST_F(LonePixelsGL, EveryPixelOfATiledFrameHasItsNormal) {
     for (const std::string& path : {kSponge, kGeb}) {
         const scene::Tree tree = scene::parseCsgFile(path);
