@@ -58,6 +58,7 @@ namespace strata::exact {
 using mesh::Bounds;
 using mesh::Mesh;
 using mesh::boundsOf;
+using mesh::canonicalOrder;
 using mesh::transformed;
 
 namespace {
@@ -352,32 +353,6 @@ void moveOut(Solid& solid, Frame inner, Frame outer) {
         solid.point(v) = Kernel::Point_3(Kernel::FT(q[0]), Kernel::FT(q[1]), Kernel::FT(q[2]));
     }
     if (sign < 0) PMP::reverse_face_orientations(solid);
-}
-
-// Vertices in lexicographic order, each triangle turned to start at its
-// lowest vertex (its orientation kept), triangles sorted: CGAL's containers
-// order elements by where they were allocated, which moves with what other
-// threads allocate, so one result could be written in several orders.
-void canonicalOrder(Mesh& mesh) {
-    std::vector<uint32_t> byPosition(mesh.positions.size());
-    for (std::size_t v = 0; v < byPosition.size(); ++v) byPosition[v] = static_cast<uint32_t>(v);
-    std::stable_sort(byPosition.begin(), byPosition.end(), [&](uint32_t a, uint32_t b) {
-        const glm::dvec3& p = mesh.positions[a];
-        const glm::dvec3& q = mesh.positions[b];
-        return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
-    });
-    std::vector<uint32_t> rank(byPosition.size());
-    std::vector<glm::dvec3> positions(byPosition.size());
-    for (std::size_t r = 0; r < byPosition.size(); ++r) {
-        rank[byPosition[r]] = static_cast<uint32_t>(r);
-        positions[r] = mesh.positions[byPosition[r]];
-    }
-    mesh.positions = std::move(positions);
-    for (std::array<uint32_t, 3>& t : mesh.triangles) {
-        for (uint32_t& v : t) v = rank[v];
-        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    }
-    std::sort(mesh.triangles.begin(), mesh.triangles.end());
 }
 
 Mesh toMesh(Solid& s) {

@@ -27,6 +27,11 @@ void roundForFile(mesh::Mesh& mesh) {
         for (int k = 0; k < 3; ++k) p[k] = static_cast<double>(static_cast<float>(p[k]));
     }
     mesh::dropDegenerateTriangles(mesh);
+    // Rounding can bring points together or change their order: the file
+    // is put in the order of what it holds (the same 8,136 triangles of
+    // openscad_logo were written with four of them elsewhere under another
+    // allocator).
+    mesh::canonicalOrder(mesh);
 }
 
 io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path) {

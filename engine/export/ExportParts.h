@@ -27,8 +27,8 @@ io::StagedFile stageFlatExport(const scene::Tree& tree, const std::string& path)
 
 // Rounds `mesh` to single precision (what STL and 3MF keep; every format
 // gets the same points) and removes what rounding flattened (vertices
-// brought together, triangles left without area), keeping it closed
-// (ExactExport.cpp).
+// brought together, triangles left without area), keeping it closed, in
+// mesh::canonicalOrder (ExactExport.cpp).
 void roundForFile(mesh::Mesh& mesh);
 
 // What both meshes share (Export.cpp). Throws, naming the scene, for a 2D

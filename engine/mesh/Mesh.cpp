@@ -1,5 +1,6 @@
 #include "strata/mesh/Mesh.h"
 
+#include <algorithm>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -39,6 +40,28 @@ Mesh transformed(const Mesh& mesh, const glm::dmat4& transform) {
         for (auto& t : out.triangles) std::swap(t[1], t[2]);
     }
     return out;
+}
+
+void canonicalOrder(Mesh& mesh) {
+    std::vector<uint32_t> byPosition(mesh.positions.size());
+    for (std::size_t v = 0; v < byPosition.size(); ++v) byPosition[v] = static_cast<uint32_t>(v);
+    std::stable_sort(byPosition.begin(), byPosition.end(), [&](uint32_t a, uint32_t b) {
+        const glm::dvec3& p = mesh.positions[a];
+        const glm::dvec3& q = mesh.positions[b];
+        return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+    });
+    std::vector<uint32_t> rank(byPosition.size());
+    std::vector<glm::dvec3> positions(byPosition.size());
+    for (std::size_t r = 0; r < byPosition.size(); ++r) {
+        rank[byPosition[r]] = static_cast<uint32_t>(r);
+        positions[r] = mesh.positions[byPosition[r]];
+    }
+    mesh.positions = std::move(positions);
+    for (std::array<uint32_t, 3>& t : mesh.triangles) {
+        for (uint32_t& v : t) v = rank[v];
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    }
+    std::sort(mesh.triangles.begin(), mesh.triangles.end());
 }
 
 }  // namespace strata::mesh

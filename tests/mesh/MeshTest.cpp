@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -84,4 +86,37 @@ TEST(Transformed, IgnoresTheProjectiveRow) {
     Mesh m;
     m.positions = {{1, 2, 3}};
     EXPECT_EQ(transformed(m, t).positions[0], glm::dvec3(1, 2, 3));
+}
+
+TEST(CanonicalOrder, OneOrderForTheSameTrianglesHoweverTheyCome) {
+    // A sphere's mesh, and the same mesh with its points renumbered and its
+    // triangles shuffled and turned: both give the same points and
+    // triangles, in order of position, with every triangle's orientation
+    // and the volume kept.
+    const Mesh sphere = tessellate(scene::Sphere{2.0, {14, 12, 2}});
+    Mesh shuffled;
+    std::vector<uint32_t> renumber(sphere.positions.size());
+    for (std::size_t i = 0; i < renumber.size(); ++i) renumber[i] = static_cast<uint32_t>((i * 7 + 3) % renumber.size());
+    ASSERT_EQ(std::gcd(std::size_t(7), renumber.size()), 1u);
+    shuffled.positions.resize(sphere.positions.size());
+    for (std::size_t i = 0; i < renumber.size(); ++i) shuffled.positions[renumber[i]] = sphere.positions[i];
+    for (std::size_t t = sphere.triangles.size(); t-- > 0;) {
+        std::array<uint32_t, 3> tri = sphere.triangles[t];
+        for (uint32_t& v : tri) v = renumber[v];
+        std::rotate(tri.begin(), tri.begin() + static_cast<long>(t % 3), tri.end());
+        shuffled.triangles.push_back(tri);
+    }
+    Mesh a = sphere, b = shuffled;
+    canonicalOrder(a);
+    canonicalOrder(b);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.triangles, b.triangles);
+    for (std::size_t i = 1; i < a.positions.size(); ++i) {
+        const glm::dvec3 p = a.positions[i - 1], q = a.positions[i];
+        EXPECT_TRUE(p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z <= q.z) << i;
+    }
+    for (const std::array<uint32_t, 3>& t : a.triangles) EXPECT_LT(t[0], std::min(t[1], t[2]));
+    EXPECT_TRUE(std::is_sorted(a.triangles.begin(), a.triangles.end()));
+    EXPECT_NEAR(signedVolume(a), signedVolume(sphere), 1e-12);
+    EXPECT_TRUE(checkMesh(a).ok()) << checkMesh(a).describe();
 }

@@ -33,4 +33,13 @@ Bounds boundsOf(const Mesh& mesh);
 // stays outward oriented.
 Mesh transformed(const Mesh& mesh, const glm::dmat4& transform);
 
+// `mesh` in an order that depends on its geometry alone: points by position
+// (x, then y, then z; points at one position in the order they came), each
+// triangle turned to start at its least point (its orientation kept),
+// triangles in order of their points. CGAL's containers order elements by
+// where they were allocated, which moves with the allocator and with what
+// other threads allocate, so one result could otherwise be written in
+// several orders.
+void canonicalOrder(Mesh& mesh);
+
 }  // namespace strata::mesh
