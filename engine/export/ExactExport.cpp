@@ -27,10 +27,10 @@ void roundForFile(mesh::Mesh& mesh) {
         for (int k = 0; k < 3; ++k) p[k] = static_cast<double>(static_cast<float>(p[k]));
     }
     mesh::dropDegenerateTriangles(mesh);
-    // Rounding can bring points together or change their order: the file
-    // is put in the order of what it holds (the same 8,136 triangles of
-    // openscad_logo were written with four of them elsewhere under another
-    // allocator).
+    // Rounding can bring points together or change their order, and a
+    // result that does not come through the exact room's conversion (a
+    // hull's) comes in its library's order: the file is put in the order of
+    // what it holds, so that one result is one file.
     mesh::canonicalOrder(mesh);
 }
 
