@@ -9,11 +9,14 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "CellTopology.h"
 #include "ContourStats.h"
 #include "DexelImage.h"
 #include "Parallel.h"
+#include "FlatRegions.h"
 #include "Qef.h"
 #include "strata/core/Error.h"
 #include "strata/core/Progress.h"
@@ -42,12 +45,88 @@ constexpr double kInteriorMargin = 1e-6;
 constexpr double kFeatureReach = 1.0;
 constexpr double kFeatureResidual = 1e-5;
 
+// A triangle on a plane that faces against it with at least this shape
+// (below) is folded over, not a sliver along an edge.
+constexpr double kTurnedShape = 1e-3;
+
 // Twice a triangle's area over its longest edge squared: 0 for a degenerate
 // triangle, about 0.87 for an equilateral one. A diagonal whose thinner
 // triangle is below this is chosen only when the other is thinner still.
 constexpr double kMinTriangleShape = 1e-6;
 
 constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+
+// A point lies on a leaf's plane when it is this close to it, in cells:
+// above the samplers' error (the GPU's depths are single floats, about
+// 3e-5 of a cell at 512 cells), far below a cell.
+constexpr double kOnPlane = 1e-4;
+
+// Planes are met only where they are this far from parallel: for two, the
+// squared sine of their angle (about 0.06 degrees); for three or more, the
+// determinant of the sum of their normals' outer products (three unit
+// normals' determinant squared).
+constexpr double kLeastPlaneDeterminant = 1e-6;
+
+int planeCount(const VertexPlanes& ids) {
+    int n = 0;
+    while (n < kMostPlanes && ids[std::size_t(n)] >= 0) ++n;
+    return n;
+}
+
+// The point on every plane of `ids` nearest `near`; false where they are
+// too close to parallel to meet reliably, or (four or more) do not pass
+// within `tolerance` of one point.
+bool meetPlanes(const PlaneTable& table, const VertexPlanes& ids, const glm::dvec3& near, double tolerance,
+                glm::dvec3& out) {
+    const int count = planeCount(ids);
+    const Plane& a = table[ids[0]];
+    if (count == 1) {
+        out = near - a.normal * (glm::dot(a.normal, near) - a.offset);
+        return true;
+    }
+    if (count == 2) {
+        const Plane& b = table[ids[1]];
+        const double g = glm::dot(a.normal, b.normal);
+        const double det = 1.0 - g * g;
+        if (!(det > kLeastPlaneDeterminant)) return false;
+        const double ra = a.offset - glm::dot(a.normal, near);
+        const double rb = b.offset - glm::dot(b.normal, near);
+        out = near + a.normal * ((ra - g * rb) / det) + b.normal * ((rb - g * ra) / det);
+        return true;
+    }
+    // Least squares about `near`: (sum n nᵀ) d = sum n (offset - n · near).
+    glm::dmat3 m(0.0);
+    glm::dvec3 rhs(0.0);
+    for (int i = 0; i < count; ++i) {
+        const Plane& p = table[ids[std::size_t(i)]];
+        m += glm::outerProduct(p.normal, p.normal);
+        rhs += p.normal * (p.offset - glm::dot(p.normal, near));
+    }
+    const double det = glm::determinant(m);
+    if (!(std::abs(det) > kLeastPlaneDeterminant * kLeastPlaneDeterminant)) return false;
+    out = near + glm::inverse(m) * rhs;
+    for (int i = 0; i < count; ++i) {
+        const Plane& p = table[ids[std::size_t(i)]];
+        if (!(std::abs(glm::dot(p.normal, out) - p.offset) <= tolerance)) return false;
+    }
+    return true;
+}
+
+// Adds `id` to `ids` (holding `count`) unless there; false when full.
+bool addPlane(VertexPlanes& ids, int& count, std::int32_t id) {
+    if (std::find(ids.begin(), ids.begin() + count, id) != ids.begin() + count) return true;
+    if (count == kMostPlanes) return false;
+    ids[std::size_t(count++)] = id;
+    return true;
+}
+
+// In increasing order, -1 after them (insertion sort: at most six).
+void sortPlanes(VertexPlanes& ids, int count) {
+    for (int i = 1; i < count; ++i) {
+        for (int j = i; j > 0 && ids[std::size_t(j)] < ids[std::size_t(j - 1)]; --j)
+            std::swap(ids[std::size_t(j)], ids[std::size_t(j - 1)]);
+    }
+}
 
 // The four cells around a grid edge along axis a, as offsets in (u, v) from
 // the edge's low vertex, counter-clockwise seen from +a (u × v = a).
@@ -74,8 +153,15 @@ glm::dvec3 unitNormal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
 
 class Contourer {
 public:
-    Contourer(DexelImage& image, ContourStats& stats);
+    // With `planes`, each patch whose crossings' planes meet in the cell
+    // puts its vertex there and records them (vertexPlanes; snapToPlanes).
+    Contourer(DexelImage& image, ContourStats& stats, const PlaneTable* planes);
     mesh::Mesh run();
+    std::vector<VertexPlanes> takeVertexPlanes() { return std::move(vertexPlanes_); }
+    // Puts back, with no planes, the vertices of every quad that snapping
+    // turned over or flattened; returns how many moved.
+    std::size_t unfold();
+    glm::dvec3 sharedPlaneNormal(const std::array<std::uint32_t, 3>& t) const;
 
 private:
     std::size_t cellSlot(int i, int j) const { return std::size_t(i) + std::size_t(j) * std::size_t(cells_.x); }
@@ -86,6 +172,13 @@ private:
     std::size_t placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips, std::size_t at,
                                   std::size_t& clamped);
     glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p, double margin, std::size_t& clamped) const;
+    VertexPlanes snapToPlanes(const glm::ivec3& cell, std::span<const HermiteSample> patch, glm::dvec3& point,
+                              bool& reached) const;
+    VertexPlanes meetPatchPlanes(const glm::ivec3& cell, std::span<const std::int32_t> planes, glm::dvec3& point,
+                                 bool& reached) const;
+    bool withinCell(const glm::ivec3& cell, const glm::dvec3& p, double marginInCells) const;
+    bool alongEdgeInCell(const glm::ivec3& cell, const PlaneTable& table, const VertexPlanes& ids,
+                         glm::dvec3& point) const;
     void emitQuads(int slab);
     std::size_t emitQuad(const glm::ivec3& vertex, int axis, bool lowInside, std::size_t at);
     std::uint32_t vertexOf(const glm::ivec3& cell, int edge) const;
@@ -93,6 +186,11 @@ private:
 
     DexelImage& image_;
     ContourStats& stats_;
+    const PlaneTable* faces_;  // the solid's planes, or null
+    std::vector<VertexPlanes> vertexPlanes_;
+    std::vector<glm::dvec3> unsnapped_;  // each vertex where the QEF put it
+    std::vector<glm::dvec3> massPoint_;  // each vertex's crossings' mean
+    std::vector<std::uint8_t> reached_;  // snapped to a corner outside its cell
     glm::ivec3 vertices_;  // grid vertices per axis
     glm::ivec3 cells_;     // cells per axis
     std::array<std::vector<std::uint8_t>, kPlaneRing> planes_;
@@ -103,8 +201,8 @@ private:
     mesh::Mesh mesh_;
 };
 
-Contourer::Contourer(DexelImage& image, ContourStats& stats)
-    : image_(image), stats_(stats), vertices_(image.grid().count), cells_(image.grid().count - 1) {
+Contourer::Contourer(DexelImage& image, ContourStats& stats, const PlaneTable* planes)
+    : image_(image), stats_(stats), faces_(planes), vertices_(image.grid().count), cells_(image.grid().count - 1) {
     const std::size_t slabCells = std::size_t(cells_.x) * std::size_t(cells_.y);
     for (auto& c : configs_) c.assign(slabCells, 0);
     for (auto& f : flips_) f.assign(slabCells, 0);
@@ -127,6 +225,7 @@ mesh::Mesh Contourer::run() {
         emitQuads(k);
     }
     reportProgress(kProgressWhat, std::size_t(cells_.z), std::size_t(cells_.z));
+    if (faces_ != nullptr) stats_.unsnappedVertices += unfold();
     return std::move(mesh_);
 }
 
@@ -213,6 +312,12 @@ void Contourer::placeVertices(int slab) {
     }
     if (at >= kNoVertex) throw Error("contour: more vertices than a mesh can index");
     mesh_.positions.resize(at);
+    if (faces_ != nullptr) {
+        vertexPlanes_.resize(at, kNoPlanes);
+        unsnapped_.resize(at);
+        massPoint_.resize(at);
+        reached_.resize(at);
+    }
     std::size_t clamped = 0;
     STRATA_FOR_ROWS_SUM(clamped)
     for (int j = 0; j < cells_.y; ++j) {
@@ -252,9 +357,195 @@ std::size_t Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t co
         const QefSolution qef = minimizeQef(std::span(patch.data(), n));
         const double tolerance = kFeatureResidual * image_.grid().spacing;
         const bool proven = std::size_t(qef.rank) < n && qef.residual <= tolerance * tolerance * double(n);
-        mesh_.positions[at++] = keptInCell(cell, qef.point, proven ? -kFeatureReach : kInteriorMargin, clamped);
+        glm::dvec3 point = keptInCell(cell, qef.point, proven ? -kFeatureReach : kInteriorMargin, clamped);
+        if (faces_ != nullptr) {
+            glm::dvec3 mass(0.0);
+            for (std::size_t i = 0; i < n; ++i) mass += patch[i].point;
+            massPoint_[at] = mass / double(n);
+            unsnapped_[at] = point;
+            bool reached = false;
+            vertexPlanes_[at] = snapToPlanes(cell, std::span(patch.data(), n), point, reached);
+            reached_[at] = reached ? 1 : 0;
+        }
+        mesh_.positions[at++] = point;
     }
     return at;
+}
+
+// The vertex of a patch on the planes of its crossings: where all of them
+// meet, if that is inside the cell and on the leaves' faces (meetPatchPlanes),
+// else only those it lies on already.
+VertexPlanes Contourer::snapToPlanes(const glm::ivec3& cell, std::span<const HermiteSample> patch,
+                                     glm::dvec3& point, bool& reached) const {
+    const double tolerance = kOnPlane * image_.grid().spacing;
+    std::array<std::int32_t, kCellEdges> found;
+    for (std::size_t i = 0; i < patch.size(); ++i) found[i] = faces_->find(patch[i].point, patch[i].normal, tolerance);
+    const std::span<const std::int32_t> planes(found.data(), patch.size());
+    const VertexPlanes met = meetPatchPlanes(cell, planes, point, reached);
+    if (met[0] >= 0) return met;
+    VertexPlanes ids = kNoPlanes;
+    int count = 0;
+    for (const std::int32_t id : planes) {
+        if (id < 0) continue;
+        const Plane& plane = (*faces_)[id];
+        if (!(std::abs(glm::dot(plane.normal, point) - plane.offset) <= tolerance)) continue;
+        if (!addPlane(ids, count, id)) return kNoPlanes;
+    }
+    if (count == 0) return kNoPlanes;
+    sortPlanes(ids, count);
+    glm::dvec3 snapped;
+    if (!meetPlanes(*faces_, ids, point, tolerance, snapped) || !(glm::length(snapped - point) <= 2.0 * tolerance))
+        return kNoPlanes;
+    point = snapped;
+    return ids;
+}
+
+// Where the planes of all of a patch's crossings meet (one to six of them;
+// four or more only where they pass through one point, as the faces around
+// a vertex of a ball do), moved there from `point` when that is inside the
+// cell (an edge's point strictly, by kInteriorMargin; a corner within
+// kFeatureReach, as a proven QEF corner may be) and on a leaf triangle of
+// each plane: planes that meet where no face of the solid is (a face
+// between them gave no crossing) are not the patch's edge or corner, and
+// moving there would fold the mesh. `reached`: the point is outside the cell.
+VertexPlanes Contourer::meetPatchPlanes(const glm::ivec3& cell, std::span<const std::int32_t> planes,
+                                        glm::dvec3& point, bool& reached) const {
+    VertexPlanes ids = kNoPlanes;
+    int count = 0;
+    const double tolerance = kOnPlane * image_.grid().spacing;
+    for (const std::int32_t id : planes) {
+        if (id < 0 || !addPlane(ids, count, id)) return kNoPlanes;
+    }
+    sortPlanes(ids, count);
+    glm::dvec3 snapped;
+    if (!meetPlanes(*faces_, ids, point, tolerance, snapped)) return kNoPlanes;
+    // An edge's line may pass through the cell away from the point nearest
+    // `point`: the nearest of its points inside the cell.
+    if (count == 2 && !alongEdgeInCell(cell, *faces_, ids, snapped)) return kNoPlanes;
+    // A corner may lie in the next cell, as a proven QEF corner may.
+    const double margin = count == 1 ? 0.0 : count == 2 ? kInteriorMargin : -kFeatureReach;
+    if (!withinCell(cell, snapped, margin)) return kNoPlanes;
+    for (int i = 0; i < count; ++i) {
+        if (!faces_->onTriangle(ids[std::size_t(i)], snapped, tolerance)) return kNoPlanes;
+    }
+    reached = !withinCell(cell, snapped, kInteriorMargin);
+    point = snapped;
+    return ids;
+}
+
+// The normal, facing as the crossings said, of a plane that one corner of
+// `t` was snapped to and all three lie on (to within kOnPlane), or zero.
+glm::dvec3 Contourer::sharedPlaneNormal(const std::array<std::uint32_t, 3>& t) const {
+    const double tolerance = kOnPlane * image_.grid().spacing;
+    for (const std::uint32_t v : t) {
+        for (const std::int32_t id : vertexPlanes_[v]) {
+            if (id < 0) break;
+            const Plane& plane = (*faces_)[id];
+            const auto on = [&](std::uint32_t w) {
+                return std::abs(glm::dot(plane.normal, mesh_.positions[w]) - plane.offset) <= tolerance;
+            };
+            if (on(t[0]) && on(t[1]) && on(t[2])) return plane.normal;
+        }
+    }
+    return glm::dvec3(0.0);
+}
+
+// Snapping moves a vertex within its cell (a corner a little beyond), and
+// a vertex near a cell face can then pass its neighbour's across it: a
+// triangle turns over (against its quad's facing before snapping, or
+// against a plane its corners lie on) or flattens (two corners met). Such
+// a quad's snapped vertices go back to their QEF points (those snapped
+// outside their cells first), its diagonal is chosen again, and so on
+// until no triangle is turned. Where the QEF points themselves lie turned
+// over within a plane (the contour's own fold along a slanted edge), they
+// go to their crossings' means. Each vertex moves at most twice.
+std::size_t Contourer::unfold() {
+    std::size_t reverted = 0;
+    const auto& p = mesh_.positions;
+    const auto& q = unsnapped_;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t at = 0; at < mesh_.triangles.size(); at += 2) {
+            // The quad's corners, whichever diagonal split it (addQuad).
+            const auto& t0 = mesh_.triangles[at];
+            const auto& t1 = mesh_.triangles[at + 1];
+            const std::array<std::uint32_t, 4> quad =
+                t1[0] == t0[0] ? std::array{t0[0], t0[1], t0[2], t1[2]} : std::array{t0[0], t0[1], t1[1], t1[2]};
+            addQuad(quad, at);
+            // The quad's facing before snapping: its vector area, which
+            // does not depend on the diagonal.
+            const glm::dvec3 before = glm::cross(q[quad[2]] - q[quad[0]], q[quad[3]] - q[quad[1]]);
+            for (const std::size_t f : {at, at + 1}) {
+                const auto& t = mesh_.triangles[f];
+                const glm::dvec3 now = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+                // Turned within a plane, by more than a sliver along an
+                // edge (whose normal says nothing) can be.
+                const double longest = std::max({glm::dot(p[t[1]] - p[t[0]], p[t[1]] - p[t[0]]),
+                                                 glm::dot(p[t[2]] - p[t[1]], p[t[2]] - p[t[1]]),
+                                                 glm::dot(p[t[0]] - p[t[2]], p[t[0]] - p[t[2]])});
+                const bool turnedInPlane = glm::dot(now, sharedPlaneNormal(t)) < -kTurnedShape * longest;
+                const bool turned = turnedInPlane || glm::dot(now, before) <= 0.0;
+                const bool flattened = triangleShape(p[t[0]], p[t[1]], p[t[2]]) < kMinTriangleShape;
+                if (!turned && !flattened) continue;
+                // Corners snapped outside their cells first (one may have
+                // met another cell's corner), then every snapped corner.
+                bool moved = false;
+                bool anyReached = false;
+                for (const std::uint32_t v : quad) anyReached = anyReached || reached_[v] != 0;
+                for (const std::uint32_t v : quad) {
+                    if (mesh_.positions[v] == unsnapped_[v] || (anyReached && reached_[v] == 0)) continue;
+                    mesh_.positions[v] = unsnapped_[v];
+                    vertexPlanes_[v] = kNoPlanes;
+                    reached_[v] = 0;
+                    ++reverted;
+                    moved = true;
+                }
+                // The QEF's own points fold here: their crossings' means.
+                const bool unsnappedAny = moved;
+                for (const std::uint32_t v : quad) {
+                    if (unsnappedAny || !turnedInPlane || mesh_.positions[v] == massPoint_[v]) continue;
+                    mesh_.positions[v] = unsnapped_[v] = massPoint_[v];
+                    vertexPlanes_[v] = kNoPlanes;
+                    ++reverted;
+                    moved = true;
+                }
+                changed = changed || moved;
+            }
+        }
+    }
+    return reverted;
+}
+
+// Moves `point`, on the line where planes ids[0] and ids[1] meet, along it
+// into the cell (by kInteriorMargin); false where the line misses the cell.
+bool Contourer::alongEdgeInCell(const glm::ivec3& cell, const PlaneTable& table, const VertexPlanes& ids,
+                                glm::dvec3& point) const {
+    const glm::dvec3 direction = glm::cross(table[ids[0]].normal, table[ids[1]].normal);
+    const double margin = kInteriorMargin * image_.grid().spacing;
+    double low = -1e300, high = 1e300;
+    for (int a = 0; a < 3; ++a) {
+        const double from = image_.coordinate(a, cell[a]) + margin - point[a];
+        const double to = image_.coordinate(a, cell[a] + 1) - margin - point[a];
+        if (direction[a] == 0.0) {
+            if (from > 0.0 || to < 0.0) return false;
+            continue;
+        }
+        const double t0 = from / direction[a], t1 = to / direction[a];
+        low = std::max(low, std::min(t0, t1));
+        high = std::min(high, std::max(t0, t1));
+    }
+    if (!(low <= high)) return false;
+    point += direction * std::clamp(0.0, low, high);
+    return true;
+}
+
+bool Contourer::withinCell(const glm::ivec3& cell, const glm::dvec3& p, double marginInCells) const {
+    const double margin = marginInCells * image_.grid().spacing;
+    for (int a = 0; a < 3; ++a) {
+        if (!(p[a] >= image_.coordinate(a, cell[a]) + margin && p[a] <= image_.coordinate(a, cell[a] + 1) - margin))
+            return false;
+    }
+    return true;
 }
 
 // A minimizer outside the allowed box (the cell less the margin, or grown by
@@ -373,15 +664,18 @@ void Contourer::addQuad(const std::array<std::uint32_t, 4>& q, std::size_t at) {
 
 }  // namespace
 
-mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats) {
+mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats, const PlaneTable* planes) {
     DexelImage image(dexels);
     if (image.empty()) return {};
-    return Contourer(image, stats).run();
+    Contourer contourer(image, stats, planes);
+    mesh::Mesh mesh = contourer.run();
+    if (planes == nullptr) return mesh;
+    return mergeFlatRegions(std::move(mesh), contourer.takeVertexPlanes(), *planes, stats);
 }
 
-mesh::Mesh contour(const Dexels& dexels) {
+mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes) {
     ContourStats stats;
-    return contourCounting(dexels, stats);
+    return contourCounting(dexels, stats, planes);
 }
 
 }  // namespace strata::contour

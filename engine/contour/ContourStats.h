@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "strata/contour/Dexels.h"
+#include "strata/contour/Planes.h"
 #include "strata/mesh/Mesh.h"
 
 namespace strata::contour {
@@ -13,9 +14,11 @@ struct ContourStats {
     std::size_t ambiguousFaces = 0;   // cell faces with alternating corner signs, each counted once
     std::size_t flippedFaces = 0;     // of those, the ones whose pairing was flipped (CellTopology.h)
     std::size_t clampedVertices = 0;  // patch vertices whose QEF minimizer left their cell
+    std::size_t unsnappedVertices = 0;  // vertices put back off their planes where snapping folded the mesh
+    std::size_t mergedVertices = 0;   // vertices the flat regions' merge removed (FlatRegions.h)
 };
 
 // contour(), counting as it goes.
-mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats);
+mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats, const PlaneTable* planes = nullptr);
 
 }  // namespace strata::contour

@@ -111,7 +111,13 @@ StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model
         checkMeshFits(dexels, settings.resolution, SourceLocation{tree.source, 0, 0});
         checkNothingBelowGrid(dexels, settings.resolution, SourceLocation{tree.source, 0, 0});
         t = Clock::now();
-        result = contour::contour(dexels);
+        // Every face of the result lies on a leaf's plane: the contour
+        // rebuilds its flat regions on them.
+        const contour::PlaneTable planes = contour::PlaneTable::fromMeshes(model.leafMeshes);
+        result = contour::contour(dexels, &planes);
+        // Points a hair apart in double precision can round to one float
+        // (the menger sponge's coincident walls): as the exact mesh is.
+        roundForFile(result);
         out.contourMs = msSince(t);
         reach = grid.spacing;
     }

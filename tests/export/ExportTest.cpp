@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -109,6 +110,35 @@ TEST_F(ExportEntry, TheSampledMeshIsClosedAndWithinACellOfTheSolid) {
     // Flat faces on the grid's offset planes come back on their planes: the
     // volume is the solid's to well within a cell's layer over its surface.
     EXPECT_NEAR(mesh::test::signedVolume(mesh), kNotchedVolume, 1.0);
+}
+
+// A block with a notch and a bore through it, as a CAD part is: flat faces
+// and a faceted cylinder. Sampled, its flat faces and the bore's facets
+// are rebuilt on their planes, and the mesh has at most three times the
+// exact mesh's triangles (a plain contour at 256 cells has about 200 000).
+TEST_F(ExportEntry, TheSampledMeshOfACadPartIsAboutAsSmallAsTheExactOne) {
+    const char* const part =
+        "difference() {\n"
+        "cube(size = [20, 14, 10], center = false);\n"
+        "multmatrix([[1, 0, 0, 15], [0, 1, 0, -1], [0, 0, 1, 6], [0, 0, 0, 1]]) cube(size = [6, 16, 5], center = false);\n"
+        "multmatrix([[1, 0, 0, 7], [0, 1, 0, 7], [0, 0, 1, -1], [0, 0, 0, 1]]) "
+        "cylinder($fn = 24, h = 12, r1 = 4, r2 = 4, center = false);\n"
+        "}\n";
+    std::size_t exactTriangles = 0, sampledTriangles = 0;
+    const mesh::Mesh exact = exported(part, "exact.off", exporting::ExportSettings{}, &exactTriangles);
+    exporting::ExportSettings settings;
+    settings.sampled = true;
+    settings.reference = true;
+    settings.resolution = 256;
+    const mesh::Mesh sampled = exported(part, "sampled.off", settings, &sampledTriangles);
+    EXPECT_TRUE(mesh::checkMesh(sampled).ok()) << mesh::checkMesh(sampled).describe();
+    EXPECT_LE(sampledTriangles, 3 * exactTriangles);
+    // Every vertex on the leaves' planes: the exact volume, to well within
+    // one cell's.
+    const double cell = 20.0 / 256.0;
+    EXPECT_NEAR(mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact), cell * cell * cell);
+    std::printf("CAD part: %zu sampled triangles, %zu exact; volume %.6f against %.6f\n", sampledTriangles,
+                exactTriangles, mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact));
 }
 
 TEST_F(ExportEntry, ADrawingOfAFlatModelReadsBackToItsArea) {

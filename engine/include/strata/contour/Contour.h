@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "strata/contour/Dexels.h"
+#include "strata/contour/Planes.h"
 #include "strata/mesh/Mesh.h"
 
 namespace strata::contour {
@@ -15,7 +16,13 @@ namespace strata::contour {
 // and corners of the solid are kept where a cell's crossings show them.
 // Reports progress (core/Progress.h) per slab of cells. Throws strata::Error
 // on an inconsistent image (a ray that ends inside, crossings out of order).
-mesh::Mesh contour(const Dexels& dexels);
+//
+// With `planes` (the planes every face of the solid lies on), a patch whose
+// crossings lie on one, two or three of them puts its vertex on them, and
+// the flat regions that result are merged into few triangles: a flat face
+// keeps the vertices of its outline, a sharp edge between two planes those
+// at its ends, and the surface stays the same set of points.
+mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes = nullptr);
 
 // A part of the solid, or a gap in it, that lies between two grid points
 // along a ray: no grid point sees it, so the contour loses it (a wall

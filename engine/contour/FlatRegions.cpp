@@ -1,0 +1,213 @@
+#include "FlatRegions.h"
+
+#include <algorithm>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+namespace strata::contour {
+namespace {
+
+constexpr std::uint32_t kDead = std::numeric_limits<std::uint32_t>::max();
+
+bool holds(const VertexPlanes& planes, std::int32_t id) {
+    return id >= 0 && std::find(planes.begin(), planes.end(), id) != planes.end();
+}
+
+class Merger {
+public:
+    Merger(mesh::Mesh mesh, std::vector<VertexPlanes> vertexPlanes, const PlaneTable& planes)
+        : mesh_(std::move(mesh)), vertexPlanes_(std::move(vertexPlanes)), planes_(planes) {}
+
+    std::size_t run();
+    mesh::Mesh result();
+
+private:
+    std::int32_t labelOf(const std::array<std::uint32_t, 3>& t) const;
+    bool tryRemove(std::uint32_t u);
+    // A vertex with a triangle on no plane stays: that triangle never goes
+    // (only triangles on planes are dropped by a collapse).
+    bool fixed(std::uint32_t u) const {
+        for (const std::uint32_t f : faces_[u]) {
+            if (label_[f] < 0) return true;
+        }
+        return false;
+    }
+    void neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) const;
+    // The least shape of the triangles around `u` with `u` replaced by `v`
+    // (those holding both are dropped); -1 where one would turn over, leave
+    // its plane or fall below kMinMergedShape.
+    double shapeAfterCollapse(std::uint32_t u, std::uint32_t v) const;
+    void collapse(std::uint32_t u, std::uint32_t v);
+    void forget(std::uint32_t vertex, std::uint32_t face);
+
+    mesh::Mesh mesh_;
+    std::vector<VertexPlanes> vertexPlanes_;
+    const PlaneTable& planes_;
+    std::vector<std::int32_t> label_;                 // per triangle: its plane, or -1
+    std::vector<std::vector<std::uint32_t>> faces_;   // per vertex: its live triangles
+    std::vector<std::uint8_t> touched_;               // per vertex: next to a collapse of this pass
+    std::vector<std::uint32_t> ringU_, ringV_;        // scratch
+    std::vector<std::pair<double, std::uint32_t>> candidates_;
+};
+
+// The one plane all three vertices lie on, if the triangle faces its way.
+std::int32_t Merger::labelOf(const std::array<std::uint32_t, 3>& t) const {
+    const VertexPlanes& a = vertexPlanes_[t[0]];
+    for (const std::int32_t id : a) {
+        if (id < 0 || !holds(vertexPlanes_[t[1]], id) || !holds(vertexPlanes_[t[2]], id)) continue;
+        const auto& p = mesh_.positions;
+        const glm::dvec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+        return glm::dot(n, planes_[id].normal) >= 0.0 ? id : -1;
+    }
+    return -1;
+}
+
+std::size_t Merger::run() {
+    const std::size_t vertices = mesh_.positions.size();
+    label_.resize(mesh_.triangles.size());
+    faces_.resize(vertices);
+    std::vector<std::uint32_t> degree(vertices, 0);
+    for (const auto& t : mesh_.triangles) {
+        for (const std::uint32_t v : t) ++degree[v];
+    }
+    for (std::size_t v = 0; v < vertices; ++v) faces_[v].reserve(degree[v]);
+    for (std::size_t f = 0; f < mesh_.triangles.size(); ++f) {
+        label_[f] = labelOf(mesh_.triangles[f]);
+        for (const std::uint32_t v : mesh_.triangles[f]) faces_[v].push_back(std::uint32_t(f));
+    }
+    // Passes over the vertices in which no two collapses touch: each pass
+    // removes about every other vertex of a flat region, and the regions'
+    // fans stay small until the last passes (collapsing as they come would
+    // grow a few vertices into hubs that every later try pays for).
+    // A vertex with a triangle on no plane never leaves (fixed): it drops
+    // out of the passes.
+    touched_.assign(vertices, 0);
+    std::vector<std::uint32_t> live(vertices);
+    for (std::uint32_t v = 0; v < vertices; ++v) live[v] = v;
+    std::size_t removed = 0;
+    for (bool any = true; any;) {
+        any = false;
+        std::fill(touched_.begin(), touched_.end(), std::uint8_t(0));
+        std::size_t kept = 0;
+        for (const std::uint32_t u : live) {
+            if (faces_[u].empty() || fixed(u)) continue;
+            live[kept++] = u;
+            if (touched_[u] || !tryRemove(u)) continue;
+            ++removed;
+            any = true;
+        }
+        live.resize(kept);
+    }
+    return removed;
+}
+
+void Merger::neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) const {
+    out.clear();
+    for (const std::uint32_t f : faces_[v]) {
+        for (const std::uint32_t w : mesh_.triangles[f]) {
+            if (w != v) out.push_back(w);
+        }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+bool Merger::tryRemove(std::uint32_t u) {
+    neighboursOf(u, ringU_);
+    // The neighbours it may collapse into, best shape first.
+    candidates_.clear();
+    for (const std::uint32_t v : ringU_) {
+        const double shape = shapeAfterCollapse(u, v);
+        if (shape >= kMinMergedShape) candidates_.push_back({shape, v});
+    }
+    std::sort(candidates_.begin(), candidates_.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [shape, v] : candidates_) {
+        // The two rings may share only the edge's two opposite vertices.
+        neighboursOf(v, ringV_);
+        std::size_t shared = 0;
+        for (const std::uint32_t w : ringV_) shared += std::binary_search(ringU_.begin(), ringU_.end(), w) ? 1 : 0;
+        if (shared != 2) continue;
+        collapse(u, v);
+        return true;
+    }
+    return false;
+}
+
+double Merger::shapeAfterCollapse(std::uint32_t u, std::uint32_t v) const {
+    const auto& p = mesh_.positions;
+    std::size_t dropped = 0;
+    double least = std::numeric_limits<double>::max();
+    for (const std::uint32_t f : faces_[u]) {
+        std::array<std::uint32_t, 3> t = mesh_.triangles[f];
+        if (t[0] == v || t[1] == v || t[2] == v) {
+            ++dropped;
+            continue;
+        }
+        const std::int32_t id = label_[f];
+        if (!holds(vertexPlanes_[v], id)) return -1.0;
+        for (std::uint32_t& w : t) w = w == u ? v : w;
+        const glm::dvec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+        const double longest = std::max({glm::dot(p[t[1]] - p[t[0]], p[t[1]] - p[t[0]]),
+                                         glm::dot(p[t[2]] - p[t[1]], p[t[2]] - p[t[1]]),
+                                         glm::dot(p[t[0]] - p[t[2]], p[t[0]] - p[t[2]])});
+        if (!(longest > 0.0)) return -1.0;
+        least = std::min(least, glm::dot(n, planes_[id].normal) / longest);
+        // Not a collapse to take: no need to know by how much.
+        if (least < kMinMergedShape) return -1.0;
+    }
+    // An edge of a closed 2-manifold has exactly two triangles.
+    return dropped == 2 ? least : -1.0;
+}
+
+void Merger::forget(std::uint32_t vertex, std::uint32_t face) {
+    std::vector<std::uint32_t>& list = faces_[vertex];
+    list.erase(std::find(list.begin(), list.end(), face));
+}
+
+void Merger::collapse(std::uint32_t u, std::uint32_t v) {
+    const std::vector<std::uint32_t> around = std::move(faces_[u]);
+    faces_[u].clear();
+    for (const std::uint32_t f : around) {
+        std::array<std::uint32_t, 3>& t = mesh_.triangles[f];
+        if (t[0] == v || t[1] == v || t[2] == v) {
+            for (const std::uint32_t w : t) {
+                if (w != u) forget(w, f);
+            }
+            t = {kDead, kDead, kDead};
+            continue;
+        }
+        for (std::uint32_t& w : t) w = w == u ? v : w;
+        faces_[v].push_back(f);
+    }
+    // Its neighbours wait for the next pass.
+    neighboursOf(v, ringV_);
+    touched_[v] = 1;
+    for (const std::uint32_t w : ringV_) touched_[w] = 1;
+}
+
+mesh::Mesh Merger::result() {
+    mesh::Mesh out;
+    std::vector<std::uint32_t> index(mesh_.positions.size(), kDead);
+    for (std::size_t v = 0; v < mesh_.positions.size(); ++v) {
+        if (faces_[v].empty()) continue;
+        index[v] = std::uint32_t(out.positions.size());
+        out.positions.push_back(mesh_.positions[v]);
+    }
+    for (const auto& t : mesh_.triangles) {
+        if (t[0] == kDead) continue;
+        out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+    }
+    return out;
+}
+
+}  // namespace
+
+mesh::Mesh mergeFlatRegions(mesh::Mesh mesh, std::vector<VertexPlanes> vertexPlanes, const PlaneTable& planes,
+                            ContourStats& stats) {
+    Merger merger(std::move(mesh), std::move(vertexPlanes), planes);
+    stats.mergedVertices += merger.run();
+    return merger.result();
+}
+
+}  // namespace strata::contour

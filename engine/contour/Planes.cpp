@@ -1,0 +1,131 @@
+#include "strata/contour/Planes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace strata::contour {
+namespace {
+
+// Normals are bucketed on a grid of this many cells per unit of each
+// component; a query looks in the buckets within kNormalSpread of its
+// normal (one or two along each axis).
+constexpr double kCellsPerUnit = 32.0;
+
+// Two triangles' planes are one where their normals differ by at most this
+// and their offsets by this times the meshes' extent.
+constexpr double kMergeNormal = 1e-7;
+constexpr double kMergeOffset = 1e-7;
+
+// How far apart, at most, two unit normals within kNormalMatch are.
+const double kNormalSpread = std::sqrt(2.0 * (1.0 - PlaneTable::kNormalMatch));
+
+}  // namespace
+
+PlaneTable::Key PlaneTable::keyOf(const glm::ivec3& cell) {
+    const auto part = [](int c) { return std::uint64_t(std::uint32_t(c + 1024) & 0xfffff); };
+    return part(cell.x) | part(cell.y) << 20 | part(cell.z) << 40;
+}
+
+glm::ivec3 PlaneTable::cellOf(const glm::dvec3& normal) {
+    return glm::ivec3(glm::floor(normal * kCellsPerUnit));
+}
+
+PlaneTable PlaneTable::fromMeshes(std::span<const mesh::Mesh> meshes) {
+    mesh::Bounds box;
+    for (const mesh::Mesh& m : meshes) box.extend(mesh::boundsOf(m));
+    PlaneTable table;
+    if (box.empty()) return table;
+    table.mergeTolerance_ = kMergeOffset * std::max(box.diagonal(), glm::length(box.center()));
+    for (const mesh::Mesh& m : meshes) {
+        for (const auto& t : m.triangles) {
+            const glm::dvec3& a = m.positions[t[0]];
+            const glm::dvec3 n = glm::cross(m.positions[t[1]] - a, m.positions[t[2]] - a);
+            const double length = glm::length(n);
+            if (!(length > 0.0) || !std::isfinite(length)) continue;
+            const glm::dvec3 unit = n / length;
+            const std::int32_t id = table.add(Plane{unit, glm::dot(unit, a)});
+            table.triangles_[std::size_t(id / 2)].push_back({a, m.positions[t[1]], m.positions[t[2]]});
+        }
+    }
+    return table;
+}
+
+std::int32_t PlaneTable::add(const Plane& plane) {
+    std::int32_t known = -1;
+    visit(plane.normal, plane.offset - mergeTolerance_, plane.offset + mergeTolerance_, [&](std::int32_t id) {
+        if (known < 0 && glm::length(planes_[std::size_t(id)].normal - plane.normal) <= kMergeNormal) known = id;
+    });
+    if (known >= 0) return known;
+    const auto id = std::int32_t(planes_.size());
+    insert(plane);
+    insert(Plane{-plane.normal, -plane.offset});
+    triangles_.emplace_back();
+    return id;
+}
+
+bool PlaneTable::onTriangle(std::int32_t id, const glm::dvec3& point, double tolerance) const {
+    for (const auto& t : triangles_[std::size_t(id / 2)]) {
+        const glm::dvec3 n = glm::normalize(glm::cross(t[1] - t[0], t[2] - t[0]));
+        bool inside = true;
+        for (int e = 0; e < 3 && inside; ++e) {
+            const glm::dvec3& a = t[std::size_t(e)];
+            const glm::dvec3& b = t[std::size_t((e + 1) % 3)];
+            const glm::dvec3 edge = b - a;
+            // Signed distance of `point` from the edge's line, inward positive.
+            inside = glm::dot(glm::cross(edge, point - a), n) >= -tolerance * glm::length(edge);
+        }
+        if (inside) return true;
+    }
+    return false;
+}
+
+void PlaneTable::insert(const Plane& plane) {
+    const auto id = std::int32_t(planes_.size());
+    planes_.push_back(plane);
+    std::vector<std::int32_t>& bucket = byDirection_[keyOf(cellOf(plane.normal))];
+    const auto at = std::upper_bound(bucket.begin(), bucket.end(), plane.offset, [&](double o, std::int32_t other) {
+        return o < planes_[std::size_t(other)].offset;
+    });
+    bucket.insert(at, id);
+}
+
+template <typename Visit>
+void PlaneTable::visit(const glm::dvec3& normal, double low, double high, Visit&& visitPlane) const {
+    // The buckets that normals within kNormalSpread of this one fall in.
+    const glm::ivec3 first = cellOf(normal - glm::dvec3(kNormalSpread));
+    const glm::ivec3 last = cellOf(normal + glm::dvec3(kNormalSpread));
+    for (int z = first.z; z <= last.z; ++z) {
+        for (int y = first.y; y <= last.y; ++y) {
+            for (int x = first.x; x <= last.x; ++x) {
+                const auto found = byDirection_.find(keyOf(glm::ivec3(x, y, z)));
+                if (found == byDirection_.end()) continue;
+                const std::vector<std::int32_t>& ids = found->second;
+                auto it = std::lower_bound(ids.begin(), ids.end(), low, [&](std::int32_t id, double o) {
+                    return planes_[std::size_t(id)].offset < o;
+                });
+                for (; it != ids.end() && planes_[std::size_t(*it)].offset <= high; ++it) visitPlane(*it);
+            }
+        }
+    }
+}
+
+std::int32_t PlaneTable::find(const glm::dvec3& point, const glm::dvec3& normal, double tolerance) const {
+    const double along = glm::dot(normal, point);
+    const double window = tolerance + kNormalSpread * glm::length(point);
+    std::int32_t best = -1;
+    double bestDistance = tolerance;
+    visit(normal, along - window, along + window, [&](std::int32_t id) {
+        const Plane& plane = planes_[std::size_t(id)];
+        if (glm::dot(plane.normal, normal) < kNormalMatch) return;
+        const double distance = std::abs(glm::dot(plane.normal, point) - plane.offset);
+        if (distance <= bestDistance) {
+            bestDistance = distance;
+            best = id;
+        }
+    });
+    return best;
+}
+
+}  // namespace strata::contour

@@ -1,0 +1,208 @@
+// The contour rebuilt on the solid's planes (Contour.h with a PlaneTable):
+// boxes and cut boxes sampled in closed form, their planes from meshes
+// written here, the result checked by CGAL (MeshInspection) for soundness
+// and volume, and held to the few triangles their flat faces need.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Surface_mesh.h>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "AnalyticDexels.h"
+#include "ContourStats.h"
+#include "MeshInspection.h"
+#include "strata/contour/Contour.h"
+#include "strata/contour/Planes.h"
+
+namespace strata::contour::test {
+namespace {
+
+// A box's 12 triangles, outward: the mesh a leaf would hand the table.
+mesh::Mesh boxMesh(const glm::dvec3& center, const glm::dmat3& axes, const glm::dvec3& half) {
+    mesh::Mesh m;
+    for (int c = 0; c < 8; ++c) {
+        glm::dvec3 p = center;
+        for (int a = 0; a < 3; ++a) p += axes[a] * (((c >> a) & 1) ? half[a] : -half[a]);
+        m.positions.push_back(p);
+    }
+    // Each face as a quad of corner codes, counter-clockwise from outside.
+    const std::array<std::array<std::uint32_t, 4>, 6> faces{{{0, 2, 3, 1},
+                                                             {4, 5, 7, 6},
+                                                             {0, 1, 5, 4},
+                                                             {2, 6, 7, 3},
+                                                             {0, 4, 6, 2},
+                                                             {1, 3, 7, 5}}};
+    for (const auto& q : faces) {
+        m.triangles.push_back({q[0], q[1], q[2]});
+        m.triangles.push_back({q[0], q[2], q[3]});
+    }
+    return m;
+}
+
+double boxVolume(const glm::dvec3& half) { return 8.0 * half.x * half.y * half.z; }
+
+// The volume of a − b, by CGAL's corefinement of the two meshes: the exact
+// answer the sampled solid should keep.
+double differenceVolume(const mesh::Mesh& a, const mesh::Mesh& b) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Surface = CGAL::Surface_mesh<Kernel::Point_3>;
+    const auto toSurface = [](const mesh::Mesh& m) {
+        Surface s;
+        std::vector<Surface::Vertex_index> v;
+        for (const glm::dvec3& p : m.positions) v.push_back(s.add_vertex(Kernel::Point_3(p.x, p.y, p.z)));
+        for (const auto& t : m.triangles) s.add_face(v[t[0]], v[t[1]], v[t[2]]);
+        return s;
+    };
+    Surface sa = toSurface(a), sb = toSurface(b), out;
+    EXPECT_TRUE(CGAL::Polygon_mesh_processing::corefine_and_compute_difference(sa, sb, out));
+    return CGAL::Polygon_mesh_processing::volume(out);
+}
+
+struct Rebuilt {
+    mesh::Mesh mesh;
+    MeshInspection inspection;
+    ContourStats stats;
+};
+
+Rebuilt rebuild(const Solid& solid, const DexelGrid& grid, const std::vector<mesh::Mesh>& leaves) {
+    const PlaneTable planes = PlaneTable::fromMeshes(leaves);
+    Rebuilt r;
+    r.mesh = contourCounting(sample(solid, grid), r.stats, &planes);
+    r.inspection = inspect(r.mesh);
+    return r;
+}
+
+}  // namespace
+
+TEST(PlaneTable, FindsThePlaneAndFacingACrossingLiesOn) {
+    const std::vector<mesh::Mesh> cube{boxMesh(glm::dvec3(0.0), glm::dmat3(1.0), glm::dvec3(1.0))};
+    const PlaneTable table = PlaneTable::fromMeshes(cube);
+    // Six planes, two triangles each, in both facings.
+    EXPECT_EQ(table.size(), 12u);
+    const glm::dvec3 onTop(0.3, -0.2, 1.0);
+    const std::int32_t up = table.find(onTop, glm::dvec3(0, 0, 1), 1e-6);
+    const std::int32_t down = table.find(onTop, glm::dvec3(0, 0, -1), 1e-6);
+    ASSERT_GE(up, 0);
+    ASSERT_GE(down, 0);
+    EXPECT_NE(up, down);
+    EXPECT_EQ(table[up].normal, glm::dvec3(0, 0, 1));
+    EXPECT_DOUBLE_EQ(table[up].offset, 1.0);
+    EXPECT_EQ(table[down].normal, glm::dvec3(0, 0, -1));
+    // Off the plane by more than the tolerance, or facing a degree away: none.
+    EXPECT_EQ(table.find(onTop + glm::dvec3(0, 0, 2e-6), glm::dvec3(0, 0, 1), 1e-6), -1);
+    const double tilt = 1.0 * 3.14159265358979 / 180.0;
+    EXPECT_EQ(table.find(onTop, glm::dvec3(std::sin(tilt), 0, std::cos(tilt)), 1e-6), -1);
+    // Within the tolerance, and a normal a little off (a float sampler's): found.
+    EXPECT_EQ(table.find(onTop + glm::dvec3(0, 0, 5e-7), glm::normalize(glm::dvec3(1e-5, 0, 1)), 1e-6), up);
+    // The plane's triangles bound it: a point beyond the cube's face is on
+    // its plane but on none of its triangles.
+    EXPECT_TRUE(table.onTriangle(up, onTop, 1e-9));
+    EXPECT_TRUE(table.onTriangle(down, glm::dvec3(1.0, 1.0, 1.0), 1e-9));
+    EXPECT_FALSE(table.onTriangle(up, glm::dvec3(1.5, 0.0, 1.0), 1e-9));
+}
+
+TEST(PlaneTable, TrianglesOnOnePlaneShareIt) {
+    // Two cubes side by side: their top faces lie on one plane, as do their
+    // bottoms and the far and near sides; the faces between them are one
+    // plane in opposite facings.
+    const std::vector<mesh::Mesh> cubes{boxMesh(glm::dvec3(0.0), glm::dmat3(1.0), glm::dvec3(1.0)),
+                                        boxMesh(glm::dvec3(2.0, 0.0, 0.0), glm::dmat3(1.0), glm::dvec3(1.0))};
+    const PlaneTable table = PlaneTable::fromMeshes(cubes);
+    // x = -1, x = 1, x = 3, y = ±1, z = ±1: seven planes, both facings.
+    EXPECT_EQ(table.size(), 14u);
+    const std::int32_t top = table.find(glm::dvec3(2.5, 0.0, 1.0), glm::dvec3(0, 0, 1), 1e-9);
+    EXPECT_EQ(table.find(glm::dvec3(-0.5, 0.0, 1.0), glm::dvec3(0, 0, 1), 1e-9), top);
+    EXPECT_TRUE(table.onTriangle(top, glm::dvec3(2.5, 0.5, 1.0), 1e-9));
+    EXPECT_TRUE(table.onTriangle(top, glm::dvec3(-0.5, 0.5, 1.0), 1e-9));
+}
+
+// An axis-aligned box off the grid: every face comes out as the two
+// triangles it needs, every vertex a corner of the box.
+TEST(FlatRegions, ABoxIsTwelveTriangles) {
+    const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
+    const glm::dvec3 half = (high - low) * 0.5;
+    for (const double h : {0.1, 0.03}) {
+        const Rebuilt r =
+            rebuild(*box(low, high), gridAround(low, high, h), {boxMesh((low + high) * 0.5, glm::dmat3(1.0), half)});
+        EXPECT_TRUE(r.inspection.sound()) << r.inspection.describe();
+        EXPECT_EQ(r.inspection.euler(), 2);
+        EXPECT_EQ(r.mesh.triangles.size(), 12u) << "h " << h;
+        EXPECT_NEAR(r.inspection.volume, boxVolume(half), 1e-12);
+        EXPECT_GT(r.stats.mergedVertices, 0u);
+    }
+}
+
+// A box turned by odd angles: its planes are nowhere near the grid's, and
+// its corners meet in cells of their own or are clamped into a neighbour.
+TEST(FlatRegions, ATurnedBoxKeepsItsVolumeInFewTriangles) {
+    const glm::dvec3 center(0.0123, -0.0311, 0.0217), half(0.41, 0.33, 0.27);
+    const glm::dmat3 axes = rotation(0.3, 0.7, 1.1);
+    glm::dvec3 low(1e300), high(-1e300);
+    const mesh::Mesh leaf = boxMesh(center, axes, half);
+    for (const glm::dvec3& p : leaf.positions) low = glm::min(low, p), high = glm::max(high, p);
+    for (const double h : {0.1, 0.05, 0.02}) {
+        const Rebuilt r = rebuild(*orientedBox(center, axes, half), gridAround(low, high, h), {leaf});
+        EXPECT_TRUE(r.inspection.sound()) << r.inspection.describe();
+        EXPECT_EQ(r.inspection.euler(), 2);
+        // The exact box has 12. Where the contour folded a triangle over
+        // near a corner (it does at h = 0.05), the triangles around it are
+        // left as they are.
+        EXPECT_LE(r.mesh.triangles.size(), 48u) << "h " << h;
+        EXPECT_NEAR(r.inspection.volume, boxVolume(half), 1e-5 * boxVolume(half)) << "h " << h;
+        std::printf("turned box h %.3g: %zu triangles, volume off by %.3g\n", h, r.mesh.triangles.size(),
+                    std::abs(r.inspection.volume - boxVolume(half)) / boxVolume(half));
+        if (h == 0.02) {
+            EXPECT_EQ(r.mesh.triangles.size(), 12u);
+        }
+    }
+}
+
+// A block with a turned slot cut through it: the slot's walls and the
+// block's faces meet along edges of every direction, and the cut faces
+// face inward (the subtracted leaf's planes in their other facing).
+TEST(FlatRegions, ABlockCutByATurnedSlotIsSoundAndSmall) {
+    const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
+    const glm::dvec3 slotCenter(0.0313, 0.0171, 0.0917), slotHalf(0.9, 0.11, 0.2);
+    const glm::dmat3 slotAxes = rotation(0.0, 0.25, 0.6);
+    const SolidPtr solid = subtract(box(low, high), orientedBox(slotCenter, slotAxes, slotHalf));
+    const std::vector<mesh::Mesh> leaves{boxMesh((low + high) * 0.5, glm::dmat3(1.0), (high - low) * 0.5),
+                                         boxMesh(slotCenter, slotAxes, slotHalf)};
+    const DexelGrid grid = gridAround(low, high, 0.02);
+    const Rebuilt r = rebuild(*solid, grid, leaves);
+    EXPECT_TRUE(r.inspection.sound()) << r.inspection.describe();
+    const double exact = differenceVolume(leaves[0], leaves[1]);
+    // Within a few cells' volume (two corners of the slot come out where
+    // the contour's own points would fold: at their crossings' means).
+    EXPECT_NEAR(r.inspection.volume, exact, 4.0 * std::pow(grid.spacing, 3));
+    // The same image contoured without the planes has a hundred times the
+    // triangles (the exact difference has 40 or so).
+    const mesh::Mesh dense = contour(sample(*solid, grid));
+    EXPECT_LE(100 * r.mesh.triangles.size(), dense.triangles.size());
+    std::printf("block with a turned slot: %zu triangles (%zu without the planes), volume off by %.3g\n",
+                r.mesh.triangles.size(), dense.triangles.size(), std::abs(r.inspection.volume - exact) / exact);
+}
+
+// A box with a ball cut out: the ball has no planes in the table, so its
+// surface keeps the contour's triangles, and the box's faces merge up to
+// the ball's rim; the two meet without a fold.
+TEST(FlatRegions, CurvedSurfacesWithoutPlanesStayAsTheContourMadeThem) {
+    const glm::dvec3 low(-0.5137, -0.4711, -0.4923), high(0.5071, 0.4883, 0.5317);
+    const SolidPtr solid = subtract(box(low, high), sphere(high, 0.4));
+    const DexelGrid grid = gridAround(low, high, 0.05);
+    const Rebuilt r = rebuild(*solid, grid, {boxMesh((low + high) * 0.5, glm::dmat3(1.0), (high - low) * 0.5)});
+    EXPECT_TRUE(r.inspection.sound()) << r.inspection.describe();
+    const mesh::Mesh dense = contour(sample(*solid, grid));
+    const MeshInspection plain = inspect(dense, false);
+    EXPECT_NEAR(r.inspection.volume, plain.volume, 1e-6 * plain.volume);
+    EXPECT_LT(r.mesh.triangles.size(), dense.triangles.size());
+}
+
+}  // namespace strata::contour::test
