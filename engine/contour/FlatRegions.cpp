@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "Parallel.h"
+
 namespace strata::contour {
 namespace {
 
@@ -13,6 +15,11 @@ constexpr std::uint32_t kDead = std::numeric_limits<std::uint32_t>::max();
 bool holds(const VertexPlanes& planes, std::int32_t id) {
     return id >= 0 && std::find(planes.begin(), planes.end(), id) != planes.end();
 }
+
+// Slabs along z for the parallel passes: a collapse whose vertices all lie
+// in one slab touches nothing another slab's collapses touch.
+constexpr int kSlabs = 64;
+constexpr int kAnySlab = -1;
 
 class Merger {
 public:
@@ -23,8 +30,17 @@ public:
     mesh::Mesh result();
 
 private:
+    // One thread's scratch.
+    struct Scratch {
+        std::vector<std::uint32_t> ringU, ringV;
+        std::vector<std::pair<double, std::uint32_t>> candidates;
+    };
+
     std::int32_t labelOf(const std::array<std::uint32_t, 3>& t) const;
-    bool tryRemove(std::uint32_t u);
+    // One pass over `live` (dropping the vertices that can no longer go),
+    // collapsing only within `slab` unless kAnySlab; returns the collapses.
+    std::size_t pass(std::vector<std::uint32_t>& live, int slab, Scratch& scratch);
+    bool tryRemove(std::uint32_t u, int slab, Scratch& scratch);
     // A vertex with a triangle on no plane stays: that triangle never goes
     // (only triangles on planes are dropped by a collapse).
     bool fixed(std::uint32_t u) const {
@@ -33,12 +49,19 @@ private:
         }
         return false;
     }
+    bool inSlab(const std::vector<std::uint32_t>& vertices, int slab) const {
+        if (slab == kAnySlab) return true;
+        for (const std::uint32_t w : vertices) {
+            if (slab_[w] != slab) return false;
+        }
+        return true;
+    }
     void neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) const;
     // The least shape of the triangles around `u` with `u` replaced by `v`
     // (those holding both are dropped); -1 where one would turn over, leave
     // its plane or fall below kMinMergedShape.
     double shapeAfterCollapse(std::uint32_t u, std::uint32_t v) const;
-    void collapse(std::uint32_t u, std::uint32_t v);
+    void collapse(std::uint32_t u, std::uint32_t v, Scratch& scratch);
     void forget(std::uint32_t vertex, std::uint32_t face);
 
     mesh::Mesh mesh_;
@@ -47,11 +70,9 @@ private:
     std::vector<std::int32_t> label_;                 // per triangle: its plane, or -1
     std::vector<std::vector<std::uint32_t>> faces_;   // per vertex: its live triangles
     std::vector<std::uint8_t> touched_;               // per vertex: next to a collapse of this pass
-    std::vector<std::uint32_t> ringU_, ringV_;        // scratch
-    std::vector<std::pair<double, std::uint32_t>> candidates_;
+    std::vector<std::uint8_t> slab_;                  // per vertex: its slab along z
 };
 
-// The one plane all three vertices lie on, if the triangle faces its way.
 std::int32_t Merger::labelOf(const std::array<std::uint32_t, 3>& t) const {
     const VertexPlanes& a = vertexPlanes_[t[0]];
     for (const std::int32_t id : a) {
@@ -76,30 +97,54 @@ std::size_t Merger::run() {
         label_[f] = labelOf(mesh_.triangles[f]);
         for (const std::uint32_t v : mesh_.triangles[f]) faces_[v].push_back(std::uint32_t(f));
     }
+    touched_.assign(vertices, 0);
     // Passes over the vertices in which no two collapses touch: each pass
     // removes about every other vertex of a flat region, and the regions'
     // fans stay small until the last passes (collapsing as they come would
-    // grow a few vertices into hubs that every later try pays for).
-    // A vertex with a triangle on no plane never leaves (fixed): it drops
-    // out of the passes.
-    touched_.assign(vertices, 0);
-    std::vector<std::uint32_t> live(vertices);
-    for (std::uint32_t v = 0; v < vertices; ++v) live[v] = v;
+    // grow a few vertices into hubs that every later try pays for). First
+    // within slabs along z, in parallel, while the fans are small; then
+    // over all that is left. Each slab's vertices go in index order, so the
+    // result does not depend on the number of threads.
+    double low = 1e300, high = -1e300;
+    for (const glm::dvec3& p : mesh_.positions) low = std::min(low, p.z), high = std::max(high, p.z);
+    const double scale = high > low ? kSlabs / (high - low) : 0.0;
+    slab_.resize(vertices);
+    std::vector<std::vector<std::uint32_t>> live(kSlabs);
+    for (std::uint32_t v = 0; v < vertices; ++v) {
+        slab_[v] = std::uint8_t(std::clamp(int((mesh_.positions[v].z - low) * scale), 0, kSlabs - 1));
+        live[slab_[v]].push_back(v);
+    }
     std::size_t removed = 0;
-    for (bool any = true; any;) {
-        any = false;
-        std::fill(touched_.begin(), touched_.end(), std::uint8_t(0));
-        std::size_t kept = 0;
-        for (const std::uint32_t u : live) {
-            if (faces_[u].empty() || fixed(u)) continue;
-            live[kept++] = u;
-            if (touched_[u] || !tryRemove(u)) continue;
-            ++removed;
-            any = true;
+    for (std::size_t collapses = 1; collapses > 0;) {
+        collapses = 0;
+        STRATA_FOR_PIECES_SUM(collapses)
+        for (int slab = 0; slab < kSlabs; ++slab) {
+            Scratch scratch;
+            collapses += pass(live[std::size_t(slab)], slab, scratch);
         }
-        live.resize(kept);
+        removed += collapses;
+    }
+    std::vector<std::uint32_t> all;
+    for (const auto& piece : live) all.insert(all.end(), piece.begin(), piece.end());
+    std::sort(all.begin(), all.end());
+    Scratch scratch;
+    for (std::size_t collapses = 1; collapses > 0;) {
+        collapses = pass(all, kAnySlab, scratch);
+        removed += collapses;
     }
     return removed;
+}
+
+std::size_t Merger::pass(std::vector<std::uint32_t>& live, int slab, Scratch& scratch) {
+    for (const std::uint32_t u : live) touched_[u] = 0;
+    std::size_t kept = 0, collapses = 0;
+    for (const std::uint32_t u : live) {
+        if (faces_[u].empty() || fixed(u)) continue;
+        live[kept++] = u;
+        if (!touched_[u] && tryRemove(u, slab, scratch)) ++collapses;
+    }
+    live.resize(kept);
+    return collapses;
 }
 
 void Merger::neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) const {
@@ -113,22 +158,27 @@ void Merger::neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) cons
     out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-bool Merger::tryRemove(std::uint32_t u) {
-    neighboursOf(u, ringU_);
+bool Merger::tryRemove(std::uint32_t u, int slab, Scratch& scratch) {
+    neighboursOf(u, scratch.ringU);
+    if (!inSlab(scratch.ringU, slab)) return false;
     // The neighbours it may collapse into, best shape first.
-    candidates_.clear();
-    for (const std::uint32_t v : ringU_) {
+    scratch.candidates.clear();
+    for (const std::uint32_t v : scratch.ringU) {
         const double shape = shapeAfterCollapse(u, v);
-        if (shape >= kMinMergedShape) candidates_.push_back({shape, v});
+        if (shape >= kMinMergedShape) scratch.candidates.push_back({shape, v});
     }
-    std::sort(candidates_.begin(), candidates_.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (const auto& [shape, v] : candidates_) {
+    std::sort(scratch.candidates.begin(), scratch.candidates.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [shape, v] : scratch.candidates) {
+        neighboursOf(v, scratch.ringV);
+        if (!inSlab(scratch.ringV, slab)) continue;
         // The two rings may share only the edge's two opposite vertices.
-        neighboursOf(v, ringV_);
         std::size_t shared = 0;
-        for (const std::uint32_t w : ringV_) shared += std::binary_search(ringU_.begin(), ringU_.end(), w) ? 1 : 0;
+        for (const std::uint32_t w : scratch.ringV) {
+            shared += std::binary_search(scratch.ringU.begin(), scratch.ringU.end(), w) ? 1 : 0;
+        }
         if (shared != 2) continue;
-        collapse(u, v);
+        collapse(u, v, scratch);
         return true;
     }
     return false;
@@ -165,7 +215,7 @@ void Merger::forget(std::uint32_t vertex, std::uint32_t face) {
     list.erase(std::find(list.begin(), list.end(), face));
 }
 
-void Merger::collapse(std::uint32_t u, std::uint32_t v) {
+void Merger::collapse(std::uint32_t u, std::uint32_t v, Scratch& scratch) {
     const std::vector<std::uint32_t> around = std::move(faces_[u]);
     faces_[u].clear();
     for (const std::uint32_t f : around) {
@@ -181,9 +231,9 @@ void Merger::collapse(std::uint32_t u, std::uint32_t v) {
         faces_[v].push_back(f);
     }
     // Its neighbours wait for the next pass.
-    neighboursOf(v, ringV_);
+    neighboursOf(v, scratch.ringV);
     touched_[v] = 1;
-    for (const std::uint32_t w : ringV_) touched_[w] = 1;
+    for (const std::uint32_t w : scratch.ringV) touched_[w] = 1;
 }
 
 mesh::Mesh Merger::result() {

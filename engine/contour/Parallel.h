@@ -9,7 +9,10 @@
 #define STRATA_PRAGMA(text) _Pragma(#text)
 #define STRATA_FOR_ROWS STRATA_PRAGMA(omp parallel for schedule(static))
 #define STRATA_FOR_ROWS_SUM(...) STRATA_PRAGMA(omp parallel for schedule(static) reduction(+ : __VA_ARGS__))
+// Pieces of uneven work (the flat regions' slabs), handed out as threads free up.
+#define STRATA_FOR_PIECES_SUM(...) STRATA_PRAGMA(omp parallel for schedule(dynamic) reduction(+ : __VA_ARGS__))
 #else
 #define STRATA_FOR_ROWS
 #define STRATA_FOR_ROWS_SUM(...)
+#define STRATA_FOR_PIECES_SUM(...)
 #endif

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 namespace strata::contour {
 namespace {
@@ -46,7 +47,10 @@ PlaneTable PlaneTable::fromMeshes(std::span<const mesh::Mesh> meshes) {
             if (!(length > 0.0) || !std::isfinite(length)) continue;
             const glm::dvec3 unit = n / length;
             const std::int32_t id = table.add(Plane{unit, glm::dot(unit, a)});
-            table.triangles_[std::size_t(id / 2)].push_back({a, m.positions[t[1]], m.positions[t[2]]});
+            const glm::dvec3& b = m.positions[t[1]];
+            const glm::dvec3& c = m.positions[t[2]];
+            table.triangles_[std::size_t(id / 2)].push_back(
+                Triangle{{a, b, c}, unit, glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))});
         }
     }
     return table;
@@ -66,15 +70,15 @@ std::int32_t PlaneTable::add(const Plane& plane) {
 }
 
 bool PlaneTable::onTriangle(std::int32_t id, const glm::dvec3& point, double tolerance) const {
-    for (const auto& t : triangles_[std::size_t(id / 2)]) {
-        const glm::dvec3 n = glm::normalize(glm::cross(t[1] - t[0], t[2] - t[0]));
+    for (const Triangle& t : triangles_[std::size_t(id / 2)]) {
+        if (glm::any(glm::lessThan(point, t.low - tolerance)) || glm::any(glm::greaterThan(point, t.high + tolerance)))
+            continue;
         bool inside = true;
-        for (int e = 0; e < 3 && inside; ++e) {
-            const glm::dvec3& a = t[std::size_t(e)];
-            const glm::dvec3& b = t[std::size_t((e + 1) % 3)];
-            const glm::dvec3 edge = b - a;
+        for (std::size_t e = 0; e < 3 && inside; ++e) {
+            const glm::dvec3& a = t.corners[e];
+            const glm::dvec3 edge = t.corners[(e + 1) % 3] - a;
             // Signed distance of `point` from the edge's line, inward positive.
-            inside = glm::dot(glm::cross(edge, point - a), n) >= -tolerance * glm::length(edge);
+            inside = glm::dot(glm::cross(edge, point - a), t.normal) >= -tolerance * glm::length(edge);
         }
         if (inside) return true;
     }

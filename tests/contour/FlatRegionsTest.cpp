@@ -206,3 +206,33 @@ TEST(FlatRegions, CurvedSurfacesWithoutPlanesStayAsTheContourMadeThem) {
 }
 
 }  // namespace strata::contour::test
+
+#ifdef _OPENMP
+#include <omp.h>
+
+namespace strata::contour::test {
+
+// The merge runs its first passes in slabs on every core: the mesh is the
+// same, vertex for vertex, on one thread or several.
+TEST(FlatRegions, OneMeshOnAnyNumberOfThreads) {
+    const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
+    const glm::dvec3 slotCenter(0.0313, 0.0171, 0.0917), slotHalf(0.9, 0.11, 0.2);
+    const glm::dmat3 slotAxes = rotation(0.0, 0.25, 0.6);
+    const SolidPtr solid = subtract(box(low, high), orientedBox(slotCenter, slotAxes, slotHalf));
+    const std::vector<mesh::Mesh> leaves{boxMesh((low + high) * 0.5, glm::dmat3(1.0), (high - low) * 0.5),
+                                         boxMesh(slotCenter, slotAxes, slotHalf)};
+    const Dexels dexels = sample(*solid, gridAround(low, high, 0.01));
+    const PlaneTable planes = PlaneTable::fromMeshes(leaves);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const mesh::Mesh one = contour(dexels, &planes);
+    omp_set_num_threads(4);
+    const mesh::Mesh four = contour(dexels, &planes);
+    omp_set_num_threads(threads);
+    EXPECT_EQ(one.positions, four.positions);
+    EXPECT_EQ(one.triangles, four.triangles);
+    EXPECT_LT(one.triangles.size(), 200u);
+}
+
+}  // namespace strata::contour::test
+#endif

@@ -64,8 +64,14 @@ private:
     void insert(const Plane& plane);
 
     std::vector<Plane> planes_;
-    // Per plane pair (id / 2, both facings): its triangles, three corners each.
-    std::vector<std::vector<std::array<glm::dvec3, 3>>> triangles_;
+    // A leaf triangle as onTriangle tests it: corners, unit normal, box.
+    struct Triangle {
+        std::array<glm::dvec3, 3> corners;
+        glm::dvec3 normal;
+        glm::dvec3 low, high;
+    };
+    // Per plane pair (id / 2, both facings): its triangles.
+    std::vector<std::vector<Triangle>> triangles_;
     // Planes by the cell of their normal on a grid over [-1, 1]³.
     std::unordered_map<Key, std::vector<std::int32_t>> byDirection_;
     double mergeTolerance_ = 0.0;
