@@ -61,7 +61,7 @@ private:
     // (those holding both are dropped); -1 where one would turn over, leave
     // its plane or fall below kMinMergedShape.
     double shapeAfterCollapse(std::uint32_t u, std::uint32_t v) const;
-    void collapse(std::uint32_t u, std::uint32_t v, Scratch& scratch);
+    void collapse(std::uint32_t u, std::uint32_t v);
     void forget(std::uint32_t vertex, std::uint32_t face);
 
     mesh::Mesh mesh_;
@@ -70,6 +70,7 @@ private:
     std::vector<std::int32_t> label_;                 // per triangle: its plane, or -1
     std::vector<std::vector<std::uint32_t>> faces_;   // per vertex: its live triangles
     std::vector<std::uint8_t> touched_;               // per vertex: next to a collapse of this pass
+    std::vector<std::uint8_t> changed_;               // per vertex: its ring changed since its last try
     std::vector<std::uint8_t> slab_;                  // per vertex: its slab along z
 };
 
@@ -98,6 +99,7 @@ std::size_t Merger::run() {
         for (const std::uint32_t v : mesh_.triangles[f]) faces_[v].push_back(std::uint32_t(f));
     }
     touched_.assign(vertices, 0);
+    changed_.assign(vertices, 1);
     // Passes over the vertices in which no two collapses touch: each pass
     // removes about every other vertex of a flat region, and the regions'
     // fans stay small until the last passes (collapsing as they come would
@@ -127,6 +129,8 @@ std::size_t Merger::run() {
     std::vector<std::uint32_t> all;
     for (const auto& piece : live) all.insert(all.end(), piece.begin(), piece.end());
     std::sort(all.begin(), all.end());
+    // Tries the slabs refused (rings across two slabs) are worth again.
+    for (const std::uint32_t u : all) changed_[u] = 1;
     Scratch scratch;
     for (std::size_t collapses = 1; collapses > 0;) {
         collapses = pass(all, kAnySlab, scratch);
@@ -141,19 +145,26 @@ std::size_t Merger::pass(std::vector<std::uint32_t>& live, int slab, Scratch& sc
     for (const std::uint32_t u : live) {
         if (faces_[u].empty() || fixed(u)) continue;
         live[kept++] = u;
-        if (!touched_[u] && tryRemove(u, slab, scratch)) ++collapses;
+        if (touched_[u] || !changed_[u]) continue;
+        changed_[u] = 0;
+        if (tryRemove(u, slab, scratch)) ++collapses;
     }
     live.resize(kept);
     return collapses;
 }
 
+// In no particular order. A ring is small (six in a flat region of the
+// contour) until the last passes, where a face's fan can reach hundreds.
 void Merger::neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) const {
     out.clear();
+    constexpr std::size_t kSmallFan = 16;
+    const bool small = faces_[v].size() <= kSmallFan;
     for (const std::uint32_t f : faces_[v]) {
         for (const std::uint32_t w : mesh_.triangles[f]) {
-            if (w != v) out.push_back(w);
+            if (w != v && (!small || std::find(out.begin(), out.end(), w) == out.end())) out.push_back(w);
         }
     }
+    if (small) return;
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
 }
@@ -175,10 +186,14 @@ bool Merger::tryRemove(std::uint32_t u, int slab, Scratch& scratch) {
         // The two rings may share only the edge's two opposite vertices.
         std::size_t shared = 0;
         for (const std::uint32_t w : scratch.ringV) {
-            shared += std::binary_search(scratch.ringU.begin(), scratch.ringU.end(), w) ? 1 : 0;
+            shared += std::find(scratch.ringU.begin(), scratch.ringU.end(), w) != scratch.ringU.end() ? 1 : 0;
         }
         if (shared != 2) continue;
-        collapse(u, v, scratch);
+        collapse(u, v);
+        // The vertices around both wait for the next pass, and are worth
+        // trying again there.
+        for (const std::uint32_t w : scratch.ringU) touched_[w] = changed_[w] = 1;
+        for (const std::uint32_t w : scratch.ringV) touched_[w] = changed_[w] = 1;
         return true;
     }
     return false;
@@ -215,7 +230,7 @@ void Merger::forget(std::uint32_t vertex, std::uint32_t face) {
     list.erase(std::find(list.begin(), list.end(), face));
 }
 
-void Merger::collapse(std::uint32_t u, std::uint32_t v, Scratch& scratch) {
+void Merger::collapse(std::uint32_t u, std::uint32_t v) {
     const std::vector<std::uint32_t> around = std::move(faces_[u]);
     faces_[u].clear();
     for (const std::uint32_t f : around) {
@@ -230,10 +245,6 @@ void Merger::collapse(std::uint32_t u, std::uint32_t v, Scratch& scratch) {
         for (std::uint32_t& w : t) w = w == u ? v : w;
         faces_[v].push_back(f);
     }
-    // Its neighbours wait for the next pass.
-    neighboursOf(v, scratch.ringV);
-    touched_[v] = 1;
-    for (const std::uint32_t w : scratch.ringV) touched_[w] = 1;
 }
 
 mesh::Mesh Merger::result() {
