@@ -9,7 +9,9 @@
 # (CGAL's, by build/tests/bench/strata_mesh_compare) in cells and in parts of
 # the box's diagonal (against OpenSCAD's result, marked *, where strata's
 # exact export did not finish). A cell is the exact result's longest side / R. An export that fails or runs past TIMEOUT seconds
-# shows "-".
+# shows "-". The triangles of both strata meshes, their ratio, and the
+# image-space mesh's audit (build/tests/bench/strata_mesh_audit: "clean", or
+# its degenerate triangles, open or non-manifold edges and crossing pairs).
 #
 #   scripts/bench-image-export.sh [--runs N] [--resolution R] [--timeout S] [--no-openscad] FILE.csg...
 #
@@ -40,7 +42,8 @@ for tool in "${tools[@]}"; do
 done
 render=build/apps/strata-render/strata-render
 compare=build/tests/bench/strata_mesh_compare
-for exe in "$render" "$compare"; do
+audit=build/tests/bench/strata_mesh_audit
+for exe in "$render" "$compare" "$audit"; do
   [[ -x $exe ]] || { echo "bench-image-export: build $exe first (scripts/build.sh release)" >&2; exit 1; }
 done
 
@@ -57,9 +60,20 @@ median() {
 }
 fmt_s() { [[ $1 == - ]] && echo - || awk -v v="$1" 'BEGIN {printf "%.2f", v}'; }
 fmt_m() { [[ $1 == - ]] && echo - || awk -v v="$1" 'BEGIN {printf "%.0f", v / 1024}'; }
+# "triangles verdict" of a mesh file, or "- -".
+audited() {
+  [[ -f $1 ]] || { echo "- -"; return; }
+  "$audit" "$1" 2>/dev/null | python3 -c '
+import json, sys
+a = json.load(sys.stdin)
+bad = [f"{a[k]} {name}" for k, name in (("degenerate", "degenerate"), ("boundary_edges", "open"),
+       ("nonmanifold_edges", "non-manifold"), ("misoriented_edges", "misoriented"),
+       ("self_intersections", "crossing")) if a[k]]
+print(a["triangles"], ", ".join(bad) if bad else "clean")' || echo "- -"
+}
 
-echo "| model | image s | image MiB | exact s | exact MiB | OpenSCAD s | OpenSCAD MiB | image / OpenSCAD s | volume off | Hausdorff (cells) | Hausdorff / diagonal |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+echo "| model | image s | image MiB | exact s | exact MiB | OpenSCAD s | OpenSCAD MiB | image / OpenSCAD s | volume off | Hausdorff (cells) | Hausdorff / diagonal | image triangles | exact triangles | image / exact triangles | image audit |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
 for f in "${files[@]}"; do
   : >"$work/i"; : >"$work/e"; : >"$work/o"
   for ((r = 0; r < runs; r++)); do
@@ -83,6 +97,10 @@ for f in "${files[@]}"; do
       'BEGIN {printf "%.2e %.2f %.1e\n", (vi - ve) / ve, h / (s / n), h / d}')
   fi
   [[ $voff != - ]] && voff+=$mark
-  echo "| \`$(basename "$f")\` | $(fmt_s "$it") | $(fmt_m "$im") | $(fmt_s "$et") | $(fmt_m "$em") | $(fmt_s "$ot") | $(fmt_m "$om") | $ratio | $voff | $hcells | $hdiag |"
+  read -r itri iaudit < <(audited "$work/i.off")
+  read -r etri _ < <(audited "$work/e.off")
+  tratio=-
+  [[ $itri != - && $etri != - ]] && tratio=$(awk -v a="$itri" -v b="$etri" 'BEGIN {printf "%.2f", a / b}')
+  echo "| \`$(basename "$f")\` | $(fmt_s "$it") | $(fmt_m "$im") | $(fmt_s "$et") | $(fmt_m "$em") | $(fmt_s "$ot") | $(fmt_m "$om") | $ratio | $voff | $hcells | $hdiag | $itri | $etri | $tratio | $iaudit |"
   rm -f "$work/i.off" "$work/e.off" "$work/o.off"
 done

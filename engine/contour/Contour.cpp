@@ -463,7 +463,10 @@ std::size_t Contourer::unfold() {
     std::size_t reverted = 0;
     const auto& p = mesh_.positions;
     const auto& q = unsnapped_;
-    for (bool changed = true; changed;) {
+    // The vertices moved by the pass before: only their quads are looked at
+    // again (the first pass looks at all, as they were split).
+    std::vector<std::uint8_t> moved(p.size(), 0), movedNow(p.size(), 0);
+    for (bool first = true, changed = true; changed; first = false) {
         changed = false;
         for (std::size_t at = 0; at < mesh_.triangles.size(); at += 2) {
             // The quad's corners, whichever diagonal split it (addQuad).
@@ -471,7 +474,10 @@ std::size_t Contourer::unfold() {
             const auto& t1 = mesh_.triangles[at + 1];
             const std::array<std::uint32_t, 4> quad =
                 t1[0] == t0[0] ? std::array{t0[0], t0[1], t0[2], t1[2]} : std::array{t0[0], t0[1], t1[1], t1[2]};
-            addQuad(quad, at);
+            if (!first) {
+                if (!(moved[quad[0]] | moved[quad[1]] | moved[quad[2]] | moved[quad[3]])) continue;
+                addQuad(quad, at);
+            }
             // The quad's facing before snapping: its vector area, which
             // does not depend on the diagonal.
             const glm::dvec3 before = glm::cross(q[quad[2]] - q[quad[0]], q[quad[3]] - q[quad[1]]);
@@ -489,28 +495,32 @@ std::size_t Contourer::unfold() {
                 if (!turned && !flattened) continue;
                 // Corners snapped outside their cells first (one may have
                 // met another cell's corner), then every snapped corner.
-                bool moved = false;
                 bool anyReached = false;
                 for (const std::uint32_t v : quad) anyReached = anyReached || reached_[v] != 0;
+                bool unsnappedAny = false;
                 for (const std::uint32_t v : quad) {
                     if (mesh_.positions[v] == unsnapped_[v] || (anyReached && reached_[v] == 0)) continue;
                     mesh_.positions[v] = unsnapped_[v];
                     vertexPlanes_[v] = kNoPlanes;
                     reached_[v] = 0;
+                    movedNow[v] = 1;
+                    unsnappedAny = true;
                     ++reverted;
-                    moved = true;
                 }
                 // The QEF's own points fold here: their crossings' means.
-                const bool unsnappedAny = moved;
                 for (const std::uint32_t v : quad) {
                     if (unsnappedAny || !turnedInPlane || mesh_.positions[v] == massPoint_[v]) continue;
                     mesh_.positions[v] = unsnapped_[v] = massPoint_[v];
                     vertexPlanes_[v] = kNoPlanes;
+                    movedNow[v] = 1;
                     ++reverted;
-                    moved = true;
                 }
-                changed = changed || moved;
             }
+        }
+        for (std::size_t v = 0; v < moved.size(); ++v) {
+            changed = changed || movedNow[v] != 0;
+            moved[v] = movedNow[v];
+            movedNow[v] = 0;
         }
     }
     return reverted;
