@@ -61,6 +61,12 @@ constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 // 3e-5 of a cell at 512 cells), far below a cell.
 constexpr double kOnPlane = 1e-4;
 
+// A crossing is matched with the plane it lies on this far from it, in
+// cells: a few of the GPU's crossings (two in ten thousand on the logo)
+// lie off their plane by up to a hundredth of a cell. Where the vertex
+// then moves onto the plane, it moves by no more than that.
+constexpr double kCrossingOnPlane = 1e-2;
+
 // Planes are met only where they are this far from parallel: for two, the
 // squared sine of their angle (about 0.06 degrees); for three or more, the
 // determinant of the sum of their normals' outer products (three unit
@@ -378,8 +384,9 @@ std::size_t Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t co
 VertexPlanes Contourer::snapToPlanes(const glm::ivec3& cell, std::span<const HermiteSample> patch,
                                      glm::dvec3& point, bool& reached) const {
     const double tolerance = kOnPlane * image_.grid().spacing;
+    const double reach = kCrossingOnPlane * image_.grid().spacing;
     std::array<std::int32_t, kCellEdges> found;
-    for (std::size_t i = 0; i < patch.size(); ++i) found[i] = faces_->find(patch[i].point, patch[i].normal, tolerance);
+    for (std::size_t i = 0; i < patch.size(); ++i) found[i] = faces_->find(patch[i].point, patch[i].normal, reach);
     const std::span<const std::int32_t> planes(found.data(), patch.size());
     const VertexPlanes met = meetPatchPlanes(cell, planes, point, reached);
     if (met[0] >= 0) return met;
