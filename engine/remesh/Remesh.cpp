@@ -190,8 +190,16 @@ contour::Dexels sampleWithReference(const reference::ReferenceScene& scene, cons
         const RayAxes axes = rayAxes(a);
         RayLists lists(rayCount(grid, a));
         // Each ray starts a cell before the grid and is traced from change to
-        // change: crossings at one exact parameter count as one place.
+        // change in exact arithmetic. Two changes closer than the
+        // coincidence tolerance of the GPU's view along this axis are then
+        // one place where nothing changes, and both go: the faces where two
+        // operands of a union touch, a rounding apart once transformed, are
+        // no gap (the GPU's result peel does not see one either).
         const double start = grid.origin[a] - grid.spacing;
+        mesh::Bounds box;
+        box.extend(grid.origin);
+        box.extend(grid.origin + grid.spacing * glm::dvec3(grid.count - 1));
+        const double coincidence = camera::coincidenceTolerance(axisView(grid, a).camera, box);
         std::atomic<std::size_t> next{0};
         auto work = [&] {
             for (std::size_t r = next++; r < lists.size(); r = next++) {
@@ -206,7 +214,12 @@ contour::Dexels sampleWithReference(const reference::ReferenceScene& scene, cons
                 for (;;) {
                     const reference::RayHit hit = scene.trace(ray, t, 0.0);
                     if (!hit.hit()) break;
-                    lists[r].push_back({start + hit.t, glm::vec3(hit.normal), lists[r].size() % 2 == 0});
+                    std::vector<contour::Crossing>& list = lists[r];
+                    if (!list.empty() && start + hit.t - list.back().at <= coincidence) {
+                        list.pop_back();
+                    } else {
+                        list.push_back({start + hit.t, glm::vec3(hit.normal), list.size() % 2 == 0});
+                    }
                     t = hit.t;
                 }
             }

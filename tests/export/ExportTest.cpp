@@ -141,6 +141,33 @@ TEST_F(ExportEntry, TheSampledMeshOfACadPartIsAboutAsSmallAsTheExactOne) {
                 exactTriangles, mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact));
 }
 
+// Three blocks of a union that touch, turned: their shared faces are a
+// rounding apart once transformed. The reference sampler takes them as one
+// place, as the GPU does, so no gap thinner than a cell is found between
+// them and the export is the one block they make.
+TEST_F(ExportEntry, TouchingOperandsOfAUnionLeaveNoGapInTheSampledMesh) {
+    const char* const blocks =
+        "multmatrix([[0.838671, -0.544639, 0, 0], [0.544639, 0.838671, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
+        "multmatrix([[1, 0, 0, 0], [0, 0.956305, -0.292372, 0], [0, 0.292372, 0.956305, 0], [0, 0, 0, 1]])\n"
+        "union() {\n"
+        "cube(size = [10, 7, 5], center = false);\n"
+        "multmatrix([[1, 0, 0, 10], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = [6.3, 7, 5], center = false);\n"
+        "multmatrix([[1, 0, 0, 0], [0, 1, 0, 7], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = [16.3, 3.1, 5], center = false);\n"
+        "}\n";
+    std::size_t exactTriangles = 0, sampledTriangles = 0;
+    const mesh::Mesh exact = exported(blocks, "exact.off", exporting::ExportSettings{}, &exactTriangles);
+    exporting::ExportSettings settings;
+    settings.sampled = true;
+    settings.reference = true;
+    settings.resolution = 64;
+    const mesh::Mesh sampled = exported(blocks, "sampled.off", settings, &sampledTriangles);
+    EXPECT_TRUE(mesh::checkMesh(sampled).ok()) << mesh::checkMesh(sampled).describe();
+    // One block: its 12 triangles (the exact result keeps 16, its faces a
+    // rounding out of one plane after the six-digit turn).
+    EXPECT_LE(sampledTriangles, exactTriangles);
+    EXPECT_NEAR(mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact), 1e-6 * mesh::test::signedVolume(exact));
+}
+
 TEST_F(ExportEntry, ADrawingOfAFlatModelReadsBackToItsArea) {
     for (const char* name : {"holed.svg", "holed.dxf"}) {
         const scene::Tree tree = parse(kHoledRectangle);
