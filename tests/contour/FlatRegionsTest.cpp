@@ -66,6 +66,23 @@ double differenceVolume(const mesh::Mesh& a, const mesh::Mesh& b) {
     return CGAL::Polygon_mesh_processing::volume(out);
 }
 
+// A block with a turned slot cut through it, and the two leaves' meshes.
+struct SlottedBlock {
+    SolidPtr solid;
+    std::vector<mesh::Mesh> leaves;
+    glm::dvec3 low, high;
+};
+SlottedBlock slottedBlock() {
+    const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
+    const glm::dvec3 slotCenter(0.0313, 0.0171, 0.0917), slotHalf(0.9, 0.11, 0.2);
+    const glm::dmat3 slotAxes = rotation(0.0, 0.25, 0.6);
+    return SlottedBlock{subtract(box(low, high), orientedBox(slotCenter, slotAxes, slotHalf)),
+                        {boxMesh((low + high) * 0.5, glm::dmat3(1.0), (high - low) * 0.5),
+                         boxMesh(slotCenter, slotAxes, slotHalf)},
+                        low,
+                        high};
+}
+
 struct Rebuilt {
     mesh::Mesh mesh;
     MeshInspection inspection;
@@ -169,22 +186,17 @@ TEST(FlatRegions, ATurnedBoxKeepsItsVolumeInFewTriangles) {
 // block's faces meet along edges of every direction, and the cut faces
 // face inward (the subtracted leaf's planes in their other facing).
 TEST(FlatRegions, ABlockCutByATurnedSlotIsSoundAndSmall) {
-    const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
-    const glm::dvec3 slotCenter(0.0313, 0.0171, 0.0917), slotHalf(0.9, 0.11, 0.2);
-    const glm::dmat3 slotAxes = rotation(0.0, 0.25, 0.6);
-    const SolidPtr solid = subtract(box(low, high), orientedBox(slotCenter, slotAxes, slotHalf));
-    const std::vector<mesh::Mesh> leaves{boxMesh((low + high) * 0.5, glm::dmat3(1.0), (high - low) * 0.5),
-                                         boxMesh(slotCenter, slotAxes, slotHalf)};
-    const DexelGrid grid = gridAround(low, high, 0.02);
-    const Rebuilt r = rebuild(*solid, grid, leaves);
+    const SlottedBlock block = slottedBlock();
+    const DexelGrid grid = gridAround(block.low, block.high, 0.02);
+    const Rebuilt r = rebuild(*block.solid, grid, block.leaves);
     EXPECT_TRUE(r.inspection.sound()) << r.inspection.describe();
-    const double exact = differenceVolume(leaves[0], leaves[1]);
+    const double exact = differenceVolume(block.leaves[0], block.leaves[1]);
     // Within a few cells' volume (two corners of the slot come out where
     // the contour's own points would fold: at their crossings' means).
     EXPECT_NEAR(r.inspection.volume, exact, 4.0 * std::pow(grid.spacing, 3));
     // The same image contoured without the planes has a hundred times the
     // triangles (the exact difference has 40 or so).
-    const mesh::Mesh dense = contour(sample(*solid, grid));
+    const mesh::Mesh dense = contour(sample(*block.solid, grid));
     EXPECT_LE(100 * r.mesh.triangles.size(), dense.triangles.size());
     std::printf("block with a turned slot: %zu triangles (%zu without the planes), volume off by %.3g\n",
                 r.mesh.triangles.size(), dense.triangles.size(), std::abs(r.inspection.volume - exact) / exact);
@@ -215,14 +227,9 @@ namespace strata::contour::test {
 // The merge runs its first passes in slabs on every core: the mesh is the
 // same, vertex for vertex, on one thread or several.
 TEST(FlatRegions, OneMeshOnAnyNumberOfThreads) {
-    const glm::dvec3 low(-0.537, -0.4123, -0.3311), high(0.4619, 0.3777, 0.5213);
-    const glm::dvec3 slotCenter(0.0313, 0.0171, 0.0917), slotHalf(0.9, 0.11, 0.2);
-    const glm::dmat3 slotAxes = rotation(0.0, 0.25, 0.6);
-    const SolidPtr solid = subtract(box(low, high), orientedBox(slotCenter, slotAxes, slotHalf));
-    const std::vector<mesh::Mesh> leaves{boxMesh((low + high) * 0.5, glm::dmat3(1.0), (high - low) * 0.5),
-                                         boxMesh(slotCenter, slotAxes, slotHalf)};
-    const Dexels dexels = sample(*solid, gridAround(low, high, 0.01));
-    const PlaneTable planes = PlaneTable::fromMeshes(leaves);
+    const SlottedBlock block = slottedBlock();
+    const Dexels dexels = sample(*block.solid, gridAround(block.low, block.high, 0.01));
+    const PlaneTable planes = PlaneTable::fromMeshes(block.leaves);
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     const mesh::Mesh one = contour(dexels, &planes);

@@ -67,6 +67,24 @@ protected:
         return mesh::importMesh(path(name));
     }
 
+    // The exact export of `text` and its sampled one at `resolution` cells
+    // by the CPU reference, read back, with their triangle counts.
+    struct BothMeshes {
+        mesh::Mesh exact, sampled;
+        std::size_t exactTriangles = 0, sampledTriangles = 0;
+    };
+    BothMeshes exactAndSampled(const std::string& text, int resolution) {
+        BothMeshes both;
+        both.exact = exported(text, "exact.off", exporting::ExportSettings{}, &both.exactTriangles);
+        exporting::ExportSettings settings;
+        settings.sampled = true;
+        settings.reference = true;
+        settings.resolution = resolution;
+        both.sampled = exported(text, "sampled.off", settings, &both.sampledTriangles);
+        EXPECT_TRUE(mesh::checkMesh(both.sampled).ok()) << mesh::checkMesh(both.sampled).describe();
+        return both;
+    }
+
 private:
     std::filesystem::path dir_;
 };
@@ -124,21 +142,15 @@ TEST_F(ExportEntry, TheSampledMeshOfACadPartIsAboutAsSmallAsTheExactOne) {
         "multmatrix([[1, 0, 0, 7], [0, 1, 0, 7], [0, 0, 1, -1], [0, 0, 0, 1]]) "
         "cylinder($fn = 24, h = 12, r1 = 4, r2 = 4, center = false);\n"
         "}\n";
-    std::size_t exactTriangles = 0, sampledTriangles = 0;
-    const mesh::Mesh exact = exported(part, "exact.off", exporting::ExportSettings{}, &exactTriangles);
-    exporting::ExportSettings settings;
-    settings.sampled = true;
-    settings.reference = true;
-    settings.resolution = 256;
-    const mesh::Mesh sampled = exported(part, "sampled.off", settings, &sampledTriangles);
-    EXPECT_TRUE(mesh::checkMesh(sampled).ok()) << mesh::checkMesh(sampled).describe();
-    EXPECT_LE(sampledTriangles, 3 * exactTriangles);
+    const BothMeshes both = exactAndSampled(part, 256);
+    EXPECT_LE(both.sampledTriangles, 3 * both.exactTriangles);
     // Every vertex on the leaves' planes: the exact volume, to well within
     // one cell's.
     const double cell = 20.0 / 256.0;
-    EXPECT_NEAR(mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact), cell * cell * cell);
-    std::printf("CAD part: %zu sampled triangles, %zu exact; volume %.6f against %.6f\n", sampledTriangles,
-                exactTriangles, mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact));
+    const double volume = mesh::test::signedVolume(both.exact);
+    EXPECT_NEAR(mesh::test::signedVolume(both.sampled), volume, cell * cell * cell);
+    std::printf("CAD part: %zu sampled triangles, %zu exact; volume %.6f against %.6f\n", both.sampledTriangles,
+                both.exactTriangles, mesh::test::signedVolume(both.sampled), volume);
 }
 
 // Three blocks of a union that touch, turned: their shared faces are a
@@ -154,18 +166,12 @@ TEST_F(ExportEntry, TouchingOperandsOfAUnionLeaveNoGapInTheSampledMesh) {
         "multmatrix([[1, 0, 0, 10], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = [6.3, 7, 5], center = false);\n"
         "multmatrix([[1, 0, 0, 0], [0, 1, 0, 7], [0, 0, 1, 0], [0, 0, 0, 1]]) cube(size = [16.3, 3.1, 5], center = false);\n"
         "}\n";
-    std::size_t exactTriangles = 0, sampledTriangles = 0;
-    const mesh::Mesh exact = exported(blocks, "exact.off", exporting::ExportSettings{}, &exactTriangles);
-    exporting::ExportSettings settings;
-    settings.sampled = true;
-    settings.reference = true;
-    settings.resolution = 64;
-    const mesh::Mesh sampled = exported(blocks, "sampled.off", settings, &sampledTriangles);
-    EXPECT_TRUE(mesh::checkMesh(sampled).ok()) << mesh::checkMesh(sampled).describe();
+    const BothMeshes both = exactAndSampled(blocks, 64);
     // One block: its 12 triangles (the exact result keeps 16, its faces a
     // rounding out of one plane after the six-digit turn).
-    EXPECT_LE(sampledTriangles, exactTriangles);
-    EXPECT_NEAR(mesh::test::signedVolume(sampled), mesh::test::signedVolume(exact), 1e-6 * mesh::test::signedVolume(exact));
+    EXPECT_LE(both.sampledTriangles, both.exactTriangles);
+    const double volume = mesh::test::signedVolume(both.exact);
+    EXPECT_NEAR(mesh::test::signedVolume(both.sampled), volume, 1e-6 * volume);
 }
 
 TEST_F(ExportEntry, ADrawingOfAFlatModelReadsBackToItsArea) {
