@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "Parallel.h"
+#include "strata/core/Progress.h"
 
 namespace strata::contour {
 namespace {
@@ -20,6 +21,10 @@ bool holds(const VertexPlanes& planes, std::int32_t id) {
 // in one slab touches nothing another slab's collapses touch.
 constexpr int kSlabs = 64;
 constexpr int kAnySlab = -1;
+
+// Reported after each pass: the vertices removed so far, of all the
+// contour's (the count a merge ends at is not known before it ends).
+constexpr const char* kProgressWhat = "contour: flat regions";
 
 class Merger {
 public:
@@ -117,6 +122,7 @@ std::size_t Merger::run() {
         live[slab_[v]].push_back(v);
     }
     std::size_t removed = 0;
+    reportProgress(kProgressWhat, 0, vertices);
     for (std::size_t collapses = 1; collapses > 0;) {
         collapses = 0;
         STRATA_FOR_PIECES_SUM(collapses)
@@ -125,6 +131,7 @@ std::size_t Merger::run() {
             collapses += pass(live[std::size_t(slab)], slab, scratch);
         }
         removed += collapses;
+        reportProgress(kProgressWhat, removed, vertices);
     }
     std::vector<std::uint32_t> all;
     for (const auto& piece : live) all.insert(all.end(), piece.begin(), piece.end());
@@ -135,7 +142,9 @@ std::size_t Merger::run() {
     for (std::size_t collapses = 1; collapses > 0;) {
         collapses = pass(all, kAnySlab, scratch);
         removed += collapses;
+        reportProgress(kProgressWhat, removed, vertices);
     }
+    reportProgress(kProgressWhat, vertices, vertices);
     return removed;
 }
 

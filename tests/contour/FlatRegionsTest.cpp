@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -21,6 +22,7 @@
 #include "MeshInspection.h"
 #include "strata/contour/Contour.h"
 #include "strata/contour/Planes.h"
+#include "strata/core/Progress.h"
 
 namespace strata::contour::test {
 namespace {
@@ -215,6 +217,48 @@ TEST(FlatRegions, CurvedSurfacesWithoutPlanesStayAsTheContourMadeThem) {
     const MeshInspection plain = inspect(dense, false);
     EXPECT_NEAR(r.inspection.volume, plain.volume, 1e-6 * plain.volume);
     EXPECT_LT(r.mesh.triangles.size(), dense.triangles.size());
+}
+
+}  // namespace strata::contour::test
+
+namespace strata::contour::test {
+namespace {
+
+// The merge's progress: vertices removed so far, of the contour's, never
+// going back, ending at all of them; and a stop asked for on the way.
+class MergeProgress : public Progress {
+public:
+    void update(const char* what, std::size_t done, std::size_t total) override {
+        if (std::string(what) != "contour: flat regions") return;
+        EXPECT_LE(done, total);
+        EXPECT_GE(done, last);
+        last = done;
+        lastTotal = total;
+        ++calls;
+    }
+    bool cancelled() const override { return stop && calls > 1; }
+    bool stop = false;
+    std::size_t last = 0, lastTotal = 0, calls = 0;
+};
+
+}  // namespace
+
+TEST(FlatRegions, ReportsProgressPerPassAndStopsWhenAsked) {
+    const SlottedBlock block = slottedBlock();
+    const Dexels dexels = sample(*block.solid, gridAround(block.low, block.high, 0.02));
+    const PlaneTable planes = PlaneTable::fromMeshes(block.leaves);
+    MergeProgress progress;
+    {
+        ProgressScope scope(&progress);
+        contour(dexels, &planes);
+    }
+    EXPECT_GT(progress.calls, 2u);
+    EXPECT_GT(progress.lastTotal, 0u);
+    EXPECT_EQ(progress.last, progress.lastTotal);
+    MergeProgress stopping;
+    stopping.stop = true;
+    ProgressScope scope(&stopping);
+    EXPECT_THROW(contour(dexels, &planes), Cancelled);
 }
 
 }  // namespace strata::contour::test

@@ -18,10 +18,12 @@ namespace strata::contour {
 // on an inconsistent image (a ray that ends inside, crossings out of order).
 //
 // With `planes` (the planes every face of the solid lies on), a patch whose
-// crossings lie on one, two or three of them puts its vertex on them, and
-// the flat regions that result are merged into few triangles: a flat face
-// keeps the vertices of its outline, a sharp edge between two planes those
-// at its ends, and the surface stays the same set of points.
+// crossings' planes meet in one point on the solid's faces puts its vertex
+// there, and the flat regions that result are merged into few triangles: a
+// flat face keeps the vertices of its outline, a sharp edge between two
+// planes those at its ends, and the surface stays the same set of points.
+// The merge reports its progress after each pass ("contour: flat regions",
+// vertices removed of the contour's) and may be stopped there.
 mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes = nullptr);
 
 // A part of the solid, or a gap in it, that lies between two grid points
