@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -146,7 +147,7 @@ constexpr int kVertexRing = 2;
 constexpr int kPlaneRing = 2;
 
 double triangleShape(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    const double longest = std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
+    const double longest = longestEdgeSquared(a, b, c);
     const double twiceArea = glm::length(glm::cross(b - a, c - a));
     return longest > 0.0 ? twiceArea / longest : 0.0;
 }
@@ -182,6 +183,9 @@ private:
                               bool& reached) const;
     VertexPlanes meetPatchPlanes(const glm::ivec3& cell, std::span<const std::int32_t> planes, glm::dvec3& point,
                                  bool& reached) const;
+    // The cell's box less `marginInCells` of a cell on every side (grown
+    // for a negative margin): its low and high corners.
+    std::pair<glm::dvec3, glm::dvec3> cellBox(const glm::ivec3& cell, double marginInCells) const;
     bool withinCell(const glm::ivec3& cell, const glm::dvec3& p, double marginInCells) const;
     bool alongEdgeInCell(const glm::ivec3& cell, const PlaneTable& table, const VertexPlanes& ids,
                          glm::dvec3& point) const;
@@ -492,13 +496,12 @@ std::size_t Contourer::unfold() {
                 const auto& t = mesh_.triangles[f];
                 const glm::dvec3 now = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
                 // Turned within a plane, by more than a sliver along an
-                // edge (whose normal says nothing) can be.
-                const double longest = std::max({glm::dot(p[t[1]] - p[t[0]], p[t[1]] - p[t[0]]),
-                                                 glm::dot(p[t[2]] - p[t[1]], p[t[2]] - p[t[1]]),
-                                                 glm::dot(p[t[0]] - p[t[2]], p[t[0]] - p[t[2]])});
+                // edge (whose normal says nothing) can be; flattened below
+                // triangleShape's least.
+                const double longest = longestEdgeSquared(p[t[0]], p[t[1]], p[t[2]]);
                 const bool turnedInPlane = glm::dot(now, sharedPlaneNormal(t)) < -kTurnedShape * longest;
                 const bool turned = turnedInPlane || glm::dot(now, before) <= 0.0;
-                const bool flattened = triangleShape(p[t[0]], p[t[1]], p[t[2]]) < kMinTriangleShape;
+                const bool flattened = !(longest > 0.0) || glm::length(now) / longest < kMinTriangleShape;
                 if (!turned && !flattened) continue;
                 // Corners snapped outside their cells first (one may have
                 // met another cell's corner), then every snapped corner.
@@ -538,11 +541,11 @@ std::size_t Contourer::unfold() {
 bool Contourer::alongEdgeInCell(const glm::ivec3& cell, const PlaneTable& table, const VertexPlanes& ids,
                                 glm::dvec3& point) const {
     const glm::dvec3 direction = glm::cross(table[ids[0]].normal, table[ids[1]].normal);
-    const double margin = kInteriorMargin * image_.grid().spacing;
+    const auto [cellLow, cellHigh] = cellBox(cell, kInteriorMargin);
     double low = -1e300, high = 1e300;
     for (int a = 0; a < 3; ++a) {
-        const double from = image_.coordinate(a, cell[a]) + margin - point[a];
-        const double to = image_.coordinate(a, cell[a] + 1) - margin - point[a];
+        const double from = cellLow[a] - point[a];
+        const double to = cellHigh[a] - point[a];
         if (direction[a] == 0.0) {
             if (from > 0.0 || to < 0.0) return false;
             continue;
@@ -557,12 +560,21 @@ bool Contourer::alongEdgeInCell(const glm::ivec3& cell, const PlaneTable& table,
 }
 
 bool Contourer::withinCell(const glm::ivec3& cell, const glm::dvec3& p, double marginInCells) const {
-    const double margin = marginInCells * image_.grid().spacing;
+    const auto [low, high] = cellBox(cell, marginInCells);
     for (int a = 0; a < 3; ++a) {
-        if (!(p[a] >= image_.coordinate(a, cell[a]) + margin && p[a] <= image_.coordinate(a, cell[a] + 1) - margin))
-            return false;
+        if (!(p[a] >= low[a] && p[a] <= high[a])) return false;
     }
     return true;
+}
+
+std::pair<glm::dvec3, glm::dvec3> Contourer::cellBox(const glm::ivec3& cell, double marginInCells) const {
+    const double margin = marginInCells * image_.grid().spacing;
+    glm::dvec3 low, high;
+    for (int a = 0; a < 3; ++a) {
+        low[a] = image_.coordinate(a, cell[a]) + margin;
+        high[a] = image_.coordinate(a, cell[a] + 1) - margin;
+    }
+    return {low, high};
 }
 
 // A minimizer outside the allowed box (the cell less the margin, or grown by
@@ -571,12 +583,10 @@ bool Contourer::withinCell(const glm::ivec3& cell, const glm::dvec3& p, double m
 // belongs, on the cell's face, instead of jumping back into the middle.
 glm::dvec3 Contourer::keptInCell(const glm::ivec3& cell, glm::dvec3 p, double marginInCells,
                                  std::size_t& clampedCount) const {
-    const double margin = marginInCells * image_.grid().spacing;
+    const auto [low, high] = cellBox(cell, marginInCells);
     bool clamped = false;
     for (int a = 0; a < 3; ++a) {
-        const double low = image_.coordinate(a, cell[a]) + margin;
-        const double high = image_.coordinate(a, cell[a] + 1) - margin;
-        const double kept = std::isfinite(p[a]) ? std::clamp(p[a], low, high) : 0.5 * (low + high);
+        const double kept = std::isfinite(p[a]) ? std::clamp(p[a], low[a], high[a]) : 0.5 * (low[a] + high[a]);
         clamped = clamped || kept != p[a];
         p[a] = kept;
     }

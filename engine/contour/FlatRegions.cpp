@@ -222,9 +222,7 @@ double Merger::shapeAfterCollapse(std::uint32_t u, std::uint32_t v) const {
         if (!holds(vertexPlanes_[v], id)) return -1.0;
         for (std::uint32_t& w : t) w = w == u ? v : w;
         const glm::dvec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
-        const double longest = std::max({glm::dot(p[t[1]] - p[t[0]], p[t[1]] - p[t[0]]),
-                                         glm::dot(p[t[2]] - p[t[1]], p[t[2]] - p[t[1]]),
-                                         glm::dot(p[t[0]] - p[t[2]], p[t[0]] - p[t[2]])});
+        const double longest = longestEdgeSquared(p[t[0]], p[t[1]], p[t[2]]);
         if (!(longest > 0.0)) return -1.0;
         least = std::min(least, glm::dot(n, planes_[id].normal) / longest);
         // Not a collapse to take: no need to know by how much.

@@ -4,9 +4,12 @@
 // many small triangles of a flat face, or of a sharp edge between two,
 // carry no more shape than the face's corners do, and are merged away.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "ContourStats.h"
 #include "strata/contour/Planes.h"
@@ -35,5 +38,13 @@ mesh::Mesh mergeFlatRegions(mesh::Mesh mesh, std::vector<VertexPlanes> vertexPla
 
 // Twice a merged triangle's area over its longest edge squared, at least.
 inline constexpr double kMinMergedShape = 1e-4;
+
+// The square of the longest edge of triangle a, b, c: what a triangle's
+// shape (twice its area over it) is measured against, here and in the
+// contour's choice of diagonals.
+inline double longestEdgeSquared(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, bc = c - b, ca = a - c;
+    return std::max({glm::dot(ab, ab), glm::dot(bc, bc), glm::dot(ca, ca)});
+}
 
 }  // namespace strata::contour

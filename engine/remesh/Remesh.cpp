@@ -79,9 +79,18 @@ int gridIndex(const contour::DexelGrid& grid, int k, double x) {
     return static_cast<int>(index);
 }
 
+// The box the grid's vertices span.
+mesh::Bounds gridBox(const contour::DexelGrid& grid) {
+    mesh::Bounds box;
+    box.extend(grid.origin);
+    box.extend(grid.origin + grid.spacing * glm::dvec3(grid.count - 1));
+    return box;
+}
+
 AxisView axisView(const contour::DexelGrid& grid, int a) {
-    const glm::dvec3 size = grid.spacing * glm::dvec3(grid.count - 1);
-    const glm::dvec3 center = grid.origin + size * 0.5;
+    const mesh::Bounds box = gridBox(grid);
+    const glm::dvec3 size = box.max - box.min;
+    const glm::dvec3 center = box.min + size * 0.5;
     AxisView view;
     camera::Camera& camera = view.camera;
     camera.projection = camera::Projection::Orthographic;
@@ -196,10 +205,7 @@ contour::Dexels sampleWithReference(const reference::ReferenceScene& scene, cons
         // operands of a union touch, a rounding apart once transformed, are
         // no gap (the GPU's result peel does not see one either).
         const double start = grid.origin[a] - grid.spacing;
-        mesh::Bounds box;
-        box.extend(grid.origin);
-        box.extend(grid.origin + grid.spacing * glm::dvec3(grid.count - 1));
-        const double coincidence = camera::coincidenceTolerance(axisView(grid, a).camera, box);
+        const double coincidence = camera::coincidenceTolerance(axisView(grid, a).camera, gridBox(grid));
         std::atomic<std::size_t> next{0};
         auto work = [&] {
             for (std::size_t r = next++; r < lists.size(); r = next++) {
