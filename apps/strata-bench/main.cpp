@@ -143,6 +143,7 @@ struct Result {
     double strataMs = 0, strataMinMs = 0;  // wall clock per frame, glFinish included
     double peelMs = 0, evaluateMs = 0, normalMs = 0, plainFrameMs = 0, shadeMs = 0;  // FrameStats, medians
     bool plainFrame = false;               // FrameStats::plain: strata drew the union plainly
+    std::size_t plainBesideLeaves = 0;     // FrameStats::plainBesideLeaves: leaves drawn plainly beside the CSG
     double plainMs = 0, plainMinMs = 0;
     std::size_t plainBytes = 0;            // the floor's vertex buffer and framebuffer
     std::size_t textureBytes = 0;
@@ -212,6 +213,7 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
     result.normalMs = median(normal);
     result.plainFrameMs = median(plainFrame);
     result.plainFrame = last.plain;
+    result.plainBesideLeaves = last.plainBesideLeaves;
     result.shadeMs = median(shade);
     result.textureBytes = last.textureBytes;
     result.operands = last.operands;
@@ -434,6 +436,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
         json.key("evaluate_ms").value(r.evaluateMs);
         json.key("normal_ms").value(r.normalMs);
         json.key("plain_frame").value(r.plainFrame);
+        json.key("plain_beside_leaves").value(static_cast<std::uint64_t>(r.plainBesideLeaves));
         json.key("plain_frame_ms").value(r.plainFrameMs);
         json.key("shade_ms").value(r.shadeMs);
         json.key("plain_ms").value(r.plainMs);

@@ -59,6 +59,7 @@ std::string statsJson(const RunStats& s, int indent) {
     json.key("plain_frame").value(f.plain);
     json.key("plain_tied_leaves").value(static_cast<std::uint64_t>(f.tiedLeaves));
     json.key("plain_tied_triangles").value(static_cast<std::uint64_t>(f.tiedTriangles));
+    json.key("plain_beside_leaves").value(static_cast<std::uint64_t>(f.plainBesideLeaves));
     json.key("peel_passes").value(f.peelPasses);
     json.key("list_peeled_operands").value(f.listPeeledOperands);
 

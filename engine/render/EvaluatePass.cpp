@@ -63,14 +63,15 @@ int EvaluatePass::capacityFor(int count) {
     return capacity;
 }
 
-gpu::Program& EvaluatePass::programFor(Variant variant, bool leafMarks, bool resultPeel) {
-    const ProgramKey key{variant, leafMarks, groups_, resultPeel};
+gpu::Program& EvaluatePass::programFor(Variant variant, bool leafMarks, bool resultPeel, bool plainBeside) {
+    const ProgramKey key{variant, leafMarks, groups_, resultPeel, plainBeside};
     auto it = variants_.find(key);
     if (it == variants_.end()) {
         std::vector<gpu::ShaderDefine> defines;
         if (leafMarks) defines.push_back({"LEAF_MARKS", "1"});
         if (resultPeel) defines.push_back({"RESULT_PEEL", "1"});
         if (groups_) defines.push_back({"GROUPS", "1"});
+        if (plainBeside) defines.push_back({"PLAIN_BESIDE", "1"});
         switch (variant.form) {
             case BlockForm::FirstSurface: defines.push_back({"FIRST_SURFACE_FORM", "1"}); break;
             case BlockForm::Register: defines.push_back({"REGISTER_FORM", "1"}); break;
@@ -381,7 +382,15 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
     if (!plan.shownBefore.empty()) shownFaces_.uploadSpan(std::span<const std::uint32_t>(plan.shownBefore));
     shownFaces_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferShownFaces);
     if (targets.leafMarks) targets.markSlotBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferMarkSlots);
-    targets.evaluateTarget.bindForDraw();
+    const bool plainBeside = targets.plainBeside && start == nullptr;
+    if (plainBeside) {
+        // The plain leaves' surfaces, which each invocation reads at its own
+        // pixel and may overwrite there (evaluate.frag, PLAIN_BESIDE).
+        targets.resultDepth.bindUnit(shader::kTexturePlainDepth);
+        targets.resultLeaf.bindUnit(shader::kTexturePlainLeaf);
+        glTextureBarrier();
+    }
+    targets.evaluateFramebuffer().bindForDraw();
     glViewport(tile.x, tile.y, tile.width, tile.height);
     // A pixel the shader writes (does not discard) is marked for the later
     // passes: with kMarkWritten, or with the value the shader gives (leaf marks).
@@ -399,7 +408,7 @@ void EvaluatePass::draw(FrameTargets& targets, const gpu::Texture& layers, const
             default: stats.arrayBlocks += list.size();
         }
         const auto runs = static_cast<int>(plan.runsOf.at(variant));
-        gpu::Program& program = programFor(variant, targets.leafMarks, start != nullptr);
+        gpu::Program& program = programFor(variant, targets.leafMarks, start != nullptr, plainBeside);
         program.setUniform(shader::kEvaluateTileOrigin, glm::ivec2(tile.x, tile.y));
         if (variant.form == BlockForm::Product || variant.form == BlockForm::Array)
             program.setUniform(shader::kEvaluateLoopBudget, loopBudget);

@@ -177,14 +177,17 @@ private:
                         const std::vector<OperandLayers>& operandLayers, TreeData& data) const;
 
     // The compiled variant; `leafMarks`: it writes FrameTargets::mark(leaf,
-    // exit, flip) to the stencil; `resultPeel`: it walks on past a start.
-    gpu::Program& programFor(Variant variant, bool leafMarks, bool resultPeel = false);
+    // exit, flip) to the stencil; `resultPeel`: it walks on past a start;
+    // `plainBeside`: it writes only where its surface is shown before the
+    // plain leaves' (FrameTargets::plainBeside).
+    gpu::Program& programFor(Variant variant, bool leafMarks, bool resultPeel = false, bool plainBeside = false);
 
     struct ProgramKey {
         Variant variant;
         bool leafMarks = false;
         bool groups = false;
         bool resultPeel = false;
+        bool plainBeside = false;
         auto operator<=>(const ProgramKey&) const = default;
     };
     std::map<ProgramKey, gpu::Program> variants_;

@@ -48,9 +48,17 @@ FramePlan planFrame(const FrameFacts& facts, const RenderSettings& settings) {
     // walks past it.
     const bool unions = facts.outside && !facts.resultPeel &&
                         facts.unionOnlyOperands >= static_cast<std::size_t>(std::max(settings.unionGroupFrom, 2));
-    plan.form = !settings.groupOperands || settings.keepPeelLayers ? TreeForm::Separate
-                : unions                                            ? TreeForm::UnionGrouped
-                                                                    : TreeForm::Grouped;
+    // Where the root is a union of plain leaves and of more, those leaves
+    // are drawn plainly and the rest evaluated after them, in the frames a
+    // plain frame would take.
+    plan.plainBeside = !plan.plainFrame && settings.plainUnions && facts.outside && facts.plainBesideScene &&
+                       facts.plainBesideShare >= settings.plainBesideFrom && !facts.resultPeel &&
+                       !settings.keepPeelLayers && !settings.keepBlockForms;
+    const bool grouping = settings.groupOperands && !settings.keepPeelLayers;
+    plan.form = plan.plainBeside ? (grouping ? TreeForm::BesidePlainGrouped : TreeForm::BesidePlainSeparate)
+                : !grouping      ? TreeForm::Separate
+                : unions         ? TreeForm::UnionGrouped
+                                 : TreeForm::Grouped;
     // A plain frame only shown (nothing read back) writes what the image
     // and the passes after it need and nothing else, and clears that itself
     // (PlainPass::Output::shownOnly).
@@ -70,6 +78,29 @@ FramePlan planFrame(const FrameFacts& facts, const RenderSettings& settings) {
     // the result peel walks past it).
     plan.firstLayerOnly = facts.outside && !settings.keepPeelLayers && !facts.resultPeel;
     return plan;
+}
+
+double plainBesideShare(int width, int height, int block, const std::vector<PixelRect>& plain,
+                        const std::vector<PixelRect>& csg) {
+    const int columns = (width + block - 1) / block, rows = (height + block - 1) / block;
+    if (columns <= 0 || rows <= 0) return 0.0;
+    // Bit 1: a plain leaf meets the block; bit 2: a CSG operand does.
+    std::vector<unsigned char> reach(static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows), 0);
+    auto mark = [&](const PixelRect& rect, unsigned char bit) {
+        const PixelRect r = rect.intersection({0, 0, width, height});
+        if (r.empty()) return;
+        for (int by = r.y / block; by <= (r.y + r.height - 1) / block; ++by)
+            for (int bx = r.x / block; bx <= (r.x + r.width - 1) / block; ++bx)
+                reach[static_cast<std::size_t>(by) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(bx)] |= bit;
+    };
+    for (const PixelRect& r : plain) mark(r, 1);
+    for (const PixelRect& r : csg) mark(r, 2);
+    std::size_t drawn = 0, plainOnly = 0;
+    for (unsigned char b : reach) {
+        drawn += b != 0;
+        plainOnly += b == 1;
+    }
+    return drawn == 0 ? 0.0 : static_cast<double>(plainOnly) / static_cast<double>(drawn);
 }
 
 TileGrid planTileGrid(int width, int height, const std::vector<PixelRect>& rects, const RenderSettings& settings,

@@ -17,25 +17,32 @@
 
 namespace strata::render {
 
-// The scene's tree compiled three ways (Renderer::setScene): every operand
+// The scene's tree compiled five ways (Renderer::setScene): every operand
 // its own; convex intersections grouped (ConvexGroups.h); and those with
 // the operands that only unions lead to grouped, for views where every ray
-// starts outside.
-enum class TreeForm { Separate, Grouped, UnionGrouped };
+// starts outside; and where the root is a union of plain leaves and of
+// more (PlainPass.h, Output::beside), the tree without those leaves, its
+// operands their own or grouped, for the frames that draw them plainly.
+enum class TreeForm { Separate, Grouped, UnionGrouped, BesidePlainSeparate, BesidePlainGrouped };
+inline constexpr std::size_t kTreeForms = 5;
 
 // What the renderer knows of the scene and the view when it plans a frame.
 struct FrameFacts {
     bool outside = false;               // every ray starts outside the model (beyondNearPlane)
     bool plainScene = false;            // a union of leaves a plain frame can draw (PlainPass::plainLeaves)
+    bool plainBesideScene = false;      // a union of such leaves and of more (Renderer's besidePlain)
+    double plainBesideShare = 0.0;      // of the frame's blocks, those only such leaves reach (plainBesideShare;
+                                        // RenderSettings::plainBesideFrom)
     bool resultPeel = false;            // Renderer::sampleResult's frame: it walks past the first surface
     bool aovs = false;                  // the depth, normal and leaf images will be read back
     std::size_t unionOnlyOperands = 0;  // the operands groupUnionOperands may join
-    std::array<csg::CompiledTree::Kind, 3> kinds{};  // each TreeForm's kind: an empty result, everything, or code
+    std::array<csg::CompiledTree::Kind, kTreeForms> kinds{};  // each TreeForm's kind: an empty result, everything, or code
 };
 
 struct FramePlan {
     TreeForm form = TreeForm::Separate;  // the tree the evaluator walks
     bool plainFrame = false;             // drawn plainly: no peel or evaluator
+    bool plainBeside = false;            // the plain leaves drawn plainly, the rest peeled and evaluated after
     bool shownOnly = false;              // a plain frame nothing reads back
     bool evaluated = false;              // peeled and evaluated
     bool aovNormals = false;             // its normals are read back
@@ -45,6 +52,12 @@ struct FramePlan {
 };
 
 FramePlan planFrame(const FrameFacts& facts, const RenderSettings& settings);
+
+// Of the blocks (squares of `block` pixels on the frame's grid) that any of
+// `plain` or `csg` meets, the share that only `plain` meets: the evaluator
+// has nothing to do there once the plain leaves are drawn plainly.
+double plainBesideShare(int width, int height, int block, const std::vector<PixelRect>& plain,
+                        const std::vector<PixelRect>& csg);
 
 // The peel layers a tile needs for the operands it meets: how many, and
 // their bytes a pixel (PeelPass::estimateLayers).

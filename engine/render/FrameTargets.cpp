@@ -58,6 +58,8 @@ void FrameTargets::allocate(int width, int height) {
     plainTarget = {};
     plainLitTarget = {};
     plainColorTarget = {};
+    plainEvaluateTarget = {};
+    plainNormalTarget = {};
     shownDepth = {};
     plainShownTarget = {};
     plainShownLitTarget = {};
@@ -78,6 +80,9 @@ void FrameTargets::ensurePlain() {
     plainLitTarget =
         framebufferOf("plain lit", {&resultDepth, &resultLeaf, &normal, &color}, GL_DEPTH_STENCIL_ATTACHMENT, plainDepth);
     plainColorTarget = framebufferOf("plain colour", {&color}, GL_STENCIL_ATTACHMENT, plainDepth);
+    plainEvaluateTarget =
+        framebufferOf("evaluate beside plain", {&resultDepth, &resultLeaf}, GL_STENCIL_ATTACHMENT, plainDepth);
+    plainNormalTarget = framebufferOf("normal beside plain", {&normal}, GL_STENCIL_ATTACHMENT, plainDepth);
 }
 
 void FrameTargets::ensureShown() {

@@ -80,7 +80,7 @@ public:
     gpu::Framebuffer plainTarget;       // 0: resultDepth, 1: resultLeaf, 2: normal; plainDepth
     gpu::Framebuffer plainLitTarget;    // the same and 3: color (a plain frame lit as drawn)
     gpu::Framebuffer plainColorTarget;  // 0: color; plainDepth's stencil
-    void ensurePlain();
+    void ensurePlain();  // also plainEvaluateTarget and plainNormalTarget
     // A plain frame that is only shown (Renderer::renderInto, nothing read
     // back and no pass after it that reads the G-buffer) writes only what
     // the image needs, into one of two targets, each 0: what the frame
@@ -94,8 +94,23 @@ public:
     void ensureShown();
     // This frame's choice, set by the renderer: the marks are plainDepth's.
     bool plainFrame = false;
+    // This frame's choice, set by the renderer: plain leaves were drawn
+    // beside the CSG (PlainPass.h, Output::beside) into resultDepth and
+    // resultLeaf before the evaluator, which writes only where its surface
+    // is shown before theirs.
+    bool plainBeside = false;
+    // This frame's choice, set by the renderer: the plain pass marked the
+    // pixels it drew, for the shade pass, in plainDepth's stencil, so the
+    // evaluator's marks go there too, and the evaluate and normal passes
+    // draw through the targets below.
+    bool plainMarks = false;
+    gpu::Framebuffer plainEvaluateTarget;  // evaluateTarget's images, plainDepth's stencil
+    gpu::Framebuffer plainNormalTarget;    // normalTarget's, plainDepth's stencil
     // The colour image with this frame's marks as its stencil.
-    const gpu::Framebuffer& shadeTarget() const { return plainFrame ? plainColorTarget : colorTarget; }
+    const gpu::Framebuffer& shadeTarget() const { return plainFrame || plainMarks ? plainColorTarget : colorTarget; }
+    // The evaluate and normal passes' targets with this frame's marks.
+    const gpu::Framebuffer& evaluateFramebuffer() const { return plainMarks ? plainEvaluateTarget : evaluateTarget; }
+    const gpu::Framebuffer& normalFramebuffer() const { return plainMarks ? plainNormalTarget : normalTarget; }
 
     // Whether the driver can give each pixel its leaf's mark (asks GL).
     static bool canMarkLeaves();

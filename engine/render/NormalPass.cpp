@@ -92,7 +92,7 @@ void NormalPass::run(FrameTargets& targets, const SceneBuffers& scene, const Vie
     const gpu::Program* inUse = nullptr;
     targets.resultDepth.bindUnit(shader::kTextureResultDepth);
     targets.resultLeaf.bindUnit(shader::kTextureResultLeaf);
-    (litAs ? targets.colorTarget : targets.normalTarget).bindForDraw();
+    (litAs ? targets.shadeTarget() : targets.normalFramebuffer()).bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_SCISSOR_TEST);
     glEnable(GL_STENCIL_TEST);

@@ -342,10 +342,18 @@ void PlainPass::prepareShown(const gpu::Framebuffer& target, const ViewSetup& vi
         }
     }
     if (output.keepResult) {
+        // Beside the CSG, the evaluator reads them inside `drawn` only (a
+        // read-back cleared the whole frame before).
+        const PixelRect read = drawn.intersection({0, 0, view.width, view.height});
+        if (output.beside) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(read.x, read.y, read.width, read.height);
+        }
         const float miss[4] = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
         const GLint noLeaf[4] = {shader::kLeafMiss, 0, 0, 0};
         glClearNamedFramebufferfv(target.id(), GL_COLOR, 1, miss);
         glClearNamedFramebufferiv(target.id(), GL_COLOR, 2, noLeaf);
+        glDisable(GL_SCISSOR_TEST);
     }
 }
 
@@ -448,7 +456,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glCullFace(GL_BACK);
     if (marked) {
         glEnable(GL_STENCIL_TEST);
-        glStencilFunc(GL_ALWAYS, shader::kMarkWritten, 0xff);
+        glStencilFunc(GL_ALWAYS, output.beside ? shader::kMarkPlain : shader::kMarkWritten, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     }
     nearest.use();

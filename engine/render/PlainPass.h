@@ -31,6 +31,13 @@
 //     leaves share (evaluate.frag, "the surface shown"), and the one
 //     GroupPeel's union groups apply. Where no two leaves' boxes meet, no
 //     pixel can tie and the pass is left out.
+// Beside CSG (Output::beside): where the root is a union of such leaves and
+// of a rest with CSG in it, the same draws put the plain leaves' surfaces
+// into the G-buffer first, every pixel they write marked kMarkPlain, and the
+// rest is peeled and evaluated after them; the evaluator keeps their
+// surface where it is shown before the rest's (evaluate.frag,
+// PLAIN_BESIDE; docs/algorithm.md, "Plain leaves beside CSG").
+//
 // What the full pipeline does otherwise: a leaf thinner than the tolerance
 // along a ray (a sheet, a ray grazing an edge or a cone's tip) is entered
 // and left in one cluster there and shows nothing, where the plain path
@@ -89,6 +96,12 @@ public:
         // outline reads.
         bool shownOnly = false;
         glm::vec4 background{0.0f};
+        // Drawn beside the CSG (FrameTargets::plainBeside): the leaves are
+        // the union's plain part, and the evaluator runs after on the rest.
+        // Every pixel written is marked kMarkPlain, which no leaf's mark
+        // equals, so the normal pass leaves the pixels the plain leaves
+        // keep as they are. Not with shownOnly.
+        bool beside = false;
         // Shown only, and a pass blends over the image after (translucent
         // and '%' leaves): the depths and leaf codes of the whole frame
         // too, which those passes read (a miss where nothing is drawn).

@@ -197,6 +197,7 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const model::Model& model
     // Last, once nothing above needs the meshes any more.
     impl.scene.fill(model, release);
     impl.plainLeaves = PlainPass::plainLeaves(impl.separate.tree, impl.scene);
+    impl.besidePlain(tree, empty, same);
     impl.plainStale = true;
     // The evaluator takes its tree at the first frame that needs one.
     impl.current = nullptr;
@@ -205,6 +206,49 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const model::Model& model
     impl.leafCount = tree.leaves.size();
     impl.hasScene = true;
     gpu::checkErrors();
+}
+
+void Renderer::Impl::besidePlain(const scene::Tree& tree, const std::vector<bool>& empty, const std::vector<int>& same) {
+    besideLeaves.clear();
+    besideSeparate = {};
+    besideGrouped = {};
+    besideConvexOperands.clear();
+    const csg::CompiledTree& whole = separate.tree;
+    if (!plainLeaves.empty() || whole.kind != csg::CompiledTree::Kind::Code ||
+        scene.leaves().size() > SceneBuffers::kMostLeafNumbers)
+        return;
+    // The plain leaves: operands that only unions lead to, solids with
+    // volume (reachedByUnionsOnly). Where the root is a union of those and
+    // of a rest R, the result is their union with R taken with them empty:
+    // wherever one of them holds a point the result holds it either way, and
+    // elsewhere they are empty already. So the result's first surface on a
+    // ray that starts outside is the nearer of theirs and R's.
+    std::vector<char> plainLeaf(tree.leaves.size(), 0);
+    for (std::size_t k = 0; k < whole.operandLeaf.size(); ++k) {
+        if (!separate.unionsOnly[k]) continue;
+        plainLeaf[static_cast<std::size_t>(whole.operandLeaf[k])] = 1;
+        besideLeaves.push_back(whole.operandLeaf[k]);
+    }
+    if (besideLeaves.empty() || besideLeaves.size() == whole.operandLeaf.size()) {
+        besideLeaves.clear();
+        return;
+    }
+    std::vector<bool> rest(empty);
+    rest.resize(tree.leaves.size(), false);
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+        const int operand = same.empty() ? static_cast<int>(i) : same[i];
+        if (plainLeaf[static_cast<std::size_t>(operand)]) rest[i] = true;
+    }
+    besideSeparate.tree = csg::compileTree(tree, rest, same);
+    if (besideSeparate.tree.kind != csg::CompiledTree::Kind::Code) {
+        besideLeaves.clear();
+        besideSeparate = {};
+        return;
+    }
+    besideSeparate.unionsOnly = reachedByUnionsOnly(besideSeparate.tree, scene);
+    besideConvexOperands.assign(besideSeparate.tree.operandLeaf.size(), 0);
+    for (std::size_t k = 0; k < besideConvexOperands.size(); ++k)
+        besideConvexOperands[k] = scene.leaf(besideSeparate.tree.operandLeaf[k]).convex ? 1 : 0;
 }
 
 void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
@@ -249,20 +293,27 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
                                Frame& frame) {
     FrameStats& stats = frame.stats;
     const auto start = Clock::now();
+    const std::vector<int>& leaves = plainPassLeaves();
     if (plainStale) {
-        plain->setLeaves(scene, plainLeaves);
+        plain->setLeaves(scene, leaves);
         plainStale = false;
     }
     plain->run(targets, scene, view, drawn, baseColors, output);
     glFinish();
     stats.plainMs = msSince(start);
-    stats.plain = true;
     stats.tiedLeaves = plain->tiedLeaves();
     stats.tiedTriangles = plain->tiedTriangles();
-    stats.operands = static_cast<int>(plainLeaves.size());
+    const std::string count = std::to_string(leaves.size()) + (leaves.size() == 1 ? " leaf" : " leaves");
+    if (output.beside) {
+        stats.plainBesideLeaves = leaves.size();
+        stats.notes.push_back("drawn plainly beside the CSG: " + count +
+                              " that only unions lead to, depth-tested with no peel, before the rest is evaluated");
+        return;
+    }
+    stats.plain = true;
+    stats.operands = static_cast<int>(leaves.size());
     stats.tiles = 1;
-    stats.notes.push_back("drawn plainly: a union of " + std::to_string(plainLeaves.size()) +
-                          (plainLeaves.size() == 1 ? " leaf" : " leaves") +
+    stats.notes.push_back("drawn plainly: a union of " + count +
                           " seen from outside, depth-tested with no peel or evaluator");
 }
 
@@ -278,14 +329,16 @@ ViewSetup Renderer::Impl::frameView(const Camera& camera, const RenderSettings& 
 }
 
 Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const ViewSetup& view, const csg::CompiledTree& compiled,
-                                                        bool plainFrame) const {
+                                                        const FramePlan& plan) const {
     // Each operand's screen rectangle: its surfaces, and so every pixel the
     // evaluator can mark, lie inside it.
     // Mark slots go to the operands, a group's to each of its members.
     ScreenRects out;
-    if (plainFrame) {
-        for (int leaf : plainLeaves) out.drawn = out.drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
-    } else if (compiled.kind == csg::CompiledTree::Kind::Code) {
+    if (plan.plainFrame || plan.plainBeside) {
+        for (int leaf : plainPassLeaves())
+            out.drawn = out.drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
+    }
+    if (!plan.plainFrame && compiled.kind == csg::CompiledTree::Kind::Code) {
         out.rects.resize(compiled.operandLeaf.size());
         for (std::size_t k = 0; k < out.rects.size(); ++k) {
             // An intersection's surfaces lie where all its members' do, a
@@ -318,20 +371,32 @@ void Renderer::Impl::groupTrees(int convexGroupFrom) {
     }
     unionGrouped.tree = csg::groupUnionOperands(grouped.tree, unitable, PeelRequest::kMostUnionMembers);
     unionGrouped.unionsOnly = reachedByUnionsOnly(unionGrouped.tree, scene);
+    if (!besideLeaves.empty()) {
+        besideGrouped.tree = csg::groupConvexProducts(besideSeparate.tree, besideConvexOperands,
+                                                      PeelRequest::kMostGroupMembers, least);
+        besideGrouped.unionsOnly = reachedByUnionsOnly(besideGrouped.tree, scene);
+    }
     groupedFrom = convexGroupFrom;
     // The evaluator may hold a tree made before.
-    if (current != &separate) current = nullptr;
+    if (current != &separate && current != &besideSeparate) current = nullptr;
 }
 
 FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const {
     FrameFacts facts;
     facts.outside = beyondNearPlane(view, scene.bounds());
     facts.plainScene = !plainLeaves.empty();
+    facts.plainBesideScene = !besideLeaves.empty();
+    if (facts.plainBesideScene && settings.plainUnions && facts.outside) {
+        std::vector<PixelRect> plainRects, csgRects;
+        for (int leaf : besideLeaves) plainRects.push_back(screenRect(view, scene.leafVertices(leaf)));
+        for (int leaf : besideSeparate.tree.operandLeaf) csgRects.push_back(screenRect(view, scene.leafVertices(leaf)));
+        facts.plainBesideShare = plainBesideShare(view.width, view.height, EvaluatePass::kBlock, plainRects, csgRects);
+    }
     facts.resultPeel = roundSink != nullptr;
     facts.aovs = aovs;
     facts.unionOnlyOperands = unionOnlyOperands;
-    for (const TreeForm form : {TreeForm::Separate, TreeForm::Grouped, TreeForm::UnionGrouped})
-        facts.kinds[static_cast<std::size_t>(form)] = compilation(form).tree.kind;
+    for (std::size_t form = 0; form < kTreeForms; ++form)
+        facts.kinds[form] = compilation(static_cast<TreeForm>(form)).tree.kind;
     return render::planFrame(facts, settings);
 }
 
@@ -368,7 +433,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.operands = compiled.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;
-    const ScreenRects screen = screenRects(view, compiled, plan.plainFrame);
+    const ScreenRects screen = screenRects(view, compiled, plan);
 
     resetDrawState();
     targets.ensure(view.width, view.height);
@@ -377,13 +442,15 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     if (!plan.shownOnly) {
         using NormalClear = FrameTargets::NormalClear;
         targets.clearResult(aovs || !translucentLeaves.empty() || !alphaLeaves.empty(),
-                            plan.aovNormals                       ? NormalClear::WholeFrame
-                            : plan.evaluated && plan.litAsDrawn ? NormalClear::None
-                                                                : NormalClear::Drawn,
+                            plan.aovNormals                                           ? NormalClear::WholeFrame
+                            : (plan.evaluated && plan.litAsDrawn) || plan.plainBeside ? NormalClear::None
+                                                                                      : NormalClear::Drawn,
                             screen.drawn.grown(1));
     }
     targets.leafMarks = settings.leafMarks && canMarkLeaves;
     targets.plainFrame = plan.plainFrame;
+    targets.plainBeside = false;
+    targets.plainMarks = false;
     if (copiedLeaves > 0) {
         stats.notes.push_back(std::to_string(copiedLeaves) +
                               (copiedLeaves == 1 ? " leaf repeats a lower one exactly and shares its peeled layers"
@@ -399,6 +466,26 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         output.background = glm::vec4(glm::vec3(scheme.background), 1.0f);
         output.keepResult = !translucentLeaves.empty() || !alphaLeaves.empty();
         drawPlain(view, screen.drawn, ShadePass::baseColors(scene, scheme), output, frame);
+    } else if (plan.evaluated && plan.plainBeside) {
+        // The plain leaves first, straight into the G-buffer, only what the
+        // frame needs of them (the shown-only targets): the depth and leaf
+        // codes everywhere, a miss where none is drawn, for the evaluator,
+        // which then reads them at each pixel it may write; the colour lit
+        // as drawn, or the normals and the marks for the shade pass.
+        PlainPass::Output output;
+        output.litAs = litAs;
+        output.shownOnly = true;
+        output.keepResult = true;
+        output.beside = true;
+        output.background = glm::vec4(glm::vec3(scheme.background), 1.0f);
+        const std::vector<glm::vec2> baseColors = ShadePass::baseColors(scene, scheme);
+        // Over the whole frame's rectangle: the plain pass clears its marks
+        // there, which the evaluator then writes too.
+        drawPlain(view, screen.drawn, baseColors, output, frame);
+        targets.plainBeside = true;
+        targets.plainMarks = !litAs;
+        peelAndEvaluate(view, plan, screen.rects, screen.markLeaves, screen.markRects, settings, baseColors, litAs,
+                        frame);
     } else if (plan.evaluated) {
         if (plan.litAsDrawn) {
             // The normal pass lights only the pixels the result covers.
@@ -462,6 +549,8 @@ Frame Renderer::shade(const Camera& camera, const RenderSettings& settings, cons
     resetDrawState();
     impl.targets.ensure(w, h);
     impl.targets.plainFrame = false;
+    impl.targets.plainBeside = false;
+    impl.targets.plainMarks = false;
     flipRows(std::span(depth), w, h, 1);
     flipRows(std::span(normal), w, h, 4);
     flipRows(std::span(codes), w, h, 1);

@@ -87,6 +87,12 @@ struct Renderer::Impl {
     // still has another scene's.
     std::vector<int> plainLeaves;
     bool plainStale = true;
+    // Where the root is a union of plain leaves (solids with volume that
+    // only unions lead to) and of more: those leaves, which such a frame
+    // draws plainly before the rest is evaluated (PlainPass::Output::beside),
+    // and the tree without them (leaves empty), its operands their own and
+    // grouped. None where plainLeaves holds the whole scene.
+    std::vector<int> besideLeaves;
     FrameTargets targets;
     SceneBuffers scene;
     // The tree compiled with every operand its own (`separate`), with
@@ -98,7 +104,8 @@ struct Renderer::Impl {
         csg::CompiledTree tree;
         std::vector<char> unionsOnly;
     };
-    Compilation separate, grouped, unionGrouped;
+    Compilation separate, grouped, unionGrouped, besideSeparate, besideGrouped;
+    std::vector<char> besideConvexOperands;  // convexOperands of besideSeparate
     std::size_t unionOnlyOperands = 0;  // the operands groupUnionOperands may join (RenderSettings::unionGroupFrom)
     // Which of separate's operands are convex, and the
     // RenderSettings::convexGroupFrom that grouped and unionGrouped were made
@@ -109,7 +116,13 @@ struct Renderer::Impl {
     void groupTrees(int convexGroupFrom);
     const Compilation* current = nullptr;
     const Compilation& compilation(TreeForm form) const {
-        return form == TreeForm::Separate ? separate : form == TreeForm::Grouped ? grouped : unionGrouped;
+        switch (form) {
+            case TreeForm::Separate: return separate;
+            case TreeForm::Grouped: return grouped;
+            case TreeForm::UnionGrouped: return unionGrouped;
+            case TreeForm::BesidePlainSeparate: return besideSeparate;
+            default: return besideGrouped;
+        }
     }
     std::vector<TranslucentLeaf> translucentLeaves;
     std::vector<AlphaLeaf> alphaLeaves;
@@ -134,6 +147,8 @@ struct Renderer::Impl {
     // `litAs`: also light it as drawn, into the cleared image (no outline).
     void drawPlain(const ViewSetup& view, const PixelRect& drawn, const std::vector<glm::vec2>& baseColors,
                    const PlainPass::Output& output, Frame& frame);
+    // The leaves the plain pass draws: plainLeaves, or besideLeaves.
+    const std::vector<int>& plainPassLeaves() const { return plainLeaves.empty() ? besideLeaves : plainLeaves; }
     // Every pass; the images stay on the GPU. Fills frame's size and stats.
     // `aovs`: the depth, normal and leaf images will be read back.
     ViewSetup drawFrame(const camera::Camera& camera, const RenderSettings& settings, Frame& frame, bool aovs);
@@ -147,7 +162,10 @@ struct Renderer::Impl {
         std::vector<PixelRect> markRects;  // and their screen rectangles
         PixelRect drawn;                   // every pixel the frame draws: all of the above
     };
-    ScreenRects screenRects(const ViewSetup& view, const csg::CompiledTree& compiled, bool plainFrame) const;
+    ScreenRects screenRects(const ViewSetup& view, const csg::CompiledTree& compiled, const FramePlan& plan) const;
+    // besideLeaves and the trees without them, from the scene's tree and
+    // compileTree's arguments (setScene's, after separate and plainLeaves).
+    void besidePlain(const scene::Tree& tree, const std::vector<bool>& empty, const std::vector<int>& same);
     // The frame's plan (FramePlan.h) from what this renderer knows of its scene.
     FramePlan planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const;
     // `plan`: the frame's (planFrame).

@@ -29,6 +29,7 @@ void main() {
     int face = faceBit(exit, flip);
     bool grouped = isGroup(int(vRecord.y));
     int leaf = surfaceLeaf(int(vRecord.y), exit);
+    if (plainShownBefore(first, leaf, !flip)) discard;
     outDepth = first;
     outLeaf = leafCode(leaf, flip);
     if (face != 0 || grouped) atomicOr(shownFaces[leaf], 1u << face);

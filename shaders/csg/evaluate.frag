@@ -284,6 +284,37 @@ void noteResult(bool now, bool resultInside) {
     if (now != resultInside) changed = true;
 }
 
+#ifdef PLAIN_BESIDE
+// Plain leaves beside the CSG (PlainPass.h): the root is a union of those
+// leaves and of this tree, and every ray starts outside, so the result's
+// first surface is the nearer of the plain leaves' nearest front face,
+// drawn into resultDepth and resultLeaf before this pass, and this tree's
+// first surface. This pass reads those two images at its own pixel and
+// writes it only where its surface is shown: where it lies nearer by more
+// than a quarter of the tolerance (one face as far as rounding can tell,
+// "the surface shown" above), or lies in one face with the plain surface
+// and comes before it by that rule (its own face before a flipped one,
+// then the lowest leaf, then the nearest). Elsewhere the pixel keeps the
+// plain leaf's surface, its normal and its mark. Each pixel is read and
+// written once, by its own invocation, after a texture barrier.
+layout(binding = kTexturePlainDepth) uniform sampler2D uPlainDepth;
+layout(binding = kTexturePlainLeaf) uniform isampler2D uPlainLeaf;
+
+bool plainShownBefore(float tagged, int leaf, bool same) {
+    int code = texelFetch(uPlainLeaf, ivec2(gl_FragCoord.xy), 0).r;
+    if (code < 0) return false;
+    float plain = texelFetch(uPlainDepth, ivec2(gl_FragCoord.xy), 0).r;
+    float reach = uCoincidence * 0.25;
+    if (untagged(plain) < untagged(tagged) - reach) return true;
+    if (untagged(tagged) < untagged(plain) - reach) return false;
+    return !shownBefore(leaf, tagged, same, leafOfCode(code), plain, true);
+}
+#else
+bool plainShownBefore(float tagged, int leaf, bool same) {
+    return false;
+}
+#endif
+
 // Writes the chosen surface where the result was entered (`entered`) or
 // left: its own tagged depth (the normal pass finds its fragment by it) and
 // its leaf code (leafCode in interface.glsl: flipped where its operand
@@ -295,6 +326,7 @@ void writeChosenSurface(bool entered) {
     bool exit = isExit(pickSurface);
     bool flip = exit == entered;
     int leaf = pickLeaf;
+    if (plainShownBefore(pickSurface, leaf, !flip)) discard;
     outDepth = pickSurface;
     outLeaf = leafCode(leaf, flip);
     int face = faceBit(exit, flip);

@@ -111,6 +111,8 @@ SHARED int kTextureResultDepth = 0;   // normal, translucent: the evaluator's de
 SHARED int kTextureResultLeaf = 1;    // normal, alpha: the evaluator's leaf code
 SHARED int kTextureNormal = 0;        // shade: normal and base colour
 SHARED int kTexturePlainNearest = 0;  // plain TIE: a copy of the nearest pass's depths
+SHARED int kTexturePlainDepth = 5;    // evaluate PLAIN_BESIDE: the plain leaves' depth (resultDepth)
+SHARED int kTexturePlainLeaf = 6;     // evaluate PLAIN_BESIDE: and their leaf codes (resultLeaf)
 
 // Image units.
 SHARED int kImageFragmentCounts = 1;  // peel COLLECT, resolve
@@ -172,6 +174,9 @@ SHARED_FUNCTION int stencilMark(int slot, int face) {
 }
 // The one mark for every written pixel where marks do not name leaves.
 SHARED int kMarkWritten = 2;
+// The mark of a pixel that a plain leaf drawn beside the CSG shows
+// (PlainPass.h): above every leaf's mark, so no normal-pass draw takes it.
+SHARED int kMarkPlain = 255;
 
 // The leaf code (FrameTargets::resultLeaf): the leaf of the visible surface
 // and whether it is flipped there; kLeafMiss where the result has no

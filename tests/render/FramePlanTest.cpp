@@ -254,3 +254,55 @@ TEST(TilePlan, OperandsSmallOnScreenAreTiledByCoverageWhileItSavesLayers) {
     const std::vector<render::PixelRect> whole{{0, 0, 512, 512}};
     EXPECT_EQ(render::planTileGrid(512, 512, whole, settings, 16, eightLayers).tiles.size(), 1u);
 }
+
+TEST(FramePlan, PlainLeavesBesideCsgAreDrawnPlainlyWhereTheyReachEnoughBlocksAlone) {
+    FrameFacts facts = differenceReadBack();
+    facts.plainBesideScene = true;
+    facts.plainBesideShare = 0.5;
+    const FramePlan beside = render::planFrame(facts, RenderSettings{});
+    EXPECT_TRUE(beside.plainBeside);
+    EXPECT_FALSE(beside.plainFrame);
+    EXPECT_TRUE(beside.evaluated);
+    EXPECT_EQ(beside.form, TreeForm::BesidePlainGrouped);
+    RenderSettings apart;
+    apart.groupOperands = false;
+    EXPECT_EQ(render::planFrame(facts, apart).form, TreeForm::BesidePlainSeparate);
+    // Not where the plain leaves reach few blocks alone, from inside, for
+    // the result peel, the debug views, or with plain frames turned off.
+    FrameFacts few = facts;
+    few.plainBesideShare = RenderSettings{}.plainBesideFrom / 2;
+    EXPECT_FALSE(render::planFrame(few, RenderSettings{}).plainBeside);
+    FrameFacts inside = facts;
+    inside.outside = false;
+    EXPECT_FALSE(render::planFrame(inside, RenderSettings{}).plainBeside);
+    FrameFacts peel = facts;
+    peel.resultPeel = true;
+    EXPECT_FALSE(render::planFrame(peel, RenderSettings{}).plainBeside);
+    RenderSettings layers;
+    layers.keepPeelLayers = true;
+    EXPECT_FALSE(render::planFrame(facts, layers).plainBeside);
+    RenderSettings forms;
+    forms.keepBlockForms = true;
+    EXPECT_FALSE(render::planFrame(facts, forms).plainBeside);
+    RenderSettings off;
+    off.plainUnions = false;
+    EXPECT_FALSE(render::planFrame(facts, off).plainBeside);
+    EXPECT_EQ(render::planFrame(facts, off).form, TreeForm::Grouped);
+    // Lit as drawn without the outline, as any evaluated frame.
+    facts.aovs = false;
+    EXPECT_TRUE(render::planFrame(facts, openScadLook()).litAsDrawn);
+}
+
+TEST(FramePlan, PlainBesideShareCountsTheBlocksOnlyPlainLeavesReach) {
+    using render::PixelRect;
+    // A 64 x 32 frame of 16-pixel blocks (4 x 2): a plain leaf over the
+    // left half, a CSG operand over the right half and one block column
+    // of the left.
+    const std::vector<PixelRect> plain{{0, 0, 32, 32}}, csg{{20, 0, 44, 32}};
+    EXPECT_DOUBLE_EQ(render::plainBesideShare(64, 32, 16, plain, csg), 2.0 / 8.0);
+    EXPECT_DOUBLE_EQ(render::plainBesideShare(64, 32, 16, plain, {}), 1.0);
+    EXPECT_DOUBLE_EQ(render::plainBesideShare(64, 32, 16, {}, csg), 0.0);
+    EXPECT_DOUBLE_EQ(render::plainBesideShare(64, 32, 16, {}, {}), 0.0);
+    // Off the frame counts nothing; a rectangle past its edge is cut there.
+    EXPECT_DOUBLE_EQ(render::plainBesideShare(64, 32, 16, {{-40, 0, 20, 32}, {60, 0, 40, 32}}, csg), 0.0);
+}

@@ -102,17 +102,27 @@ protected:
     // outline of both; without the outline the plain frame is lit as drawn,
     // and its colours too are the full pipeline's, to the byte, wherever its
     // surfaces are. Returns the plain frame.
+    //
+    // `beside`: the scene's root is a union of plain leaves and of a rest
+    // with CSG in it, so the plain frame draws those leaves plainly and
+    // evaluates the rest after them, and both peel.
     static render::Frame expectPlainEqualsFull(const camera::Camera& camera, const std::string& what,
-                                               const render::RenderSettings& look = {}) {
+                                               const render::RenderSettings& look = {}, bool beside = false) {
         render::RenderSettings full = look;
         full.plainUnions = false;
         full.groupOperands = false;
         render::Frame plain = renderer_->render(camera, look);
         const render::Frame apart = renderer_->render(camera, full);
-        EXPECT_TRUE(plain.stats.plain) << what;
+        EXPECT_EQ(plain.stats.plain, !beside) << what;
+        EXPECT_EQ(plain.stats.plainBesideLeaves > 0, beside) << what;
         EXPECT_FALSE(apart.stats.plain) << what;
+        EXPECT_EQ(apart.stats.plainBesideLeaves, 0u) << what;
         EXPECT_GT(apart.stats.peelPasses, 0) << what;
-        EXPECT_EQ(plain.stats.peelPasses, 0) << what;
+        if (beside) {
+            EXPECT_LT(plain.stats.peelPasses, apart.stats.peelPasses) << what;
+        } else {
+            EXPECT_EQ(plain.stats.peelPasses, 0) << what;
+        }
         const int w = plain.width, h = plain.height;
         auto outline = [&](int x, int y) {
             const std::size_t k = static_cast<std::size_t>(y * w + x);
@@ -158,8 +168,9 @@ std::unique_ptr<gpu::Context> PlainFrameGLTest::context_;
 std::unique_ptr<render::Renderer> PlainFrameGLTest::renderer_;
 
 // A union of `count` coloured spheres, blocks, cylinders and sets of sphere
-// shells (non-convex leaves), overlapping, seeded.
-scene::Tree randomUnion(unsigned seed, int count) {
+// shells (non-convex leaves; without `shells`, more spheres), overlapping,
+// seeded.
+scene::Tree randomUnion(unsigned seed, int count, bool shells = true) {
     scene::Tree tree;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> at(-1.6, 1.6), size(0.15, 0.6), hue(0.2, 1.0);
@@ -173,6 +184,10 @@ scene::Tree randomUnion(unsigned seed, int count) {
             case 1: leaf = cubeLeaf(c - glm::dvec3(r), c + glm::dvec3(r, 0.7 * r, 1.3 * r)); break;
             case 2: leaf = cylinderLeaf(c, r, 2 * r); break;
             default:
+                if (!shells) {
+                    leaf = sphereLeaf(c, 0.8 * r, 24);
+                    break;
+                }
                 leaf.primitive = test::sphereShells({c + glm::dvec3(0, 0, 0.5), c, c - glm::dvec3(0, 0, 0.5)}, r * 0.6, 16);
         }
         if (i % 3 != 0) leaf.color = glm::dvec4(hue(rng), hue(rng), hue(rng), 1.0);
@@ -301,6 +316,85 @@ TEST_F(PlainFrameGLTest, TiesAreSoughtTriangleByTriangle) {
         }
         EXPECT_GT(top, std::size_t(kSize * kSize) / 4);
         EXPECT_EQ(base, top);
+    }
+}
+
+// randomUnion's leaves and, beside them under the root's union, CSG:
+// a block less a ball, whose top a plain block shares and whose cut a
+// plain block touches, and a lens (two balls intersected) that a plain
+// ball crosses. No sets of shells: where two shells of one leaf cross, the
+// full pipeline's one layer of a union's operand can hold one shell's exit
+// a hair before the other's entry, and show it flipped, where the plain
+// path shows the entry.
+scene::Tree unionBesideCsg(unsigned seed, int count) {
+    scene::Tree tree = randomUnion(seed, count, false);
+    std::vector<int> parts = tree.nodes[static_cast<std::size_t>(tree.root)].children;
+    const int block = tree.addLeaf(cubeLeaf({-1.0, -1.0, -0.6}, {0.6, 0.6, 0.4}));
+    const int ball = tree.addLeaf(sphereLeaf({0.6, 0.6, 0.4}, 0.7, 24));
+    parts.push_back(tree.addNode(NodeKind::Difference, {block, ball}));
+    scene::Leaf lensA = sphereLeaf({1.2, -1.0, 0.0}, 0.6), lensB = sphereLeaf({1.6, -1.0, 0.0}, 0.6);
+    lensB.color = glm::dvec4(0.9, 0.3, 0.2, 1.0);
+    parts.push_back(tree.addNode(NodeKind::Intersection, {tree.addLeaf(lensA), tree.addLeaf(lensB)}));
+    // Sharing the block's top, touching its cut from outside, crossing the lens.
+    for (scene::Leaf leaf : {cubeLeaf({-1.4, -1.4, -0.2}, {-0.4, -0.4, 0.4}), cubeLeaf({0.6, -0.3, -0.6}, {0.9, 0.3, 0.4}),
+                             sphereLeaf({1.4, -1.2, 0.3}, 0.3)}) {
+        leaf.color = glm::dvec4(0.4, 0.8, 0.4, 1.0);
+        parts.push_back(tree.addLeaf(leaf));
+    }
+    tree.root = tree.addNode(NodeKind::Union, parts);
+    return tree;
+}
+
+TEST_F(PlainFrameGLTest, PlainLeavesBesideCsgEqualTheFullPipeline) {
+    // The plain leaves drawn first, the CSG evaluated after them: the frame
+    // is the full pipeline's, in both looks, from views where the CSG is in
+    // front of plain leaves and behind them, and where faces of both tie.
+    const glm::dvec3 eyes[] = {{0.3, -0.4, 9.0}, {7.0, -5.0, 4.0}, {-3.0, 6.5, -4.0}};
+    for (unsigned seed : {21u, 22u}) {
+        setScene(unionBesideCsg(seed, 24));
+        for (const glm::dvec3& eye : eyes) {
+            for (camera::Projection projection : kProjections) {
+                for (const bool outline : {true, false}) {
+                    render::RenderSettings look;
+                    look.outline = outline;
+                    look.plainBesideFrom = 0.0;  // whatever share of the frame they reach alone
+                    const std::string what = "seed " + std::to_string(seed) + ", projection " +
+                                             std::to_string(static_cast<int>(projection)) +
+                                             (outline ? ", outline" : ", lit as drawn");
+                    const render::Frame plain = expectPlainEqualsFull(cameraAt(eye, projection), what, look, true);
+                    EXPECT_EQ(plain.stats.plainBesideLeaves, 27u) << what;
+                    // Both parts show: some pixels a plain leaf's, some the CSG's.
+                    std::size_t csg = 0, covered = 0;
+                    for (std::int32_t leaf : plain.leaf) {
+                        covered += leaf >= 0;
+                        csg += leaf >= 24 && leaf < 28;
+                    }
+                    EXPECT_GT(csg, covered / 50) << what;
+                    EXPECT_LT(csg, covered) << what;
+                }
+            }
+        }
+    }
+}
+
+TEST_F(PlainFrameGLTest, RealModelsWithPlainLeavesBesideCsgEqualTheFullPipeline) {
+    // OpenSCAD's examples whose root unions plain parts with CSG: columns
+    // and a roof beside a cut ring, a module's parts beside its differences.
+    for (const char* name : {"Old_example005", "Basics_CSG-modules", "Advanced_GEB"}) {
+        const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
+        model::Model model = model::buildModel(tree);
+        mesh::Bounds bounds;
+        for (const mesh::Mesh& mesh : model.leafMeshes)
+            for (const glm::dvec3& p : mesh.positions) bounds.extend(p);
+        renderer_->setScene(tree, std::move(model));
+        camera::Camera base = cameraAt({0, 0, 0});
+        base.width = 160;
+        base.height = 120;
+        for (int frame = 0; frame < 2; ++frame) {
+            const render::Frame plain =
+                expectPlainEqualsFull(camera::defaultCamera(bounds, base), name, render::RenderSettings{}, true);
+            EXPECT_GT(plain.stats.coveredPixels, std::size_t(160 * 120) / 20) << name;
+        }
     }
 }
 

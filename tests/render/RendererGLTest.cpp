@@ -1399,6 +1399,9 @@ TEST_F(RendererGLTest, UnitedOperandsChangeNoSurface) {
     separate.groupOperands = false;
     tiled.memoryBudget = tiledApart.memoryBudget = 40 * 40 * 8 * 6;
     tiledApart.groupOperands = false;
+    // The peel's union groups here: not the plain leaves beside the CSG
+    // drawn plainly first (PlainFrameGLTest).
+    for (render::RenderSettings* settings : {&unite, &separate, &tiled, &tiledApart}) settings->plainUnions = false;
     for (camera::Projection projection : kProjections) {
         for (double height : {kEyeHeight, 0.0}) {
             camera::Camera camera = topCamera(projection, height);

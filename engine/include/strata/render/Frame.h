@@ -97,6 +97,16 @@ struct RenderSettings {
     // "Plain frames"). false: such frames run every pass, as any tree does
     // (tests compare the two).
     bool plainUnions = true;
+    // Where the root is a union of plain leaves and of CSG, the plain
+    // leaves are drawn plainly before the rest is evaluated (in the frames
+    // a plain frame would take, with plainUnions) when they reach at least
+    // this share of the blocks the frame draws where no CSG operand does
+    // (render::plainBesideShare; 0: always, above 1: never). On fewer, the
+    // plain pass's own targets and the evaluator's reading of them cost
+    // about what they save: on llvmpipe, OpenSCAD's examples where they
+    // reach a tenth to a quarter of the blocks alone draw 0.9 to 1.2 times
+    // as fast as without, those from two fifths 0.6 to 0.9 times.
+    double plainBesideFrom = 0.3;
     // What render() reads back beside the image and the leaves: leave out
     // what the caller will not use (Frame::depth, Frame::normal stay empty),
     // and its read-back with it (20 bytes a pixel).
@@ -107,7 +117,8 @@ struct RenderSettings {
 struct FrameStats {
     // Wall clock of each pass, every tile, a glFinish (or a read-back) after each:
     // peel, evaluate (the CSG evaluator), normal (the normal pass), plain
-    // (a plain frame's draws, in place of those three), shade (shading and
+    // (a plain frame's draws, in place of those three, or those of the
+    // plain leaves beside the CSG), shade (shading and
     // translucent leaves), readback (render() only).
     double peelMs = 0, evaluateMs = 0, normalMs = 0, plainMs = 0, shadeMs = 0, readbackMs = 0, totalMs = 0;
     // The frame was drawn plainly (RenderSettings::plainUnions): its leaves
@@ -116,6 +127,10 @@ struct FrameStats {
     // leaf's (0: every triangle of those leaves).
     bool plain = false;
     std::size_t tiedLeaves = 0, tiedTriangles = 0;
+    // Leaves drawn plainly beside the CSG (the root a union of them and of
+    // more), before the rest was peeled and evaluated: 0 where none was.
+    // Their draws' time is plainMs.
+    std::size_t plainBesideLeaves = 0;
     // The surfaces were lit as they were drawn (no outline: by the plain
     // pass, or by the normal pass where no normal is read back), and no
     // shade pass ran.
