@@ -160,6 +160,21 @@ protected:
         return plain;
     }
 
+    // One of OpenSCAD's examples in tests/bench/models as the scene, and
+    // its default view at 160 x 120.
+    static camera::Camera setModel(const char* name) {
+        const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
+        model::Model model = model::buildModel(tree);
+        mesh::Bounds bounds;
+        for (const mesh::Mesh& mesh : model.leafMeshes)
+            for (const glm::dvec3& p : mesh.positions) bounds.extend(p);
+        renderer_->setScene(tree, std::move(model));
+        camera::Camera base = cameraAt({0, 0, 0});
+        base.width = 160;
+        base.height = 120;
+        return camera::defaultCamera(bounds, base);
+    }
+
     static std::unique_ptr<gpu::Context> context_;
     static std::unique_ptr<render::Renderer> renderer_;
 };
@@ -381,18 +396,10 @@ TEST_F(PlainFrameGLTest, RealModelsWithPlainLeavesBesideCsgEqualTheFullPipeline)
     // OpenSCAD's examples whose root unions plain parts with CSG: columns
     // and a roof beside a cut ring, a module's parts beside its differences.
     for (const char* name : {"Old_example005", "Basics_CSG-modules", "Advanced_GEB"}) {
-        const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
-        model::Model model = model::buildModel(tree);
-        mesh::Bounds bounds;
-        for (const mesh::Mesh& mesh : model.leafMeshes)
-            for (const glm::dvec3& p : mesh.positions) bounds.extend(p);
-        renderer_->setScene(tree, std::move(model));
-        camera::Camera base = cameraAt({0, 0, 0});
-        base.width = 160;
-        base.height = 120;
+        const camera::Camera camera = setModel(name);
         for (int frame = 0; frame < 2; ++frame) {
             const render::Frame plain =
-                expectPlainEqualsFull(camera::defaultCamera(bounds, base), name, render::RenderSettings{}, true);
+                expectPlainEqualsFull(camera, name, render::RenderSettings{}, true);
             EXPECT_GT(plain.stats.coveredPixels, std::size_t(160 * 120) / 20) << name;
         }
     }
@@ -403,18 +410,10 @@ TEST_F(PlainFrameGLTest, RealUnionModelsEqualTheFullPipeline) {
     // base plane, blocks standing on one another, a turned extrusion, each
     // from OpenSCAD's default view.
     for (const char* name : {"Old_example019", "Old_example022", "Old_example018", "Basics_rotate_extrude"}) {
-        const scene::Tree tree = scene::parseCsgFile(std::string(STRATA_TEST_DIR) + "/bench/models/" + name + ".csg");
-        model::Model model = model::buildModel(tree);
-        mesh::Bounds bounds;
-        for (const mesh::Mesh& mesh : model.leafMeshes)
-            for (const glm::dvec3& p : mesh.positions) bounds.extend(p);
-        renderer_->setScene(tree, std::move(model));
-        camera::Camera base = cameraAt({0, 0, 0});
-        base.width = 160;
-        base.height = 120;
+        const camera::Camera camera = setModel(name);
         // The first frame with the tying leaves whole, the second with their triangles sorted out.
         for (int frame = 0; frame < 2; ++frame) {
-            const render::Frame plain = expectPlainEqualsFull(camera::defaultCamera(bounds, base), name);
+            const render::Frame plain = expectPlainEqualsFull(camera, name);
             EXPECT_GT(plain.stats.coveredPixels, std::size_t(160 * 120) / 20) << name;
             EXPECT_GT(plain.stats.tiedLeaves, 0u) << name;
         }

@@ -104,9 +104,9 @@ struct RenderSettings {
     // (render::plainBesideShare; 0: always, above 1: never). On fewer, the
     // plain pass's own targets and the evaluator's reading of them cost
     // about what they save: on llvmpipe, OpenSCAD's examples where they
-    // reach a tenth to a quarter of the blocks alone draw 0.9 to 1.2 times
-    // as fast as without, those from two fifths 0.6 to 0.9 times.
-    double plainBesideFrom = 0.3;
+    // reach 30 to 37 % of the blocks alone took 1.0 to 1.15 times as long
+    // drawn so, those from 50 % 0.57 to 0.97 times.
+    double plainBesideFrom = 0.4;
     // What render() reads back beside the image and the leaves: leave out
     // what the caller will not use (Frame::depth, Frame::normal stay empty),
     // and its read-back with it (20 bytes a pixel).
