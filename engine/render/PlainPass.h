@@ -98,9 +98,11 @@ public:
         glm::vec4 background{0.0f};
         // Drawn beside the CSG (FrameTargets::plainBeside): the leaves are
         // the union's plain part, and the evaluator runs after on the rest.
-        // Every pixel written is marked kMarkPlain, which no leaf's mark
-        // equals, so the normal pass leaves the pixels the plain leaves
-        // keep as they are. Not with shownOnly.
+        // The renderer asks shownOnly and keepResult with it: the depths
+        // and leaf codes the evaluator reads, cleared inside `drawn` only.
+        // Where marked (not lit), every pixel written is marked kMarkPlain,
+        // which no leaf's mark equals, so the normal pass leaves the pixels
+        // the plain leaves keep as they are.
         bool beside = false;
         // Shown only, and a pass blends over the image after (translucent
         // and '%' leaves): the depths and leaf codes of the whole frame

@@ -134,6 +134,13 @@ std::vector<char> reachedByUnionsOnly(const csg::CompiledTree& compiled, const S
     return out;
 }
 
+// Per operand of `compiled` (its own leaves, no groups yet): whether its leaf is convex.
+std::vector<char> convexOperandsOf(const csg::CompiledTree& compiled, const SceneBuffers& scene) {
+    std::vector<char> out(compiled.operandLeaf.size(), 0);
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = scene.leaf(compiled.operandLeaf[k]).convex ? 1 : 0;
+    return out;
+}
+
 }  // namespace
 
 void resetDrawState() {
@@ -181,10 +188,7 @@ void Renderer::Impl::setScene(const scene::Tree& tree, const model::Model& model
     for (std::size_t i = 0; i < same.size(); ++i) impl.copiedLeaves += same[i] != static_cast<int>(i) ? 1 : 0;
     impl.separate.tree = csg::compileTree(tree, empty, same);
     impl.separate.unionsOnly = reachedByUnionsOnly(impl.separate.tree, impl.scene);
-    impl.convexOperands.assign(impl.separate.tree.operandLeaf.size(), 0);
-    for (std::size_t k = 0; k < impl.convexOperands.size(); ++k) {
-        impl.convexOperands[k] = impl.scene.leaf(impl.separate.tree.operandLeaf[k]).convex ? 1 : 0;
-    }
+    impl.convexOperands = convexOperandsOf(impl.separate.tree, impl.scene);
     // The groups that ask whether their members share a plane
     // (GroupPeel::tiesWanted), made while the meshes are here: every group
     // any convexGroupFrom can make (groupTrees) is among these.
@@ -246,9 +250,7 @@ void Renderer::Impl::besidePlain(const scene::Tree& tree, const std::vector<bool
         return;
     }
     besideSeparate.unionsOnly = reachedByUnionsOnly(besideSeparate.tree, scene);
-    besideConvexOperands.assign(besideSeparate.tree.operandLeaf.size(), 0);
-    for (std::size_t k = 0; k < besideConvexOperands.size(); ++k)
-        besideConvexOperands[k] = scene.leaf(besideSeparate.tree.operandLeaf[k]).convex ? 1 : 0;
+    besideConvexOperands = convexOperandsOf(besideSeparate.tree, scene);
 }
 
 void Renderer::Impl::readBack(Frame& frame, const RenderSettings& settings) {
@@ -328,15 +330,14 @@ ViewSetup Renderer::Impl::frameView(const Camera& camera, const RenderSettings& 
     return view;
 }
 
-Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const ViewSetup& view, const csg::CompiledTree& compiled,
-                                                        const FramePlan& plan) const {
+Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const csg::CompiledTree& compiled, const FramePlan& plan,
+                                                        LeafRects& leafRects) const {
     // Each operand's screen rectangle: its surfaces, and so every pixel the
     // evaluator can mark, lie inside it.
     // Mark slots go to the operands, a group's to each of its members.
     ScreenRects out;
     if (plan.plainFrame || plan.plainBeside) {
-        for (int leaf : plainPassLeaves())
-            out.drawn = out.drawn.bounding(screenRect(view, scene.leafVertices(leaf)));
+        for (int leaf : plainPassLeaves()) out.drawn = out.drawn.bounding(leafRects(leaf));
     }
     if (!plan.plainFrame && compiled.kind == csg::CompiledTree::Kind::Code) {
         out.rects.resize(compiled.operandLeaf.size());
@@ -346,7 +347,7 @@ Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const ViewSetup& view, c
             const std::span<const int> leaves = compiled.leavesOf(k);
             const bool unite = compiled.isUnionGroup(k);
             for (std::size_t i = 0; i < leaves.size(); ++i) {
-                const PixelRect own = screenRect(view, scene.leafVertices(leaves[i]));
+                const PixelRect own = leafRects(leaves[i]);
                 out.rects[k] = i == 0 ? own : unite ? out.rects[k].bounding(own) : out.rects[k].intersection(own);
                 out.markLeaves.push_back(leaves[i]);
                 out.markRects.push_back(own);
@@ -381,15 +382,16 @@ void Renderer::Impl::groupTrees(int convexGroupFrom) {
     if (current != &separate && current != &besideSeparate) current = nullptr;
 }
 
-FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const {
+FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs,
+                                    LeafRects& leafRects) const {
     FrameFacts facts;
     facts.outside = beyondNearPlane(view, scene.bounds());
     facts.plainScene = !plainLeaves.empty();
     facts.plainBesideScene = !besideLeaves.empty();
     if (facts.plainBesideScene && settings.plainUnions && facts.outside) {
         std::vector<PixelRect> plainRects, csgRects;
-        for (int leaf : besideLeaves) plainRects.push_back(screenRect(view, scene.leafVertices(leaf)));
-        for (int leaf : besideSeparate.tree.operandLeaf) csgRects.push_back(screenRect(view, scene.leafVertices(leaf)));
+        for (int leaf : besideLeaves) plainRects.push_back(leafRects(leaf));
+        for (int leaf : besideSeparate.tree.operandLeaf) csgRects.push_back(leafRects(leaf));
         facts.plainBesideShare = plainBesideShare(view.width, view.height, EvaluatePass::kBlock, plainRects, csgRects);
     }
     facts.resultPeel = roundSink != nullptr;
@@ -405,7 +407,8 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     const auto frameStart = Clock::now();
     ViewSetup view = frameView(camera, settings);
     if (groupedFrom != settings.convexGroupFrom) groupTrees(settings.convexGroupFrom);
-    const FramePlan plan = planFrame(view, settings, aovs);
+    LeafRects leafRects(view, scene);
+    const FramePlan plan = planFrame(view, settings, aovs, leafRects);
     // The result peel (sampleResult) runs its rays along the model's axes,
     // on grids that put rays exactly along a solid's silhouette edges,
     // where the rasterizer's depths of the front and back faces that meet
@@ -433,7 +436,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     stats.operands = compiled.operandCount();
     stats.tiles = 0;
     stats.peelPasses = 0;
-    const ScreenRects screen = screenRects(view, compiled, plan);
+    const ScreenRects screen = screenRects(compiled, plan, leafRects);
 
     resetDrawState();
     targets.ensure(view.width, view.height);

@@ -155,6 +155,28 @@ struct Renderer::Impl {
     // The frame's view; throws strata::Error before setScene, for a negative
     // layer count, or for an image larger than the GPU's largest texture.
     ViewSetup frameView(const camera::Camera& camera, const RenderSettings& settings) const;
+    // Each leaf's screen rectangle in one frame's view (screenRect of its
+    // vertices), worked out at its first use: the plan and the operands'
+    // rectangles ask for the same leaves.
+    class LeafRects {
+    public:
+        LeafRects(const ViewSetup& view, const SceneBuffers& scene)
+            : view_(view), scene_(scene), rects_(scene.leaves().size()), known_(scene.leaves().size(), 0) {}
+        const PixelRect& operator()(int leaf) {
+            const auto i = static_cast<std::size_t>(leaf);
+            if (!known_[i]) {
+                rects_[i] = screenRect(view_, scene_.leafVertices(leaf));
+                known_[i] = 1;
+            }
+            return rects_[i];
+        }
+
+    private:
+        const ViewSetup& view_;
+        const SceneBuffers& scene_;
+        std::vector<PixelRect> rects_;
+        std::vector<char> known_;
+    };
     // Where a frame's operands lie on screen (drawFrame's, for peelAndEvaluate).
     struct ScreenRects {
         std::vector<PixelRect> rects;      // each operand's screen rectangle
@@ -162,12 +184,12 @@ struct Renderer::Impl {
         std::vector<PixelRect> markRects;  // and their screen rectangles
         PixelRect drawn;                   // every pixel the frame draws: all of the above
     };
-    ScreenRects screenRects(const ViewSetup& view, const csg::CompiledTree& compiled, const FramePlan& plan) const;
+    ScreenRects screenRects(const csg::CompiledTree& compiled, const FramePlan& plan, LeafRects& leafRects) const;
     // besideLeaves and the trees without them, from the scene's tree and
     // compileTree's arguments (setScene's, after separate and plainLeaves).
     void besidePlain(const scene::Tree& tree, const std::vector<bool>& empty, const std::vector<int>& same);
     // The frame's plan (FramePlan.h) from what this renderer knows of its scene.
-    FramePlan planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs) const;
+    FramePlan planFrame(const ViewSetup& view, const RenderSettings& settings, bool aovs, LeafRects& leafRects) const;
     // `plan`: the frame's (planFrame).
     // `rects`: each operand's screen rectangle (screenRect of its vertices).
     // `markLeaves`, `markRects`: the leaves that hold mark slots (operands,
