@@ -336,7 +336,14 @@ Renderer::Impl::ScreenRects Renderer::Impl::screenRects(const csg::CompiledTree&
     // evaluator can mark, lie inside it.
     // Mark slots go to the operands, a group's to each of its members.
     ScreenRects out;
-    if (plan.plainFrame || plan.plainBeside) {
+    if (plan.plainFrame) {
+        // The rectangle of the leaves' boxes: a plain frame has nothing else
+        // to project, and a model of a million leaves would spend more time
+        // projecting their vertices than the GPU spends drawing them.
+        mesh::Bounds box;
+        for (int leaf : plainPassLeaves()) box.extend(scene.leaf(leaf).bounds);
+        out.drawn = screenRect(leafRects.view(), box);
+    } else if (plan.plainBeside) {
         for (int leaf : plainPassLeaves()) out.drawn = out.drawn.bounding(leafRects(leaf));
     }
     if (!plan.plainFrame && compiled.kind == csg::CompiledTree::Kind::Code) {
@@ -407,7 +414,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
     const auto frameStart = Clock::now();
     ViewSetup view = frameView(camera, settings);
     if (groupedFrom != settings.convexGroupFrom) groupTrees(settings.convexGroupFrom);
-    LeafRects leafRects(view, scene);
+    // A thin bar seen aslant (a Menger sponge's) reaches a few blocks of the
+    // many its rectangle holds: its screen hull says which. Leaves of many
+    // vertices keep their rectangle alone.
+    constexpr std::size_t kMostHullVertices = 4096;
+    LeafRects leafRects(view, scene, settings.screenHulls ? kMostHullVertices : 0);
     const FramePlan plan = planFrame(view, settings, aovs, leafRects);
     // The result peel (sampleResult) runs its rays along the model's axes,
     // on grids that put rays exactly along a solid's silhouette edges,
@@ -488,7 +499,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         targets.plainBeside = true;
         targets.plainMarks = !litAs;
         peelAndEvaluate(view, plan, screen.rects, screen.markLeaves, screen.markRects, settings, baseColors, litAs,
-                        frame);
+                        leafRects, frame);
     } else if (plan.evaluated) {
         if (plan.litAsDrawn) {
             // The normal pass lights only the pixels the result covers.
@@ -496,7 +507,7 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
             glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, background);
         }
         peelAndEvaluate(view, plan, screen.rects, screen.markLeaves, screen.markRects, settings,
-                        ShadePass::baseColors(scene, scheme), litAs, frame);
+                        ShadePass::baseColors(scene, scheme), litAs, leafRects, frame);
     } else {
         stats.notes.push_back(compiled.kind == csg::CompiledTree::Kind::Empty ? "the CSG result is empty"
                                                                         : "the CSG result is everything");

@@ -156,25 +156,32 @@ struct Renderer::Impl {
     // layer count, or for an image larger than the GPU's largest texture.
     ViewSetup frameView(const camera::Camera& camera, const RenderSettings& settings) const;
     // Each leaf's screen rectangle in one frame's view (screenRect of its
-    // vertices), worked out at its first use: the plan and the operands'
-    // rectangles ask for the same leaves.
+    // vertices), and its screen hull where the frame wants hulls (at most
+    // `mostHullVertices` vertices, else none), worked out together at the
+    // leaf's first use: the plan, the operands' rectangles and the
+    // evaluator's blocks ask for the same leaves.
     class LeafRects {
     public:
-        LeafRects(const ViewSetup& view, const SceneBuffers& scene)
-            : view_(view), scene_(scene), rects_(scene.leaves().size()), known_(scene.leaves().size(), 0) {}
-        const PixelRect& operator()(int leaf) {
-            const auto i = static_cast<std::size_t>(leaf);
-            if (!known_[i]) {
-                rects_[i] = screenRect(view_, scene_.leafVertices(leaf));
-                known_[i] = 1;
-            }
-            return rects_[i];
-        }
+        LeafRects(const ViewSetup& view, const SceneBuffers& scene, std::size_t mostHullVertices)
+            : view_(view), scene_(scene), mostHullVertices_(mostHullVertices), bounds_(scene.leaves().size()),
+              known_(scene.leaves().size(), 0) {}
+        const PixelRect& operator()(int leaf) { return of(leaf).rect; }
+        const ScreenHull& hull(int leaf) { return of(leaf).hull; }
+        const ViewSetup& view() const { return view_; }
 
     private:
+        const ScreenBounds& of(int leaf) {
+            const auto i = static_cast<std::size_t>(leaf);
+            if (!known_[i]) {
+                bounds_[i] = screenBounds(view_, scene_.leafVertices(leaf), mostHullVertices_);
+                known_[i] = 1;
+            }
+            return bounds_[i];
+        }
         const ViewSetup& view_;
         const SceneBuffers& scene_;
-        std::vector<PixelRect> rects_;
+        std::size_t mostHullVertices_;
+        std::vector<ScreenBounds> bounds_;
         std::vector<char> known_;
     };
     // Where a frame's operands lie on screen (drawFrame's, for peelAndEvaluate).
@@ -201,7 +208,7 @@ struct Renderer::Impl {
                          const std::vector<int>& markLeaves,
                          const std::vector<PixelRect>& markRects, const RenderSettings& settings,
                          const std::vector<glm::vec2>& baseColors, const std::optional<Lighting>& litAs,
-                         Frame& frame);
+                         LeafRects& leafRects, Frame& frame);
     // What every tile of a frame reads (peelAndEvaluate's arguments).
     struct TileInputs {
         const ViewSetup& view;

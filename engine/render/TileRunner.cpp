@@ -5,7 +5,7 @@ namespace strata::render {
 void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const FramePlan& plan, const std::vector<PixelRect>& rects,
                                      const std::vector<int>& markLeaves, const std::vector<PixelRect>& markRects,
                                      const RenderSettings& settings, const std::vector<glm::vec2>& baseColors,
-                                     const std::optional<Lighting>& litAs, Frame& frame) {
+                                     const std::optional<Lighting>& litAs, LeafRects& leafRects, Frame& frame) {
     FrameStats& stats = frame.stats;
     const csg::CompiledTree& compiled = current->tree;
     const std::vector<int>& operands = compiled.operandLeaf;
@@ -17,11 +17,10 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const FramePlan& pla
     // test besides the rectangle: a thin bar seen aslant (a Menger sponge's)
     // reaches a few blocks of the many its rectangle holds. Groups, and
     // leaves of many vertices, keep their rectangle alone.
-    constexpr std::size_t kMostHullVertices = 4096;
     std::vector<ScreenHull> hulls(operands.size());
     for (std::size_t k = 0; k < operands.size() && settings.screenHulls; ++k) {
         if (compiled.leavesOf(k).size() != 1 || compiled.isUnionGroup(k)) continue;
-        hulls[k] = screenHull(view, scene.leafVertices(operands[k]), kMostHullVertices);
+        hulls[k] = leafRects.hull(operands[k]);
     }
     const TileInputs in{view, plan, rects, hulls, markLeaves, markRects, settings, baseColors, request, litAs};
     const TileGrid tiles = planTiles(in);

@@ -83,6 +83,14 @@ PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices)
 using ScreenHull = std::vector<glm::dvec2>;
 ScreenHull screenHull(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostVertices);
 
+// Both of the above from one projection of the vertices: what a frame asks
+// of each leaf. The hull is left empty past `mostHullVertices` (0: no hull).
+struct ScreenBounds {
+    PixelRect rect;
+    ScreenHull hull;
+};
+ScreenBounds screenBounds(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostHullVertices);
+
 // The least and greatest x of `hull` within the rows y0 <= y <= y1; false
 // when the hull does not reach those rows.
 bool hullSpan(const ScreenHull& hull, double y0, double y1, double& x0, double& x1);
