@@ -140,7 +140,8 @@ struct Result {
     std::size_t triangles = 0;
     int operands = 0;
     double setupMs = 0;                    // geometry + setScene
-    double strataMs = 0, strataMinMs = 0;  // wall clock per frame, glFinish included
+    double strataMs = 0, strataMinMs = 0;  // wall clock per frame, glFinish at its end included
+    double strataPassTimedMs = 0;          // the same, with a glFinish after each pass (RenderSettings::passTimes)
     double peelMs = 0, evaluateMs = 0, normalMs = 0, plainFrameMs = 0, shadeMs = 0;  // FrameStats, medians
     bool plainFrame = false;               // FrameStats::plain: strata drew the union plainly
     std::size_t plainBesideLeaves = 0;     // FrameStats::plainBesideLeaves: leaves drawn plainly beside the CSG
@@ -168,6 +169,9 @@ std::vector<std::uint8_t> coverageOf(const render::Frame& frame) {
     return out;
 }
 
+// Frames drawn again with a wait after each pass, for the passes' medians.
+constexpr int kPassTimedFrames = 5;
+
 // strata's frames of `scene` into a host framebuffer, timed: the medians
 // into `result`. Returns one read-back frame (not timed) for its coverage.
 render::Frame timeStrata(const Options& options, const bench::BenchScene& scene, const model::Model& model,
@@ -190,15 +194,24 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
     settings.plainUnions = options.plainUnions;
     settings.lighting = options.lighting;
     settings.outline = options.look.outline;
-    std::vector<double> frame, peel, evaluate, normal, plainFrame, shade;
+    // The frames as a program draws them, the GPU waited for once, at the
+    // end; then a few more that wait after each pass, for each pass's time.
+    std::vector<double> frame, timedFrame, peel, evaluate, normal, plainFrame, shade;
     render::FrameStats last;
-    for (int i = 0; i < options.warmup + options.frames; ++i) {
+    const int timedFrames = std::min(options.frames, kPassTimedFrames);
+    for (int i = 0; i < options.warmup + options.frames + timedFrames; ++i) {
+        const bool timed = i >= options.warmup + options.frames;
+        settings.passTimes = timed;
         const auto start = Clock::now();
         last = renderer.renderInto(host.id(), 0, 0, camera, settings);
         glFinish();
         const double ms = msSince(start);
         if (i < options.warmup) continue;
-        frame.push_back(ms);
+        if (!timed) {
+            frame.push_back(ms);
+            continue;
+        }
+        timedFrame.push_back(ms);
         peel.push_back(last.peelMs);
         evaluate.push_back(last.evaluateMs);
         normal.push_back(last.normalMs);
@@ -208,6 +221,7 @@ render::Frame timeStrata(const Options& options, const bench::BenchScene& scene,
     gpu::checkErrors();
     result.strataMs = median(frame);
     result.strataMinMs = frame.empty() ? 0.0 : *std::min_element(frame.begin(), frame.end());
+    result.strataPassTimedMs = median(timedFrame);
     result.peelMs = median(peel);
     result.evaluateMs = median(evaluate);
     result.normalMs = median(normal);
@@ -432,6 +446,7 @@ std::string toJson(const Options& options, const gpu::Context& context, const Op
         json.key("setup_ms").value(r.setupMs);
         json.key("strata_ms").value(r.strataMs);
         json.key("strata_min_ms").value(r.strataMinMs);
+        json.key("strata_pass_timed_ms").value(r.strataPassTimedMs);
         json.key("peel_ms").value(r.peelMs);
         json.key("evaluate_ms").value(r.evaluateMs);
         json.key("normal_ms").value(r.normalMs);
@@ -600,9 +615,10 @@ int main(int argc, char** argv) {
         gpu::ContextOptions contextOptions;
         contextOptions.debug = false;  // debug output costs time; errors are still checked
         gpu::Context context(contextOptions);
-        std::printf("# %s, %s; median of %d frames after %d warm-up, glFinish per frame; %s\n",
+        std::printf("# %s, %s; median of %d frames after %d warm-up, glFinish per frame; passes: median of %d "
+                    "more frames with a glFinish after each; %s\n",
                     context.renderer().c_str(), context.version().c_str(), options.frames, options.warmup,
-                    heap.c_str());
+                    std::min(options.frames, kPassTimedFrames), heap.c_str());
         OpenCsgSide openCsg = openOpenCsg(options, context);
         // Ascending K, so a setting over the time cap is skipped for every larger K.
         std::sort(options.ks.begin(), options.ks.end());

@@ -113,7 +113,7 @@ TileGrid planTileGrid(int width, int height, const std::vector<PixelRect>& rects
     // the whole frame lets every tile (and the next frame) reuse one layer
     // texture: llvmpipe zeroes each new texture, and a fresh 512 MiB costs
     // more than the peel of several extra tiles.
-    const std::size_t budget = settings.memoryBudget;
+    const std::size_t budget = settings.budget();
     std::vector<char> inTile(rects.size());
     auto area = [](const PixelRect& tile) {
         return static_cast<std::size_t>(tile.width) * static_cast<std::size_t>(tile.height);
@@ -173,7 +173,7 @@ TileGrid planTileGrid(int width, int height, const std::vector<PixelRect>& rects
         return most;
     };
     plan.budgetTiles = grid.tiles.size();
-    while (layerBytes(grid) > settings.coverageTilingFrom) {
+    while (layerBytes(grid) > settings.coverageTiling()) {
         std::vector<PixelRect> parts = quartered(grid);
         const bool small = std::any_of(parts.begin(), parts.end(), [](const PixelRect& tile) {
             return std::min(tile.width, tile.height) < kSmallestCoverageTile;

@@ -157,13 +157,49 @@ void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme
     if (!lit) shade->run(targets, view, scheme, settings.lighting, settings.outline, marked);
     if (!alphaLeaves.empty()) alpha->run(targets, scene, view, scheme, settings.lighting, alphaLeaves);
     if (!translucentLeaves.empty()) translucent->run(targets, scene, view, translucentLeaves);
-    glFinish();
+    passDone();
 }
 
 void Renderer::Impl::readColor(Frame& frame) {
     frame.rgba.resize(static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height) * 4);
     targets.color.download(GL_RGBA, GL_UNSIGNED_BYTE, std::as_writable_bytes(std::span(frame.rgba)));
     flipRows(std::span(frame.rgba), frame.width, frame.height, 4);
+}
+
+Renderer::Impl::Impl() {
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+    const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string renderer = name != nullptr ? name : "";
+    for (const char* software : {"llvmpipe", "softpipe", "SwiftShader", "swrast"})
+        softwareRasterizer = softwareRasterizer || renderer.find(software) != std::string::npos;
+    GLint kib[4] = {0, 0, 0, 0};
+    if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+        glGetIntegerv(GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX, kib);
+    } else if (epoxy_has_gl_extension("GL_ATI_meminfo")) {
+        glGetIntegerv(GL_TEXTURE_FREE_MEMORY_ATI, kib);  // free, in the largest block and more
+    }
+    deviceMemory = static_cast<std::size_t>(std::max(kib[0], 0)) << 10;
+}
+
+RenderSettings Renderer::Impl::deviceSettings(const RenderSettings& settings) const {
+    RenderSettings out = settings;
+    if (!out.memoryBudget) {
+        // An eighth of what the GPU has, so that the layers leave room for
+        // the rest of the program and of the desktop.
+        constexpr std::size_t kMostBudget = std::size_t(4) << 30;
+        out.memoryBudget = softwareRasterizer || deviceMemory == 0
+                               ? RenderSettings::kMemoryBudget
+                               : std::clamp(deviceMemory / 8, RenderSettings::kMemoryBudget, kMostBudget);
+    }
+    // On a GPU a tile costs a wait for the evaluator's read-back and each
+    // pass's fixed cost, and a new texture no zeroing: tiles only for the budget.
+    if (!out.coverageTilingFrom)
+        out.coverageTilingFrom = softwareRasterizer ? RenderSettings::kSoftwareCoverageTilingFrom : *out.memoryBudget;
+    return out;
+}
+
+RenderSettings Renderer::deviceSettings(const RenderSettings& settings) const {
+    return impl_->deviceSettings(settings);
 }
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -301,7 +337,7 @@ void Renderer::Impl::drawPlain(const ViewSetup& view, const PixelRect& drawn,
         plainStale = false;
     }
     plain->run(targets, scene, view, drawn, baseColors, output);
-    glFinish();
+    passDone();
     stats.plainMs = msSince(start);
     stats.tiedLeaves = plain->tiedLeaves();
     stats.tiedTriangles = plain->tiedTriangles();
@@ -409,10 +445,12 @@ FramePlan Renderer::Impl::planFrame(const ViewSetup& view, const RenderSettings&
     return render::planFrame(facts, settings);
 }
 
-ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& settings, Frame& frame,
+ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& requested, Frame& frame,
                                     bool aovs) {
+    const RenderSettings settings = deviceSettings(requested);
     const auto frameStart = Clock::now();
     ViewSetup view = frameView(camera, settings);
+    passTimes = settings.passTimes;
     if (groupedFrom != settings.convexGroupFrom) groupTrees(settings.convexGroupFrom);
     // A thin bar seen aslant (a Menger sponge's) reaches a few blocks of the
     // many its rectangle holds: its screen hull says which. Leaves of many

@@ -87,6 +87,11 @@ struct Renderer::Impl {
     // still has another scene's.
     std::vector<int> plainLeaves;
     bool plainStale = true;
+    // The frame's RenderSettings::passTimes: passDone() waits for the GPU.
+    bool passTimes = true;
+    void passDone() const {
+        if (passTimes) glFinish();
+    }
     // Where the root is a union of plain leaves (solids with volume that
     // only unions lead to) and of more: those leaves, which such a frame
     // draws plainly before the rest is evaluated (PlainPass::Output::beside),
@@ -136,7 +141,12 @@ struct Renderer::Impl {
     gpu::Texture resultStart;
     bool canMarkLeaves = FrameTargets::canMarkLeaves();
 
-    Impl() { glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize); }
+    // The device: a software rasterizer (llvmpipe), and the GPU's own
+    // memory in bytes where its driver says (0: unknown).
+    bool softwareRasterizer = false;
+    std::size_t deviceMemory = 0;
+    Impl();
+    RenderSettings deviceSettings(const RenderSettings& settings) const;
 
     // Renderer::setScene's; `release` (`model` itself, or null): let the
     // meshes go as they reach the GPU.

@@ -10,7 +10,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const FramePlan& pla
     const csg::CompiledTree& compiled = current->tree;
     const std::vector<int>& operands = compiled.operandLeaf;
     if (targets.leafMarks) targets.assignMarkSlots(markLeaves, markRects, leafCount);
-    PeelRequest request{settings.layers, settings.memoryBudget, {}, settings.fragmentListTriangles,
+    PeelRequest request{settings.layers, settings.budget(), {}, settings.fragmentListTriangles,
                         compiled.operandGroups, compiled.unionGroups};
     if (plan.firstLayerOnly) request.firstLayerOnly = current->unionsOnly;
     // Each single leaf's hull on the screen, which the evaluator's blocks
@@ -33,7 +33,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const FramePlan& pla
     if (tiles.budgetTiles > 1) {
         stats.notes.push_back("peel layers for every operand at " + std::to_string(view.width) + "x" +
                               std::to_string(view.height) + " would exceed the budget of " +
-                              mebibytes(settings.memoryBudget) + ": rendered in " + std::to_string(counts.drawn) +
+                              mebibytes(settings.budget()) + ": rendered in " + std::to_string(counts.drawn) +
                               " tiles, each peeling only the operands that meet it");
     } else if (grid.size() > 1) {
         stats.notes.push_back("rendered in " + std::to_string(counts.drawn) +
@@ -44,7 +44,7 @@ void Renderer::Impl::peelAndEvaluate(const ViewSetup& view, const FramePlan& pla
     if (counts.splits > 0) {
         stats.notes.push_back("auto peeling needed more layers than estimated: split " +
                               std::to_string(counts.splits) + " tiles to stay within " +
-                              mebibytes(settings.memoryBudget));
+                              mebibytes(settings.budget()));
     }
     if (settings.layers > 1) {
         const bool anyConvex = std::any_of(operands.begin(), operands.end(),
@@ -78,7 +78,7 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
 
         const auto start = Clock::now();
         const bool fits = peel->run(scene, in.view, tile, operands, in.rects, EvaluatePass::kBlock, in.request, layers);
-        glFinish();
+        passDone();
         stats.peelMs += msSince(start);
         stats.textureBytes = std::max(stats.textureBytes, peel->textureBytes());
         stats.textureAllocations += peel->allocations();
@@ -87,7 +87,7 @@ Renderer::Impl::TileCounts Renderer::Impl::runTiles(const TileInputs& in, const 
         if (!fits) {
             if (quarters(tile, EvaluatePass::kBlock).size() == 1) {
                 throw Error("renderer: the scene needs more peel layers at one spot than " +
-                            std::string("the memory budget of ") + mebibytes(in.settings.memoryBudget) +
+                            std::string("the memory budget of ") + mebibytes(in.settings.budget()) +
                             " and the GPU's " + std::to_string(peel->maxArrayLayers()) + " array layers allow");
             }
             // Auto peeling went deeper than guessed: split the tile in four.
@@ -127,7 +127,7 @@ void Renderer::Impl::evaluateTile(const TileInputs& in, const PixelRect& tile, c
     start = Clock::now();
     normals->run(targets, scene, in.view, tile, compiled, in.rects, shown, in.baseColors, in.markLeaves, in.markRects,
                  in.litAs);
-    glFinish();
+    passDone();
     stats.normalMs += msSince(start);
 }
 

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,19 +30,25 @@ struct RenderSettings {
     // taps a pixel in the shade pass. OpenSCAD's preview has no outline.
     bool outline = true;
     // Bytes the layered textures may take; above it the frame is rendered in
-    // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile: strata::Error.
-    std::size_t memoryBudget = std::size_t(512) << 20;
+    // screen tiles (FrameStats::tiles, ::notes). Too small for a 16x16 tile:
+    // strata::Error. Unset: the device's (Renderer::deviceSettings): an
+    // eighth of a GPU's memory, from 512 MiB to 4 GiB, where its driver
+    // tells it (NVIDIA's and AMD's); else 512 MiB (budget()).
+    std::optional<std::size_t> memoryBudget;
     // Within the budget, layers of more bytes than this are drawn in tiles
     // where the operands are small on screen: quarters of the frame (then
     // quarters of those, down to 64 pixels a side) while a quarter's layers
     // hold only the operands that meet it and each step's tiles together
     // draw at most coverageTilingDraws times as many layers. With the
     // defaults, operands that span the frame stay in one tile. A new layer
-    // texture costs its bytes in memory and, on llvmpipe, a first frame the
-    // time to zero them (144 MiB: about 75 ms); more tiles cost every frame
-    // a few more passes. A program that draws one frame (strata-render)
-    // gains by cutting sooner: it never reuses the texture.
-    std::size_t coverageTilingFrom = std::size_t(64) << 20;
+    // texture costs its bytes in memory and, on a software rasterizer
+    // (llvmpipe), a first frame the time to zero them (144 MiB: about
+    // 75 ms); more tiles cost every frame a few more passes, and on a GPU
+    // a wait for each. A program that draws one frame (strata-render) gains
+    // by cutting sooner: it never reuses the texture. Unset: the device's
+    // (Renderer::deviceSettings): 64 MiB on a software rasterizer, none
+    // (the budget) on a GPU; coverageTiling() where no device has said.
+    std::optional<std::size_t> coverageTilingFrom;
     double coverageTilingDraws = 2.0;
     bool keepPeelLayers = false;               // copy every operand's peeled layers into Frame::peelLayers (debug views)
     bool keepBlockForms = false;               // record each pixel's evaluator form in Frame::blockForms (figures, tests)
@@ -107,15 +114,28 @@ struct RenderSettings {
     // reach 30 to 37 % of the blocks alone took 1.0 to 1.15 times as long
     // drawn so, those from 50 % 0.57 to 0.97 times.
     double plainBesideFrom = 0.4;
+    // Wait for the GPU after each pass (glFinish), so that FrameStats' pass
+    // figures are the GPU's time. false: the frame waits only where it
+    // needs to (the evaluator's faces, read back for the normal pass) and
+    // at its end, so that on a GPU the CPU issues the next pass while the
+    // last one runs; each pass's figure is then the CPU's time to issue it,
+    // and totalMs the frame's true cost. Each wait costs a GPU about 0.1 ms.
+    bool passTimes = true;
     // What render() reads back beside the image and the leaves: leave out
     // what the caller will not use (Frame::depth, Frame::normal stay empty),
     // and its read-back with it (20 bytes a pixel).
     bool readDepth = true;
     bool readNormal = true;
+
+    static constexpr std::size_t kMemoryBudget = std::size_t(512) << 20;
+    static constexpr std::size_t kSoftwareCoverageTilingFrom = std::size_t(64) << 20;
+    std::size_t budget() const { return memoryBudget.value_or(kMemoryBudget); }
+    std::size_t coverageTiling() const { return coverageTilingFrom.value_or(kSoftwareCoverageTilingFrom); }
 };
 
 struct FrameStats {
-    // Wall clock of each pass, every tile, a glFinish (or a read-back) after each:
+    // Wall clock of each pass, every tile, a glFinish (or a read-back) after
+    // each where RenderSettings::passTimes asks:
     // peel, evaluate (the CSG evaluator), normal (the normal pass), plain
     // (a plain frame's draws, in place of those three, or those of the
     // plain leaves beside the CSG), shade (shading and

@@ -44,6 +44,11 @@ public:
     // (a million cubes then peak about 400 MB lower). `model` is left empty.
     void setScene(const scene::Tree& tree, model::Model&& model);
 
+    // `settings` with what it leaves unset (RenderSettings::memoryBudget,
+    // ::coverageTilingFrom) filled in as this renderer's GL device wants
+    // them; every frame takes its settings so.
+    RenderSettings deviceSettings(const RenderSettings& settings) const;
+
     // Renders and reads everything back.
     Frame render(const camera::Camera& camera, const RenderSettings& settings);
 
