@@ -7,6 +7,7 @@
 #                        [--frames N] [--warmup N] [--runs N] [--models DIR]
 #                        [--parts synthetic,files,first-image,opencsg,export]
 #                        [--export-models FILE,...] [--export-resolutions N,...]
+#                        [--look strata|openscad]
 #
 # Binaries: with --bundle, DIR/bin/strata-bench and strata-render run on
 # DIR/lib and DIR/fonts (scripts/gpu-bundle.py makes such a folder, for a
@@ -47,6 +48,9 @@
 #                export's own milliseconds (sampling and contouring apart)
 #                and the triangles written. Not in
 #                the default --parts.
+# --look openscad: strata-bench draws as OpenSCAD's preview looks (its light,
+# no outline: --light openscad --no-outline), as OpenCSG is drawn; default
+# strata's own look.
 # --budget S (default 330) bounds the whole: a step gets at most the time
 # left, and steps that no longer fit are skipped and listed, so the run
 # ends within about six minutes. --quick: small images, K = 1 and 8,
@@ -70,7 +74,7 @@ set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 [[ -f $root/scripts/bench-report.py ]] || root=$(pwd)
 bundle="" out=./gpu-bench-out quick=0 budget=330 frames="" warmup="" runs="" models="" parts=synthetic,files,first-image,opencsg
-export_models="" export_resolutions=512
+export_models="" export_resolutions=512 look=strata
 while (($#)); do
   case $1 in
     --bundle) bundle=$2; shift 2 ;;
@@ -84,6 +88,7 @@ while (($#)); do
     --parts) parts=$2; shift 2 ;;
     --export-models) export_models=$2; shift 2 ;;
     --export-resolutions) export_resolutions=$2; shift 2 ;;
+    --look) look=$2; shift 2 ;;
     -h|--help) sed -n '2,/^set -uo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "gpu-bench: unknown option $1 (--help)" >&2; exit 2 ;;
   esac
@@ -260,11 +265,17 @@ if ((!quick)) && has_part synthetic; then
 fi
 
 opencsg_args=(--no-opencsg)   # the opencsg part sets its own
+look_args=()
+case $look in
+  strata) ;;
+  openscad) look_args=(--light openscad --no-outline) ;;
+  *) echo "gpu-bench: --look strata or openscad, not $look" >&2; exit 2 ;;
+esac
 run_bench() {   # name json timeout args... ; 0 when the JSON was written
   local name=$1 json=$2 t=$3; shift 3
   log "strata-bench $name ($*) [timeout ${t} s]"
-  timeout -k 5 "$t" env "${runenv[@]}" "$bench" "${opencsg_args[@]}" --frames "$frames" --warmup "$warmup" \
-    --json "$json" "$@" 2>&1 | grep -v '^    opencsg: OpenCSG left out'
+  timeout -k 5 "$t" env "${runenv[@]}" "$bench" "${opencsg_args[@]}" ${look_args[@]+"${look_args[@]}"} \
+    --frames "$frames" --warmup "$warmup" --json "$json" "$@" 2>&1 | grep -v '^    opencsg: OpenCSG left out'
   local rc=${PIPESTATUS[0]}
   if [[ ! -s $json ]]; then fail "strata-bench $name: exit $rc, no JSON$( ((rc == 124 || rc == 137)) && echo ' (timed out)')"; return 1; fi
   ((rc == 0)) || fail "strata-bench $name: exit $rc (a case failed; its row says why)"
@@ -478,7 +489,7 @@ py=$(command -v python3 || true)
   echo "- GL: ${renderer:-unknown}"
   echo "- strata $commit; $( [[ -n $bundle ]] && echo "bundle $bundle" || echo "built here")"
   echo "- CPU: $cpu, $(nproc) cores; $os; glibc $glibc"
-  echo "- $frames frames after $warmup warm-up per case; first image: $runs runs; $(date -u +%Y-%m-%d)"
+  echo "- $frames frames after $warmup warm-up per case; first image: $runs runs; strata's frames in the $look look; $(date -u +%Y-%m-%d)"
   for part in synthetic files opencsg; do
     f="$out/bench-$part.json"
     [[ -s $f ]] || continue
