@@ -415,6 +415,49 @@ TEST_F(RendererGLTest, AutoPeelingStopsWhereCountedSurfacesCoincide) {
     EXPECT_EQ(listed.stats.listPeeledOperands, 1);
 }
 
+// Without a wait after each pass (RenderSettings::passTimes false) the
+// frame is the same to the bit, in one tile and in several.
+TEST_F(RendererGLTest, AFrameWithoutWaitsBetweenPassesIsTheSame) {
+    scene::Tree tree;
+    tree.root = tree.addNode(NodeKind::Difference, slabAndSpheres(tree, 3, 12, 1.5, -1.2, 1.2, 0.3));
+    for (const std::size_t budget : {std::size_t(0), std::size_t(30 * 30 * 8 * 3)}) {
+        render::RenderSettings timed;
+        if (budget > 0) timed.memoryBudget = budget;
+        render::RenderSettings untimed = timed;
+        untimed.passTimes = false;
+        const render::Frame a = draw(tree, topCamera(), timed);
+        const render::Frame b = draw(tree, topCamera(), untimed);
+        EXPECT_EQ(a.stats.tiles, b.stats.tiles);
+        if (budget > 0) EXPECT_GT(a.stats.tiles, 1);
+        EXPECT_EQ(pixelsDiffering(a, b), 0u);
+        EXPECT_EQ(a.rgba, b.rgba);
+    }
+}
+
+// What a frame leaves unset, the device fills in: on llvmpipe the budget
+// and llvmpipe's coverage tiles; on a GPU no coverage tiles. What the
+// caller sets stays.
+TEST_F(RendererGLTest, TheDeviceFillsInTheBudgetAndTheTiles) {
+    const render::RenderSettings filled = renderer_->deviceSettings({});
+    ASSERT_TRUE(filled.memoryBudget.has_value());
+    ASSERT_TRUE(filled.coverageTilingFrom.has_value());
+    const std::string name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    if (name.find("llvmpipe") != std::string::npos) {
+        EXPECT_EQ(*filled.memoryBudget, render::RenderSettings::kMemoryBudget);
+        EXPECT_EQ(*filled.coverageTilingFrom, render::RenderSettings::kSoftwareCoverageTilingFrom);
+    } else {
+        EXPECT_GE(*filled.memoryBudget, render::RenderSettings::kMemoryBudget);
+        EXPECT_LE(*filled.memoryBudget, std::size_t(4) << 30);
+        EXPECT_EQ(*filled.coverageTilingFrom, *filled.memoryBudget);
+    }
+    render::RenderSettings own;
+    own.memoryBudget = 12345;
+    own.coverageTilingFrom = 678;
+    const render::RenderSettings kept = renderer_->deviceSettings(own);
+    EXPECT_EQ(kept.memoryBudget, own.memoryBudget);
+    EXPECT_EQ(kept.coverageTilingFrom, own.coverageTilingFrom);
+}
+
 TEST_F(RendererGLTest, OperandsOnlyUnionsLeadToArePeeledOnce) {
     // A union of the three shells (six surfaces on the axis) and a cube
     // beside them. Seen from outside, the union's first surface on any ray is
