@@ -55,7 +55,7 @@ public:
     void setTree(const csg::CompiledTree& tree, bool leafMarks);
 
     // `rects[k]` is operand k's screen rectangle (frame pixels), and
-    // `hulls[k]` its screen hull where it has one (screenHull; missing or
+    // `hulls[k]` its screen hull where it has one (screenBounds; missing or
     // empty: the rectangle alone): each 16x16 block's tree is specialised
     // to the operands whose rectangle and hull reach its pixels.
     // `generalOnly` draws every block with the array form (tests compare the

@@ -87,24 +87,53 @@ ViewSetup makeView(const Camera& camera, const mesh::Bounds& sceneBounds) {
 
 namespace {
 
+// The projection to frame pixels as three rows, x' = (a . p) / (w . p), so
+// that a vertex costs three dot products and a division: a frame projects
+// every vertex of every leaf on the CPU, a million of them in a large model.
+struct Projector {
+    glm::dvec4 x, y, w;    // homogeneous rows, already scaled to pixels
+    glm::dvec3 forward;    // view depth: dot(p, forward) - dot(eye, forward)
+    double nearDepth = 0;  // dot(eye, forward) + near: at or before it, a point is clipped
+
+    explicit Projector(const ViewSetup& view) {
+        const glm::dmat4& m = view.viewProjectionD;  // column-major: m[column][row]
+        const auto row = [&](int r) { return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+        w = row(3);
+        // (clip.x / clip.w + 1) / 2 * width = (clip.x + clip.w) * width / 2 / clip.w
+        x = (row(0) + w) * (0.5 * view.width);
+        y = (row(1) + w) * (0.5 * view.height);
+        forward = view.forwardD;
+        nearDepth = glm::dot(view.eyeD, view.forwardD) + view.nearPlane;
+    }
+
+    // `p` in frame pixels; false (q untouched) at or before the near plane.
+    bool toScreen(const glm::dvec3& p, glm::dvec2& q) const {
+        if (glm::dot(p, forward) <= nearDepth) return false;
+        const glm::dvec4 h(p, 1.0);
+        const double inv = 1.0 / glm::dot(w, h);
+        q = {glm::dot(x, h) * inv, glm::dot(y, h) * inv};
+        return true;
+    }
+};
+
 // Accumulates the screen rectangle of points; `whole` once one reaches the near plane.
 struct RectBuilder {
     const ViewSetup& view;
+    Projector proj{view};
     double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
     bool whole = false;
 
-    void add(const glm::dvec3& p) {
-        if (glm::dot(p - view.eyeD, view.forwardD) <= view.nearPlane) {
+    // Projects `p`; false (and `whole`) at or before the near plane.
+    bool add(const glm::dvec3& p, glm::dvec2& q) {
+        if (!proj.toScreen(p, q)) {
             whole = true;
-            return;
+            return false;
         }
-        const glm::dvec4 clip = view.viewProjectionD * glm::dvec4(p, 1.0);
-        const double px = (clip.x / clip.w + 1.0) * 0.5 * view.width;
-        const double py = (clip.y / clip.w + 1.0) * 0.5 * view.height;
-        x0 = std::min(x0, px);
-        x1 = std::max(x1, px);
-        y0 = std::min(y0, py);
-        y1 = std::max(y1, py);
+        x0 = std::min(x0, q.x);
+        x1 = std::max(x1, q.x);
+        y0 = std::min(y0, q.y);
+        y1 = std::max(y1, q.y);
+        return true;
     }
 
     PixelRect rect() const;
@@ -133,7 +162,8 @@ bool beyondNearPlane(const ViewSetup& view, const mesh::Bounds& box) {
 PixelRect screenRect(const ViewSetup& view, const mesh::Bounds& box) {
     if (box.empty()) return {};
     RectBuilder builder{view};
-    for (const glm::dvec3& c : corners(box)) builder.add(c);
+    glm::dvec2 q;
+    for (const glm::dvec3& c : corners(box)) builder.add(c, q);
     return builder.rect();
 }
 
@@ -141,32 +171,7 @@ PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices)
     return screenBounds(view, vertices, 0).rect;
 }
 
-ScreenHull screenHull(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostVertices) {
-    if (vertices.size() > mostVertices) return {};
-    return screenBounds(view, vertices, mostVertices).hull;
-}
-
 namespace {
-
-// The projection to frame pixels as three rows, x' = (a . p) / (w . p), so
-// that a vertex costs three dot products and a division: a frame projects
-// every vertex of every leaf on the CPU, a million of them in a large model.
-struct Projector {
-    glm::dvec4 x, y, w;    // homogeneous rows, already scaled to pixels
-    glm::dvec3 forward;    // view depth: dot(p, forward) - eyeDepth
-    double nearDepth = 0;  // dot(eye, forward) + near: at or before it, a vertex is clipped
-
-    explicit Projector(const ViewSetup& view) {
-        const glm::dmat4& m = view.viewProjectionD;  // column-major: m[column][row]
-        const auto row = [&](int r) { return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
-        w = row(3);
-        // (clip.x / clip.w + 1) / 2 * width = (clip.x + clip.w) * width / 2 / clip.w
-        x = (row(0) + w) * (0.5 * view.width);
-        y = (row(1) + w) * (0.5 * view.height);
-        forward = view.forwardD;
-        nearDepth = glm::dot(view.eyeD, view.forwardD) + view.nearPlane;
-    }
-};
 
 double cross(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
@@ -196,7 +201,6 @@ ScreenHull monotoneChain(std::vector<glm::dvec2>& points) {
 }  // namespace
 
 ScreenBounds screenBounds(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostHullVertices) {
-    const Projector proj(view);
     const bool wantHull = vertices.size() <= mostHullVertices;
     // Up to kExactHullVertices vertices (a box, a thin bar), the hull of the
     // points themselves; past that, the sixteen-sided polygon of their
@@ -210,11 +214,12 @@ ScreenBounds screenBounds(const ViewSetup& view, std::span<const glm::vec3> vert
             const double angle = std::numbers::pi * k / kDirections;
             d[static_cast<std::size_t>(k)] = {std::cos(angle), std::sin(angle)};
         }
-        d[0] = {1.0, 0.0};  // exactly x and y: the rectangle comes from these
-        d[4] = {0.0, 1.0};
+        d[0] = {1.0, 0.0};  // exactly x and y: the rectangle's extents, sides along rows and columns
+        d[kDirections / 2] = {0.0, 1.0};
         return d;
     }();
     const bool exact = wantHull && vertices.size() <= kExactHullVertices;
+    const bool bounded = wantHull && !exact;  // the sixteen-sided bound
     static thread_local std::vector<glm::dvec2> points;
     points.clear();
     std::array<double, kDirections> most, least;
@@ -222,37 +227,25 @@ ScreenBounds screenBounds(const ViewSetup& view, std::span<const glm::vec3> vert
     least.fill(std::numeric_limits<double>::infinity());
     RectBuilder rect{view};
     for (const glm::vec3& v : vertices) {
-        const glm::dvec3 p(v);
-        if (glm::dot(p, proj.forward) <= proj.nearDepth) {
-            rect.whole = true;
-            return {rect.rect(), {}};
-        }
-        const glm::dvec4 h(p, 1.0);
-        const double inv = 1.0 / glm::dot(proj.w, h);
-        const glm::dvec2 q(glm::dot(proj.x, h) * inv, glm::dot(proj.y, h) * inv);
+        glm::dvec2 q;
+        if (!rect.add(glm::dvec3(v), q)) return {rect.rect(), {}};
         if (exact) points.push_back(q);
-        if (!wantHull) {
-            most[0] = std::max(most[0], q.x);
-            least[0] = std::min(least[0], q.x);
-            most[4] = std::max(most[4], q.y);
-            least[4] = std::min(least[4], q.y);
-            continue;
-        }
-        for (std::size_t k = 0; k < kDirections; ++k) {
+        if (!bounded) continue;
+        for (std::size_t k = 1; k < kDirections; ++k) {  // x and y (0 and 4): the rectangle's
+            if (k == kDirections / 2) continue;
             const double along = directions[k].x * q.x + directions[k].y * q.y;
             most[k] = along > most[k] ? along : most[k];
             least[k] = along < least[k] ? along : least[k];
         }
     }
-    if (vertices.empty()) return {};
-    rect.x0 = least[0];
-    rect.x1 = most[0];
-    rect.y0 = least[4];
-    rect.y1 = most[4];
     ScreenBounds out{rect.rect(), {}};
     if (exact) {
         out.hull = monotoneChain(points);
-    } else if (wantHull) {
+    } else if (bounded) {
+        most[0] = rect.x1;
+        least[0] = rect.x0;
+        most[kDirections / 2] = rect.y1;
+        least[kDirections / 2] = rect.y0;
         // The corner between each side and the next, counter-clockwise: side
         // k (0..15) lies on dot(d, p) = reach, d the k-th direction of the
         // circle, reach its extent (an opposite's is minus the least).

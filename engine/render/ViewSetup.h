@@ -75,16 +75,17 @@ PixelRect screenRect(const ViewSetup& view, const mesh::Bounds& box);
 // lies at or before the near plane.
 PixelRect screenRect(const ViewSetup& view, std::span<const glm::vec3> vertices);
 
-// The convex hull of `vertices` on the screen (frame pixels, counter-
-// clockwise): every pixel centre their triangles cover lies inside it. A
-// long, thin solid seen aslant covers a small part of its rectangle, and
-// the hull says which. Empty (unknown: use the rectangle) when a vertex lies
-// at or before the near plane, or past `mostVertices` of them.
+// A convex polygon on the screen (frame pixels, counter-clockwise).
 using ScreenHull = std::vector<glm::dvec2>;
-ScreenHull screenHull(const ViewSetup& view, std::span<const glm::vec3> vertices, std::size_t mostVertices);
 
-// Both of the above from one projection of the vertices: what a frame asks
-// of each leaf. The hull is left empty past `mostHullVertices` (0: no hull).
+// The rectangle above, and a convex hull of `vertices` on the screen: every
+// pixel centre their triangles cover lies inside it. A long, thin solid
+// seen aslant covers a small part of its rectangle, and the hull says
+// which. Both from one projection of the vertices: what a frame asks of
+// each leaf. The hull is their own up to 64 vertices, past that the
+// sixteen-sided polygon of their extents in eight directions and their
+// opposites. Empty (unknown: use the rectangle) when a vertex lies at or
+// before the near plane, or past `mostHullVertices` of them (0: no hull).
 struct ScreenBounds {
     PixelRect rect;
     ScreenHull hull;
