@@ -20,8 +20,6 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
-#include <CGAL/box_intersection_d.h>
-#include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <array>
@@ -32,6 +30,8 @@
 #include <string>
 #include <unordered_map>
 #include <vector>
+
+#include "strata/exact/Crossings.h"
 
 namespace {
 
@@ -85,53 +85,24 @@ void countEdges(const std::vector<Triangle>& triangles, const std::vector<bool>&
     }
 }
 
-// Whether two triangles meet beyond what they share: no common corner, any
-// contact; one common corner, the far edge of either meeting the other; a
-// common edge, the far corners folded onto one side of it in one plane.
-bool meet(const std::vector<Point>& p, const Triangle& a, const Triangle& b) {
-    std::vector<std::pair<int, int>> shared;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            if (a[static_cast<std::size_t>(i)] == b[static_cast<std::size_t>(j)]) shared.emplace_back(i, j);
-    const Kernel::Triangle_3 ta(p[a[0]], p[a[1]], p[a[2]]), tb(p[b[0]], p[b[1]], p[b[2]]);
-    if (shared.empty()) return CGAL::do_intersect(ta, tb);
-    if (shared.size() == 1) {
-        const auto [i, j] = shared.front();
-        const Kernel::Segment_3 farA(p[a[static_cast<std::size_t>((i + 1) % 3)]], p[a[static_cast<std::size_t>((i + 2) % 3)]]);
-        const Kernel::Segment_3 farB(p[b[static_cast<std::size_t>((j + 1) % 3)]], p[b[static_cast<std::size_t>((j + 2) % 3)]]);
-        return CGAL::do_intersect(farA, tb) || CGAL::do_intersect(farB, ta);
+void countSelfIntersections(const std::vector<Point>& p, const std::vector<Triangle>& triangles, Audit& audit) {
+    strata::mesh::Mesh mesh;
+    mesh.positions.reserve(p.size());
+    for (const Point& q : p) mesh.positions.emplace_back(q.x(), q.y(), q.z());
+    mesh.triangles.reserve(triangles.size());
+    for (const Triangle& t : triangles) {
+        mesh.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
     }
-    if (shared.size() == 2) {
-        const int i = 3 - shared[0].first - shared[1].first, j = 3 - shared[0].second - shared[1].second;
-        const Point& s = p[a[static_cast<std::size_t>(shared[0].first)]];
-        const Point& e = p[a[static_cast<std::size_t>(shared[1].first)]];
-        const Point& c = p[a[static_cast<std::size_t>(i)]];
-        const Point& d = p[b[static_cast<std::size_t>(j)]];
-        if (CGAL::orientation(s, e, c, d) != CGAL::COPLANAR) return false;
-        return CGAL::coplanar_orientation(s, e, c, d) == CGAL::POSITIVE;
-    }
-    return true;  // the same three corners twice
-}
-
-void countSelfIntersections(const std::vector<Point>& p, const std::vector<Triangle>& triangles,
-                            const std::vector<bool>& skip, Audit& audit) {
-    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
-    std::vector<Box> boxes;
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        if (skip[i]) continue;
-        const Triangle& t = triangles[i];
-        boxes.emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(), i);
-    }
-    CGAL::box_self_intersection_d<CGAL::Parallel_if_available_tag>(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-        if (!meet(p, triangles[x.info()], triangles[y.info()])) return;
-        if (++audit.selfIntersections <= 5 && std::getenv("STRATA_MESH_AUDIT_WHERE")) {
-            for (const std::size_t t : {x.info(), y.info()}) {
-                std::fprintf(stderr, "%s", t == x.info() ? "crossing: " : "     and: ");
-                for (const std::size_t v : triangles[t]) std::fprintf(stderr, "(%.17g %.17g %.17g) ", p[v].x(), p[v].y(), p[v].z());
-                std::fprintf(stderr, "\n");
-            }
+    const auto pairs = strata::exact::crossingTriangles(mesh);
+    audit.selfIntersections = pairs.size();
+    if (!std::getenv("STRATA_MESH_AUDIT_WHERE")) return;
+    for (std::size_t i = 0; i < pairs.size() && i < 5; ++i) {
+        for (const std::uint32_t t : pairs[i]) {
+            std::fprintf(stderr, "%s", t == pairs[i][0] ? "crossing: " : "     and: ");
+            for (const std::size_t v : triangles[t]) std::fprintf(stderr, "(%.17g %.17g %.17g) ", p[v].x(), p[v].y(), p[v].z());
+            std::fprintf(stderr, "\n");
         }
-    });
+    }
 }
 
 bool audit(const char* path, Audit& out) {
@@ -151,7 +122,7 @@ bool audit(const char* path, Audit& out) {
         if (degenerate[i]) ++out.degenerate;
     }
     countEdges(triangles, degenerate, out);
-    countSelfIntersections(points, triangles, degenerate, out);
+    countSelfIntersections(points, triangles, out);
     return true;
 }
 
