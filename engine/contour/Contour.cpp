@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,14 @@ constexpr double kTurnedShape = 1e-3;
 // triangle, about 0.87 for an equilateral one. A diagonal whose thinner
 // triangle is below this is chosen only when the other is thinner still.
 constexpr double kMinTriangleShape = 1e-6;
+
+// Where the mesh crosses itself, the vertices within this many cells of a
+// crossing go to their crossings' means, one round after another, the
+// reach growing while crossings remain; the last round moves every vertex,
+// which leaves the contour of crossings' means, merged only where means lie
+// on one plane (no real model of the set has crossed itself so; none
+// needed more than three rounds).
+constexpr std::array<double, 5> kUntangleReach{1.0, 2.0, 4.0, 8.0, std::numeric_limits<double>::infinity()};
 
 constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
@@ -163,11 +172,21 @@ public:
     // With `planes`, each patch whose crossings' planes meet in the cell
     // puts its vertex there and records them (vertexPlanes; snapToPlanes).
     Contourer(DexelImage& image, ContourStats& stats, const PlaneTable* planes);
-    mesh::Mesh run();
-    std::vector<VertexPlanes> takeVertexPlanes() { return std::move(vertexPlanes_); }
+    // Contours the whole image (and, with planes, unfolds what snapping
+    // folded): the mesh is then mesh(), its vertices' planes vertexPlanes().
+    void run();
+    const mesh::Mesh& mesh() const { return mesh_; }
+    mesh::Mesh takeMesh() { return std::move(mesh_); }
+    const std::vector<VertexPlanes>& vertexPlanes() const { return vertexPlanes_; }
     // Puts back, with no planes, the vertices of every quad that snapping
-    // turned over or flattened; returns how many moved.
-    std::size_t unfold();
+    // turned over or flattened; returns how many moved. With `moved` (a
+    // flag per vertex), only the quads of those vertices are split again
+    // and looked at.
+    std::size_t unfold(std::vector<std::uint8_t> moved = {});
+    // Sends every vertex within `reachInCells` of a box in `tangles` to its
+    // crossings' mean, off its planes, and unfolds around them; returns how
+    // many moved.
+    std::size_t untangle(const std::vector<mesh::Bounds>& tangles, double reachInCells);
     glm::dvec3 sharedPlaneNormal(const std::array<std::uint32_t, 3>& t) const;
 
 private:
@@ -220,7 +239,7 @@ Contourer::Contourer(DexelImage& image, ContourStats& stats, const PlaneTable* p
     rowCount_.assign(std::size_t(std::max(cells_.y, 0)), 0);
 }
 
-mesh::Mesh Contourer::run() {
+void Contourer::run() {
     image_.signPlane(0, planes_[0]);
     image_.signPlane(1, planes_[1]);
     computeConfigs(0);
@@ -236,7 +255,6 @@ mesh::Mesh Contourer::run() {
     }
     reportProgress(kProgressWhat, std::size_t(cells_.z), std::size_t(cells_.z));
     if (faces_ != nullptr) stats_.unsnappedVertices += unfold();
-    return std::move(mesh_);
 }
 
 // Cells outside the grid hold no surface: all outside.
@@ -470,14 +488,17 @@ glm::dvec3 Contourer::sharedPlaneNormal(const std::array<std::uint32_t, 3>& t) c
 // until no triangle is turned. Where the QEF points themselves lie turned
 // over within a plane (the contour's own fold along a slanted edge), they
 // go to their crossings' means. Each vertex moves at most twice.
-std::size_t Contourer::unfold() {
+std::size_t Contourer::unfold(std::vector<std::uint8_t> moved) {
     std::size_t reverted = 0;
     const auto& p = mesh_.positions;
     const auto& q = unsnapped_;
     // The vertices moved by the pass before: only their quads are looked at
-    // again (the first pass looks at all, as they were split).
-    std::vector<std::uint8_t> moved(p.size(), 0), movedNow(p.size(), 0);
-    for (bool first = true, changed = true; changed; first = false) {
+    // again (the first pass looks at all, as they were split, unless told
+    // which moved).
+    const bool all = moved.empty();
+    if (all) moved.assign(p.size(), 0);
+    std::vector<std::uint8_t> movedNow(p.size(), 0);
+    for (bool first = all, changed = true; changed; first = false) {
         changed = false;
         for (std::size_t at = 0; at < mesh_.triangles.size(); at += 2) {
             // The quad's corners, whichever diagonal split it (addQuad).
@@ -534,6 +555,58 @@ std::size_t Contourer::unfold() {
         }
     }
     return reverted;
+}
+
+std::size_t Contourer::untangle(const std::vector<mesh::Bounds>& tangles, double reachInCells) {
+    // The boxes grown by the reach, filed by the buckets of kBucket cells
+    // they cover, so that each vertex looks only at the boxes near it.
+    constexpr int kBucket = 16;
+    const DexelGrid& grid = image_.grid();
+    const double reach = reachInCells * grid.spacing;
+    const auto bucketOf = [&](const glm::dvec3& p) {
+        const glm::dvec3 cell = (p - grid.origin) / grid.spacing;
+        return glm::ivec3(glm::floor(cell / double(kBucket)));
+    };
+    const auto key = [](const glm::ivec3& b) {
+        return (std::uint64_t(std::uint32_t(b.x) & 0x1fffff) << 42) | (std::uint64_t(std::uint32_t(b.y) & 0x1fffff) << 21) |
+               std::uint64_t(std::uint32_t(b.z) & 0x1fffff);
+    };
+    std::vector<mesh::Bounds> grown;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> buckets;
+    for (const mesh::Bounds& box : std::isfinite(reach) ? tangles : std::vector<mesh::Bounds>{}) {
+        mesh::Bounds g;
+        g.min = box.min - glm::dvec3(reach);
+        g.max = box.max + glm::dvec3(reach);
+        const glm::ivec3 low = bucketOf(g.min), high = bucketOf(g.max);
+        for (int x = low.x; x <= high.x; ++x)
+            for (int y = low.y; y <= high.y; ++y)
+                for (int z = low.z; z <= high.z; ++z) buckets[key({x, y, z})].push_back(std::uint32_t(grown.size()));
+        grown.push_back(g);
+    }
+    std::vector<std::uint8_t> moved(mesh_.positions.size(), 0);
+    std::size_t count = 0;
+    const bool everywhere = !std::isfinite(reach);
+    for (std::size_t v = 0; v < mesh_.positions.size(); ++v) {
+        glm::dvec3& p = mesh_.positions[v];
+        if (p == massPoint_[v]) continue;
+        if (!everywhere) {
+            const auto found = buckets.find(key(bucketOf(p)));
+            if (found == buckets.end()) continue;
+            const auto near = [&](std::uint32_t b) {
+                const mesh::Bounds& g = grown[b];
+                return p.x >= g.min.x && p.y >= g.min.y && p.z >= g.min.z && p.x <= g.max.x && p.y <= g.max.y &&
+                       p.z <= g.max.z;
+            };
+            if (std::none_of(found->second.begin(), found->second.end(), near)) continue;
+        }
+        p = unsnapped_[v] = massPoint_[v];
+        vertexPlanes_[v] = kNoPlanes;
+        reached_[v] = 0;
+        moved[v] = 1;
+        ++count;
+    }
+    if (count > 0) stats_.unsnappedVertices += unfold(std::move(moved));
+    return count;
 }
 
 // Moves `point`, on the line where planes ids[0] and ids[1] meet, along it
@@ -691,18 +764,30 @@ void Contourer::addQuad(const std::array<std::uint32_t, 4>& q, std::size_t at) {
 
 }  // namespace
 
-mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats, const PlaneTable* planes) {
+mesh::Mesh contourCounting(const Dexels& dexels, ContourStats& stats, const PlaneTable* planes,
+                           const FindTangles& findTangles) {
     DexelImage image(dexels);
     if (image.empty()) return {};
     Contourer contourer(image, stats, planes);
-    mesh::Mesh mesh = contourer.run();
-    if (planes == nullptr) return mesh;
-    return mergeFlatRegions(std::move(mesh), contourer.takeVertexPlanes(), *planes, stats);
+    contourer.run();
+    if (planes == nullptr) return contourer.takeMesh();
+    if (!findTangles) return mergeFlatRegions(contourer.mesh(), contourer.vertexPlanes(), *planes, stats);
+    const std::size_t mergedBefore = stats.mergedVertices;
+    for (std::size_t round = 0;; ++round) {
+        stats.mergedVertices = mergedBefore;
+        mesh::Mesh merged = mergeFlatRegions(contourer.mesh(), contourer.vertexPlanes(), *planes, stats);
+        const std::vector<mesh::Bounds> tangles = findTangles(merged);
+        if (round == 0) stats.tangles = tangles.size();
+        stats.tanglesLeft = tangles.size();
+        if (tangles.empty() || round == kUntangleReach.size()) return merged;
+        stats.untangledVertices += contourer.untangle(tangles, kUntangleReach[round]);
+        ++stats.untangleRounds;
+    }
 }
 
-mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes) {
+mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes, const FindTangles& findTangles) {
     ContourStats stats;
-    return contourCounting(dexels, stats, planes);
+    return contourCounting(dexels, stats, planes, findTangles);
 }
 
 }  // namespace strata::contour

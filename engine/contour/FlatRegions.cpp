@@ -28,8 +28,11 @@ constexpr const char* kProgressWhat = "contour: flat regions";
 
 class Merger {
 public:
-    Merger(mesh::Mesh mesh, std::vector<VertexPlanes> vertexPlanes, const PlaneTable& planes)
-        : mesh_(std::move(mesh)), vertexPlanes_(std::move(vertexPlanes)), planes_(planes) {}
+    // Reads `positions` and `vertexPlanes`, which must outlive it; works on
+    // its own copy of the triangles.
+    Merger(const std::vector<glm::dvec3>& positions, std::vector<std::array<std::uint32_t, 3>> triangles,
+           const std::vector<VertexPlanes>& vertexPlanes, const PlaneTable& planes)
+        : positions_(positions), triangles_(std::move(triangles)), vertexPlanes_(vertexPlanes), planes_(planes) {}
 
     std::size_t run();
     mesh::Mesh result();
@@ -69,8 +72,9 @@ private:
     void collapse(std::uint32_t u, std::uint32_t v);
     void forget(std::uint32_t vertex, std::uint32_t face);
 
-    mesh::Mesh mesh_;
-    std::vector<VertexPlanes> vertexPlanes_;
+    const std::vector<glm::dvec3>& positions_;
+    std::vector<std::array<std::uint32_t, 3>> triangles_;
+    const std::vector<VertexPlanes>& vertexPlanes_;
     const PlaneTable& planes_;
     std::vector<std::int32_t> label_;                 // per triangle: its plane, or -1
     std::vector<std::vector<std::uint32_t>> faces_;   // per vertex: its live triangles
@@ -83,7 +87,7 @@ std::int32_t Merger::labelOf(const std::array<std::uint32_t, 3>& t) const {
     const VertexPlanes& a = vertexPlanes_[t[0]];
     for (const std::int32_t id : a) {
         if (id < 0 || !holds(vertexPlanes_[t[1]], id) || !holds(vertexPlanes_[t[2]], id)) continue;
-        const auto& p = mesh_.positions;
+        const auto& p = positions_;
         const glm::dvec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
         return glm::dot(n, planes_[id].normal) >= 0.0 ? id : -1;
     }
@@ -91,17 +95,17 @@ std::int32_t Merger::labelOf(const std::array<std::uint32_t, 3>& t) const {
 }
 
 std::size_t Merger::run() {
-    const std::size_t vertices = mesh_.positions.size();
-    label_.resize(mesh_.triangles.size());
+    const std::size_t vertices = positions_.size();
+    label_.resize(triangles_.size());
     faces_.resize(vertices);
     std::vector<std::uint32_t> degree(vertices, 0);
-    for (const auto& t : mesh_.triangles) {
+    for (const auto& t : triangles_) {
         for (const std::uint32_t v : t) ++degree[v];
     }
     for (std::size_t v = 0; v < vertices; ++v) faces_[v].reserve(degree[v]);
-    for (std::size_t f = 0; f < mesh_.triangles.size(); ++f) {
-        label_[f] = labelOf(mesh_.triangles[f]);
-        for (const std::uint32_t v : mesh_.triangles[f]) faces_[v].push_back(std::uint32_t(f));
+    for (std::size_t f = 0; f < triangles_.size(); ++f) {
+        label_[f] = labelOf(triangles_[f]);
+        for (const std::uint32_t v : triangles_[f]) faces_[v].push_back(std::uint32_t(f));
     }
     touched_.assign(vertices, 0);
     changed_.assign(vertices, 1);
@@ -113,12 +117,12 @@ std::size_t Merger::run() {
     // over all that is left. Each slab's vertices go in index order, so the
     // result does not depend on the number of threads.
     double low = 1e300, high = -1e300;
-    for (const glm::dvec3& p : mesh_.positions) low = std::min(low, p.z), high = std::max(high, p.z);
+    for (const glm::dvec3& p : positions_) low = std::min(low, p.z), high = std::max(high, p.z);
     const double scale = high > low ? kSlabs / (high - low) : 0.0;
     slab_.resize(vertices);
     std::vector<std::vector<std::uint32_t>> live(kSlabs);
     for (std::uint32_t v = 0; v < vertices; ++v) {
-        slab_[v] = std::uint8_t(std::clamp(int((mesh_.positions[v].z - low) * scale), 0, kSlabs - 1));
+        slab_[v] = std::uint8_t(std::clamp(int((positions_[v].z - low) * scale), 0, kSlabs - 1));
         live[slab_[v]].push_back(v);
     }
     std::size_t removed = 0;
@@ -169,7 +173,7 @@ void Merger::neighboursOf(std::uint32_t v, std::vector<std::uint32_t>& out) cons
     constexpr std::size_t kSmallFan = 16;
     const bool small = faces_[v].size() <= kSmallFan;
     for (const std::uint32_t f : faces_[v]) {
-        for (const std::uint32_t w : mesh_.triangles[f]) {
+        for (const std::uint32_t w : triangles_[f]) {
             if (w != v && (!small || std::find(out.begin(), out.end(), w) == out.end())) out.push_back(w);
         }
     }
@@ -209,11 +213,11 @@ bool Merger::tryRemove(std::uint32_t u, int slab, Scratch& scratch) {
 }
 
 double Merger::shapeAfterCollapse(std::uint32_t u, std::uint32_t v) const {
-    const auto& p = mesh_.positions;
+    const auto& p = positions_;
     std::size_t dropped = 0;
     double least = std::numeric_limits<double>::max();
     for (const std::uint32_t f : faces_[u]) {
-        std::array<std::uint32_t, 3> t = mesh_.triangles[f];
+        std::array<std::uint32_t, 3> t = triangles_[f];
         if (t[0] == v || t[1] == v || t[2] == v) {
             ++dropped;
             continue;
@@ -241,7 +245,7 @@ void Merger::collapse(std::uint32_t u, std::uint32_t v) {
     const std::vector<std::uint32_t> around = std::move(faces_[u]);
     faces_[u].clear();
     for (const std::uint32_t f : around) {
-        std::array<std::uint32_t, 3>& t = mesh_.triangles[f];
+        std::array<std::uint32_t, 3>& t = triangles_[f];
         if (t[0] == v || t[1] == v || t[2] == v) {
             for (const std::uint32_t w : t) {
                 if (w != u) forget(w, f);
@@ -256,13 +260,13 @@ void Merger::collapse(std::uint32_t u, std::uint32_t v) {
 
 mesh::Mesh Merger::result() {
     mesh::Mesh out;
-    std::vector<std::uint32_t> index(mesh_.positions.size(), kDead);
-    for (std::size_t v = 0; v < mesh_.positions.size(); ++v) {
+    std::vector<std::uint32_t> index(positions_.size(), kDead);
+    for (std::size_t v = 0; v < positions_.size(); ++v) {
         if (faces_[v].empty()) continue;
         index[v] = std::uint32_t(out.positions.size());
-        out.positions.push_back(mesh_.positions[v]);
+        out.positions.push_back(positions_[v]);
     }
-    for (const auto& t : mesh_.triangles) {
+    for (const auto& t : triangles_) {
         if (t[0] == kDead) continue;
         out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
     }
@@ -271,9 +275,9 @@ mesh::Mesh Merger::result() {
 
 }  // namespace
 
-mesh::Mesh mergeFlatRegions(mesh::Mesh mesh, std::vector<VertexPlanes> vertexPlanes, const PlaneTable& planes,
-                            ContourStats& stats) {
-    Merger merger(std::move(mesh), std::move(vertexPlanes), planes);
+mesh::Mesh mergeFlatRegions(const mesh::Mesh& mesh, const std::vector<VertexPlanes>& vertexPlanes,
+                            const PlaneTable& planes, ContourStats& stats) {
+    Merger merger(mesh.positions, mesh.triangles, vertexPlanes, planes);
     stats.mergedVertices += merger.run();
     return merger.result();
 }

@@ -33,8 +33,8 @@ inline constexpr VertexPlanes kNoPlanes{-1, -1, -1, -1, -1, -1};
 // opposite vertices) is refused, so a closed 2-manifold stays one. A
 // triangle lies on a plane when all three of its vertices do and it faces
 // the plane's way. Counts removed vertices in `stats`.
-mesh::Mesh mergeFlatRegions(mesh::Mesh mesh, std::vector<VertexPlanes> vertexPlanes, const PlaneTable& planes,
-                            ContourStats& stats);
+mesh::Mesh mergeFlatRegions(const mesh::Mesh& mesh, const std::vector<VertexPlanes>& vertexPlanes,
+                            const PlaneTable& planes, ContourStats& stats);
 
 // Twice a merged triangle's area over its longest edge squared, at least.
 inline constexpr double kMinMergedShape = 1e-4;

@@ -1,7 +1,9 @@
 #pragma once
 // Contouring of a tri-dexel image (Dexels.h) into a closed triangle mesh.
 
+#include <functional>
 #include <optional>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -24,7 +26,22 @@ namespace strata::contour {
 // planes those at its ends, and the surface stays the same set of points.
 // The merge reports its progress after each pass ("contour: flat regions",
 // vertices removed of the contour's) and may be stopped there.
-mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes = nullptr);
+//
+// A contour rebuilt on the planes can cross itself where two sheets of the
+// solid lie within a cell or two of each other, or where a sharp edge's
+// vertices, moved onto the edge, pass each other. With `findTangles`, the
+// merged mesh is handed to it, and where it answers with places (boxes in
+// world space around where triangles cross), the vertices near them go to
+// their crossings' means, off their planes, and the merge runs again, the
+// reach growing in up to four rounds, then a fifth that moves every vertex
+// (the contour of crossings' means, much larger); the mesh of
+// the last round is returned, whatever the last answer was, which the
+// caller keeps if it wants to know. The caller decides what crossing
+// means for the file it writes (the export rounds to floats first and asks
+// the exact room's predicates); this room has none of its own.
+using FindTangles = std::function<std::vector<mesh::Bounds>(const mesh::Mesh&)>;
+
+mesh::Mesh contour(const Dexels& dexels, const PlaneTable* planes = nullptr, const FindTangles& findTangles = {});
 
 // A part of the solid, or a gap in it, that lies between two grid points
 // along a ray: no grid point sees it, so the contour loses it (a wall
