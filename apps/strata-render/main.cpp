@@ -185,6 +185,7 @@ int run(const apps::RenderOptions& options, Gpu& gpu) {
         exporting::StagedExport exported = exporting::stageExport(tree, model, options.exportPath, settings);
         stats.exportSampleMs = exported.sampleMs;
         stats.exportContourMs = exported.contourMs;
+        for (const Warning& w : exported.warnings) stats.warnings.push_back(w.message);
         staged.push_back(std::move(exported.file));
         stats.exportMs = msSince(t);
     }

@@ -29,6 +29,7 @@ bool Exporter::start(const LoadedScene& scene, const std::string& path, const gl
             exporting::StagedExport exported = exporting::stageExport(scene.tree, scene.model, path, settings);
             exported.file.commit();
             result.triangles = exported.triangles;
+            for (const Warning& w : exported.warnings) result.warnings.push_back(w.message);
         });
         result.error = outcome.error;
         result.cancelled = outcome.cancelled;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/vec4.hpp>
 
@@ -24,6 +25,7 @@ struct ExportResult {
     bool cancelled = false;
     std::size_t triangles = 0;
     double milliseconds = 0;
+    std::vector<std::string> warnings;  // written all the same
 };
 
 class Exporter {

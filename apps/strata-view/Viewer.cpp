@@ -598,6 +598,10 @@ void Viewer::pollExport() {
         message_ = "exported " + done->path + " (" + std::to_string(done->triangles) + " triangles, " +
                    std::to_string(static_cast<long long>(done->milliseconds)) + " ms)";
         console_.add(ConsoleLine::Kind::Info, message_);
+        for (const std::string& w : done->warnings) {
+            std::cerr << w << '\n';
+            console_.add(ConsoleLine::Kind::Warning, w);
+        }
     } else {
         message_ = done->error;
         std::cerr << done->error << '\n';

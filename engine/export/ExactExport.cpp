@@ -55,7 +55,10 @@ StagedExport stageExactMesh(const scene::Tree& tree, const model::Model& model, 
     double largest = 0.0;
     for (const glm::dvec3& p : result.positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     const double reach = std::ldexp(largest, -21);
-    return StagedExport{stageResultMesh(tree, model, path, result, faceColor, reach), result.triangles.size()};
+    StagedExport out;
+    out.file = stageResultMesh(tree, model, path, result, faceColor, reach);
+    out.triangles = result.triangles.size();
+    return out;
 }
 
 }  // namespace strata::exporting

@@ -14,7 +14,11 @@ namespace strata::exporting {
 StagedExport stageExport(const scene::Tree& tree, const model::Model& model, const std::string& path,
                          const ExportSettings& settings) {
     if (settings.sampled) return stageSampledMesh(tree, model, path, settings);
-    if (io::isFlatPath(path)) return StagedExport{stageFlatExport(tree, path)};
+    if (io::isFlatPath(path)) {
+        StagedExport out;
+        out.file = stageFlatExport(tree, path);
+        return out;
+    }
     return stageExactMesh(tree, model, path, settings.faceColor);
 }
 

@@ -4,16 +4,22 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <initializer_list>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "strata/camera/ViewBounds.h"
 #include "strata/contour/Contour.h"
 #include "strata/core/Error.h"
 #include "strata/core/Timing.h"
+#include "strata/exact/Crossings.h"
 #include "strata/gpu/Context.h"
 #include "strata/reference/RayCaster.h"
 #include "strata/render/Renderer.h"
@@ -94,6 +100,44 @@ void checkNothingBelowGrid(const contour::Dexels& dexels, int resolution, const 
     throw Error(scene, text);
 }
 
+// Where the contour, as the file will hold it (rounded to floats, points
+// that rounding joins made one), crosses itself or has an edge that is not
+// between exactly two triangles running it opposite ways: a box around
+// each such place, for the contour to untangle.
+std::vector<mesh::Bounds> tanglesAsWritten(const mesh::Mesh& contoured) {
+    mesh::Mesh written = contoured;
+    roundForFile(written);
+    const auto boxOf = [&](std::initializer_list<std::uint32_t> corners) {
+        mesh::Bounds box;
+        for (const std::uint32_t v : corners) box.extend(written.positions[v]);
+        return box;
+    };
+    std::vector<mesh::Bounds> tangles;
+    for (const auto& [a, b] : exact::crossingTriangles(written)) {
+        const auto& ta = written.triangles[a];
+        const auto& tb = written.triangles[b];
+        mesh::Bounds box = boxOf({ta[0], ta[1], ta[2]});
+        const mesh::Bounds other = boxOf({tb[0], tb[1], tb[2]});
+        // They meet where their boxes overlap.
+        box.min = glm::max(box.min, other.min);
+        box.max = glm::min(box.max, other.max);
+        tangles.push_back(box);
+    }
+    // Per undirected edge: the triangles running it low to high, high to low.
+    std::unordered_map<std::uint64_t, std::array<int, 2>> uses;
+    for (const auto& t : written.triangles) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+            ++uses[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)][a < b ? 0 : 1];
+        }
+    }
+    for (const auto& [key, n] : uses) {
+        if (n[0] == 1 && n[1] == 1) continue;
+        tangles.push_back(boxOf({std::uint32_t(key >> 32), std::uint32_t(key & 0xffffffffu)}));
+    }
+    return tangles;
+}
+
 }  // namespace
 
 StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model, const std::string& path,
@@ -114,7 +158,22 @@ StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model
         // Every face of the result lies on a leaf's plane: the contour
         // rebuilds its flat regions on them.
         const contour::PlaneTable planes = contour::PlaneTable::fromMeshes(model.leafMeshes);
-        result = contour::contour(dexels, &planes);
+        // Where the rebuilt mesh would cross itself, the contour moves the
+        // vertices there back to their crossings' means.
+        std::vector<mesh::Bounds> left;
+        result = contour::contour(dexels, &planes, [&left](const mesh::Mesh& contoured) {
+            left = tanglesAsWritten(contoured);
+            return left;
+        });
+        if (!left.empty()) {
+            const glm::dvec3 where = left.front().center();
+            char text[300];
+            std::snprintf(text, sizeof text,
+                          "warning: the sampled export crosses itself in %zu places (one near (%.4g, %.4g, %.4g)); "
+                          "the exact export (without --export-sampled) does not",
+                          left.size(), where.x, where.y, where.z);
+            out.warnings.push_back(Warning{std::string(tree.source) + ": " + text});
+        }
         // Points a hair apart in double precision can round to one float
         // (the menger sponge's coincident walls): as the exact mesh is.
         roundForFile(result);

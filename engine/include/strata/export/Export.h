@@ -15,9 +15,11 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <glm/vec4.hpp>
 
+#include "strata/core/Error.h"
 #include "strata/io/ImageWriter.h"
 #include "strata/model/Model.h"
 #include "strata/remesh/Remesh.h"
@@ -36,6 +38,7 @@ struct StagedExport {
     io::StagedFile file;  // commit() puts it in place
     std::size_t triangles = 0;
     double sampleMs = 0, contourMs = 0;  // the sampled mesh's two steps
+    std::vector<Warning> warnings;       // written all the same (a sampled mesh that still crosses itself)
 };
 
 // Stages the export of `tree` (whose leaves `model` holds) as `path`; nothing
