@@ -77,6 +77,11 @@ constexpr double kOnPlane = 1e-4;
 // then moves onto the plane, it moves by no more than that.
 constexpr double kCrossingOnPlane = 1e-2;
 
+// A crossing farther than this from the plane it matched (in cells) is
+// moved onto it before the QEF: the GPU's, whose depths are floats; the
+// reference's lie on their planes to a double's rounding and stay.
+constexpr double kOffPlane = 1e-7;
+
 // Planes are met only where they are this far from parallel: for two, the
 // squared sine of their angle (about 0.06 degrees); for three or more, the
 // determinant of the sum of their normals' outer products (three unit
@@ -198,8 +203,11 @@ private:
     std::size_t placeCellVertices(const glm::ivec3& cell, std::uint8_t config, std::uint8_t flips, std::size_t at,
                                   std::size_t& clamped);
     glm::dvec3 keptInCell(const glm::ivec3& cell, glm::dvec3 p, double margin, std::size_t& clamped) const;
-    VertexPlanes snapToPlanes(const glm::ivec3& cell, std::span<const HermiteSample> patch, glm::dvec3& point,
+    VertexPlanes snapToPlanes(const glm::ivec3& cell, std::span<const std::int32_t> planes, glm::dvec3& point,
                               bool& reached) const;
+    // The plane each of a patch's crossings lies on (PlaneTable ids, -1 for
+    // none), a crossing named across a ridge moved to the facet it is on.
+    void findPlanes(std::span<const HermiteSample> patch, std::span<std::int32_t> found) const;
     VertexPlanes meetPatchPlanes(const glm::ivec3& cell, std::span<const std::int32_t> planes, glm::dvec3& point,
                                  bool& reached) const;
     // The cell's box less `marginInCells` of a cell on every side (grown
@@ -377,10 +385,35 @@ std::size_t Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t co
         samples[e] = image_.edgeCrossing(cell + start, edgeAxis(e), ((config >> cornerAt(start)) & 1) != 0);
     }
     std::array<HermiteSample, kCellEdges> patch;
+    std::array<int, kCellEdges> axisOf;  // each of the patch's crossings' grid edge's axis
     for (int p = 0; p < patches.count; ++p) {
         std::size_t n = 0;
         for (int e = 0; e < kCellEdges; ++e) {
-            if (patches.patchOfEdge[e] == p) patch[n++] = samples[e];
+            if (patches.patchOfEdge[e] != p) continue;
+            axisOf[n] = edgeAxis(e);
+            patch[n++] = samples[e];
+        }
+        // With planes, each crossing first finds the leaf plane it lies on
+        // and takes that plane's normal into the QEF (the sampler's own is
+        // rounded, or at a ridge the next facet's), and a point off it by
+        // more than a double's rounding (the GPU's depths are floats) is
+        // moved along its grid edge onto it.
+        std::array<std::int32_t, kCellEdges> found;
+        found.fill(-1);
+        if (faces_ != nullptr) {
+            const std::span<const HermiteSample> crossings(patch.data(), n);
+            findPlanes(crossings, std::span(found.data(), n));
+            for (std::size_t i = 0; i < n; ++i) {
+                if (found[i] < 0) continue;
+                const Plane& plane = (*faces_)[found[i]];
+                patch[i].normal = plane.normal;
+                // Along its grid edge, where the plane crosses it.
+                const double off = glm::dot(plane.normal, patch[i].point) - plane.offset;
+                const double along = plane.normal[axisOf[i]];
+                if (std::abs(off) > kOffPlane * image_.grid().spacing && std::abs(along) > 1e-3) {
+                    patch[i].point[axisOf[i]] -= off / along;
+                }
+            }
         }
         const QefSolution qef = minimizeQef(std::span(patch.data(), n));
         const double tolerance = kFeatureResidual * image_.grid().spacing;
@@ -392,7 +425,7 @@ std::size_t Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t co
             massPoint_[at] = mass / double(n);
             unsnapped_[at] = point;
             bool reached = false;
-            vertexPlanes_[at] = snapToPlanes(cell, std::span(patch.data(), n), point, reached);
+            vertexPlanes_[at] = snapToPlanes(cell, std::span(found.data(), n), point, reached);
             reached_[at] = reached ? 1 : 0;
         }
         mesh_.positions[at++] = point;
@@ -403,13 +436,9 @@ std::size_t Contourer::placeCellVertices(const glm::ivec3& cell, std::uint8_t co
 // The vertex of a patch on the planes of its crossings: where all of them
 // meet, if that is inside the cell and on the leaves' faces (meetPatchPlanes),
 // else only those it lies on already.
-VertexPlanes Contourer::snapToPlanes(const glm::ivec3& cell, std::span<const HermiteSample> patch,
+VertexPlanes Contourer::snapToPlanes(const glm::ivec3& cell, std::span<const std::int32_t> planes,
                                      glm::dvec3& point, bool& reached) const {
     const double tolerance = kOnPlane * image_.grid().spacing;
-    const double reach = kCrossingOnPlane * image_.grid().spacing;
-    std::array<std::int32_t, kCellEdges> found;
-    for (std::size_t i = 0; i < patch.size(); ++i) found[i] = faces_->find(patch[i].point, patch[i].normal, reach);
-    const std::span<const std::int32_t> planes(found.data(), patch.size());
     const VertexPlanes met = meetPatchPlanes(cell, planes, point, reached);
     if (met[0] >= 0) return met;
     VertexPlanes ids = kNoPlanes;
@@ -427,6 +456,35 @@ VertexPlanes Contourer::snapToPlanes(const glm::ivec3& cell, std::span<const Her
         return kNoPlanes;
     point = snapped;
     return ids;
+}
+
+// A crossing near a ridge between two facets of a leaf (a curved primitive's
+// facets, say) may name the facet across the ridge: the GPU's rasterizer
+// decides which triangle covers a ray passing within a fraction of a pixel
+// of their shared edge, and the depth then lies on that triangle's plane,
+// extended a hair past its edge, where the reference names the facet the
+// point is on. Such a crossing takes instead the plane of another of the
+// patch's crossings that passes as near it and holds it on one of its
+// triangles. Returns whether any crossing changed.
+void Contourer::findPlanes(std::span<const HermiteSample> patch, std::span<std::int32_t> found) const {
+    const double tolerance = kOnPlane * image_.grid().spacing;
+    const double reach = kCrossingOnPlane * image_.grid().spacing;
+    for (std::size_t i = 0; i < patch.size(); ++i) found[i] = faces_->find(patch[i].point, patch[i].normal, reach);
+    for (std::size_t i = 0; i < patch.size(); ++i) {
+        if (found[i] < 0 || faces_->onTriangle(found[i], patch[i].point, tolerance)) continue;
+        for (std::size_t j = 0; j < patch.size(); ++j) {
+            const std::int32_t other = found[j];
+            if (other < 0 || other == found[i]) continue;
+            const Plane& plane = (*faces_)[other];
+            // Not the other side of a thin wall: a face that meets this one
+            // at an edge of the solid, however sharp (down to 60 degrees).
+            if (glm::dot(plane.normal, patch[i].normal) < -0.5) continue;
+            if (!(std::abs(glm::dot(plane.normal, patch[i].point) - plane.offset) <= reach)) continue;
+            if (!faces_->onTriangle(other, patch[i].point, tolerance)) continue;
+            found[i] = other;
+            break;
+        }
+    }
 }
 
 // Where the planes of all of a patch's crossings meet (one to six of them;

@@ -107,10 +107,27 @@ struct Rebuilt {
     ContourStats stats;
 };
 
+// The tangles as the export finds them, here on the mesh in doubles:
+// the overlap of each crossing pair's boxes.
+std::vector<mesh::Bounds> crossingPlaces(const mesh::Mesh& m) {
+    std::vector<mesh::Bounds> places;
+    for (const auto& pair : exact::crossingTriangles(m)) {
+        mesh::Bounds a, b;
+        for (const std::uint32_t v : m.triangles[pair[0]]) a.extend(m.positions[v]);
+        for (const std::uint32_t v : m.triangles[pair[1]]) b.extend(m.positions[v]);
+        a.min = glm::max(a.min, b.min);
+        a.max = glm::min(a.max, b.max);
+        places.push_back(a);
+    }
+    return places;
+}
+
+// The contour rebuilt on the leaves' planes as the export asks for it:
+// untangled where it crosses itself.
 Rebuilt rebuild(const Solid& solid, const DexelGrid& grid, const std::vector<mesh::Mesh>& leaves) {
     const PlaneTable planes = PlaneTable::fromMeshes(leaves);
     Rebuilt r;
-    r.mesh = contourCounting(sample(solid, grid), r.stats, &planes);
+    r.mesh = contourCounting(sample(solid, grid), r.stats, &planes, crossingPlaces);
     r.inspection = inspect(r.mesh);
     return r;
 }
@@ -172,6 +189,39 @@ TEST(FlatRegions, ABoxIsTwelveTriangles) {
         EXPECT_EQ(r.mesh.triangles.size(), 12u) << "h " << h;
         EXPECT_NEAR(r.inspection.volume, boxVolume(half), 1e-12);
         EXPECT_GT(r.stats.mergedVertices, 0u);
+    }
+}
+
+// Samples as the GPU's result peel gives them: depths in single precision,
+// here each moved along its ray by up to 10⁻⁴ of a cell (a deterministic
+// scatter; a float's step at 512 cells is about 3 × 10⁻⁵ of one).
+Dexels withRoundedDepths(Dexels dexels) {
+    std::size_t k = 0;
+    for (DexelRays& rays : dexels.axes) {
+        for (Crossing& x : rays.crossings) {
+            x.at += dexels.grid.spacing * 1e-4 * (double((k++ * 7919) % 2001) / 1000.0 - 1.0);
+        }
+    }
+    return dexels;
+}
+
+// The turned box from samples off their planes by a float's rounding: each
+// crossing finds its face, moves along its grid edge onto the face's plane
+// and takes its normal, so the box comes out as its 12 triangles, as from
+// exact samples (taken as they come, the same samples gave 200 and 1,562).
+TEST(FlatRegions, SamplesOffTheirPlanesByRoundingGiveTheSameBox) {
+    const glm::dvec3 center(0.0123, -0.0311, 0.0217), half(0.41, 0.33, 0.27);
+    const glm::dmat3 axes = rotation(0.3, 0.7, 1.1);
+    const mesh::Mesh leaf = boxMesh(center, axes, half);
+    const mesh::Bounds box = mesh::boundsOf(leaf);
+    const PlaneTable planes = PlaneTable::fromMeshes(std::vector<mesh::Mesh>{leaf});
+    for (const double h : {0.1, 0.02}) {
+        const Dexels rounded = withRoundedDepths(sample(*orientedBox(center, axes, half), gridAround(box.min, box.max, h)));
+        const mesh::Mesh m = contour(rounded, &planes, crossingPlaces);
+        const MeshInspection inspection = inspect(m);
+        EXPECT_TRUE(inspection.sound()) << inspection.describe();
+        EXPECT_EQ(m.triangles.size(), 12u) << "h " << h;
+        EXPECT_NEAR(inspection.volume, boxVolume(half), 1e-9) << "h " << h;
     }
 }
 
@@ -263,21 +313,6 @@ BoxRow boxRow(std::mt19937& random, double spacing) {
     }
     row.solid = unite(std::move(parts));
     return row;
-}
-
-// The tangles as the export finds them, here on the mesh in doubles:
-// the overlap of each crossing pair's boxes.
-std::vector<mesh::Bounds> crossingPlaces(const mesh::Mesh& m) {
-    std::vector<mesh::Bounds> places;
-    for (const auto& pair : exact::crossingTriangles(m)) {
-        mesh::Bounds a, b;
-        for (const std::uint32_t v : m.triangles[pair[0]]) a.extend(m.positions[v]);
-        for (const std::uint32_t v : m.triangles[pair[1]]) b.extend(m.positions[v]);
-        a.min = glm::max(a.min, b.min);
-        a.max = glm::min(a.max, b.max);
-        places.push_back(a);
-    }
-    return places;
 }
 
 }  // namespace
