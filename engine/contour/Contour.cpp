@@ -484,6 +484,12 @@ void Contourer::findPlanes(std::span<const HermiteSample> patch, std::span<std::
             found[i] = other;
             break;
         }
+        // No crossing of the patch lies on the facet it is on: the leaf
+        // triangle across the nearest edge of its own plane's.
+        if (!faces_->onTriangle(found[i], patch[i].point, tolerance)) {
+            const std::int32_t across = faces_->acrossEdge(found[i], patch[i].point, reach, tolerance);
+            if (across >= 0) found[i] = across;
+        }
     }
 }
 

@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
@@ -40,7 +45,12 @@ PlaneTable PlaneTable::fromMeshes(std::span<const mesh::Mesh> meshes) {
     if (box.empty()) return table;
     table.mergeTolerance_ = kMergeOffset * std::max(box.diagonal(), glm::length(box.center()));
     for (const mesh::Mesh& m : meshes) {
-        for (const auto& t : m.triangles) {
+        // Where each of the mesh's triangles went (plane pair, place in its
+        // list), for the planes across its edges.
+        constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+        std::vector<std::pair<std::size_t, std::size_t>> placed(m.triangles.size(), {kNone, 0});
+        for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+            const auto& t = m.triangles[f];
             const glm::dvec3& a = m.positions[t[0]];
             const glm::dvec3 n = glm::cross(m.positions[t[1]] - a, m.positions[t[2]] - a);
             const double length = glm::length(n);
@@ -49,8 +59,30 @@ PlaneTable PlaneTable::fromMeshes(std::span<const mesh::Mesh> meshes) {
             const std::int32_t id = table.add(Plane{unit, glm::dot(unit, a)});
             const glm::dvec3& b = m.positions[t[1]];
             const glm::dvec3& c = m.positions[t[2]];
-            table.triangles_[std::size_t(id / 2)].push_back(
-                Triangle{{a, b, c}, unit, glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))});
+            std::vector<Triangle>& list = table.triangles_[std::size_t(id / 2)];
+            placed[f] = {std::size_t(id / 2), list.size()};
+            list.push_back(Triangle{{a, b, c}, unit, glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)), id, {}});
+            list.back().across.fill(-1);
+        }
+        // Each edge's two triangles (a closed mesh has two per edge).
+        std::unordered_map<std::uint64_t, std::array<std::pair<std::size_t, int>, 2>> byEdge;
+        std::unordered_map<std::uint64_t, int> uses;
+        for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+            if (placed[f].first == kNone) continue;
+            for (int e = 0; e < 3; ++e) {
+                const std::uint32_t u = m.triangles[f][std::size_t(e)], v = m.triangles[f][std::size_t((e + 1) % 3)];
+                const std::uint64_t key = (std::uint64_t(std::min(u, v)) << 32) | std::max(u, v);
+                const int n = uses[key]++;
+                if (n < 2) byEdge[key][std::size_t(n)] = {f, e};
+            }
+        }
+        for (const auto& [key, pair] : byEdge) {
+            if (uses[key] != 2) continue;
+            Triangle& x = table.triangles_[placed[pair[0].first].first][placed[pair[0].first].second];
+            Triangle& y = table.triangles_[placed[pair[1].first].first][placed[pair[1].first].second];
+            if (placed[pair[0].first].first == placed[pair[1].first].first) continue;  // one plane
+            x.across[std::size_t(pair[0].second)] = y.facing;
+            y.across[std::size_t(pair[1].second)] = x.facing;
         }
     }
     return table;
@@ -83,6 +115,21 @@ bool PlaneTable::onTriangle(std::int32_t id, const glm::dvec3& point, double tol
         if (inside) return true;
     }
     return false;
+}
+
+std::int32_t PlaneTable::acrossEdge(std::int32_t id, const glm::dvec3& point, double reach, double tolerance) const {
+    for (const Triangle& t : triangles_[std::size_t(id / 2)]) {
+        if (glm::any(glm::lessThan(point, t.low - reach)) || glm::any(glm::greaterThan(point, t.high + reach))) continue;
+        for (const std::int32_t outward : t.across) {
+            if (outward < 0) continue;
+            // The facing `id` has against this triangle's, carried across.
+            const std::int32_t other = id == t.facing ? outward : outward ^ 1;
+            const Plane& plane = planes_[std::size_t(other)];
+            if (!(std::abs(glm::dot(plane.normal, point) - plane.offset) <= reach)) continue;
+            if (onTriangle(other, point, tolerance)) return other;
+        }
+    }
+    return -1;
 }
 
 void PlaneTable::insert(const Plane& plane) {

@@ -165,8 +165,8 @@ TEST(StrataRenderImageExport, GpuAndReferenceSamplesGiveOneMesh) {
 // cylinders' facets span tens of cells: the GPU's crossings lie off their
 // planes by a float's rounding, and near a ridge between two facets some
 // name the facet across it. Each takes the plane it lies on, so the GPU's
-// mesh merges nearly as far as the reference's (before, it kept 1.8 times
-// its triangles), and both are clean.
+// mesh merges as far as the reference's, to within a few per cent (before,
+// it kept 1.8 times its triangles), and both are clean.
 TEST(StrataRenderImageExport, TheGpusMeshOfCurvedLeavesMergesAsTheReferences) {
     TempDir dir;
     const std::string scene = std::string(STRATA_TEST_DIR) + "/../examples/openscad_logo.csg";
@@ -175,7 +175,7 @@ TEST(StrataRenderImageExport, TheGpusMeshOfCurvedLeavesMergesAsTheReferences) {
     expectSound(gpu, "gpu");
     expectSound(cpu, "reference");
     EXPECT_NEAR(PMP::volume(gpu), PMP::volume(cpu), 1e-5 * PMP::volume(cpu));
-    EXPECT_LT(double(gpu.number_of_faces()), 1.4 * double(cpu.number_of_faces()));
+    EXPECT_LT(double(gpu.number_of_faces()), 1.1 * double(cpu.number_of_faces()));
 }
 
 TEST(StrataRenderImageExport, EveryFormatHoldsAClosedSolid) {

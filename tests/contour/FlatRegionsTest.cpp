@@ -161,6 +161,32 @@ TEST(PlaneTable, FindsThePlaneAndFacingACrossingLiesOn) {
     EXPECT_FALSE(table.onTriangle(up, glm::dvec3(1.5, 0.0, 1.0), 1e-9));
 }
 
+// A roof of two facets meeting at a ridge 10 degrees from flat: a point on
+// one facet just past the ridge lies within a hair of the other facet's
+// plane extended, and that facet's plane names the one across the ridge,
+// in the facing it was asked in; away from every edge, none.
+TEST(PlaneTable, NamesTheFacetAcrossARidge) {
+    mesh::Mesh roof;
+    const double rise = std::tan(5.0 * 3.14159265358979 / 180.0);
+    roof.positions = {{-1, 0, 0}, {0, 0, rise}, {1, 0, 0}, {-1, 1, 0}, {0, 1, rise}, {1, 1, 0}};
+    // Two facets (two triangles each), up-facing, sharing the ridge 1-4;
+    // the roof need not be closed for the table.
+    roof.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+    const PlaneTable table = PlaneTable::fromMeshes(std::vector<mesh::Mesh>{roof});
+    const glm::dvec3 left = glm::normalize(glm::dvec3(-rise, 0, 1)), right = glm::normalize(glm::dvec3(rise, 0, 1));
+    const std::int32_t a = table.find(glm::dvec3(-0.5, 0.5, 0.5 * rise), left, 1e-9);
+    const std::int32_t b = table.find(glm::dvec3(0.5, 0.5, 0.5 * rise), right, 1e-9);
+    ASSERT_GE(a, 0);
+    ASSERT_GE(b, 0);
+    // On facet a, 10⁻⁴ past the ridge: 2 × 10⁻⁵ off b's plane, on none of b's triangles.
+    const glm::dvec3 past(-1e-4, 0.5, rise * (1.0 - 1e-4));
+    EXPECT_FALSE(table.onTriangle(b, past, 1e-6));
+    EXPECT_EQ(table.acrossEdge(b, past, 1e-4, 1e-6), a);
+    EXPECT_EQ(table.acrossEdge(b ^ 1, past, 1e-4, 1e-6), a ^ 1);  // the facings of a subtracted leaf
+    EXPECT_EQ(table.acrossEdge(b, past, 1e-6, 1e-6), -1);        // farther from b's plane than the reach
+    EXPECT_EQ(table.acrossEdge(b, glm::dvec3(0.5, 0.5, 0.5 * rise + 1e-5), 1e-4, 1e-6), -1);
+}
+
 TEST(PlaneTable, TrianglesOnOnePlaneShareIt) {
     // Two cubes side by side: their top faces lie on one plane, as do their
     // bottoms and the far and near sides; the faces between them are one

@@ -48,6 +48,13 @@ public:
     std::size_t size() const { return planes_.size(); }
     const Plane& operator[](std::int32_t id) const { return planes_[std::size_t(id)]; }
 
+    // For a point that plane `id` holds on no triangle of its own but that
+    // lies within `reach` of it, just past one of its triangles' edges: the
+    // plane of the leaf triangle across that edge, in the facing `id` has
+    // relative to its triangle, if it holds `point` on one of its triangles
+    // within `tolerance`; else -1. (A sampler may name the facet across a
+    // ridge for a point on the ridge's other side.)
+    std::int32_t acrossEdge(std::int32_t id, const glm::dvec3& point, double reach, double tolerance) const;
     // The plane whose facing agrees with `normal` (a unit vector, within
     // kNormalMatch) and that passes nearest `point`, if within `tolerance`;
     // else -1.
@@ -64,11 +71,16 @@ private:
     void insert(const Plane& plane);
 
     std::vector<Plane> planes_;
-    // A leaf triangle as onTriangle tests it: corners, unit normal, box.
+    // A leaf triangle as onTriangle tests it: corners, unit normal, box;
+    // the id of its plane in its own (outward) facing, and of the plane of
+    // the triangle across each edge (corners e, e + 1) in that one's, -1
+    // where that is the same plane or there is none.
     struct Triangle {
         std::array<glm::dvec3, 3> corners;
         glm::dvec3 normal;
         glm::dvec3 low, high;
+        std::int32_t facing = -1;
+        std::array<std::int32_t, 3> across{-1, -1, -1};
     };
     // Per plane pair (id / 2, both facings): its triangles.
     std::vector<std::vector<Triangle>> triangles_;
