@@ -458,14 +458,16 @@ VertexPlanes Contourer::snapToPlanes(const glm::ivec3& cell, std::span<const std
     return ids;
 }
 
+// Each crossing's plane: the one its normal and point name (PlaneTable::find).
 // A crossing near a ridge between two facets of a leaf (a curved primitive's
 // facets, say) may name the facet across the ridge: the GPU's rasterizer
 // decides which triangle covers a ray passing within a fraction of a pixel
 // of their shared edge, and the depth then lies on that triangle's plane,
 // extended a hair past its edge, where the reference names the facet the
-// point is on. Such a crossing takes instead the plane of another of the
-// patch's crossings that passes as near it and holds it on one of its
-// triangles. Returns whether any crossing changed.
+// point is on. A crossing that its plane's triangles do not hold takes
+// instead the plane of another of the patch's crossings that passes as near
+// it and holds it, or else the plane across the nearest edge of its own
+// plane's triangles, if that one holds it.
 void Contourer::findPlanes(std::span<const HermiteSample> patch, std::span<std::int32_t> found) const {
     const double tolerance = kOnPlane * image_.grid().spacing;
     const double reach = kCrossingOnPlane * image_.grid().spacing;
