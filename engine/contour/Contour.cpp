@@ -474,7 +474,8 @@ void Contourer::findPlanes(std::span<const HermiteSample> patch, std::span<std::
     for (std::size_t i = 0; i < patch.size(); ++i) found[i] = faces_->find(patch[i].point, patch[i].normal, reach);
     for (std::size_t i = 0; i < patch.size(); ++i) {
         if (found[i] < 0 || faces_->onTriangle(found[i], patch[i].point, tolerance)) continue;
-        for (std::size_t j = 0; j < patch.size(); ++j) {
+        std::int32_t holding = -1;
+        for (std::size_t j = 0; j < patch.size() && holding < 0; ++j) {
             const std::int32_t other = found[j];
             if (other < 0 || other == found[i]) continue;
             const Plane& plane = (*faces_)[other];
@@ -482,16 +483,12 @@ void Contourer::findPlanes(std::span<const HermiteSample> patch, std::span<std::
             // at an edge of the solid, however sharp (down to 60 degrees).
             if (glm::dot(plane.normal, patch[i].normal) < -0.5) continue;
             if (!(std::abs(glm::dot(plane.normal, patch[i].point) - plane.offset) <= reach)) continue;
-            if (!faces_->onTriangle(other, patch[i].point, tolerance)) continue;
-            found[i] = other;
-            break;
+            if (faces_->onTriangle(other, patch[i].point, tolerance)) holding = other;
         }
         // No crossing of the patch lies on the facet it is on: the leaf
         // triangle across the nearest edge of its own plane's.
-        if (!faces_->onTriangle(found[i], patch[i].point, tolerance)) {
-            const std::int32_t across = faces_->acrossEdge(found[i], patch[i].point, reach, tolerance);
-            if (across >= 0) found[i] = across;
-        }
+        if (holding < 0) holding = faces_->acrossEdge(found[i], patch[i].point, reach, tolerance);
+        if (holding >= 0) found[i] = holding;
     }
 }
 

@@ -100,13 +100,11 @@ void checkNothingBelowGrid(const contour::Dexels& dexels, int resolution, const 
     throw Error(scene, text);
 }
 
-// Where the contour, as the file will hold it (rounded to floats, points
-// that rounding joins made one), crosses itself or has an edge that is not
-// between exactly two triangles running it opposite ways: a box around
-// each such place, for the contour to untangle.
-std::vector<mesh::Bounds> tanglesAsWritten(const mesh::Mesh& contoured) {
-    mesh::Mesh written = contoured;
-    roundForFile(written);
+// Where `written`, a contour as the file will hold it (roundForFile),
+// crosses itself or has an edge that is not between exactly two triangles
+// running it opposite ways: a box around each such place, for the contour
+// to untangle.
+std::vector<mesh::Bounds> tanglesIn(const mesh::Mesh& written) {
     const auto boxOf = [&](std::initializer_list<std::uint32_t> corners) {
         mesh::Bounds box;
         for (const std::uint32_t v : corners) box.extend(written.positions[v]);
@@ -158,11 +156,18 @@ StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model
         // Every face of the result lies on a leaf's plane: the contour
         // rebuilds its flat regions on them.
         const contour::PlaneTable planes = contour::PlaneTable::fromMeshes(model.leafMeshes);
-        // Where the rebuilt mesh would cross itself, the contour moves the
-        // vertices there back to their crossings' means.
+        // Each merged mesh the contour hands over is rounded as the file
+        // holds it: points a hair apart in double precision can round to
+        // one float (the menger sponge's coincident walls), as the exact
+        // mesh's do. Where that would cross itself, the contour moves the
+        // vertices there back to their crossings' means and hands over the
+        // next; the last one handed over is the one it returns, so its
+        // rounded copy is the result.
         std::vector<mesh::Bounds> left;
-        result = contour::contour(dexels, &planes, [&left](const mesh::Mesh& contoured) {
-            left = tanglesAsWritten(contoured);
+        contour::contour(dexels, &planes, [&](const mesh::Mesh& contoured) {
+            result = contoured;
+            roundForFile(result);
+            left = tanglesIn(result);
             return left;
         });
         if (!left.empty()) {
@@ -174,9 +179,6 @@ StagedExport stageSampledMesh(const scene::Tree& tree, const model::Model& model
                           left.size(), where.x, where.y, where.z);
             out.warnings.push_back(Warning{std::string(tree.source) + ": " + text});
         }
-        // Points a hair apart in double precision can round to one float
-        // (the menger sponge's coincident walls): as the exact mesh is.
-        roundForFile(result);
         out.contourMs = msSince(t);
         reach = grid.spacing;
     }

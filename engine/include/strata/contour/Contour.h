@@ -34,8 +34,8 @@ namespace strata::contour {
 // world space around where triangles cross), the vertices near them go to
 // their crossings' means, off their planes, and the merge runs again, the
 // reach growing in up to four rounds, then a fifth that moves every vertex
-// (the contour of crossings' means, much larger); the mesh of
-// the last round is returned, whatever the last answer was, which the
+// (the contour of crossings' means, much larger); the mesh returned is
+// the one last handed to `findTangles`, whatever its answer was, which the
 // caller keeps if it wants to know. The caller decides what crossing
 // means for the file it writes (the export rounds to floats first and asks
 // the exact room's predicates); this room has none of its own.
