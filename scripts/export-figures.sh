@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes the export pictures of docs/algorithm.md and the README from a
+# Writes the export pictures of docs/export.md and the README from a
 # Release build: OpenSCAD's CSG example rendered as a scene, its image-space
 # export at 64 cells rendered as a plain mesh, and the export at 128 cells
 # with its triangle edges (strata-view's edge overlay), close up; and the
