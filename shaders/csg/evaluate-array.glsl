@@ -286,7 +286,14 @@ void main() {
             }
             siftDown(0);
         }
-        noteResult(nodeValue(0u), inside);
+        bool now = nodeValue(0u);
+        noteResult(now, inside);
+        // walkTo's test one step early (evaluate.frag); a walk past its
+        // budget ends as unresolved above instead.
+        if (budget >= 0 && closesChangedCluster(heapSize > 0 ? heapDepth[0] : kInfinity, depth, now, inside)) {
+            step = kWalkWritten;
+            break;
+        }
     }
     // The write is out of the loop, so that its work runs once (evaluate.frag).
     if (step != kWalkWritten) discard;

@@ -41,18 +41,19 @@
 // the depths taken so far: main's, here for the face's questions.
 uvec4 block = uvec4(0u);
 uint insideBits = 0u;
-vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity);
+vec4 nearA = vec4(kInfinity), farA = vec4(kInfinity), headA;
 ivec4 leafA = ivec4(0);
 uvec4 bitA = uvec4(0u);
 #if MAX_LIVE > 4
 uvec4 tableLow = uvec4(0u), tableHigh = uvec4(0u);
-vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity);
+vec4 nearB = vec4(kInfinity), farB = vec4(kInfinity), headB;
 ivec4 leafB = ivec4(0);
 uvec4 bitB = uvec4(0u);
 #endif
 #if MAX_LIVE > 8
 vec4 nearC = vec4(kInfinity), farC = vec4(kInfinity);
 vec4 nearD = vec4(kInfinity), farD = vec4(kInfinity);
+vec4 headC, headD;  // each slot's next surface on the walk
 ivec4 leafC = ivec4(0), leafD = ivec4(0);
 uvec4 bitC = uvec4(0u), bitD = uvec4(0u);
 #endif
@@ -119,6 +120,19 @@ void dropGrazes(inout vec4 nearSide, inout vec4 farSide, uvec4 bits, uint severa
     }
 }
 
+// The nearest surface not yet taken, of any slot.
+float nearestHead() {
+    float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
+#if MAX_LIVE > 4
+    nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
+#endif
+#if MAX_LIVE > 8
+    nearest = min(nearest, min(min(min(headC.x, headC.y), min(headC.z, headC.w)),
+                               min(min(headD.x, headD.y), min(headD.z, headD.w))));
+#endif
+    return nearest;
+}
+
 void main() {
     pixel = ivec2(gl_FragCoord.xy) - uTileOrigin;
     block = vRecord;
@@ -171,18 +185,19 @@ void main() {
     // surfaces lie ahead (evaluate.frag, "inside at the start").
     uvec4 odd = bitA * ((uvec4(lessThan(nearA, vec4(kInfinity))) + uvec4(lessThan(farA, vec4(kInfinity)))) & 1u);
     insideBits = odd.x ^ odd.y ^ odd.z ^ odd.w;
-    vec4 headA = nearA;
+    headA = nearA;
 #if MAX_LIVE > 4
     odd = bitB * ((uvec4(lessThan(nearB, vec4(kInfinity))) + uvec4(lessThan(farB, vec4(kInfinity)))) & 1u);
     insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
-    vec4 headB = nearB;
+    headB = nearB;
 #endif
 #if MAX_LIVE > 8
     odd = bitC * ((uvec4(lessThan(nearC, vec4(kInfinity))) + uvec4(lessThan(farC, vec4(kInfinity)))) & 1u);
     insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
     odd = bitD * ((uvec4(lessThan(nearD, vec4(kInfinity))) + uvec4(lessThan(farD, vec4(kInfinity)))) & 1u);
     insideBits ^= odd.x ^ odd.y ^ odd.z ^ odd.w;
-    vec4 headC = nearC, headD = nearD;
+    headC = nearC;
+    headD = nearD;
 #endif
     bool inside = RESULT(insideBits);
 #ifdef RESULT_PEEL
@@ -196,15 +211,8 @@ void main() {
     int step = kWalkOn;
     float depthTaken = -kInfinity;  // the depth whose surfaces are being taken
     bool depthOpen = false;
+    float nearest = nearestHead();
     while (true) {
-        float nearest = min(min(headA.x, headA.y), min(headA.z, headA.w));
-#if MAX_LIVE > 4
-        nearest = min(nearest, min(min(headB.x, headB.y), min(headB.z, headB.w)));
-#endif
-#if MAX_LIVE > 8
-        nearest = min(nearest, min(min(min(headC.x, headC.y), min(headC.z, headC.w)),
-                                   min(min(headD.x, headD.y), min(headD.z, headD.w))));
-#endif
         float depth = untagged(nearest);
         if (depthOpen && depth != depthTaken) {
             noteResult(RESULT(insideBits), inside);
@@ -252,6 +260,15 @@ void main() {
         if (bank == 2) headC = head;
         if (bank == 3) headD = head;
 #endif
+        nearest = nearestHead();
+        // The step that takes a cluster's last surface also sees whether
+        // the result changed there, rather than the next step (walkTo's
+        // test, one step early): most pixels end at their first cluster,
+        // which then takes one step a surface and no more.
+        if (closesChangedCluster(nearest, depthTaken, RESULT(insideBits), inside)) {
+            step = kWalkWritten;
+            break;
+        }
     }
     // The write is out of the loop, so that its work runs once (evaluate.frag).
     if (step != kWalkWritten) discard;

@@ -330,7 +330,10 @@ void writeChosenSurface(bool entered) {
     outDepth = pickSurface;
     outLeaf = leafCode(leaf, flip);
     int face = faceBit(exit, flip);
-    atomicOr(shownFaces[leaf], 1u << face);
+    // A plain read first: the first pixels of a face set its bit, and the
+    // rest find it set, where an atomic per pixel costs llvmpipe a locked
+    // operation per lane. A stale read costs only an atomic more.
+    if ((shownFaces[leaf] & (1u << face)) == 0u) atomicOr(shownFaces[leaf], 1u << face);
 #ifdef LEAF_MARKS
     gl_FragStencilRefARB = stencilMark(markSlots[leaf], face);
 #endif
@@ -393,6 +396,24 @@ int walkTo(float nearest, bool now, inout bool inside) {
     }
     clusterReach = untagged(nearest) + uCoincidence;
     return kWalkOn;
+}
+
+// walkTo's test for the step after the one that took a surface at
+// `depthTaken`, asked at the end of that step: true where the surface next
+// (`nearest`) lies beyond the open cluster's reach and the result (`now`)
+// differs from `inside`, its membership at the cluster's start; the walk
+// then ends with the chosen surface written, as walkTo would end it one
+// step later. The result peel's walk keeps walkTo's own test (its start
+// skips surfaces first).
+bool closesChangedCluster(float nearest, float depthTaken, bool now, bool inside) {
+#ifdef RESULT_PEEL
+    return false;
+#else
+    if (!clusterOpen || now == inside) return false;
+    if (nearest != kInfinity && (untagged(nearest) == depthTaken || untagged(nearest) <= clusterReach)) return false;
+    walkEntered = !inside;
+    return true;
+#endif
 }
 
 #if defined(PRODUCT_FORM) || defined(ARRAY_FORM)
