@@ -357,6 +357,16 @@ void PlainPass::prepareShown(const gpu::Framebuffer& target, const ViewSetup& vi
     }
 }
 
+// The depth to 0, the farthest reversed depth, and the marks to none.
+void PlainPass::clearDepth(const gpu::Framebuffer& target, bool marked) {
+    if (marked) {
+        glClearNamedFramebufferfi(target.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    } else {
+        const float farthest = 0.0f;
+        glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &farthest);
+    }
+}
+
 // Reversed depth (surface.vert, REVERSED_DEPTH): near / depth in
 // perspective, a float's relative precision at every depth. The tie
 // shader compares the fragments' plane depths (surface-depth.glsl),
@@ -420,6 +430,14 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     } else if (litAs) {
         glClearNamedFramebufferfv(targets.colorTarget.id(), GL_COLOR, 0, &output.background.r);
     }
+    // Lit and only shown, nothing reads marks: the depth has no stencil.
+    const bool marked = !(shown && litAs);
+    // Read after beyond the leaves' pixels: cleared over the whole frame,
+    // whether anything is drawn or not.
+    if (output.depthRead) {
+        glDisable(GL_SCISSOR_TEST);
+        clearDepth(target, marked);
+    }
     if (drawn.empty() || nearestDraws_ == 0) return;
     ++framesDrawn_;
 
@@ -437,14 +455,7 @@ void PlainPass::run(FrameTargets& targets, const SceneBuffers& scene, const View
     glEnable(GL_SCISSOR_TEST);
     glScissor(drawn.x, drawn.y, drawn.width, drawn.height);
     target.bindForDraw();
-    // Lit and only shown, nothing reads marks: the depth has no stencil.
-    const bool marked = !(shown && litAs);
-    if (marked) {
-        glClearNamedFramebufferfi(target.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
-    } else {
-        const float farthest = 0.0f;
-        glClearNamedFramebufferfv(target.id(), GL_DEPTH, 0, &farthest);
-    }
+    if (!output.depthRead) clearDepth(target, marked);
     colors_.bindBase(GL_SHADER_STORAGE_BUFFER, shader::kBufferPlainColors);
     scene.leafVertexArray().bind();
 

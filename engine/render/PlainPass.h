@@ -104,10 +104,16 @@ public:
         // which no leaf's mark equals, so the normal pass leaves the pixels
         // the plain leaves keep as they are.
         bool beside = false;
-        // Shown only, and a pass blends over the image after (translucent
-        // and '%' leaves): the depths and leaf codes of the whole frame
-        // too, which those passes read (a miss where nothing is drawn).
+        // Shown only, and a pass blends over the image after by leaf
+        // (translucent colours, AlphaPass.h): the depths and leaf codes of
+        // the whole frame too, which it reads (a miss where nothing is
+        // drawn).
         bool keepResult = false;
+        // Shown only, and the '%' and '#' leaves drawn over the image after
+        // (TranslucentPass.h), which read this pass's own depth image (the
+        // shown target's: shownDepth lit, plainDepth else) beyond the
+        // leaves' pixels: cleared over the whole frame.
+        bool depthRead = false;
     };
     // Draws setLeaves' leaves into `targets` (its plain target, made here if
     // need be) inside `drawn`, which holds every pixel they cover.
@@ -154,6 +160,7 @@ private:
     // wider margin, and sorted by triangle at the second frame.
     void findTies(const SceneBuffers& scene, const ViewSetup& view);
     // A shown frame's draw buffers (only what is read after) and clears.
+    static void clearDepth(const gpu::Framebuffer& target, bool marked);
     void prepareShown(const gpu::Framebuffer& target, const ViewSetup& view, const PixelRect& drawn,
                       const Output& output);
     // The reversed depth's terms for the view (surface.vert), those pulled

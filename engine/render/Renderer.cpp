@@ -153,10 +153,10 @@ void resetDrawState() {
 }
 
 void Renderer::Impl::shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
-                                const std::optional<PixelRect>& marked, bool lit) {
+                                const std::optional<PixelRect>& marked, bool lit, const gpu::Texture* windowDepth) {
     if (!lit) shade->run(targets, view, scheme, settings.lighting, settings.outline, marked);
     if (!alphaLeaves.empty()) alpha->run(targets, scene, view, scheme, settings.lighting, alphaLeaves);
-    if (!translucentLeaves.empty()) translucent->run(targets, scene, view, translucentLeaves);
+    if (!translucentLeaves.empty()) translucent->run(targets, scene, view, translucentLeaves, windowDepth);
     passDone();
 }
 
@@ -516,7 +516,10 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
         output.litAs = litAs;
         output.shownOnly = plan.shownOnly;
         output.background = glm::vec4(glm::vec3(scheme.background), 1.0f);
-        output.keepResult = !translucentLeaves.empty() || !alphaLeaves.empty();
+        // Only shown, the '%' and '#' leaves read the plain pass's own depth
+        // image; read back, every image is kept anyway.
+        output.keepResult = !alphaLeaves.empty();
+        output.depthRead = plan.shownOnly && !translucentLeaves.empty();
         drawPlain(view, screen.drawn, ShadePass::baseColors(scene, scheme), output, frame);
     } else if (plan.evaluated && plan.plainBeside) {
         // The plain leaves first, straight into the G-buffer, only what the
@@ -553,7 +556,11 @@ ViewSetup Renderer::Impl::drawFrame(const Camera& camera, const RenderSettings& 
 
     if (!plan.resultPeel) {
         const auto start = Clock::now();
-        shadeFrame(view, scheme, settings, screen.drawn, plan.litAsDrawn);
+        // A plain frame only shown keeps no result images: its own depth
+        // image (PlainPass::Output::depthRead) stands in for them.
+        const gpu::Texture* windowDepth = nullptr;
+        if (plan.plainFrame && plan.shownOnly) windowDepth = plan.litAsDrawn ? &targets.shownDepth : &targets.plainDepth;
+        shadeFrame(view, scheme, settings, screen.drawn, plan.litAsDrawn, windowDepth);
         stats.shadeMs = msSince(start);
     }
     stats.totalMs = msSince(frameStart);

@@ -255,8 +255,10 @@ struct Renderer::Impl {
     // Shade, alpha and translucent passes over the G-buffer in `targets`.
     // `marked`: ShadePass::run's. `lit`: the image is lit already (a frame
     // lit as drawn), only the alpha and translucent passes are left.
+    // `windowDepth`: TranslucentPass::run's, for a plain frame only shown.
     void shadeFrame(const ViewSetup& view, const ColorScheme& scheme, const RenderSettings& settings,
-                    const std::optional<PixelRect>& marked, bool lit = false);
+                    const std::optional<PixelRect>& marked, bool lit = false,
+                    const gpu::Texture* windowDepth = nullptr);
     void readColor(Frame& frame);  // the shaded image into frame.rgba, rows top first
     void readBack(Frame& frame, const RenderSettings& settings);  // what settings.read* ask, beside image and leaves
 };

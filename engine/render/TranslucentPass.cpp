@@ -7,17 +7,36 @@
 
 namespace strata::render {
 
-TranslucentPass::TranslucentPass()
-    : program_(gpu::Program::fromFiles("translucent", {"csg/surface.vert", "csg/translucent.frag"},
-                                       {{"FACE_NORMAL", "1"}})) {}
+TranslucentPass::TranslucentPass() = default;
+
+gpu::Program& TranslucentPass::program(bool windowDepth) {
+    std::optional<gpu::Program>& slot = programs_[windowDepth ? 1 : 0];
+    if (!slot) {
+        std::vector<gpu::ShaderDefine> defines{{"FACE_NORMAL", "1"}};
+        if (windowDepth) defines.push_back({"WINDOW_DEPTH", "1"});
+        slot.emplace(gpu::Program::fromFiles(windowDepth ? "translucent over a plain frame" : "translucent",
+                                             {"csg/surface.vert", "csg/translucent.frag"}, defines));
+    }
+    return *slot;
+}
 
 void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-                          const std::vector<TranslucentLeaf>& leaves) {
+                          const std::vector<TranslucentLeaf>& leaves, const gpu::Texture* windowDepth) {
     if (leaves.empty()) return;
-    setSurfaceView(program_, view);
-    program_.setUniform(shader::kTranslucentToLight, glm::normalize(-view.forward + 0.25f * (view.up - view.right)));
-    program_.use();
-    targets.resultDepth.bindUnit(shader::kTextureResultDepth);
+    gpu::Program& program = this->program(windowDepth != nullptr);
+    setSurfaceView(program, view);
+    program.setUniform(shader::kTranslucentToLight, glm::normalize(-view.forward + 0.25f * (view.up - view.right)));
+    program.use();
+    if (windowDepth != nullptr) {
+        // The inverse of PlainPass::reversedDepth's unpulled terms.
+        const auto nearPlane = static_cast<float>(view.nearPlane), farPlane = static_cast<float>(view.farPlane);
+        program.setUniform(shader::kTranslucentFromWindow, view.orthographic
+                                                               ? glm::vec3(0.0f, farPlane, farPlane - nearPlane)
+                                                               : glm::vec3(nearPlane, 0.0f, 0.0f));
+        windowDepth->bindUnit(shader::kTextureWindowDepth);
+    } else {
+        targets.resultDepth.bindUnit(shader::kTextureResultDepth);
+    }
     targets.colorTarget.bindForDraw();
     glViewport(0, 0, view.width, view.height);
     glEnable(GL_BLEND);
@@ -27,7 +46,7 @@ void TranslucentPass::run(FrameTargets& targets, const SceneBuffers& scene, cons
     glCullFace(GL_BACK);
     scene.vertexArray().bind();
     for (const TranslucentLeaf& t : leaves) {
-        program_.setUniform(shader::kTranslucentColor, t.color);
+        program.setUniform(shader::kTranslucentColor, t.color);
         scene.drawLeaf(t.leaf);
     }
     glDisable(GL_CULL_FACE);

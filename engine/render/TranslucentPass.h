@@ -7,6 +7,7 @@
 // GL state: enables blending and back-face culling while it runs, disables
 // both before returning; viewport = the frame.
 
+#include <optional>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -26,11 +27,16 @@ struct TranslucentLeaf {
 class TranslucentPass {
 public:
     TranslucentPass();
+    // The result's depth is targets.resultDepth, or, where `windowDepth` is
+    // given, that image of a plain frame only shown (PlainPass.h): its
+    // reversed window depth, which `view` turns back into view depths.
     void run(FrameTargets& targets, const SceneBuffers& scene, const ViewSetup& view,
-             const std::vector<TranslucentLeaf>& leaves);
+             const std::vector<TranslucentLeaf>& leaves, const gpu::Texture* windowDepth = nullptr);
 
 private:
-    gpu::Program program_;
+    // Compiled at first use: [1] the WINDOW_DEPTH variant.
+    gpu::Program& program(bool windowDepth);
+    std::optional<gpu::Program> programs_[2];
 };
 
 }  // namespace strata::render

@@ -78,6 +78,7 @@ SHARED int kNormalSlack = 8;   // the checking variant: the depth's slack, in it
 // translucent.frag (after surface.vert's).
 SHARED int kTranslucentColor = 3;
 SHARED int kTranslucentToLight = 5;
+SHARED int kTranslucentFromWindow = 6;  // WINDOW_DEPTH: the plain pass's window depth back to a view depth
 
 // alpha.frag (the REAR variant after surface.vert's).
 SHARED int kAlphaCodes = 3;        // the leaf codes whose pixels this draw blends over
@@ -108,6 +109,7 @@ SHARED int kTextureResultStart = 4;   // evaluate RESULT_PEEL: the surface the r
 SHARED int kTextureGroupScratch = 0;  // group: the winning entry and exit
 SHARED int kTextureGroupWinners = 1;  // peel GROUP_TIE: a copy of the winning entry and exit
 SHARED int kTextureResultDepth = 0;   // normal, translucent: the evaluator's depth
+SHARED int kTextureWindowDepth = 0;   // translucent WINDOW_DEPTH: the plain frame's own depth image
 SHARED int kTextureResultLeaf = 1;    // normal, alpha: the evaluator's leaf code
 SHARED int kTextureNormal = 0;        // shade: normal and base colour
 SHARED int kTexturePlainNearest = 0;  // plain TIE: a copy of the nearest pass's depths

@@ -441,12 +441,14 @@ namespace {
 // A union with a leaf repeated exactly (parts[3] repeats parts[1]), a
 // translucent color() among the united leaves, a '#' leaf, and a '%'
 // background leaf.
-scene::Tree modifiersScene(std::vector<int>& parts) {
+// With `translucent`, one leaf's colour is (AlphaPass.h); without,
+// only the '%' and '#' leaves are drawn over the image (TranslucentPass.h).
+scene::Tree modifiersScene(std::vector<int>& parts, bool translucent = true) {
     scene::Tree tree;
     scene::Leaf ball = sphereLeaf({0.4, 0, 0.2}, 0.9, 24);
     ball.color = glm::dvec4(0.9, 0.3, 0.2, 1.0);
     scene::Leaf glass = cubeLeaf({-1.8, -0.6, -0.6}, {-0.6, 0.6, 0.9});
-    glass.color = glm::dvec4(0.2, 0.6, 0.9, 0.5);
+    glass.color = glm::dvec4(0.2, 0.6, 0.9, translucent ? 0.5 : 1.0);
     scene::Leaf marked = cylinderLeaf({1.2, 0.8, -0.5}, 0.4, 1.6);
     marked.display = scene::Display::Highlight;
     parts = {tree.addLeaf(cubeLeaf({-1, -1, -1}, {1, 1, 0.5})), tree.addLeaf(ball), tree.addLeaf(glass),
@@ -496,11 +498,13 @@ TEST_F(PlainFrameGLTest, FramesThatNeedThePeelRunEveryPass) {
 TEST_F(PlainFrameGLTest, RenderIntoAHostGivesThePlainImage) {
     // A window's frames (renderInto) take the plain path too, writing only
     // what the image needs, and show what render() reads back, to the byte,
-    // in every look; a renderer whose first frame is a window's, too.
+    // in every look; a renderer whose first frame is a window's, too. With
+    // '%' and '#' leaves and no translucent colour, the window's frame keeps
+    // no result images, and the leaves drawn over it read its own depth.
     std::vector<int> parts;
-    for (const bool modifiers : {false, true}) {
+    for (const int kind : {0, 1, 2}) {
         renderer_ = std::make_unique<render::Renderer>();
-        setScene(modifiers ? modifiersScene(parts) : randomUnion(21, 16));
+        setScene(kind == 0 ? randomUnion(21, 16) : modifiersScene(parts, kind == 1));
         for (const bool outline : {true, false}) {
             for (const render::Lighting lighting : {render::Lighting::Strata, render::Lighting::OpenScad}) {
                 for (camera::Projection projection : kProjections) {
@@ -508,7 +512,9 @@ TEST_F(PlainFrameGLTest, RenderIntoAHostGivesThePlainImage) {
                     look.outline = outline;
                     look.lighting = lighting;
                     const camera::Camera camera = cameraAt({4.0, -6.0, 5.0}, projection);
-                    const std::string what = std::string(modifiers ? "modifiers, " : "") +
+                    const std::string what = std::string(kind == 1   ? "modifiers, "
+                                                         : kind == 2 ? "'%' and '#' only, "
+                                                                     : "") +
                                              std::string(render::lightingName(lighting)) +
                                              (outline ? ", outline" : "") + ", projection " +
                                              std::to_string(static_cast<int>(projection));
