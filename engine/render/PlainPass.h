@@ -159,8 +159,10 @@ private:
     // The tie pass's draws for this view, found again when the view needs a
     // wider margin, and sorted by triangle at the second frame.
     void findTies(const SceneBuffers& scene, const ViewSetup& view);
-    // A shown frame's draw buffers (only what is read after) and clears.
+    // The target's depth to the farthest reversed depth, 0, and its marks
+    // (where `marked`: a stencil) to none.
     static void clearDepth(const gpu::Framebuffer& target, bool marked);
+    // A shown frame's draw buffers (only what is read after) and clears.
     void prepareShown(const gpu::Framebuffer& target, const ViewSetup& view, const PixelRect& drawn,
                       const Output& output);
     // The reversed depth's terms for the view (surface.vert), those pulled

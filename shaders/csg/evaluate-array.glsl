@@ -290,7 +290,7 @@ void main() {
         noteResult(now, inside);
         // walkTo's test one step early (evaluate.frag); a walk past its
         // budget ends as unresolved above instead.
-        if (budget >= 0 && closesChangedCluster(heapSize > 0 ? heapDepth[0] : kInfinity, depth, now, inside)) {
+        if (budget >= 0 && walkEndsAfterStep(heapSize > 0 ? heapDepth[0] : kInfinity, now, inside)) {
             step = kWalkWritten;
             break;
         }

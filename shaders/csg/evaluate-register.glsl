@@ -265,7 +265,7 @@ void main() {
         // the result changed there, rather than the next step (walkTo's
         // test, one step early): most pixels end at their first cluster,
         // which then takes one step a surface and no more.
-        if (closesChangedCluster(nearest, depthTaken, RESULT(insideBits), inside)) {
+        if (walkEndsAfterStep(nearest, RESULT(insideBits), inside)) {
             step = kWalkWritten;
             break;
         }

@@ -37,8 +37,6 @@
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
-const float kInfinity = uintBitsToFloat(0x7f800000u);
-
 layout(binding = kTextureLayers) uniform sampler2DArray uLayers;
 
 #include "csg/blocks.glsl"
@@ -370,6 +368,28 @@ void startSkipping() {
 }
 #endif
 
+// Whether the walk ends here with the chosen surface written: the
+// surface next (`nearest`, +inf for none) lies beyond the open cluster's
+// reach, and the result (`now`) differs from `inside`, its membership at
+// the cluster's start.
+bool closesChangedCluster(float nearest, bool now, bool inside) {
+    if (!clusterOpen || now == inside || (nearest != kInfinity && untagged(nearest) <= clusterReach)) return false;
+    walkEntered = !inside;
+    return true;
+}
+
+// walkTo's test, asked by the forms at the end of the step that took a
+// surface rather than at the next step's walkTo: the step that takes a
+// cluster's last surface ends the walk. The result peel's walk keeps to
+// walkTo, whose start skips surfaces first.
+bool walkEndsAfterStep(float nearest, bool now, bool inside) {
+#ifdef RESULT_PEEL
+    return false;
+#else
+    return closesChangedCluster(nearest, now, inside);
+#endif
+}
+
 // `inside`: the result's membership at the walk's start (inout for the
 // result peel, which moves the start past the surfaces already reported).
 int walkTo(float nearest, bool now, inout bool inside) {
@@ -385,35 +405,14 @@ int walkTo(float nearest, bool now, inout bool inside) {
         inside = now;
     }
 #endif
+    if (closesChangedCluster(nearest, now, inside)) return kWalkWritten;
     if (nearest == kInfinity || untagged(nearest) > clusterReach) {
-        if (clusterOpen && now != inside) {
-            walkEntered = !inside;
-            return kWalkWritten;
-        }
         if (nearest == kInfinity) return kWalkDone;
         startCluster();
         clusterOpen = true;
     }
     clusterReach = untagged(nearest) + uCoincidence;
     return kWalkOn;
-}
-
-// walkTo's test for the step after the one that took a surface at
-// `depthTaken`, asked at the end of that step: true where the surface next
-// (`nearest`) lies beyond the open cluster's reach and the result (`now`)
-// differs from `inside`, its membership at the cluster's start; the walk
-// then ends with the chosen surface written, as walkTo would end it one
-// step later. The result peel's walk keeps walkTo's own test (its start
-// skips surfaces first).
-bool closesChangedCluster(float nearest, float depthTaken, bool now, bool inside) {
-#ifdef RESULT_PEEL
-    return false;
-#else
-    if (!clusterOpen || now == inside) return false;
-    if (nearest != kInfinity && (untagged(nearest) == depthTaken || untagged(nearest) <= clusterReach)) return false;
-    walkEntered = !inside;
-    return true;
-#endif
 }
 
 #if defined(PRODUCT_FORM) || defined(ARRAY_FORM)

@@ -19,6 +19,7 @@
 // The loads below are written for lists of kCollectCapacity = 8 (PeelPass.cpp
 // checks that).
 #include "csg/interface.glsl"
+#include "csg/surface.glsl"
 
 layout(binding = kImageFragmentCounts, r32ui) uniform uimage2D uFragmentCounts;
 layout(binding = kImageFragments, r32f) uniform readonly image2DArray uFragments;
@@ -31,8 +32,6 @@ layout(std430, binding = kBufferResolveStats) buffer ResolveStats {
 
 layout(location = kResolveFirstLayer) uniform int uFirstLayer;
 layout(location = kResolveLayerCount) uniform int uLayerCount;  // at most 4
-
-const float kInfinity = uintBitsToFloat(0x7f800000u);
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

@@ -22,3 +22,6 @@ bool isExit(float tagged) {
 float untagged(float tagged) {
     return uintBitsToFloat(floatBitsToUint(tagged) & ~1u);
 }
+
+// A depth no surface has: a miss, or none left.
+const float kInfinity = uintBitsToFloat(0x7f800000u);

@@ -11,8 +11,6 @@
 #include "csg/interface.glsl"
 #include "csg/surface.glsl"
 
-const float kInfinity = uintBitsToFloat(0x7f800000u);
-
 layout(location = 0) in float vViewDepth;
 layout(location = 1) flat in vec3 vFaceNormal;  // outward, unit (surface.vert's FACE_NORMAL)
 layout(location = 0) out vec4 outColor;
