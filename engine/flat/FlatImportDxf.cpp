@@ -455,6 +455,7 @@ private:
         selfCount_.assign(nLines, {0, 0});
         occurrences_.assign(nLines, {});
         walk_.resize(nCells);
+        walkStart_.assign(nCells, 0);
         // In one pass over the cells (linear in their entries: a file can put
         // a hundred thousand segment ends in one cell): each cell's walk list,
         // each segment once in first-listed order; and, for every segment end
@@ -508,7 +509,9 @@ private:
         occ.erase(std::unique(occ.begin(), occ.end()), occ.end());
         for (int c : occ) {
             if (activeCount_[std::size_t(c)] > maxSelf_[std::size_t(c)]) continue;
-            for (int k : walk_[std::size_t(c)]) {
+            const std::vector<int>& list = walk_[std::size_t(c)];
+            for (std::size_t i = walkStart_[std::size_t(c)]; i < list.size(); ++i) {
+                const int k = list[i];
                 if (!enabled(k)) continue;
                 for (int j = 0; j < 2; ++j) {
                     if (cellOf(k, j) == c && isFree(k, j)) candidates->push(k);
@@ -529,32 +532,30 @@ private:
             disable(line, candidates);
             const int c = pointCell_[std::size_t(far)];
             std::vector<int>& list = walk_[std::size_t(c)];
-            // The first enabled segment listed in the cell with an end there
-            // (disabled ones are dropped from the list on the way).
+            std::size_t& first = walkStart_[std::size_t(c)];
+            // The first enabled segment listed in the cell with an end there.
             bool found = false;
-            std::size_t keep = 0;
-            std::size_t i = 0;
-            for (; i < list.size(); ++i) {
+            std::size_t i = first;
+            for (; i < list.size() && !found; ++i) {
                 const int k = list[i];
                 if (disabled_[std::size_t(k)]) continue;
-                list[keep++] = k;
-                if (cellOf(k, 0) == c) {
+                for (int j = 0; j < 2 && !found; ++j) {
+                    if (cellOf(k, j) != c) continue;
                     line = k;
-                    point = 0;
+                    point = j;
                     found = true;
-                    ++i;
-                    break;
-                }
-                if (cellOf(k, 1) == c) {
-                    line = k;
-                    point = 1;
-                    found = true;
-                    ++i;
-                    break;
                 }
             }
-            for (; i < list.size(); ++i) list[keep++] = list[i];
-            list.resize(keep);
+            // The disabled entries passed over leave the list: the enabled
+            // ones before `i` move up against it, in their order, and the
+            // list now starts after the gap. Only the part scanned moves, so
+            // a cell that many segments share costs its length once, not once
+            // per step.
+            std::size_t keep = i;
+            for (std::size_t r = i; r-- > first;) {
+                if (!disabled_[std::size_t(list[r])]) list[--keep] = list[r];
+            }
+            first = keep;
             if (!found) break;
         }
     }
@@ -629,6 +630,7 @@ private:
     std::vector<std::array<int, 2>> selfCount_;
     std::vector<std::vector<int>> occurrences_;
     std::vector<std::vector<int>> walk_;
+    std::vector<std::size_t> walkStart_;   // walk_[c] starts at walkStart_[c]; entries before it are spent
     std::vector<Path> paths_;
 };
 
