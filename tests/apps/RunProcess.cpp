@@ -1,7 +1,6 @@
 #include "RunProcess.h"
 
 #include <fcntl.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,9 +26,12 @@ ProcessResult runProcess(const std::vector<std::string>& argv,
                          const std::vector<std::pair<std::string, std::string>>& env) {
     char outName[] = "/tmp/strata-test-out-XXXXXX";
     char errName[] = "/tmp/strata-test-err-XXXXXX";
+    char resultName[] = "/tmp/strata-test-status-XXXXXX";
     const int outFd = mkstemp(outName);
     const int errFd = mkstemp(errName);
-    if (outFd < 0 || errFd < 0) throw std::runtime_error("runProcess: cannot make temporary files");
+    const int resultFd = mkstemp(resultName);
+    if (outFd < 0 || errFd < 0 || resultFd < 0) throw std::runtime_error("runProcess: cannot make temporary files");
+    close(resultFd);
 
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("runProcess: fork failed");
@@ -39,7 +41,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv,
         const int null = open("/dev/null", O_RDONLY);
         if (null >= 0) dup2(null, STDIN_FILENO);
         for (const auto& [name, value] : env) setenv(name.c_str(), value.c_str(), 1);
-        std::vector<char*> args;
+        // The program runs under strata_peak_rss, which reports its status and peak memory.
+        std::vector<char*> args{const_cast<char*>(STRATA_PEAK_RSS_EXE), resultName};
         for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
         args.push_back(nullptr);
         execv(args[0], args.data());
@@ -47,18 +50,19 @@ ProcessResult runProcess(const std::vector<std::string>& argv,
         _exit(127);
     }
     int status = 0;
-    rusage usage{};
-    wait4(pid, &status, 0, &usage);
+    waitpid(pid, &status, 0);
     close(outFd);
     close(errFd);
 
     ProcessResult result;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.peakKiB = usage.ru_maxrss;
     result.out = slurp(outName);
     result.err = slurp(errName);
+    std::istringstream reported(slurp(resultName));
     unlink(outName);
     unlink(errName);
+    unlink(resultName);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !(reported >> result.exitCode >> result.peakKiB))
+        throw std::runtime_error("runProcess: strata_peak_rss did not report on " + argv.at(0) + ": " + result.err);
     return result;
 }
 

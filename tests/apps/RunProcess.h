@@ -12,10 +12,11 @@ struct ProcessResult {
     int exitCode = -1;   // the exit status, or 128 + signal number when killed
     std::string out;     // stdout
     std::string err;     // stderr
-    long peakKiB = -1;   // its peak resident memory (wait4's ru_maxrss)
+    long peakKiB = -1;   // its own peak resident memory, in KiB (see PeakRss.cpp)
 };
 
-// Runs `argv[0]` with `argv`, adding `env` (NAME, value) to the environment.
+// Runs `argv[0]` with `argv`, adding `env` (NAME, value) to the environment,
+// under strata_peak_rss (PeakRss.cpp).
 ProcessResult runProcess(const std::vector<std::string>& argv,
                          const std::vector<std::pair<std::string, std::string>>& env = {});
 
