@@ -27,24 +27,23 @@ if [[ -z ${DISPLAY:-} ]] && command -v xvfb-run >/dev/null; then
   run_ctest=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest)
 fi
 
-# Release: every test in a process of its own, and the GL tests once more in
-# one process. ASan+UBSan: only the whole runs (ctest label `whole`, see
+# In each tree only the whole runs (ctest label `whole`, see
 # tests/CMakeLists.txt): each test binary in one to four processes, and the
-# embedding example. Same tests, same sanitizers; a process per test would
-# pay ASan's start over a thousand times.
+# embedding example. The same tests as a plain ctest, which gives every test
+# a process of its own and pays a process's start over a thousand times.
 phase() { echo "== strata: $1 (at ${SECONDS} s)"; }
 for flavour in release asan; do
   phase "$flavour build"
   scripts/build.sh "$flavour"
-  dir=build; select=()
-  [[ $flavour == asan ]] && dir=build-asan && select=(-L whole)
+  dir=build; [[ $flavour == asan ]] && dir=build-asan
   phase "$flavour tests"
-  "${run_ctest[@]}" --test-dir "$dir" --output-on-failure -j "$(nproc)" --timeout 900 "${select[@]}"
+  "${run_ctest[@]}" --test-dir "$dir" --output-on-failure -j "$(nproc)" --timeout 900 -L whole
 done
 
-fuzz_seconds=${STRATA_FUZZ_SECONDS:-60}
+fuzz_seconds=${STRATA_FUZZ_SECONDS:-30}
+reader_seconds=${STRATA_FUZZ_READER_SECONDS:-5}
 if [[ $fuzz_seconds != 0 && -x scripts/fuzz.sh ]]; then
-  phase "fuzzing the .csg parser for ${fuzz_seconds}s and each file reader for ${STRATA_FUZZ_READER_SECONDS:-10}s"
-  scripts/fuzz.sh "$fuzz_seconds"
+  phase "fuzzing the .csg parser for ${fuzz_seconds}s and each file reader for ${reader_seconds}s"
+  scripts/fuzz.sh "$fuzz_seconds" "$reader_seconds"
 fi
 phase "all tests passed"
